@@ -1,0 +1,86 @@
+/* hitray: the context — loads shape modules and keeps error messages.
+ *
+ * A context is the root of everything: scenes, images and SDL reading take
+ * one. It is safe to use one context from several threads: module loading is
+ * serialised inside, and the last error message is kept per thread. */
+#ifndef HITRAY_CONTEXT_H
+#define HITRAY_CONTEXT_H
+
+#include "common.h"
+#include "shape_module.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Make a context. Shape modules are looked for, in this order, in the
+ * directories given to hr_context_add_shape_dir, in the colon-separated list
+ * of the environment variable HITRAY_SHAPE_PATH, and in `hitray/shapes` next
+ * to the libhitray file itself (so a build tree and an installed tree both
+ * work without setup). The first module that provides a class name wins. */
+HR_API hr_status hr_context_create(hr_context **out);
+HR_API void hr_context_destroy(hr_context *ctx);
+
+/* The message of the calling thread's last error on this context ("" if
+ * none). Valid until the next call on this context from this thread. */
+HR_API const char *hr_context_last_error(const hr_context *ctx);
+
+/* Where the last error happened, for errors in scene files. */
+typedef struct hr_error_info {
+    uint32_t struct_size;
+    hr_status status;   /* HR_OK if there was no error */
+    const char *message;
+    const char *file;   /* "" if the error is not in a file */
+    int32_t line;       /* 1-based; 0 if unknown */
+    int32_t column;     /* 1-based; 0 if unknown */
+} hr_error_info;
+HR_API hr_status hr_context_last_error_info(const hr_context *ctx, hr_error_info *out);
+
+/* Called with every error as it is raised (from the thread that raised it). */
+typedef void (*hr_error_fn)(void *user, hr_status status, const char *message);
+HR_API void hr_context_set_error_callback(hr_context *ctx, hr_error_fn fn, void *user);
+
+/* Search `dir` for modules before the default places. */
+HR_API hr_status hr_context_add_shape_dir(hr_context *ctx, const char *dir);
+/* Load one module file now; its classes take precedence over modules found
+ * by searching. Fails with HR_ERROR_MODULE naming `path` if the file cannot
+ * be opened, has no entry point, or reports another ABI version. */
+HR_API hr_status hr_context_load_module(hr_context *ctx, const char *path);
+/* Register a shape class that lives in the calling process (for example one
+ * written in Python through cffi). `origin` names it in messages. The class
+ * table must outlive the context. */
+HR_API hr_status hr_context_register_shape_class(hr_context *ctx,
+                                                 const hr_shape_class *cls,
+                                                 const char *origin);
+
+/* Find a shape class by name, loading modules from the search path if it is
+ * not known yet. `module_path` (may be NULL) receives the module's path. */
+HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
+                                             const hr_shape_class **out,
+                                             const char **module_path);
+
+/* Listing of every module found on the search path (it is scanned now),
+ * including those that could not be loaded. */
+typedef struct hr_module_entry {
+    uint32_t struct_size;
+    int32_t loaded;        /* 1: usable; 0: refused, see `error` */
+    const char *path;
+    const char *name;      /* "" if not loaded */
+    const char *description;
+    const char *error;     /* "" if loaded */
+    const hr_shape_class *const *classes;
+    int32_t class_count;
+} hr_module_entry;
+HR_API int32_t hr_context_module_count(hr_context *ctx);
+HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_entry *out);
+
+/* Short human name of a status code ("invalid argument", ...). */
+HR_API const char *hr_status_name(hr_status status);
+
+/* Version of the library actually loaded (compare with HR_VERSION_*). */
+HR_API void hr_version(int32_t *major, int32_t *minor, int32_t *patch);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,51 @@
+/* hitray: images of linear float RGB(A) and their writers.
+ *
+ * Pixels are stored row by row from the top, channels interleaved, as 32-bit
+ * floats in linear light. Writers: PNG (libpng), EXR (OpenEXRCore), PPM
+ * (binary P6, 8-bit sRGB) and PFM (float, bottom row first as the format
+ * says). Every writer writes to a temporary file beside the target and
+ * renames it into place, so a failure never leaves a half-written image. */
+#ifndef HITRAY_IMAGE_H
+#define HITRAY_IMAGE_H
+
+#include "common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* channels: 3 (RGB) or 4 (RGBA). Pixels start at 0. */
+HR_API hr_status hr_image_create(hr_context *ctx, int32_t width, int32_t height,
+                                 int32_t channels, hr_image **out);
+HR_API void hr_image_destroy(hr_image *image);
+HR_API int32_t hr_image_width(const hr_image *image);
+HR_API int32_t hr_image_height(const hr_image *image);
+HR_API int32_t hr_image_channels(const hr_image *image);
+/* width * height * channels floats; stays valid until destroy. */
+HR_API float *hr_image_data(hr_image *image);
+
+#define HR_FORMAT_AUTO 0 /* from the file extension */
+#define HR_FORMAT_PNG 1
+#define HR_FORMAT_EXR 2
+#define HR_FORMAT_PPM 3
+#define HR_FORMAT_PFM 4
+
+typedef struct hr_image_write_options {
+    uint32_t struct_size;
+    int32_t format;     /* HR_FORMAT_*; AUTO picks by extension */
+    int32_t png_bits;   /* 8 (default, 0 means 8) or 16 */
+    int32_t png_linear; /* 1: write values as they are (what Hill's OpenGL
+                           display showed); 0: sRGB-encode (default) */
+    int32_t exr_half;   /* 1: 16-bit half floats; 0: 32-bit floats */
+    int32_t reserved;
+} hr_image_write_options;
+HR_API void hr_image_write_options_default(hr_image_write_options *o);
+
+/* `options` may be NULL for the defaults. */
+HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const char *path,
+                                const hr_image_write_options *options);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

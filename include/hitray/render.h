@@ -1,0 +1,65 @@
+/* hitray: rendering a committed scene through a camera into an image.
+ *
+ * Tiles are rendered on a pool of threads. The image depends only on the
+ * scene, the camera and the options, never on the thread count or timing:
+ * the same inputs give the same image bit for bit. */
+#ifndef HITRAY_RENDER_H
+#define HITRAY_RENDER_H
+
+#include "camera.h"
+#include "common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Called from one thread at a time as tiles finish, with the fraction done
+ * in [0, 1]. Return non-zero to cancel: hr_render then stops early and
+ * returns HR_ERROR_CANCELLED, with no image. */
+typedef int32_t (*hr_progress_fn)(void *user, double fraction);
+
+#define HR_EFFECTS_AUTO 0 /* simulate only what the scene calls for */
+#define HR_EFFECTS_ALL 1  /* run every effect's code path (for measuring) */
+
+typedef struct hr_render_options {
+    uint32_t struct_size;
+    int32_t width;             /* 0: the camera's width */
+    int32_t height;            /* 0: the camera's height */
+    int32_t samples_per_pixel; /* 1 (default, 0 means 1): the pixel centre;
+                                  more: a fixed stratified pattern */
+    int32_t threads;           /* 0: every core */
+    int32_t block_size;        /* Hill's blocksize: one ray per block of
+                                  block_size x block_size pixels (1 = every
+                                  pixel; 0 means 1) */
+    int32_t max_depth;         /* < 0: the scene's maxRecursionDepth */
+    int32_t tile_size;         /* 0: 32 pixels */
+    int32_t effects;           /* HR_EFFECTS_AUTO or HR_EFFECTS_ALL */
+    int32_t reserved;
+    hr_progress_fn progress;   /* may be NULL */
+    void *progress_user;
+} hr_render_options;
+HR_API void hr_render_options_default(hr_render_options *o);
+
+typedef struct hr_render_stats {
+    uint32_t struct_size;
+    int32_t threads;    /* threads that ran */
+    uint64_t primary;   /* rays from the camera */
+    uint64_t shadow;    /* rays toward lights */
+    uint64_t reflected;
+    uint64_t refracted; /* transmitted rays (total internal reflection counts
+                           as reflected) */
+    double seconds;     /* wall time of the render */
+    uint32_t effects;   /* HR_EFFECT_* bits that ran */
+    int32_t reserved;
+} hr_render_stats;
+
+/* Render into a new image of width x height x 3 linear floats. `stats` may
+ * be NULL. The scene must be committed. */
+HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
+                           const hr_render_options *options, hr_image **out_image,
+                           hr_render_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,154 @@
+/* hitray: scenes — objects, materials, lights, globals — and Hill's queries.
+ *
+ * Build a scene with hr_scene_add_object / hr_scene_add_light /
+ * hr_scene_set_globals, then hr_scene_commit it: commit validates, builds the
+ * acceleration structure and works out which effects the scene calls for.
+ * A committed scene is immutable and any number of threads may query and
+ * render it at once. */
+#ifndef HITRAY_SCENE_H
+#define HITRAY_SCENE_H
+
+#include "camera.h"
+#include "common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A material as Hill's SDL describes it; every field is per object.
+ * hr_material_default gives SDL's defaults. */
+typedef struct hr_material {
+    uint32_t struct_size;
+    int32_t texture;          /* 0 none; stored, not yet used in shading */
+    hr_color ambient;         /* default 0.1 0.1 0.1 */
+    hr_color diffuse;         /* default 0.8 0.8 0.8 */
+    hr_color specular;        /* default 0 0 0 */
+    hr_color emissive;        /* default 0 0 0 */
+    double specular_exponent; /* default 1 */
+    double reflectivity;      /* default 0; mirror weight in [0, 1] */
+    double transparency;      /* default 0; transmission weight in [0, 1] */
+    double speed_of_light;    /* default 1; relative speed of light inside */
+    double specular_fraction; /* Cook-Torrance; stored, not used in shading */
+    double surface_roughness; /* Cook-Torrance; stored, not used in shading */
+    int32_t parameter_count;  /* texture parameters (copied at add time) */
+    int32_t reserved;
+    const double *parameters;
+} hr_material;
+HR_API void hr_material_default(hr_material *m);
+
+/* A point light in world coordinates; one colour for diffuse and specular. */
+typedef struct hr_light {
+    uint32_t struct_size;
+    int32_t reserved;
+    hr_vec3 position;
+    hr_color color;
+} hr_light;
+
+/* Scene-wide settings, with SDL's defaults from hr_scene_globals_default. */
+typedef struct hr_scene_globals {
+    uint32_t struct_size;
+    int32_t max_recursion_depth; /* default 3: primary rays are depth 0 */
+    hr_color background;         /* default 0 0 0.6 */
+    hr_color global_ambient;     /* default 0.1 0.1 0.1 */
+    double min_reflectivity;     /* default 0.5: reflect only if >= this */
+    double min_transparency;     /* default 0.5: refract only if >= this */
+} hr_scene_globals;
+HR_API void hr_scene_globals_default(hr_scene_globals *g);
+
+/* One object to add: a shape class by name with its parameters, a material
+ * and a transform. Everything is copied; the pointers need not outlive the
+ * call. */
+typedef struct hr_object_desc {
+    uint32_t struct_size;
+    int32_t param_count;
+    const char *shape;           /* class name, e.g. "sphere" */
+    const hr_param *params;      /* may be NULL when param_count is 0 */
+    const hr_material *material; /* NULL: hr_material_default */
+    const double *transform;     /* 16 doubles, row-major, object -> world;
+                                    NULL: identity */
+    const double *inverse;       /* its exact inverse if the caller has it
+                                    (Hill's reader keeps one); NULL: computed */
+    const char *base_dir;        /* for relative file parameters; NULL: "" */
+} hr_object_desc;
+
+HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out);
+HR_API void hr_scene_destroy(hr_scene *scene);
+HR_API hr_context *hr_scene_context(const hr_scene *scene);
+
+/* Add an object; `out_index` (may be NULL) receives its index, which is also
+ * the `object` field of its hits. Objects used as HR_PARAM_OBJECT children
+ * of a composite are consumed by it and not traced on their own. Fails with
+ * HR_ERROR_MODULE (no module provides the class), HR_ERROR_PARAMETER (the
+ * class refused a parameter, named in the message), HR_ERROR_NUMERIC (a
+ * singular transform) or HR_ERROR_STATE (the scene is committed). */
+HR_API hr_status hr_scene_add_object(hr_scene *scene, const hr_object_desc *desc,
+                                     int64_t *out_index);
+HR_API hr_status hr_scene_add_light(hr_scene *scene, const hr_light *light);
+HR_API hr_status hr_scene_set_globals(hr_scene *scene, const hr_scene_globals *g);
+HR_API hr_status hr_scene_get_globals(const hr_scene *scene, hr_scene_globals *out);
+HR_API hr_status hr_scene_commit(hr_scene *scene);
+HR_API int32_t hr_scene_is_committed(const hr_scene *scene);
+
+/* Introspection. */
+HR_API int64_t hr_scene_object_count(const hr_scene *scene);
+HR_API int32_t hr_scene_light_count(const hr_scene *scene);
+typedef struct hr_object_info {
+    uint32_t struct_size;
+    int32_t top_level;      /* 0 if consumed by a composite */
+    const char *shape;      /* class name */
+    const char *module_path;
+    hr_material material;   /* its `parameters` point into the scene */
+    double transform[16];
+    double inverse[16];
+    hr_bounds world_bounds; /* infinities for unbounded objects */
+} hr_object_info;
+HR_API hr_status hr_scene_object_info(const hr_scene *scene, int64_t index,
+                                      hr_object_info *out);
+HR_API hr_status hr_scene_light(const hr_scene *scene, int32_t index, hr_light *out);
+
+/* World bounds of the bounded top-level objects; *found is 0 if none. */
+HR_API hr_status hr_scene_bounds(const hr_scene *scene, hr_bounds *out, int32_t *found);
+
+/* Effects a committed scene calls for (bit set of HR_EFFECT_*). */
+#define HR_EFFECT_EMISSION 1u
+#define HR_EFFECT_AMBIENT 2u
+#define HR_EFFECT_DIFFUSE 4u
+#define HR_EFFECT_SPECULAR 8u
+#define HR_EFFECT_SHADOWS 16u
+#define HR_EFFECT_REFLECTION 32u
+#define HR_EFFECT_REFRACTION 64u
+#define HR_EFFECT_SUPERSAMPLING 128u /* set in render statistics only */
+#define HR_EFFECT_COUNT 8
+HR_API uint32_t hr_scene_effects(const hr_scene *scene);
+/* Name of one effect bit ("shadows", ...), NULL for an unknown bit. */
+HR_API const char *hr_effect_name(uint32_t effect);
+
+/* Hill's getFirstHit: the nearest hit of any object with tmin < t < tmax.
+ * *found is 1 and *out filled (world space, unit normal) on a hit. */
+HR_API hr_status hr_scene_first_hit(const hr_scene *scene, const hr_ray *ray,
+                                    double tmin, double tmax, hr_hit *out,
+                                    int32_t *found);
+/* Hill's Intersection of the whole scene: every hit of every top-level object
+ * with tmin < t < tmax, sorted by t. `out` is the caller's record: start it
+ * zeroed (or from hr_intersection_init) and release it when done; its storage
+ * grows as needed. */
+HR_API hr_status hr_scene_all_hits(const hr_scene *scene, const hr_ray *ray,
+                                   double tmin, double tmax, hr_intersection *out);
+HR_API void hr_intersection_init(hr_intersection *list);
+HR_API void hr_intersection_release(hr_intersection *list);
+
+/* Hill's shade: the colour seen along `ray`, with reflections and
+ * refractions down to the scene's maxRecursionDepth (or `max_depth` if
+ * >= 0). The ray's direction need not be unit length. */
+HR_API hr_status hr_scene_shade(const hr_scene *scene, const hr_ray *ray,
+                                int32_t max_depth, hr_color *out);
+
+/* Frame the bounded objects: sets eye, look, up and view_angle of `cam`
+ * (keeping its size) so every bounded object is in view, looking from the
+ * +z side, a little from above and the right. Works on an uncommitted scene. */
+HR_API hr_status hr_scene_frame_camera(const hr_scene *scene, hr_camera *cam);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

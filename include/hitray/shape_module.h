@@ -1,0 +1,166 @@
+/* hitray: the shape module ABI.
+ *
+ * Every shape (the built-in ones too) is a loadable module that exports one
+ * function, `hr_shape_module` (HR_SHAPE_MODULE_ENTRY). The host calls it with
+ * its ABI version and a table of host services; the module returns a
+ * description of the shape classes it provides. A module needs no symbol of
+ * libhitray: everything it may ask of the host is in `hr_host`.
+ *
+ * Compatibility: the host refuses a module whose `abi_version` differs from
+ * HR_SHAPE_ABI_VERSION, naming the module's path. Within one ABI version,
+ * structs only grow at the end; the host copies `struct_size` bytes of each
+ * hr_shape_class and treats missing fields as zero, so an older module keeps
+ * working.
+ *
+ * The contract of a shape class:
+ * - reentrant: no globals written, any number of threads call `hit` at once;
+ * - no allocation per call (the host owns hit storage, see hr_hit_args.out);
+ * - no NaN or infinity in any hit field;
+ * - hits strictly inside the open interval (tmin, tmax), sorted by t;
+ * - for a closed solid (HR_SHAPE_CLOSED) entering flags alternate, starting
+ *   with whatever the ray origin's side implies;
+ * - `hit.error` bounds the distance of `hit.point` from the true surface point
+ *   in object space (absolute, per coordinate). Avoiding self-intersection is
+ *   the host's job: it offsets spawned rays by this bound, so shapes do not
+ *   use a private epsilon for it. */
+#ifndef HITRAY_SHAPE_MODULE_H
+#define HITRAY_SHAPE_MODULE_H
+
+#include "common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define HR_SHAPE_ABI_VERSION 1u
+#define HR_SHAPE_MODULE_ENTRY hr_shape_module
+#define HR_SHAPE_MODULE_ENTRY_NAME "hr_shape_module"
+
+/* On entry to any hit function, `out->capacity - out->count` is at least this
+ * many hits, so a shape with a bounded number of hits (a quadric: 2, a cube:
+ * 2, a torus: 4) never needs host->reserve. */
+#define HR_MIN_HIT_CAPACITY 8
+
+/* Modes of hr_host.trace_child. */
+#define HR_TRACE_ALL 0   /* every hit, sorted */
+#define HR_TRACE_FIRST 1 /* the nearest hit only */
+#define HR_TRACE_ANY 2   /* any hit (count 0 or 1; only t is meaningful) */
+
+/* Host services. The host passes one table that lives as long as the module
+ * is loaded. `call` is the host's per-thread context of the current hit call
+ * (hr_hit_args.call): pass it back unchanged. */
+typedef struct hr_host {
+    uint32_t struct_size;
+    uint32_t abi_version;
+    /* Zero-filled allocation, for shape data made at create time. */
+    void *(*alloc)(size_t size);
+    void (*free)(void *ptr);
+    /* Make `list` hold at least `capacity` hits (keeps its contents). */
+    hr_status (*reserve)(void *call, hr_intersection *list, int32_t capacity);
+    /* A per-thread scratch list (count 0), for composites that merge the
+     * hits of children; release it before returning. NULL: out of memory. */
+    hr_intersection *(*scratch_acquire)(void *call);
+    void (*scratch_release)(void *call, hr_intersection *list);
+    /* Trace a child object given to create as an HR_PARAM_OBJECT parameter.
+     * The ray is in the composite's object space; the host moves it through
+     * the child's own transform and returns the child's hits in the
+     * composite's object space, each hit's `object` naming the leaf whose
+     * surface it is. Appends to `out` (sorted) and keeps it sorted. */
+    hr_status (*trace_child)(void *call, const void *child, const hr_ray *ray,
+                             double tmin, double tmax, int32_t mode,
+                             hr_intersection *out);
+    /* Bounds of a child object in the composite's object space. */
+    void (*child_bounds)(const void *child, hr_bounds *out);
+} hr_host;
+
+/* Arguments of a shape's create. */
+typedef struct hr_create_args {
+    uint32_t struct_size;
+    int32_t param_count;
+    /* The parameters given, each already checked by the host against the
+     * class's hr_param_spec list (known name, right type, in range); a
+     * parameter the caller omitted is present with its default value. */
+    const hr_param *params;
+    /* objects[i] is the child handle of params[i] when its type is
+     * HR_PARAM_OBJECT (for hr_host.trace_child), NULL otherwise. */
+    const void *const *objects;
+    const hr_host *host;
+    /* On refusal, write one line here naming the parameter and what is
+     * wrong (the host adds the class and module path) and return
+     * HR_ERROR_PARAMETER. */
+    char *error;
+    size_t error_size;
+    /* Directory of the scene file being read, for relative file parameters
+     * (mesh files); "" when not reading a file. */
+    const char *base_dir;
+} hr_create_args;
+
+/* Arguments of a hit call. Everything is in the shape's object space. */
+typedef struct hr_hit_args {
+    const void *shape; /* what create returned */
+    hr_ray ray;
+    double tmin, tmax; /* report hits with tmin < t < tmax */
+    /* Append hits here (out->hits[out->count++]); at least
+     * HR_MIN_HIT_CAPACITY free slots on entry, host->reserve for more. */
+    hr_intersection *out;
+    void *call; /* host context for hr_host services */
+} hr_hit_args;
+
+typedef hr_status (*hr_hit_fn)(const hr_hit_args *args);
+
+/* Describes one parameter of a shape class. */
+typedef struct hr_param_spec {
+    const char *name;
+    int32_t type;        /* HR_PARAM_* */
+    int32_t required;    /* 1: the caller must give it; 0: default applies */
+    double default_number;
+    double min, max;     /* inclusive range of a number, checked by the host */
+    const char *help;    /* one line: meaning, unit, what choices cost */
+} hr_param_spec;
+
+/* Flags of a shape class. */
+#define HR_SHAPE_CLOSED 1    /* a solid: entering/exiting alternate (CSG-able) */
+#define HR_SHAPE_COMPOSITE 2 /* takes HR_PARAM_OBJECT children (CSG) */
+
+/* The vtable of one shape class. */
+typedef struct hr_shape_class {
+    uint32_t struct_size; /* sizeof(hr_shape_class) the module was built with */
+    int32_t flags;        /* HR_SHAPE_* */
+    const char *name;     /* as used by SDL and hr_object_desc.shape */
+    const char *help;     /* one line */
+    const hr_param_spec *params;
+    int32_t param_count;
+    int32_t surface_count; /* surfaces ids are 0 .. surface_count-1 */
+    hr_status (*create)(const hr_create_args *args, void **out_shape);
+    void (*destroy)(void *shape);
+    /* Object-space bounds; infinities for an unbounded shape. */
+    void (*bounds)(const void *shape, hr_bounds *out);
+    hr_hit_fn hit;       /* required: every hit in (tmin, tmax), sorted */
+    hr_hit_fn first_hit; /* optional: at most the nearest hit */
+    hr_hit_fn any_hit;   /* optional: count 0 or 1; for shadow rays */
+} hr_shape_class;
+
+/* What a module's entry point returns. */
+typedef struct hr_module_info {
+    uint32_t struct_size;
+    uint32_t abi_version; /* HR_SHAPE_ABI_VERSION the module was built for */
+    const char *name;
+    const char *description;
+    const hr_shape_class *const *classes;
+    int32_t class_count;
+} hr_module_info;
+
+typedef const hr_module_info *(*hr_shape_module_fn)(uint32_t host_abi_version,
+                                                     const hr_host *host);
+
+/* A module defines its entry point with this macro, so the name and
+ * signature cannot drift:
+ *   HR_DEFINE_SHAPE_MODULE(host_version, host) { ...; return &info; } */
+#define HR_DEFINE_SHAPE_MODULE(version_arg, host_arg)                          \
+    HR_EXPORT_ATTR const hr_module_info *HR_SHAPE_MODULE_ENTRY(                \
+        uint32_t version_arg, const hr_host *host_arg)
+
+#ifdef __cplusplus
+}
+#endif
+#endif

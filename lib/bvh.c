@@ -1,0 +1,207 @@
+/* A BVH over boxes, built top-down with the surface area heuristic over
+ * binned centroids (16 bins per axis), stored as a flat array with the two
+ * children of an inner node side by side. */
+#include "bvh.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BINS 16
+#define MAX_LEAF 4
+/* Relative cost of visiting a node against testing one object. */
+#define TRAVERSAL_COST 0.5
+
+static hr_bounds empty_box(void)
+{
+    hr_bounds b = {{DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
+    return b;
+}
+
+static void grow(hr_bounds *b, const hr_bounds *o)
+{
+    b->lo.x = fmin(b->lo.x, o->lo.x), b->lo.y = fmin(b->lo.y, o->lo.y);
+    b->lo.z = fmin(b->lo.z, o->lo.z);
+    b->hi.x = fmax(b->hi.x, o->hi.x), b->hi.y = fmax(b->hi.y, o->hi.y);
+    b->hi.z = fmax(b->hi.z, o->hi.z);
+}
+
+static double area(const hr_bounds *b)
+{
+    double dx = b->hi.x - b->lo.x, dy = b->hi.y - b->lo.y, dz = b->hi.z - b->lo.z;
+    if (dx < 0 || dy < 0 || dz < 0) return 0.0;
+    return 2.0 * (dx * dy + dy * dz + dz * dx);
+}
+
+static double axis_of(const hr_vec3 *v, int axis) { return axis == 0 ? v->x : axis == 1 ? v->y : v->z; }
+
+static double centroid(const hr_bounds *b, int axis)
+{
+    return 0.5 * (axis_of(&b->lo, axis) + axis_of(&b->hi, axis));
+}
+
+typedef struct builder {
+    hr_bvh *bvh;
+    const hr_bounds *boxes;
+    int32_t node_cap;
+} builder;
+
+static int32_t new_node(builder *b)
+{
+    if (b->bvh->node_count == b->node_cap) return -1; /* capacity is 2n-1: never hit */
+    return b->bvh->node_count++;
+}
+
+/* Bin index of a centroid along an axis of the centroid bounds. */
+static int bin_of(double c, double lo, double scale)
+{
+    int i = (int)((c - lo) * scale);
+    return i < 0 ? 0 : i >= BINS ? BINS - 1 : i;
+}
+
+static void build(builder *b, int32_t node, int32_t first, int32_t count)
+{
+    hr_bvh *bvh = b->bvh;
+    int32_t *items = bvh->items;
+    hr_bounds box = empty_box(), cbox = empty_box();
+    for (int32_t i = first; i < first + count; i++) {
+        const hr_bounds *ib = &b->boxes[items[i]];
+        grow(&box, ib);
+        hr_vec3 c = {centroid(ib, 0), centroid(ib, 1), centroid(ib, 2)};
+        hr_bounds cb = {c, c};
+        grow(&cbox, &cb);
+    }
+    bvh->nodes[node].box = box;
+    bvh->nodes[node].first = first;
+    bvh->nodes[node].count = count;
+    if (count <= 1) return;
+
+    /* Best split over the three axes by binned SAH. */
+    double best_cost = DBL_MAX;
+    int best_axis = -1, best_split = 0;
+    for (int axis = 0; axis < 3; axis++) {
+        double lo = axis_of(&cbox.lo, axis), hi = axis_of(&cbox.hi, axis);
+        if (!(hi > lo)) continue;
+        double scale = BINS / (hi - lo);
+        hr_bounds bin_box[BINS];
+        int32_t bin_count[BINS] = {0};
+        for (int k = 0; k < BINS; k++) bin_box[k] = empty_box();
+        for (int32_t i = first; i < first + count; i++) {
+            const hr_bounds *ib = &b->boxes[items[i]];
+            int k = bin_of(centroid(ib, axis), lo, scale);
+            bin_count[k]++;
+            grow(&bin_box[k], ib);
+        }
+        double right_area[BINS];
+        int32_t right_count[BINS];
+        hr_bounds acc = empty_box();
+        int32_t n = 0;
+        for (int k = BINS - 1; k > 0; k--) {
+            grow(&acc, &bin_box[k]);
+            n += bin_count[k];
+            right_area[k] = area(&acc);
+            right_count[k] = n;
+        }
+        acc = empty_box();
+        n = 0;
+        for (int k = 0; k < BINS - 1; k++) {
+            grow(&acc, &bin_box[k]);
+            n += bin_count[k];
+            if (n == 0 || right_count[k + 1] == 0) continue;
+            double cost = area(&acc) * n + right_area[k + 1] * right_count[k + 1];
+            if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = k;
+        }
+    }
+    double parent_area = area(&box);
+    double leaf_cost = (double)count;
+    double split_cost = parent_area > 0 ? TRAVERSAL_COST + best_cost / parent_area : DBL_MAX;
+    int32_t mid;
+    if (best_axis < 0) {
+        /* All centroids coincide: split in the middle to bound leaf size. */
+        if (count <= MAX_LEAF) return;
+        mid = first + count / 2;
+    } else {
+        if (count <= MAX_LEAF && leaf_cost <= split_cost) return;
+        double lo = axis_of(&cbox.lo, best_axis), hi = axis_of(&cbox.hi, best_axis);
+        double scale = BINS / (hi - lo);
+        int32_t i = first, j = first + count - 1;
+        while (i <= j) {
+            if (bin_of(centroid(&b->boxes[items[i]], best_axis), lo, scale) <= best_split) {
+                i++;
+            } else {
+                int32_t t = items[i];
+                items[i] = items[j];
+                items[j--] = t;
+            }
+        }
+        mid = i;
+        if (mid == first || mid == first + count) mid = first + count / 2;
+    }
+    int32_t left = new_node(b), right = new_node(b);
+    if (left < 0 || right < 0) return;
+    bvh->nodes[node].first = left;
+    bvh->nodes[node].count = 0;
+    build(b, left, first, mid - first);
+    build(b, right, mid, first + count - mid);
+}
+
+int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count)
+{
+    memset(bvh, 0, sizeof *bvh);
+    if (count <= 0) return 1;
+    builder b = {bvh, boxes, 2 * count - 1};
+    bvh->nodes = malloc((size_t)b.node_cap * sizeof *bvh->nodes);
+    bvh->items = malloc((size_t)count * sizeof *bvh->items);
+    if (!bvh->nodes || !bvh->items) {
+        hr_bvh_release(bvh);
+        return 0;
+    }
+    for (int32_t i = 0; i < count; i++) bvh->items[i] = i;
+    bvh->item_count = count;
+    bvh->node_count = 1;
+    build(&b, 0, 0, count);
+    return 1;
+}
+
+void hr_bvh_release(hr_bvh *bvh)
+{
+    free(bvh->nodes);
+    free(bvh->items);
+    memset(bvh, 0, sizeof *bvh);
+}
+
+void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray)
+{
+    double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
+    double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    for (int a = 0; a < 3; a++) {
+        r->o[a] = o[a];
+        r->inv_d[a] = 1.0 / d[a]; /* +-inf for a zero component: handled below */
+        r->neg[a] = signbit(d[a]) != 0;
+    }
+}
+
+/* Slab test. A zero direction component gives infinite slab distances; the
+ * only NaN case (origin exactly on a slab plane, 0 * inf) is replaced by the
+ * answer the limit gives: the ray runs inside that slab. The far distance is
+ * widened by 1 + 2*gamma(3) (pbrt) so rounding never loses a box the ray
+ * touches. */
+int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double tmin, double tmax,
+                   double *t_enter)
+{
+    const double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z};
+    const double widen = 1.0 + 2.0 * (3.0 * DBL_EPSILON * 0.5) / (1.0 - 3.0 * DBL_EPSILON * 0.5);
+    for (int a = 0; a < 3; a++) {
+        double near = ((r->neg[a] ? hi[a] : lo[a]) - r->o[a]) * r->inv_d[a];
+        double far = ((r->neg[a] ? lo[a] : hi[a]) - r->o[a]) * r->inv_d[a];
+        if (isnan(near)) near = -INFINITY;
+        if (isnan(far)) far = INFINITY;
+        far += fabs(far) * (widen - 1.0);
+        if (near > tmin) tmin = near;
+        if (far < tmax) tmax = far;
+        if (tmin > tmax) return 0;
+    }
+    *t_enter = tmin;
+    return 1;
+}

@@ -1,0 +1,46 @@
+/* Internal: what a context holds. Only lib/ sees this. */
+#ifndef HITRAY_LIB_CONTEXT_INTERNAL_H
+#define HITRAY_LIB_CONTEXT_INTERNAL_H
+
+#include <pthread.h>
+
+#include <hitray/hitray.h>
+
+/* One module file found on the search path or loaded by path. */
+typedef struct hr_module {
+    char *path;
+    void *handle;        /* dlopen handle; NULL if not loaded */
+    char *error;         /* why it was refused; NULL if loaded */
+    const hr_module_info *info;
+    hr_shape_class *classes; /* full-size copies of the module's classes */
+    const hr_shape_class **class_ptrs;
+    int32_t class_count;
+} hr_module;
+
+/* A shape class usable by scenes, with where it came from. */
+typedef struct hr_class_entry {
+    const hr_shape_class *cls;
+    const char *origin; /* module path, or the origin given at registration */
+} hr_class_entry;
+
+struct hr_context {
+    pthread_mutex_t lock;     /* guards modules, classes and dirs */
+    pthread_key_t error_key;  /* per-thread last error (hr_error_slot) */
+    hr_error_fn error_fn;
+    void *error_user;
+    char **dirs;              /* extra search directories, in order */
+    int32_t dir_count;
+    int32_t scanned;          /* the search path has been read */
+    hr_module **modules;
+    int32_t module_count;
+    hr_class_entry *classes;  /* explicit loads/registrations first */
+    int32_t class_count;
+    hr_class_entry *registered; /* in-process classes (origin strings owned) */
+    int32_t registered_count;
+    hr_host host;             /* the services table given to every module */
+};
+
+/* The host services table (lib/host_services.c). */
+void hr_host_services_init(hr_host *host);
+
+#endif

@@ -1,0 +1,10 @@
+/* Internal: finding, loading and checking shape modules. */
+#ifndef HITRAY_LIB_MODULE_LOADER_H
+#define HITRAY_LIB_MODULE_LOADER_H
+
+#include "context_internal.h"
+
+/* dlclose every module and free the tables. */
+void hr_modules_unload_all(hr_context *ctx);
+
+#endif

@@ -1,0 +1,81 @@
+/* Internal: what a scene holds, and the per-thread tracing context. */
+#ifndef HITRAY_LIB_SCENE_INTERNAL_H
+#define HITRAY_LIB_SCENE_INTERNAL_H
+
+#include <hitray/hitray.h>
+
+#include "bvh.h"
+
+/* Per-material flags worked out at commit, so shade() tests one bit. */
+#define HR_MAT_EMITS 1u
+#define HR_MAT_AMBIENT 2u
+#define HR_MAT_DIFFUSE 4u
+#define HR_MAT_SPECULAR 8u
+#define HR_MAT_REFLECTS 16u
+#define HR_MAT_REFRACTS 32u
+
+typedef struct hr_object {
+    int64_t index;
+    const hr_shape_class *cls;
+    const char *module_path;
+    void *shape;              /* what the class's create returned */
+    hr_material material;     /* `parameters` points at params_copy */
+    double *params_copy;
+    double m[16], inv[16];    /* object -> world and back (for a child: -> parent) */
+    int32_t identity;         /* m is the identity: skip the transforms */
+    int32_t top_level;        /* 0 once consumed by a composite */
+    int32_t bounded;
+    uint32_t mat_flags;       /* HR_MAT_* */
+    hr_bounds local_bounds;   /* object space */
+    hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
+} hr_object;
+
+struct hr_scene {
+    hr_context *ctx;
+    hr_object **objects;
+    int64_t object_count, object_cap;
+    hr_light *lights;
+    int32_t light_count, light_cap;
+    hr_scene_globals globals;
+    int32_t committed;
+    uint32_t effects;           /* HR_EFFECT_* the scene calls for */
+    hr_bvh bvh;                 /* over bounded top-level objects */
+    const hr_object **unbounded; /* top-level objects outside the BVH */
+    int32_t unbounded_count;
+};
+
+/* Per-thread state of tracing: what hr_hit_args.call points to. Scratch
+ * lists are reused across rays, so tracing allocates only while they grow. */
+#define HR_SCRATCH_MAX 64
+typedef struct hr_trace_ctx {
+    const hr_scene *scene;
+    hr_intersection scratch[HR_SCRATCH_MAX];
+    int32_t scratch_used;
+    hr_status status;           /* first failure inside a shape, if any */
+    uint64_t rays_shadow, rays_reflected, rays_refracted;
+    int32_t force_all_effects;
+} hr_trace_ctx;
+
+void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene);
+void hr_trace_ctx_release(hr_trace_ctx *tc);
+
+/* Grow a list to hold at least `capacity` hits. */
+hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity);
+
+/* Trace one object with a ray in its parent's space: hits come back in the
+ * parent's space (unit normals only when `unit_normals`), appended to `out`
+ * in t order, `object` naming the leaf. mode: HR_TRACE_*. */
+hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
+                          double tmin, double tmax, int32_t mode, int unit_normals,
+                          hr_intersection *out);
+
+/* Hill's getFirstHit over the scene; returns 1 on a hit. */
+int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                         hr_hit *out);
+/* Any hit in (tmin, tmax) (shadow rays); returns 1 on a hit. */
+int hr_scene_trace_any(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax);
+
+/* Hill's shade (lib/shade.c). */
+hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
+
+#endif

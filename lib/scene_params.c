@@ -1,0 +1,135 @@
+#include "scene_params.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "errors.h"
+
+static const char *type_name(int32_t type)
+{
+    switch (type) {
+    case HR_PARAM_NUMBER: return "a number";
+    case HR_PARAM_STRING: return "a string";
+    case HR_PARAM_OBJECT: return "an object";
+    default: return "an unknown type";
+    }
+}
+
+/* "a, b, c" or "no parameters", for messages. */
+static void list_params(const hr_shape_class *cls, char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    if (cls->param_count == 0) {
+        snprintf(buf, size, "it takes no parameters");
+        return;
+    }
+    int n = snprintf(buf, size, "it takes: ");
+    len = n > 0 ? (size_t)n : 0;
+    for (int32_t i = 0; i < cls->param_count && len < size; i++) {
+        n = snprintf(buf + len, size - len, "%s%s", i ? ", " : "", cls->params[i].name);
+        if (n > 0) len += (size_t)n;
+    }
+}
+
+static void format_range(double v, char *buf, size_t size)
+{
+    if (isinf(v)) snprintf(buf, size, "%sinf", v < 0 ? "-" : "");
+    else snprintf(buf, size, "%g", v);
+}
+
+hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const char *module_path,
+                            const hr_param *given, int32_t given_count, hr_param *full,
+                            const void **objects)
+{
+    hr_context *ctx = scene->ctx;
+    int32_t seen[256] = {0};
+    if (cls->param_count > 256)
+        return hr_error(ctx, HR_ERROR_MODULE, "shape '%s' (module '%s') declares too many parameters",
+                        cls->name, module_path);
+    for (int32_t i = 0; i < cls->param_count; i++) {
+        const hr_param_spec *spec = &cls->params[i];
+        memset(&full[i], 0, sizeof full[i]);
+        full[i].name = spec->name;
+        full[i].type = spec->type;
+        full[i].number = spec->default_number;
+        full[i].string = "";
+        full[i].object = -1;
+        objects[i] = NULL;
+    }
+    for (int32_t g = 0; g < given_count; g++) {
+        const hr_param *p = &given[g];
+        if (!p->name)
+            return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter %d has no name",
+                            cls->name, (int)g);
+        int32_t k = -1;
+        for (int32_t i = 0; i < cls->param_count; i++)
+            if (strcmp(cls->params[i].name, p->name) == 0) k = i;
+        if (k < 0) {
+            char names[512];
+            list_params(cls, names, sizeof names);
+            return hr_error(ctx, HR_ERROR_PARAMETER,
+                            "shape '%s' (module '%s') has no parameter '%s'; %s", cls->name,
+                            module_path, p->name, names);
+        }
+        const hr_param_spec *spec = &cls->params[k];
+        if (seen[k]++)
+            return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' given twice",
+                            cls->name, p->name);
+        if (p->type != spec->type)
+            return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' must be %s, not %s",
+                            cls->name, p->name, type_name(spec->type), type_name(p->type));
+        if (spec->type == HR_PARAM_NUMBER) {
+            if (!isfinite(p->number))
+                return hr_error(ctx, HR_ERROR_PARAMETER,
+                                "shape '%s': parameter '%s' must be a finite number, not %g",
+                                cls->name, p->name, p->number);
+            if (spec->min <= spec->max && (p->number < spec->min || p->number > spec->max)) {
+                char lo[32], hi[32];
+                format_range(spec->min, lo, sizeof lo);
+                format_range(spec->max, hi, sizeof hi);
+                return hr_error(ctx, HR_ERROR_PARAMETER,
+                                "shape '%s' (module '%s'): parameter '%s' = %g is outside [%s, %s]",
+                                cls->name, module_path, p->name, p->number, lo, hi);
+            }
+            full[k].number = p->number;
+        } else if (spec->type == HR_PARAM_STRING) {
+            if (!p->string)
+                return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' is NULL",
+                                cls->name, p->name);
+            full[k].string = p->string;
+        } else {
+            if (!(cls->flags & HR_SHAPE_COMPOSITE))
+                return hr_error(ctx, HR_ERROR_MODULE,
+                                "shape '%s' (module '%s') takes an object parameter but is not "
+                                "marked composite",
+                                cls->name, module_path);
+            if (p->object < 0 || p->object >= scene->object_count)
+                return hr_error(ctx, HR_ERROR_PARAMETER,
+                                "shape '%s': parameter '%s' names object %lld, but the scene has "
+                                "objects 0..%lld",
+                                cls->name, p->name, (long long)p->object,
+                                (long long)scene->object_count - 1);
+            const hr_object *child = scene->objects[p->object];
+            if (!child->top_level)
+                return hr_error(ctx, HR_ERROR_PARAMETER,
+                                "shape '%s': parameter '%s' names object %lld, which another "
+                                "composite already uses",
+                                cls->name, p->name, (long long)p->object);
+            for (int32_t i = 0; i < cls->param_count; i++)
+                if (objects[i] == child)
+                    return hr_error(ctx, HR_ERROR_PARAMETER,
+                                    "shape '%s': object %lld given twice", cls->name,
+                                    (long long)p->object);
+            full[k].object = p->object;
+            objects[k] = child;
+        }
+    }
+    for (int32_t i = 0; i < cls->param_count; i++)
+        if (cls->params[i].required && !seen[i])
+            return hr_error(ctx, HR_ERROR_PARAMETER,
+                            "shape '%s' (module '%s'): parameter '%s' is required", cls->name,
+                            module_path, cls->params[i].name);
+    return HR_OK;
+}

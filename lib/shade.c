@@ -1,0 +1,122 @@
+/* Hill's shade(): the colour seen along a ray.
+ *
+ *   colour = emissive + ambient * globalAmbient
+ *          + sum over lights not in shadow of
+ *              light * (diffuse * max(0, s.m) + specular * max(0, h.m)^exponent)
+ *          + reflectivity * shade(reflected ray)     if reflectivity >= minReflectivity
+ *          + transparency * shade(transmitted ray)   if transparency >= minTransparency
+ *
+ * m is the unit normal turned to face the incoming ray, s the unit vector to
+ * the light, h the half-way vector between s and the direction to the eye. A
+ * light behind the surface (s.m <= 0) adds nothing, diffuse or specular, and
+ * casts no shadow ray. Shadows are Hill's: any object between the point and
+ * the light blocks it completely. Each term is skipped unless the material
+ * calls for it (flags worked out at commit), so an effect the scene lacks
+ * costs no ray. */
+#include <float.h>
+#include <math.h>
+
+#include "scene_internal.h"
+#include "vec.h"
+
+/* Spawned rays start a little off the surface, on the side they leave by:
+ * far enough that rounding of the hit point can't put the origin behind the
+ * surface. The distance is the hit's own error bound projected on the
+ * normal (pbrt's offset), with a floor of a few ulps of the point's
+ * magnitude for shapes that report a zero bound. */
+static hr_vec3 spawn_origin(const hr_hit *h, hr_vec3 side)
+{
+    hr_vec3 p = h->point;
+    double mag = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+    double err = fmax(h->error, 8.0 * DBL_EPSILON * mag);
+    double d = err * (fabs(side.x) + fabs(side.y) + fabs(side.z));
+    hr_vec3 o = v3_madd(p, side, d);
+    /* Round away from the surface so the offset survives the addition. */
+    o.x = side.x > 0 ? nextafter(o.x, INFINITY) : side.x < 0 ? nextafter(o.x, -INFINITY) : o.x;
+    o.y = side.y > 0 ? nextafter(o.y, INFINITY) : side.y < 0 ? nextafter(o.y, -INFINITY) : o.y;
+    o.z = side.z > 0 ? nextafter(o.z, INFINITY) : side.z < 0 ? nextafter(o.z, -INFINITY) : o.z;
+    return o;
+}
+
+static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, hr_vec3 m,
+                             hr_vec3 to_eye, uint32_t flags)
+{
+    const hr_scene *s = tc->scene;
+    const hr_material *mat = &o->material;
+    hr_color sum = rgb(0, 0, 0);
+    hr_vec3 origin = spawn_origin(h, m);
+    for (int32_t i = 0; i < s->light_count; i++) {
+        const hr_light *L = &s->lights[i];
+        hr_vec3 to_light = v3_sub(L->position, origin);
+        hr_vec3 sdir = v3_normalize(to_light);
+        double lambert = v3_dot(sdir, m);
+        if (!(lambert > 0.0) && !tc->force_all_effects) continue;
+        if (s->effects & HR_EFFECT_SHADOWS || tc->force_all_effects) {
+            hr_ray shadow = {origin, to_light};
+            tc->rays_shadow++;
+            /* The light sits at t = 1 along this ray. */
+            if (hr_scene_trace_any(tc, &shadow, 0.0, 1.0)) continue;
+        }
+        if (!(lambert > 0.0)) continue;
+        hr_color c = rgb(0, 0, 0);
+        if (flags & HR_MAT_DIFFUSE) c = rgb_scale(mat->diffuse, lambert);
+        if (flags & HR_MAT_SPECULAR) {
+            hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
+            double phong = v3_dot(half, m);
+            if (phong > 0.0) c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
+        }
+        sum = rgb_add(sum, rgb_mul(L->color, c));
+    }
+    return sum;
+}
+
+hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
+{
+    const hr_scene *s = tc->scene;
+    hr_hit h;
+    if (!hr_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;
+    const hr_object *o = s->objects[h.object];
+    const hr_material *mat = &o->material;
+    uint32_t flags = o->mat_flags;
+    if (tc->force_all_effects)
+        flags |= HR_MAT_EMITS | HR_MAT_AMBIENT | HR_MAT_DIFFUSE | HR_MAT_SPECULAR;
+
+    hr_vec3 dir = v3_normalize(ray->dir);
+    hr_vec3 to_eye = v3_neg(dir);
+    /* Hill's m: the normal on the side the ray arrives from. */
+    hr_vec3 m = v3_dot(h.normal, dir) > 0.0 ? v3_neg(h.normal) : h.normal;
+
+    hr_color c = rgb(0, 0, 0);
+    if (flags & HR_MAT_EMITS) c = rgb_add(c, mat->emissive);
+    if (flags & HR_MAT_AMBIENT) c = rgb_add(c, rgb_mul(mat->ambient, s->globals.global_ambient));
+    if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0)
+        c = rgb_add(c, direct_light(tc, o, &h, m, to_eye, flags));
+    if (depth >= max_depth) return c;
+
+    double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
+    if (flags & HR_MAT_REFLECTS) {
+        hr_ray r = {spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
+        tc->rays_reflected++;
+        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &r, depth + 1, max_depth), mat->reflectivity));
+    }
+    if (flags & HR_MAT_REFRACTS) {
+        /* Snell with Hill's speeds: sin(t) = (c2 / c1) sin(i). Entering goes
+         * from the surrounding space (speed 1) into the material. */
+        double c1 = h.entering ? 1.0 : mat->speed_of_light;
+        double c2 = h.entering ? mat->speed_of_light : 1.0;
+        double ratio = c2 / c1;
+        double cos_t2 = 1.0 - ratio * ratio * (1.0 - cos_i * cos_i);
+        hr_ray t;
+        if (cos_t2 < 0.0) { /* total internal reflection */
+            t.origin = spawn_origin(&h, m);
+            t.dir = v3_madd(dir, m, 2.0 * cos_i);
+            tc->rays_reflected++;
+        } else {
+            t.origin = spawn_origin(&h, v3_neg(m));
+            t.dir = v3_add(v3_scale(dir, ratio), v3_scale(m, ratio * cos_i - sqrt(cos_t2)));
+            tc->rays_refracted++;
+        }
+        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &t, depth + 1, max_depth), mat->transparency));
+    }
+    return c;
+}

@@ -1,0 +1,44 @@
+#include "strutil.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+char *hr_strdup(const char *s)
+{
+    if (!s) return NULL;
+    size_t n = strlen(s) + 1;
+    char *copy = malloc(n);
+    if (copy) memcpy(copy, s, n);
+    return copy;
+}
+
+char *hr_path_join(const char *a, const char *b)
+{
+    size_t na = strlen(a), nb = strlen(b);
+    int slash = na > 0 && a[na - 1] != '/';
+    char *p = malloc(na + (size_t)slash + nb + 1);
+    if (!p) return NULL;
+    memcpy(p, a, na);
+    if (slash) p[na] = '/';
+    memcpy(p + na + (size_t)slash, b, nb + 1);
+    return p;
+}
+
+char *hr_path_dirname(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash) return hr_strdup(".");
+    if (slash == path) return hr_strdup("/");
+    size_t n = (size_t)(slash - path);
+    char *d = malloc(n + 1);
+    if (!d) return NULL;
+    memcpy(d, path, n);
+    d[n] = '\0';
+    return d;
+}
+
+int hr_str_ends_with(const char *s, const char *suffix)
+{
+    size_t ns = strlen(s), nx = strlen(suffix);
+    return ns >= nx && memcmp(s + ns - nx, suffix, nx) == 0;
+}

@@ -1,0 +1,16 @@
+/* Internal: the few string helpers C11 lacks. */
+#ifndef HITRAY_LIB_STRUTIL_H
+#define HITRAY_LIB_STRUTIL_H
+
+#include <stddef.h>
+
+/* malloc'd copy of s (NULL if out of memory or s is NULL). */
+char *hr_strdup(const char *s);
+/* malloc'd "a/b" (a may be "" giving "b"). */
+char *hr_path_join(const char *a, const char *b);
+/* malloc'd directory part of a path ("." if none). */
+char *hr_path_dirname(const char *path);
+/* 1 if s ends with suffix. */
+int hr_str_ends_with(const char *s, const char *suffix);
+
+#endif

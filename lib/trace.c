@@ -1,0 +1,379 @@
+/* Tracing: one object through its transform (Hill: the ray goes into object
+ * space through M^-1 unnormalised, so t is the same in both spaces; normals
+ * come back through the transpose of M^-1), and the whole scene through the
+ * BVH (getFirstHit, any hit for shadows, every hit for Intersection). */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "context_internal.h"
+#include "errors.h"
+#include "scene_internal.h"
+#include "vec.h"
+
+#define GAMMA3 (3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5))
+
+hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
+{
+    if (capacity <= list->capacity) return HR_OK;
+    int64_t cap = list->capacity > 0 ? list->capacity : 16;
+    while (cap < capacity) cap *= 2;
+    if (cap > INT32_MAX) return HR_ERROR_OUT_OF_MEMORY;
+    hr_hit *grown = realloc(list->hits, (size_t)cap * sizeof *grown);
+    if (!grown) return HR_ERROR_OUT_OF_MEMORY;
+    list->hits = grown;
+    list->capacity = (int32_t)cap;
+    return HR_OK;
+}
+
+void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
+{
+    memset(tc, 0, sizeof *tc);
+    tc->scene = scene;
+}
+
+void hr_trace_ctx_release(hr_trace_ctx *tc)
+{
+    for (int i = 0; i < HR_SCRATCH_MAX; i++) free(tc->scratch[i].hits);
+    memset(tc->scratch, 0, sizeof tc->scratch);
+}
+
+/* Order by t; equal t by object then surface, so sorting is deterministic. */
+static int hit_before(const hr_hit *a, const hr_hit *b)
+{
+    if (a->t != b->t) return a->t < b->t;
+    if (a->object != b->object) return a->object < b->object;
+    return a->surface < b->surface;
+}
+
+/* Insertion sort from `start`: the new tail is short and already sorted, so
+ * this is a merge in practice. */
+static void sort_from(hr_intersection *list, int32_t start)
+{
+    for (int32_t i = start > 0 ? start : 1; i < list->count; i++) {
+        hr_hit h = list->hits[i];
+        int32_t j = i;
+        while (j > 0 && hit_before(&h, &list->hits[j - 1])) {
+            list->hits[j] = list->hits[j - 1];
+            j--;
+        }
+        list->hits[j] = h;
+    }
+}
+
+/* Error of a point after p' = M p: |M| e (error carried through) plus the
+ * rounding of the product, gamma(3) (|M| |p| + |translation|) per row. */
+static double transformed_error(const double m[16], hr_vec3 p, double e)
+{
+    double worst = 0.0;
+    for (int r = 0; r < 3; r++) {
+        const double *row = m + 4 * r;
+        double carried = (fabs(row[0]) + fabs(row[1]) + fabs(row[2])) * e;
+        double rounding = GAMMA3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
+                                    fabs(row[3]));
+        double total = carried + rounding;
+        if (total > worst) worst = total;
+    }
+    return worst;
+}
+
+hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
+                          double tmin, double tmax, int32_t mode, int unit_normals,
+                          hr_intersection *out)
+{
+    const hr_shape_class *cls = obj->cls;
+    hr_status st;
+    if (out->capacity - out->count < HR_MIN_HIT_CAPACITY &&
+        (st = hr_intersection_reserve(out, out->count + HR_MIN_HIT_CAPACITY)))
+        return tc->status = st;
+    hr_hit_args args;
+    args.shape = obj->shape;
+    if (obj->identity) {
+        args.ray = *ray;
+    } else {
+        args.ray.origin = hr_transform_point(obj->inv, ray->origin);
+        args.ray.dir = hr_transform_vector(obj->inv, ray->dir);
+    }
+    args.tmin = tmin;
+    args.tmax = tmax;
+    args.out = out;
+    args.call = tc;
+    hr_hit_fn fn = cls->hit;
+    if (mode == HR_TRACE_FIRST && cls->first_hit) fn = cls->first_hit;
+    if (mode == HR_TRACE_ANY) fn = cls->any_hit ? cls->any_hit : cls->first_hit ? cls->first_hit : cls->hit;
+    int32_t start = out->count;
+    if ((st = fn(&args))) {
+        out->count = start;
+        return tc->status = st;
+    }
+    if (mode != HR_TRACE_ALL && out->count > start + 1) out->count = start + 1;
+    if (mode == HR_TRACE_ANY) return HR_OK;
+    int composite = (cls->flags & HR_SHAPE_COMPOSITE) != 0;
+    int32_t kept = start;
+    for (int32_t i = start; i < out->count; i++) {
+        hr_hit h = out->hits[i];
+        /* The host enforces the contract instead of trusting it: a hit outside
+         * (tmin, tmax) or with a non-finite field is dropped. */
+        if (!(h.t > tmin && h.t < tmax) || !v3_is_finite(h.point) || !v3_is_finite(h.normal) ||
+            !isfinite(h.error))
+            continue;
+        if (!composite) h.object = obj->index;
+        if (!obj->identity) {
+            h.error = transformed_error(obj->m, h.point, h.error);
+            h.point = hr_transform_point(obj->m, h.point);
+            h.normal = hr_transform_normal(obj->inv, h.normal);
+        }
+        if (unit_normals) h.normal = v3_normalize(h.normal);
+        out->hits[kept++] = h;
+    }
+    out->count = kept;
+    return HR_OK;
+}
+
+/* --- Whole-scene queries ------------------------------------------------- */
+
+#define BVH_STACK 128
+
+typedef struct first_state {
+    hr_trace_ctx *tc;
+    const hr_ray *ray;
+    double tmin, best;
+    hr_hit *out;
+    hr_intersection *tmp;
+    int found;
+    int any; /* stop at the first hit (shadow rays) */
+} first_state;
+
+/* Test one object; returns 1 to stop (any-hit found one). */
+static int visit_object(first_state *fs, const hr_object *o)
+{
+    fs->tmp->count = 0;
+    int32_t mode = fs->any ? HR_TRACE_ANY : HR_TRACE_FIRST;
+    if (hr_object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, mode, !fs->any, fs->tmp) != HR_OK)
+        return 0;
+    if (fs->tmp->count == 0) return 0;
+    fs->found = 1;
+    if (fs->any) return 1;
+    fs->best = fs->tmp->hits[0].t;
+    *fs->out = fs->tmp->hits[0];
+    return 0;
+}
+
+/* Front-to-back traversal; boxes further than the best hit are skipped. */
+static void traverse(first_state *fs)
+{
+    const hr_scene *s = fs->tc->scene;
+    for (int32_t i = 0; i < s->unbounded_count; i++)
+        if (visit_object(fs, s->unbounded[i])) return;
+    if (s->bvh.node_count == 0) return;
+    hr_bvh_ray br;
+    hr_bvh_ray_init(&br, fs->ray);
+    int32_t stack[BVH_STACK];
+    int32_t top = 0;
+    double t;
+    if (!hr_bvh_ray_box(&br, &s->bvh.nodes[0].box, fs->tmin, fs->best, &t)) return;
+    stack[top++] = 0;
+    while (top > 0) {
+        const hr_bvh_node *n = &s->bvh.nodes[stack[--top]];
+        if (n->count > 0) {
+            for (int32_t i = 0; i < n->count; i++)
+                if (visit_object(fs, s->objects[s->bvh.items[n->first + i]])) return;
+            continue;
+        }
+        double tl, tr;
+        int hl = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first].box, fs->tmin, fs->best, &tl);
+        int hr = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first + 1].box, fs->tmin, fs->best, &tr);
+        if (top + 2 > BVH_STACK) { /* deeper than any SAH tree we build; stay safe */
+            for (int32_t i = 0; i < s->object_count; i++)
+                if (s->objects[i]->top_level && s->objects[i]->bounded &&
+                    visit_object(fs, s->objects[i]))
+                    return;
+            return;
+        }
+        /* Push the far child first so the near one is visited first. */
+        if (hl && hr) {
+            int near_left = tl <= tr;
+            stack[top++] = n->first + (near_left ? 1 : 0);
+            stack[top++] = n->first + (near_left ? 0 : 1);
+        } else if (hl) {
+            stack[top++] = n->first;
+        } else if (hr) {
+            stack[top++] = n->first + 1;
+        }
+    }
+}
+
+static hr_intersection *host_scratch_acquire(void *call);
+static void host_scratch_release(void *call, hr_intersection *list);
+
+static int trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                         hr_hit *out, int any)
+{
+    hr_intersection *tmp = host_scratch_acquire(tc);
+    if (!tmp) {
+        tc->status = HR_ERROR_OUT_OF_MEMORY;
+        return 0;
+    }
+    hr_hit dummy;
+    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any};
+    traverse(&fs);
+    host_scratch_release(tc, tmp);
+    return fs.found;
+}
+
+int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
+{
+    return trace_nearest(tc, ray, tmin, tmax, out, 0);
+}
+
+int hr_scene_trace_any(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax)
+{
+    return trace_nearest(tc, ray, tmin, tmax, NULL, 1);
+}
+
+/* --- Public queries ------------------------------------------------------ */
+
+static hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
+{
+    if (!s) return HR_ERROR_INVALID_ARGUMENT;
+    if (!s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "the scene is not committed (call hr_scene_commit)");
+    if (!ray) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: NULL");
+    if (!v3_is_finite(ray->origin) || !v3_is_finite(ray->dir))
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: origin and direction must be finite");
+    if (ray->dir.x == 0 && ray->dir.y == 0 && ray->dir.z == 0)
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: direction is the zero vector");
+    if (isnan(tmin) || isnan(tmax) || !(tmin <= tmax))
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: need tmin <= tmax (got %g, %g)", tmin, tmax);
+    return HR_OK;
+}
+
+static hr_status finish_query(hr_trace_ctx *tc)
+{
+    hr_status st = tc->status;
+    hr_trace_ctx_release(tc);
+    if (st) return hr_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
+    return HR_OK;
+}
+
+HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double tmin, double tmax,
+                                    hr_hit *out, int32_t *found)
+{
+    hr_status st = check_query(s, ray, tmin, tmax);
+    if (st) return st;
+    if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
+    hr_trace_ctx tc;
+    hr_trace_ctx_init(&tc, s);
+    *found = hr_scene_trace_first(&tc, ray, tmin, tmax, out);
+    return finish_query(&tc);
+}
+
+HR_API void hr_intersection_init(hr_intersection *list)
+{
+    if (list) memset(list, 0, sizeof *list);
+}
+
+HR_API void hr_intersection_release(hr_intersection *list)
+{
+    if (!list) return;
+    free(list->hits);
+    memset(list, 0, sizeof *list);
+}
+
+static int compare_hits(const void *a, const void *b)
+{
+    const hr_hit *x = a, *y = b;
+    return hit_before(x, y) ? -1 : hit_before(y, x) ? 1 : 0;
+}
+
+HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double tmin, double tmax,
+                                   hr_intersection *out)
+{
+    hr_status st = check_query(s, ray, tmin, tmax);
+    if (st) return st;
+    if (!out || out->count < 0 || out->capacity < 0 || out->count > out->capacity)
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "intersection: NULL or not initialised");
+    out->count = 0;
+    hr_trace_ctx tc;
+    hr_trace_ctx_init(&tc, s);
+    for (int64_t i = 0; i < s->object_count && tc.status == HR_OK; i++) {
+        const hr_object *o = s->objects[i];
+        if (o->top_level) hr_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
+    }
+    qsort(out->hits, (size_t)out->count, sizeof *out->hits, compare_hits);
+    if (tc.status) out->count = 0;
+    return finish_query(&tc);
+}
+
+HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t max_depth, hr_color *out)
+{
+    hr_status st = check_query(s, ray, 0, INFINITY);
+    if (st) return st;
+    if (!out) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: NULL output");
+    hr_trace_ctx tc;
+    hr_trace_ctx_init(&tc, s);
+    int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
+    *out = hr_shade_ray(&tc, ray, 0, depth);
+    return finish_query(&tc);
+}
+
+/* --- Host services given to shape modules -------------------------------- */
+
+static void *host_alloc(size_t size) { return calloc(1, size ? size : 1); }
+static void host_free(void *p) { free(p); }
+
+static hr_status host_reserve(void *call, hr_intersection *list, int32_t capacity)
+{
+    (void)call;
+    if (!list || capacity < 0) return HR_ERROR_INVALID_ARGUMENT;
+    return hr_intersection_reserve(list, capacity);
+}
+
+static hr_intersection *host_scratch_acquire(void *call)
+{
+    hr_trace_ctx *tc = call;
+    if (tc->scratch_used >= HR_SCRATCH_MAX) return NULL;
+    hr_intersection *list = &tc->scratch[tc->scratch_used];
+    if (hr_intersection_reserve(list, 4 * HR_MIN_HIT_CAPACITY) != HR_OK) return NULL;
+    tc->scratch_used++;
+    list->count = 0;
+    return list;
+}
+
+static void host_scratch_release(void *call, hr_intersection *list)
+{
+    hr_trace_ctx *tc = call;
+    /* Lists are a stack: releasing one releases everything acquired after. */
+    int32_t i = (int32_t)(list - tc->scratch);
+    if (i >= 0 && i < tc->scratch_used) tc->scratch_used = i;
+}
+
+static hr_status host_trace_child(void *call, const void *child, const hr_ray *ray, double tmin,
+                                  double tmax, int32_t mode, hr_intersection *out)
+{
+    if (!call || !child || !ray || !out) return HR_ERROR_INVALID_ARGUMENT;
+    int32_t start = out->count;
+    hr_status st = hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
+    if (st == HR_OK) sort_from(out, start);
+    return st;
+}
+
+static void host_child_bounds(const void *child, hr_bounds *out)
+{
+    const hr_object *o = child;
+    *out = o->world_bounds;
+}
+
+void hr_host_services_init(hr_host *host)
+{
+    memset(host, 0, sizeof *host);
+    host->struct_size = sizeof *host;
+    host->abi_version = HR_SHAPE_ABI_VERSION;
+    host->alloc = host_alloc;
+    host->free = host_free;
+    host->reserve = host_reserve;
+    host->scratch_acquire = host_scratch_acquire;
+    host->scratch_release = host_scratch_release;
+    host->trace_child = host_trace_child;
+    host->child_bounds = host_child_bounds;
+}

@@ -1,0 +1,164 @@
+/* Hill's transform pairs (include/hitray/transform.h). Each step multiplies
+ * the matrix on the right and the inverse on the left by the step's exact
+ * inverse, so M * M^-1 stays as close to identity as the steps allow. */
+#include <math.h>
+#include <string.h>
+
+#include "errors.h"
+
+static void mat_identity(double m[16])
+{
+    memset(m, 0, 16 * sizeof *m);
+    m[0] = m[5] = m[10] = m[15] = 1.0;
+}
+
+/* r = a * b (r may alias neither). */
+static void mat_mul(double r[16], const double a[16], const double b[16])
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            double s = 0.0;
+            for (int k = 0; k < 4; k++) s += a[4 * i + k] * b[4 * k + j];
+            r[4 * i + j] = s;
+        }
+}
+
+/* t <- t * step; t^-1 <- step^-1 * t^-1. */
+static void apply_step(hr_transform *t, const double step[16], const double step_inv[16])
+{
+    double m[16], inv[16];
+    mat_mul(m, t->m, step);
+    mat_mul(inv, step_inv, t->inv);
+    memcpy(t->m, m, sizeof m);
+    memcpy(t->inv, inv, sizeof inv);
+}
+
+HR_API void hr_transform_identity(hr_transform *t)
+{
+    if (!t) return;
+    mat_identity(t->m);
+    mat_identity(t->inv);
+}
+
+HR_API void hr_transform_translate(hr_transform *t, double dx, double dy, double dz)
+{
+    if (!t) return;
+    double s[16], si[16];
+    mat_identity(s);
+    mat_identity(si);
+    s[3] = dx, s[7] = dy, s[11] = dz;
+    si[3] = -dx, si[7] = -dy, si[11] = -dz;
+    apply_step(t, s, si);
+}
+
+HR_API hr_status hr_transform_scale(hr_transform *t, double sx, double sy, double sz)
+{
+    if (!t) return HR_ERROR_INVALID_ARGUMENT;
+    if (sx == 0.0 || sy == 0.0 || sz == 0.0 || !isfinite(sx) || !isfinite(sy) || !isfinite(sz))
+        return HR_ERROR_NUMERIC;
+    double s[16], si[16];
+    mat_identity(s);
+    mat_identity(si);
+    s[0] = sx, s[5] = sy, s[10] = sz;
+    si[0] = 1.0 / sx, si[5] = 1.0 / sy, si[10] = 1.0 / sz;
+    apply_step(t, s, si);
+    return HR_OK;
+}
+
+/* Rodrigues' rotation matrix about a unit axis; its inverse is its
+ * transpose, which is exact. Multiples of 90 degrees use exact sines and
+ * cosines so axis-aligned rotations keep zeros exact. */
+HR_API hr_status hr_transform_rotate(hr_transform *t, double degrees, double ux, double uy,
+                                     double uz)
+{
+    if (!t) return HR_ERROR_INVALID_ARGUMENT;
+    double len = sqrt(ux * ux + uy * uy + uz * uz);
+    if (!(len > 0.0) || !isfinite(len) || !isfinite(degrees)) return HR_ERROR_NUMERIC;
+    ux /= len, uy /= len, uz /= len;
+    double c, s;
+    double turns = degrees / 90.0;
+    if (turns == floor(turns) && fabs(turns) < 1e15) {
+        static const double cos_q[4] = {1, 0, -1, 0}, sin_q[4] = {0, 1, 0, -1};
+        long q = (long)fmod(turns, 4.0);
+        if (q < 0) q += 4;
+        c = cos_q[q], s = sin_q[q];
+    } else {
+        double rad = degrees * (3.14159265358979323846 / 180.0);
+        c = cos(rad), s = sin(rad);
+    }
+    double k = 1.0 - c;
+    double r[16] = {c + ux * ux * k,      ux * uy * k - uz * s, ux * uz * k + uy * s, 0,
+                    uy * ux * k + uz * s, c + uy * uy * k,      uy * uz * k - ux * s, 0,
+                    uz * ux * k - uy * s, uz * uy * k + ux * s, c + uz * uz * k,      0,
+                    0,                    0,                    0,                    1};
+    double ri[16];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) ri[4 * i + j] = r[4 * j + i];
+    apply_step(t, r, ri);
+    return HR_OK;
+}
+
+HR_API void hr_transform_compose(hr_transform *t, const hr_transform *other)
+{
+    if (!t || !other) return;
+    apply_step(t, other->m, other->inv);
+}
+
+/* Inverse of an affine matrix: invert the 3x3 part by cofactors (in long
+ * double, so a badly scaled matrix loses less), then the translation. */
+HR_API hr_status hr_transform_from_matrix(hr_transform *t, const double m[16])
+{
+    if (!t || !m) return HR_ERROR_INVALID_ARGUMENT;
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(m[i])) return HR_ERROR_NUMERIC;
+    if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0) return HR_ERROR_NUMERIC;
+    long double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9],
+                i = m[10];
+    long double A = e * i - f * h, B = -(d * i - f * g), C = d * h - e * g;
+    long double det = a * A + b * B + c * C;
+    long double scale = 0;
+    for (int k = 0; k < 12; k++)
+        if (k % 4 != 3 && fabsl((long double)m[k]) > scale) scale = fabsl((long double)m[k]);
+    /* Singular relative to the matrix's own size: the inverse would be noise. */
+    if (scale == 0 || fabsl(det) <= scale * scale * scale * 1e-14L) return HR_ERROR_NUMERIC;
+    long double inv3[9] = {A / det, -(b * i - c * h) / det, (b * f - c * e) / det,
+                           B / det, (a * i - c * g) / det,  -(a * f - c * d) / det,
+                           C / det, -(a * h - b * g) / det, (a * e - b * d) / det};
+    double inv[16];
+    for (int r = 0; r < 3; r++) {
+        long double tr = 0;
+        for (int k = 0; k < 3; k++) {
+            inv[4 * r + k] = (double)inv3[3 * r + k];
+            tr -= inv3[3 * r + k] * (long double)m[4 * k + 3];
+        }
+        inv[4 * r + 3] = (double)tr;
+    }
+    inv[12] = inv[13] = inv[14] = 0.0;
+    inv[15] = 1.0;
+    memcpy(t->m, m, sizeof t->m);
+    memcpy(t->inv, inv, sizeof t->inv);
+    return HR_OK;
+}
+
+HR_API hr_vec3 hr_transform_point(const double m[16], hr_vec3 p)
+{
+    hr_vec3 r = {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
+                 m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+                 m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
+    return r;
+}
+
+HR_API hr_vec3 hr_transform_vector(const double m[16], hr_vec3 v)
+{
+    hr_vec3 r = {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
+                 m[8] * v.x + m[9] * v.y + m[10] * v.z};
+    return r;
+}
+
+HR_API hr_vec3 hr_transform_normal(const double inv[16], hr_vec3 n)
+{
+    hr_vec3 r = {inv[0] * n.x + inv[4] * n.y + inv[8] * n.z,
+                 inv[1] * n.x + inv[5] * n.y + inv[9] * n.z,
+                 inv[2] * n.x + inv[6] * n.y + inv[10] * n.z};
+    return r;
+}

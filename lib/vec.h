@@ -1,0 +1,46 @@
+/* Internal: small vector helpers for lib/ (inline, no state). */
+#ifndef HITRAY_LIB_VEC_H
+#define HITRAY_LIB_VEC_H
+
+#include <math.h>
+
+#include <hitray/common.h>
+
+static inline hr_vec3 v3(double x, double y, double z)
+{
+    hr_vec3 r = {x, y, z};
+    return r;
+}
+static inline hr_vec3 v3_add(hr_vec3 a, hr_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline hr_vec3 v3_sub(hr_vec3 a, hr_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline hr_vec3 v3_scale(hr_vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
+static inline hr_vec3 v3_neg(hr_vec3 a) { return v3(-a.x, -a.y, -a.z); }
+static inline double v3_dot(hr_vec3 a, hr_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline hr_vec3 v3_cross(hr_vec3 a, hr_vec3 b)
+{
+    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline double v3_length(hr_vec3 a) { return sqrt(v3_dot(a, a)); }
+/* Unit vector; the zero vector stays zero rather than becoming NaN. */
+static inline hr_vec3 v3_normalize(hr_vec3 a)
+{
+    double len = v3_length(a);
+    return len > 0.0 ? v3_scale(a, 1.0 / len) : a;
+}
+static inline hr_vec3 v3_madd(hr_vec3 a, hr_vec3 b, double s)
+{
+    return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s);
+}
+static inline int v3_is_finite(hr_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+
+static inline hr_color rgb(double r, double g, double b)
+{
+    hr_color c = {r, g, b};
+    return c;
+}
+static inline hr_color rgb_add(hr_color a, hr_color b) { return rgb(a.r + b.r, a.g + b.g, a.b + b.b); }
+static inline hr_color rgb_mul(hr_color a, hr_color b) { return rgb(a.r * b.r, a.g * b.g, a.b * b.b); }
+static inline hr_color rgb_scale(hr_color a, double s) { return rgb(a.r * s, a.g * s, a.b * s); }
+static inline int rgb_is_zero(hr_color a) { return a.r == 0.0 && a.g == 0.0 && a.b == 0.0; }
+
+#endif

@@ -1,0 +1,32 @@
+#!/bin/sh
+# Install what `make` needs on a Debian machine, only what is missing:
+# Debian packages through apt-get (as root, or through sudo), and the Python
+# test tools through pip into the repository's own virtual environment.
+set -eu
+cd "$(dirname "$0")/.."
+
+need_pkgs=""
+for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev libopenexr-dev \
+           python3 python3-venv python3-dev; do
+    dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
+        need_pkgs="$need_pkgs $pkg"
+done
+if [ -n "$need_pkgs" ]; then
+    echo "bootstrap: installing Debian packages:$need_pkgs"
+    if [ "$(id -u)" = 0 ]; then sudo=""; else sudo="sudo"; fi
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $need_pkgs
+fi
+
+# The venv: created once, then only topped up from requirements.
+venv=.venv
+stamp=$venv/.requirements-stamp
+if [ ! -x "$venv/bin/python" ]; then
+    echo "bootstrap: creating the Python virtual environment in $venv"
+    python3 -m venv "$venv"
+fi
+if [ ! -f "$stamp" ] || [ scripts/requirements-test.txt -nt "$stamp" ]; then
+    "$venv/bin/python" -m pip install -q --upgrade pip
+    "$venv/bin/python" -m pip install -q -r scripts/requirements-test.txt
+    touch "$stamp"
+fi

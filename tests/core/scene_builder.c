@@ -1,0 +1,57 @@
+#include "scene_builder.h"
+
+#include <stdio.h>
+#include <string.h>
+
+hr_material tb_black(void)
+{
+    hr_material m;
+    hr_material_default(&m);
+    memset(&m.ambient, 0, sizeof m.ambient);
+    memset(&m.diffuse, 0, sizeof m.diffuse);
+    return m;
+}
+
+int64_t tb_add(hr_scene *s, const char *shape, const hr_material *m, const hr_transform *t)
+{
+    hr_object_desc d = {0};
+    d.struct_size = sizeof d;
+    d.shape = shape;
+    d.material = m;
+    d.transform = t ? t->m : NULL;
+    d.inverse = t ? t->inv : NULL;
+    int64_t index = -1;
+    if (hr_scene_add_object(s, &d, &index) != HR_OK) {
+        fprintf(stderr, "tb_add(%s): %s\n", shape, hr_context_last_error(hr_scene_context(s)));
+        return -1;
+    }
+    return index;
+}
+
+hr_transform tb_place(double x, double y, double z, double scale)
+{
+    hr_transform t;
+    hr_transform_identity(&t);
+    hr_transform_translate(&t, x, y, z);
+    hr_transform_scale(&t, scale, scale, scale);
+    return t;
+}
+
+void tb_light(hr_scene *s, double x, double y, double z, double r, double g, double b)
+{
+    hr_light l = {0};
+    l.struct_size = sizeof l;
+    l.position = (hr_vec3){x, y, z};
+    l.color = (hr_color){r, g, b};
+    hr_scene_add_light(s, &l);
+}
+
+void tb_dark_globals(hr_scene *s, int32_t depth)
+{
+    hr_scene_globals g;
+    hr_scene_globals_default(&g);
+    g.background = (hr_color){0, 0, 0};
+    g.global_ambient = (hr_color){0, 0, 0};
+    g.max_recursion_depth = depth;
+    hr_scene_set_globals(s, &g);
+}

@@ -1,0 +1,18 @@
+/* Test helpers for building small scenes in code. */
+#ifndef HR_TEST_SCENE_BUILDER_H
+#define HR_TEST_SCENE_BUILDER_H
+
+#include <hitray/hitray.h>
+
+/* A material with every coefficient zero (black, inert) except speed 1. */
+hr_material tb_black(void);
+/* Add `shape` with material `m` and transform `t` (NULL: identity);
+ * returns the index, or -1 after printing the context's error. */
+int64_t tb_add(hr_scene *s, const char *shape, const hr_material *m, const hr_transform *t);
+/* identity then translate, then uniform scale. */
+hr_transform tb_place(double x, double y, double z, double scale);
+void tb_light(hr_scene *s, double x, double y, double z, double r, double g, double b);
+/* Globals with no ambient light and a black background. */
+void tb_dark_globals(hr_scene *s, int32_t depth);
+
+#endif

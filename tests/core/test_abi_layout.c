@@ -1,0 +1,107 @@
+/* The ABI's layouts, pinned. A change to any public struct's size or field
+ * offsets fails this file's compilation (static assertions), so a layout
+ * change can't slip in by accident: it must be made here on purpose, with
+ * HR_SHAPE_ABI_VERSION or the SONAME bumped as the change requires.
+ * Numbers are for LP64 (x86_64, aarch64 Linux), the platforms hitray builds on. */
+#include <stddef.h>
+
+#include <hitray/hitray.h>
+
+#include "hr_test.h"
+
+#define PIN_SIZE(T, n) _Static_assert(sizeof(T) == (n), "size of " #T " changed")
+#define PIN_OFF(T, f, n) _Static_assert(offsetof(T, f) == (n), "offset of " #T "." #f " changed")
+
+PIN_SIZE(hr_vec3, 24);
+PIN_SIZE(hr_color, 24);
+PIN_SIZE(hr_ray, 48);
+PIN_OFF(hr_ray, dir, 24);
+PIN_SIZE(hr_bounds, 48);
+PIN_SIZE(hr_hit, 80);
+PIN_OFF(hr_hit, t, 0);
+PIN_OFF(hr_hit, point, 8);
+PIN_OFF(hr_hit, normal, 32);
+PIN_OFF(hr_hit, error, 56);
+PIN_OFF(hr_hit, surface, 64);
+PIN_OFF(hr_hit, entering, 68);
+PIN_OFF(hr_hit, object, 72);
+PIN_SIZE(hr_intersection, 16);
+PIN_OFF(hr_intersection, count, 8);
+PIN_OFF(hr_intersection, capacity, 12);
+PIN_SIZE(hr_param, 40);
+PIN_OFF(hr_param, number, 16);
+PIN_OFF(hr_param, string, 24);
+PIN_OFF(hr_param, object, 32);
+PIN_SIZE(hr_param_spec, 48);
+PIN_OFF(hr_param_spec, default_number, 16);
+PIN_OFF(hr_param_spec, help, 40);
+PIN_SIZE(hr_host, 64);
+PIN_OFF(hr_host, alloc, 8);
+PIN_OFF(hr_host, trace_child, 48);
+PIN_OFF(hr_host, child_bounds, 56);
+PIN_SIZE(hr_create_args, 56);
+PIN_OFF(hr_create_args, params, 8);
+PIN_OFF(hr_create_args, objects, 16);
+PIN_OFF(hr_create_args, host, 24);
+PIN_OFF(hr_create_args, error, 32);
+PIN_OFF(hr_create_args, base_dir, 48);
+PIN_SIZE(hr_hit_args, 88);
+PIN_OFF(hr_hit_args, ray, 8);
+PIN_OFF(hr_hit_args, tmin, 56);
+PIN_OFF(hr_hit_args, out, 72);
+PIN_OFF(hr_hit_args, call, 80);
+PIN_SIZE(hr_shape_class, 88);
+PIN_OFF(hr_shape_class, name, 8);
+PIN_OFF(hr_shape_class, params, 24);
+PIN_OFF(hr_shape_class, create, 40);
+PIN_OFF(hr_shape_class, hit, 64);
+PIN_OFF(hr_shape_class, first_hit, 72);
+PIN_OFF(hr_shape_class, any_hit, 80);
+PIN_SIZE(hr_module_info, 40);
+PIN_OFF(hr_module_info, classes, 24);
+PIN_OFF(hr_module_info, class_count, 32);
+PIN_SIZE(hr_material, 168);
+PIN_OFF(hr_material, ambient, 8);
+PIN_OFF(hr_material, diffuse, 32);
+PIN_OFF(hr_material, specular, 56);
+PIN_OFF(hr_material, emissive, 80);
+PIN_OFF(hr_material, specular_exponent, 104);
+PIN_OFF(hr_material, speed_of_light, 128);
+PIN_OFF(hr_material, parameter_count, 152);
+PIN_OFF(hr_material, parameters, 160);
+PIN_SIZE(hr_light, 56);
+PIN_OFF(hr_light, position, 8);
+PIN_OFF(hr_light, color, 32);
+PIN_SIZE(hr_scene_globals, 72);
+PIN_OFF(hr_scene_globals, background, 8);
+PIN_OFF(hr_scene_globals, min_reflectivity, 56);
+PIN_SIZE(hr_object_desc, 56);
+PIN_OFF(hr_object_desc, shape, 8);
+PIN_OFF(hr_object_desc, transform, 32);
+PIN_OFF(hr_object_desc, base_dir, 48);
+PIN_SIZE(hr_camera, 96);
+PIN_OFF(hr_camera, eye, 16);
+PIN_OFF(hr_camera, view_angle, 88);
+PIN_SIZE(hr_render_options, 56);
+PIN_OFF(hr_render_options, progress, 40);
+PIN_SIZE(hr_render_stats, 56);
+PIN_OFF(hr_render_stats, primary, 8);
+PIN_OFF(hr_render_stats, seconds, 40);
+PIN_SIZE(hr_image_write_options, 24);
+PIN_SIZE(hr_error_info, 32);
+PIN_SIZE(hr_module_entry, 56);
+PIN_SIZE(hr_sdl_result, 112);
+PIN_OFF(hr_sdl_result, camera, 16);
+PIN_SIZE(hr_transform, 256);
+
+int main(void)
+{
+    /* The layouts are checked at compile time; here, the version the library
+     * reports is the one the headers describe. */
+    int32_t major, minor, patch;
+    hr_version(&major, &minor, &patch);
+    CHECK(major == HR_VERSION_MAJOR);
+    CHECK(minor == HR_VERSION_MINOR);
+    CHECK(patch == HR_VERSION_PATCH);
+    return hr_test_end();
+}

@@ -1,0 +1,183 @@
+/* The renderer: pixel centres, the same image whatever the thread count,
+ * Hill's block size, supersampling, cancelling, and the ray statistics. */
+#include <string.h>
+
+#include <hitray/hitray.h>
+
+#include "hr_test.h"
+#include "scene_builder.h"
+
+static hr_context *ctx;
+
+/* Mirror floor, glass ball, diffuse ball, two lights: every effect. */
+static hr_scene *busy_scene(int with_mirror_and_glass)
+{
+    hr_scene *s;
+    hr_scene_create(ctx, &s);
+    hr_material floor_m;
+    hr_material_default(&floor_m);
+    if (with_mirror_and_glass) floor_m.reflectivity = 0.6;
+    hr_transform ft;
+    hr_transform_identity(&ft);
+    hr_transform_rotate(&ft, -90, 1, 0, 0);
+    tb_add(s, "plane", &floor_m, &ft);
+    hr_material red;
+    hr_material_default(&red);
+    red.diffuse = (hr_color){0.8, 0.1, 0.1};
+    red.specular = (hr_color){0.5, 0.5, 0.5};
+    red.specular_exponent = 30;
+    hr_transform a = tb_place(-1.2, 1, 0, 1);
+    tb_add(s, "sphere", &red, &a);
+    hr_material glass;
+    hr_material_default(&glass);
+    if (with_mirror_and_glass) glass.transparency = 0.9, glass.speed_of_light = 0.67;
+    hr_transform b = tb_place(1.2, 1, 0.5, 1);
+    tb_add(s, "sphere", &glass, &b);
+    tb_light(s, 5, 8, 6, 1, 1, 1);
+    tb_light(s, -6, 4, 3, 0.3, 0.3, 0.4);
+    hr_scene_commit(s);
+    return s;
+}
+
+static hr_camera view(int32_t w, int32_t h)
+{
+    hr_camera c;
+    hr_camera_default(&c);
+    c.width = w, c.height = h;
+    c.eye = (hr_vec3){0, 2.5, 7};
+    c.look = (hr_vec3){0, 0.8, 0};
+    return c;
+}
+
+static hr_image *render(hr_scene *s, const hr_camera *c, hr_render_options *o, hr_render_stats *st)
+{
+    hr_image *img = NULL;
+    hr_status status = hr_render(s, c, o, &img, st);
+    CHECK_MSG(status == HR_OK, "render: %s", hr_context_last_error(ctx));
+    return img;
+}
+
+static void centres_and_threads(void)
+{
+    hr_scene *s = busy_scene(1);
+    hr_camera c = view(61, 37); /* odd sizes: partial tiles */
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.threads = 1;
+    o.tile_size = 16;
+    hr_render_stats st = {0};
+    st.struct_size = sizeof st;
+    hr_image *one = render(s, &c, &o, &st);
+    CHECK(st.primary == 61u * 37u);
+    CHECK(st.shadow > 0 && st.reflected > 0 && st.refracted > 0);
+    CHECK(st.threads == 1);
+    /* One sample per pixel: the ray through the pixel's centre, exactly. */
+    const float *px = hr_image_data(one);
+    const int32_t probes[3][2] = {{0, 0}, {30, 20}, {60, 36}};
+    for (int i = 0; i < 3; i++) {
+        hr_ray r;
+        hr_camera_ray(&c, probes[i][0] + 0.5, probes[i][1] + 0.5, &r);
+        hr_color want;
+        CHECK_OK(hr_scene_shade(s, &r, -1, &want));
+        const float *p = px + 3 * (probes[i][1] * 61 + probes[i][0]);
+        CHECK(p[0] == (float)want.r && p[1] == (float)want.g && p[2] == (float)want.b);
+    }
+    /* 2 and 3 threads, and supersampling with 2 threads against 1. */
+    for (int threads = 2; threads <= 3; threads++) {
+        o.threads = threads;
+        hr_image *many = render(s, &c, &o, NULL);
+        CHECK(many && memcmp(hr_image_data(one), hr_image_data(many), 61 * 37 * 3 * sizeof(float)) == 0);
+        hr_image_destroy(many);
+    }
+    o.samples_per_pixel = 5;
+    o.threads = 1;
+    hr_image *ss1 = render(s, &c, &o, &st);
+    CHECK(st.primary == 61u * 37u * 5u);
+    CHECK(st.effects & HR_EFFECT_SUPERSAMPLING);
+    o.threads = 2;
+    hr_image *ss2 = render(s, &c, &o, NULL);
+    CHECK(ss1 && ss2 && memcmp(hr_image_data(ss1), hr_image_data(ss2), 61 * 37 * 3 * sizeof(float)) == 0);
+    hr_image_destroy(ss1);
+    hr_image_destroy(ss2);
+    hr_image_destroy(one);
+    hr_scene_destroy(s);
+}
+
+/* Hill's block size: one ray per block, the block filled with it. */
+static void blocks(void)
+{
+    hr_scene *s = busy_scene(0);
+    hr_camera c = view(40, 30);
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.block_size = 8;
+    o.tile_size = 12; /* blocks straddle tiles */
+    o.threads = 2;
+    hr_render_stats st = {0};
+    st.struct_size = sizeof st;
+    hr_image *img = render(s, &c, &o, &st);
+    const float *p = hr_image_data(img);
+    int same = 1;
+    for (int y = 0; y < 30; y++)
+        for (int x = 0; x < 40; x++) {
+            const float *q = p + 3 * (y * 40 + x), *b = p + 3 * ((y - y % 8) * 40 + (x - x % 8));
+            same &= q[0] == b[0] && q[1] == b[1] && q[2] == b[2];
+        }
+    CHECK(same);
+    /* The block's ray goes through the block's centre (the last row of
+     * blocks is 6 pixels tall: its centre is 3 below its top). */
+    hr_ray r;
+    hr_camera_ray(&c, 16 + 4, 24 + 3, &r);
+    hr_color want;
+    hr_scene_shade(s, &r, -1, &want);
+    const float *b = p + 3 * (24 * 40 + 16);
+    CHECK(b[0] == (float)want.r && b[1] == (float)want.g && b[2] == (float)want.b);
+    /* No mirror, no glass: no reflected or refracted ray was cast. */
+    CHECK(st.reflected == 0 && st.refracted == 0);
+    CHECK(!(st.effects & (HR_EFFECT_REFLECTION | HR_EFFECT_REFRACTION)));
+    hr_image_destroy(img);
+    hr_scene_destroy(s);
+}
+
+static int calls;
+static int32_t cancel_after_two(void *user, double fraction)
+{
+    (void)user;
+    CHECK(fraction > 0 && fraction <= 1);
+    return ++calls >= 2;
+}
+
+static void cancelling(void)
+{
+    hr_scene *s = busy_scene(1);
+    hr_camera c = view(128, 128);
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.tile_size = 8;
+    o.threads = 2;
+    o.progress = cancel_after_two;
+    hr_image *img = (hr_image *)1;
+    CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_CANCELLED);
+    CHECK(img == NULL);
+    CHECK(strstr(hr_context_last_error(ctx), "cancelled") != NULL);
+    /* Bad options name the option. */
+    hr_render_options_default(&o);
+    o.samples_per_pixel = -3;
+    CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "samples per pixel") != NULL);
+    hr_scene_destroy(s);
+    /* An uncommitted scene is refused. */
+    hr_scene_create(ctx, &s);
+    CHECK(hr_render(s, &c, NULL, &img, NULL) == HR_ERROR_STATE);
+    hr_scene_destroy(s);
+}
+
+int main(void)
+{
+    CHECK_OK(hr_context_create(&ctx));
+    centres_and_threads();
+    blocks();
+    cancelling();
+    hr_context_destroy(ctx);
+    return hr_test_end();
+}
