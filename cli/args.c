@@ -1,0 +1,166 @@
+/* Option parsing and error reporting for the `hitray` verbs (cli.h). */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+int cli_error(const char *fmt, ...)
+{
+    char message[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof message, fmt, ap);
+    va_end(ap);
+    /* One line whatever the library said: scripts read stderr line by line. */
+    fputs("hitray: ", stderr);
+    for (const char *c = message; *c; c++) {
+        if (*c == '\n') {
+            if (c[1]) fputs("; ", stderr);
+        } else {
+            fputc(*c, stderr);
+        }
+    }
+    fputc('\n', stderr);
+    return CLI_EXIT_ERROR;
+}
+
+int cli_library_error(const hr_context *ctx, hr_status status)
+{
+    const char *message = ctx ? hr_context_last_error(ctx) : "";
+    if (message && *message) return cli_error("%s", message);
+    return cli_error("%s", hr_status_name(status));
+}
+
+void cli_parser_init(cli_parser *p, int argc, char **argv, const cli_option *options)
+{
+    memset(p, 0, sizeof *p);
+    p->argc = argc;
+    p->argv = argv;
+    p->next = 1; /* argv[0] is the verb */
+    p->verb = argc > 0 ? argv[0] : "";
+    p->options = options;
+}
+
+static const cli_option *find_option(const cli_parser *p, const char *arg, size_t len)
+{
+    for (const cli_option *o = p->options; o->name; o++) {
+        if (strlen(o->name) == len && strncmp(o->name, arg, len) == 0) return o;
+        if (o->alias && strlen(o->alias) == len && strncmp(o->alias, arg, len) == 0) return o;
+    }
+    return NULL;
+}
+
+int cli_next(cli_parser *p, const char **name, const char **value)
+{
+    *name = NULL;
+    *value = NULL;
+    if (p->next >= p->argc) return CLI_END;
+    const char *arg = p->argv[p->next++];
+    if (p->only_positionals || arg[0] != '-' || arg[1] == '\0') {
+        *value = arg; /* "-" alone is a positional (conventionally stdin) */
+        return CLI_POSITIONAL;
+    }
+    if (strcmp(arg, "--") == 0) {
+        p->only_positionals = 1;
+        return cli_next(p, name, value);
+    }
+    const char *equals = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+    size_t len = equals ? (size_t)(equals - arg) : strlen(arg);
+    const cli_option *o = find_option(p, arg, len);
+    if (!o) {
+        cli_error("%s: unknown option '%.*s' (see 'hitray %s --help')", p->verb, (int)len, arg, p->verb);
+        return CLI_BAD;
+    }
+    *name = o->name;
+    if (!o->takes_value) {
+        if (equals) {
+            cli_error("%s: option %s takes no value", p->verb, o->name);
+            return CLI_BAD;
+        }
+        return CLI_OPTION;
+    }
+    if (equals) {
+        *value = equals + 1;
+    } else if (p->next < p->argc) {
+        *value = p->argv[p->next++];
+    } else {
+        cli_error("%s: option %s needs a value", p->verb, o->name);
+        return CLI_BAD;
+    }
+    return CLI_OPTION;
+}
+
+int cli_parse_int(const char *option, const char *text, long min, long max, int32_t *out)
+{
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    /* strtol would also skip leading blanks; a number starts with a sign or digit. */
+    int starts_well = text[0] == '-' || text[0] == '+' || (text[0] >= '0' && text[0] <= '9');
+    if (!starts_well || end == text || *end != '\0' || errno == ERANGE) {
+        cli_error("%s: '%s' is not a whole number", option, text);
+        return 0;
+    }
+    if (v < min || v > max) {
+        cli_error("%s: %ld is out of range %ld..%ld", option, v, min, max);
+        return 0;
+    }
+    *out = (int32_t)v;
+    return 1;
+}
+
+static int parse_double(const char *text, const char **end, double *out)
+{
+    char *stop = NULL;
+    errno = 0;
+    double v = strtod(text, &stop);
+    /* strtod skips leading blanks and accepts "nan" and "inf": neither is a
+     * coordinate anyone means. */
+    if (stop == text || text[0] == ' ' || text[0] == '\t' || !isfinite(v) || errno == ERANGE) return 0;
+    *end = stop;
+    *out = v;
+    return 1;
+}
+
+int cli_parse_doubles(const char *option, const char *text, int count, double *out)
+{
+    const char *p = text;
+    for (int i = 0; i < count; i++) {
+        const char *end = NULL;
+        if (!parse_double(p, &end, &out[i]) || (i + 1 < count ? *end != ',' : *end != '\0')) {
+            cli_error("%s: '%s' is not %d comma-separated numbers", option, text, count);
+            return 0;
+        }
+        p = end + 1;
+    }
+    return 1;
+}
+
+int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t *height)
+{
+    char *end = NULL;
+    errno = 0;
+    long w = strtol(text, &end, 10);
+    int ok = end != text && (*end == 'x' || *end == 'X') && errno != ERANGE;
+    long h = 0;
+    if (ok) {
+        const char *hs = end + 1;
+        h = strtol(hs, &end, 10);
+        ok = end != hs && *end == '\0' && errno != ERANGE && hs[0] >= '0' && hs[0] <= '9';
+    }
+    ok = ok && text[0] >= '0' && text[0] <= '9';
+    if (!ok) {
+        cli_error("%s: '%s' is not WIDTHxHEIGHT (for example 640x480)", option, text);
+        return 0;
+    }
+    if (w < 1 || h < 1 || w > 65536 || h > 65536) {
+        cli_error("%s: %ldx%ld is out of range: each side must be 1..65536", option, w, h);
+        return 0;
+    }
+    *width = (int32_t)w;
+    *height = (int32_t)h;
+    return 1;
+}

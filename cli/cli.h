@@ -1,0 +1,98 @@
+/* The `hitray` command: what its files share.
+ *
+ * Every verb is a function taking its own arguments (argv[0] is the verb) and
+ * returning the process exit status: 0 on success, 1 on any error, after one
+ * line "hitray: <message>" on stderr. Nothing here reaches past the public
+ * API in include/hitray. */
+#ifndef HITRAY_CLI_H
+#define HITRAY_CLI_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include <hitray/hitray.h>
+
+#define CLI_EXIT_OK 0
+#define CLI_EXIT_ERROR 1
+#define CLI_EXIT_INTERRUPTED 130 /* the shell's convention for SIGINT */
+
+int cmd_render(int argc, char **argv);
+int cmd_hits(int argc, char **argv);
+int cmd_shapes(int argc, char **argv);
+
+/* --- errors (args.c) --- */
+
+/* Print "hitray: <message>" as one line on stderr (newlines in the message
+ * become "; ") and return CLI_EXIT_ERROR. */
+int cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* The context's last error, or a fallback naming the status. */
+int cli_library_error(const hr_context *ctx, hr_status status);
+
+/* --- options (args.c) --- */
+
+typedef struct cli_option {
+    const char *name;  /* "--size" */
+    const char *alias; /* "-o", or NULL */
+    int takes_value;
+} cli_option;
+
+typedef struct cli_parser {
+    int argc;
+    char **argv;
+    int next;               /* index of the next argument to read */
+    const char *verb;       /* for messages */
+    const cli_option *options; /* ends with a zeroed entry */
+    int only_positionals;   /* after "--" */
+} cli_parser;
+
+#define CLI_END 0
+#define CLI_OPTION 1
+#define CLI_POSITIONAL 2
+#define CLI_BAD -1 /* already reported on stderr */
+
+void cli_parser_init(cli_parser *p, int argc, char **argv, const cli_option *options);
+/* The next argument: an option (*name is its table name, *value its value
+ * or NULL), a positional (*value), the end, or an error (reported). Accepts
+ * "--name value", "--name=value" and "-o value". */
+int cli_next(cli_parser *p, const char **name, const char **value);
+
+/* Strict number parsing: the whole text must be the number. Each reports its
+ * own error naming `option` and returns 0 on failure, 1 on success. */
+int cli_parse_int(const char *option, const char *text, long min, long max, int32_t *out);
+int cli_parse_doubles(const char *option, const char *text, int count, double *out);
+int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t *height);
+
+/* --- output helpers --- */
+
+/* JSON values (json.c): strings escaped, doubles with %.17g so they
+ * round-trip, non-finite doubles as null (JSON has no infinity). */
+void json_string(FILE *f, const char *s);
+void json_number(FILE *f, double v);
+void json_vec3(FILE *f, hr_vec3 v);
+
+/* A progress bar on stderr, drawn only when stderr is a terminal
+ * (progress.c). The callback also lets Ctrl-C stop a render cleanly. */
+typedef struct cli_progress {
+    int draw;       /* stderr is a terminal */
+    int last_shown; /* per mille last drawn, -1 before the first */
+    double started; /* seconds, monotonic */
+} cli_progress;
+void cli_progress_begin(cli_progress *p);
+int32_t cli_progress_update(void *user, double fraction);
+void cli_progress_end(cli_progress *p);
+/* 1 once SIGINT arrived during a render. */
+int cli_interrupted(void);
+double cli_now(void);
+
+/* A scene file loaded (and then committed), with its camera
+ * (scene_file.c). */
+typedef struct cli_scene {
+    hr_context *ctx;
+    hr_sdl_result sdl;
+} cli_scene;
+/* 0 on success; on failure the error is reported and everything freed. */
+int cli_scene_load(cli_scene *s, const char *path);
+int cli_scene_commit(cli_scene *s);
+void cli_scene_free(cli_scene *s);
+
+#endif

@@ -1,0 +1,287 @@
+/* hitray render: an SDL scene file to an image file.
+ *
+ * Every argument is checked, and the output files' directories too, before
+ * the scene is loaded or a ray is cast: a typo should cost nothing, and a
+ * long render should not end in "cannot write". */
+#include <errno.h>
+#include <inttypes.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+static const char render_help[] =
+    "usage: hitray render SCENE -o OUT [options]\n"
+    "\n"
+    "Render the SDL scene file SCENE and write the image to OUT; its extension\n"
+    "picks the format: .png (8-bit sRGB), .exr (float), .ppm, .pfm.\n"
+    "Prints one summary line: size, time, rays cast, rays per second.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output FILE     the image to write (required)\n"
+    "  --exr FILE            also write the linear image as OpenEXR\n"
+    "  --size WxH            image size in pixels (default 640x480)\n"
+    "  --spp N               samples per pixel (default 1: the pixel centre)\n"
+    "  --threads N           threads (default 0: every core); the image is the\n"
+    "                        same whatever the count\n"
+    "  --depth N             recursion depth for reflection and refraction\n"
+    "                        (default: the scene's maxRecursionDepth)\n"
+    "  --block N             Hill's blocksize: one ray per NxN pixels (default 1)\n"
+    "  --camera EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE\n"
+    "                        eye, look-at point, up vector, vertical view angle in\n"
+    "                        degrees; overrides the scene's camera (a scene with\n"
+    "                        none is framed automatically)\n"
+    "  --png16               16-bit PNG\n"
+    "  --linear-png          PNG values written linearly, not sRGB-encoded\n"
+    "  --exr-half            EXR with 16-bit half floats\n"
+    "  --stats               also print rays by kind and the effects that ran\n"
+    "  --stats-json FILE     write the statistics as one JSON object\n"
+    "  -h, --help            this help\n";
+
+typedef struct render_request {
+    const char *scene_path;
+    const char *output;
+    const char *exr_output;
+    const char *stats_json;
+    int32_t width, height;
+    int32_t spp, threads, depth, block;
+    int has_camera;
+    double camera[10];
+    int png16, linear_png, exr_half, stats;
+} render_request;
+
+static const cli_option render_options[] = {
+    {"--output", "-o", 1}, {"--exr", NULL, 1},        {"--size", NULL, 1},       {"--spp", NULL, 1},
+    {"--threads", NULL, 1}, {"--depth", NULL, 1},     {"--block", NULL, 1},      {"--camera", NULL, 1},
+    {"--png16", NULL, 0},  {"--linear-png", NULL, 0}, {"--exr-half", NULL, 0},   {"--stats", NULL, 0},
+    {"--stats-json", NULL, 1}, {"--help", "-h", 0},   {NULL, NULL, 0},
+};
+
+static int has_image_extension(const char *path)
+{
+    static const char *const extensions[] = {".png", ".exr", ".ppm", ".pfm"};
+    size_t n = strlen(path);
+    for (size_t i = 0; i < sizeof extensions / sizeof extensions[0]; i++)
+        if (n > 4 && strcasecmp(path + n - 4, extensions[i]) == 0) return 1;
+    return 0;
+}
+
+/* The directory a file would go to must exist and be writable. */
+static int check_writable(const char *option, const char *path)
+{
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    if (!slash) {
+        strcpy(dir, ".");
+    } else if (slash == path) {
+        strcpy(dir, "/");
+    } else if ((size_t)(slash - path) < sizeof dir) {
+        memcpy(dir, path, (size_t)(slash - path));
+        dir[slash - path] = '\0';
+    } else {
+        return cli_error("%s: '%s': the name is too long", option, path);
+    }
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        return cli_error("cannot write '%s': no directory '%s'", path, dir);
+    if (access(dir, W_OK) != 0) return cli_error("cannot write '%s': directory '%s' is not writable", path, dir);
+    return 0;
+}
+
+/* What parse_request found: go on, stop after an error (reported; the same
+ * value cli_error returns), or stop after printing the help. */
+#define PARSE_OK 0
+#define PARSE_ERROR CLI_EXIT_ERROR
+#define PARSE_HELP 2
+
+static int parse_request(int argc, char **argv, render_request *r)
+{
+    memset(r, 0, sizeof *r);
+    r->width = 640, r->height = 480;
+    r->spp = 1, r->threads = 0, r->depth = -1, r->block = 1;
+    cli_parser p;
+    cli_parser_init(&p, argc, argv, render_options);
+    const char *name, *value;
+    int kind, positionals = 0;
+    while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
+        if (kind == CLI_BAD) return PARSE_ERROR;
+        if (kind == CLI_POSITIONAL) {
+            if (positionals++ > 0) return cli_error("render: one scene file only ('%s' is extra)", value);
+            r->scene_path = value;
+            continue;
+        }
+        int ok = 1;
+        if (!strcmp(name, "--help")) {
+            fputs(render_help, stdout);
+            return PARSE_HELP;
+        } else if (!strcmp(name, "--output")) r->output = value;
+        else if (!strcmp(name, "--exr")) r->exr_output = value;
+        else if (!strcmp(name, "--stats-json")) r->stats_json = value;
+        else if (!strcmp(name, "--size")) ok = cli_parse_size(name, value, &r->width, &r->height);
+        else if (!strcmp(name, "--spp")) ok = cli_parse_int(name, value, 1, 65536, &r->spp);
+        else if (!strcmp(name, "--threads")) ok = cli_parse_int(name, value, 0, 4096, &r->threads);
+        else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, 1000, &r->depth);
+        else if (!strcmp(name, "--block")) ok = cli_parse_int(name, value, 1, 4096, &r->block);
+        else if (!strcmp(name, "--camera")) ok = r->has_camera = cli_parse_doubles(name, value, 10, r->camera);
+        else if (!strcmp(name, "--png16")) r->png16 = 1;
+        else if (!strcmp(name, "--linear-png")) r->linear_png = 1;
+        else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
+        else if (!strcmp(name, "--stats")) r->stats = 1;
+        if (!ok) return PARSE_ERROR;
+    }
+    if (!r->scene_path) return cli_error("render: no scene file given (see 'hitray render --help')");
+    if (!r->output) return cli_error("render: no output file given (use -o OUT.png)");
+    if (!has_image_extension(r->output))
+        return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
+                         r->output);
+    if (check_writable("--output", r->output)) return PARSE_ERROR;
+    if (r->exr_output && check_writable("--exr", r->exr_output)) return PARSE_ERROR;
+    if (r->stats_json && check_writable("--stats-json", r->stats_json)) return PARSE_ERROR;
+    return PARSE_OK;
+}
+
+static hr_camera choose_camera(const render_request *r, const cli_scene *s)
+{
+    hr_camera cam = s->sdl.camera;
+    if (r->has_camera) {
+        const double *c = r->camera;
+        cam.eye = (hr_vec3){c[0], c[1], c[2]};
+        cam.look = (hr_vec3){c[3], c[4], c[5]};
+        cam.up = (hr_vec3){c[6], c[7], c[8]};
+        cam.view_angle = c[9];
+    } else if (!s->sdl.has_camera) {
+        /* Hill's default camera at (0,0,5) may well see nothing of a scene
+         * written without a camera: frame what is there instead. */
+        hr_scene_frame_camera(s->sdl.scene, &cam);
+    }
+    cam.width = r->width;
+    cam.height = r->height;
+    return cam;
+}
+
+static int write_images(const render_request *r, hr_context *ctx, const hr_image *image)
+{
+    hr_image_write_options o;
+    hr_image_write_options_default(&o);
+    o.png_bits = r->png16 ? 16 : 8;
+    o.png_linear = r->linear_png;
+    o.exr_half = r->exr_half;
+    hr_status st = hr_image_write(ctx, image, r->output, &o);
+    if (st != HR_OK) return cli_library_error(ctx, st);
+    if (r->exr_output) {
+        o.format = HR_FORMAT_EXR;
+        st = hr_image_write(ctx, image, r->exr_output, &o);
+        if (st != HR_OK) return cli_library_error(ctx, st);
+    }
+    return 0;
+}
+
+static uint64_t total_rays(const hr_render_stats *s) { return s->primary + s->shadow + s->reflected + s->refracted; }
+
+/* "2.41 M": rays per second at a glance. */
+static void format_rate(char *buf, size_t size, double rate)
+{
+    if (rate >= 1e9) snprintf(buf, size, "%.2f G", rate / 1e9);
+    else if (rate >= 1e6) snprintf(buf, size, "%.2f M", rate / 1e6);
+    else if (rate >= 1e3) snprintf(buf, size, "%.2f k", rate / 1e3);
+    else snprintf(buf, size, "%.0f ", rate);
+}
+
+static void print_effects(FILE *f, uint32_t effects, int as_json)
+{
+    int first = 1;
+    for (int bit = 0; bit < 32; bit++) {
+        const char *name = (effects >> bit) & 1u ? hr_effect_name(1u << bit) : NULL;
+        if (!name) continue;
+        fputs(first ? "" : ", ", f);
+        if (as_json) json_string(f, name);
+        else fputs(name, f);
+        first = 0;
+    }
+    if (first && !as_json) fputs("none", f);
+}
+
+static void print_summary(const render_request *r, const hr_render_stats *s)
+{
+    uint64_t rays = total_rays(s);
+    char rate[32];
+    format_rate(rate, sizeof rate, s->seconds > 0 ? (double)rays / s->seconds : 0.0);
+    printf("rendered %dx%d (%d spp) in %.3f s on %d threads: %" PRIu64 " rays, %srays/s -> %s%s%s\n",
+           (int)r->width, (int)r->height, (int)r->spp, s->seconds, (int)s->threads, rays, rate, r->output,
+           r->exr_output ? ", " : "", r->exr_output ? r->exr_output : "");
+    if (r->stats) {
+        printf("rays: primary %" PRIu64 ", shadow %" PRIu64 ", reflected %" PRIu64 ", refracted %" PRIu64 "\n",
+               s->primary, s->shadow, s->reflected, s->refracted);
+        printf("effects: ");
+        print_effects(stdout, s->effects, 0);
+        putchar('\n');
+    }
+}
+
+static int write_stats_json(const render_request *r, const hr_render_stats *s)
+{
+    FILE *f = fopen(r->stats_json, "w");
+    if (!f) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
+    fprintf(f,
+            "{\"primary\": %" PRIu64 ", \"shadow\": %" PRIu64 ", \"reflected\": %" PRIu64
+            ", \"refracted\": %" PRIu64 ", \"seconds\": ",
+            s->primary, s->shadow, s->reflected, s->refracted);
+    json_number(f, s->seconds);
+    fputs(", \"effects\": [", f);
+    print_effects(f, s->effects, 1);
+    fprintf(f, "], \"threads\": %d, \"width\": %d, \"height\": %d}\n", (int)s->threads, (int)r->width,
+            (int)r->height);
+    int failed = ferror(f);
+    if (fclose(f) != 0) failed = 1;
+    if (failed) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
+    return 0;
+}
+
+static int render_and_write(const render_request *r, cli_scene *s)
+{
+    hr_camera cam = choose_camera(r, s);
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.width = r->width;
+    o.height = r->height;
+    o.samples_per_pixel = r->spp;
+    o.threads = r->threads;
+    o.max_depth = r->depth;
+    o.block_size = r->block;
+    cli_progress progress;
+    o.progress = cli_progress_update;
+    o.progress_user = &progress;
+
+    hr_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    stats.struct_size = sizeof stats;
+    hr_image *image = NULL;
+    cli_progress_begin(&progress);
+    hr_status st = hr_render(s->sdl.scene, &cam, &o, &image, &stats);
+    cli_progress_end(&progress);
+    if (st == HR_ERROR_CANCELLED && cli_interrupted()) {
+        cli_error("render interrupted; nothing written");
+        return CLI_EXIT_INTERRUPTED;
+    }
+    if (st != HR_OK) return cli_library_error(s->ctx, st);
+    int rc = write_images(r, s->ctx, image);
+    hr_image_destroy(image);
+    if (rc) return rc;
+    if (r->stats_json && write_stats_json(r, &stats)) return CLI_EXIT_ERROR;
+    print_summary(r, &stats);
+    return CLI_EXIT_OK;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_request r;
+    int parsed = parse_request(argc, argv, &r);
+    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
+    cli_scene s;
+    if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
+    int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : render_and_write(&r, &s);
+    cli_scene_free(&s);
+    return rc;
+}

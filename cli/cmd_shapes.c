@@ -1,0 +1,106 @@
+/* hitray shapes: every shape module on the search path, what it provides and
+ * what each class's parameters mean; and the modules that were refused, with
+ * why, so a broken plugin is easy to diagnose. */
+#include <math.h>
+#include <string.h>
+
+#include "cli.h"
+
+static const char shapes_help[] =
+    "usage: hitray shapes\n"
+    "\n"
+    "List the shape modules found (in HITRAY_SHAPE_PATH and in hitray/shapes\n"
+    "next to libhitray), the shape classes each provides, and each class's\n"
+    "parameters: name, type, default, range and meaning. Modules that could\n"
+    "not be loaded are listed with the reason.\n"
+    "\n"
+    "options:\n"
+    "  -h, --help            this help\n";
+
+static const cli_option shapes_options[] = {{"--help", "-h", 0}, {NULL, NULL, 0}};
+
+static const char *type_name(int32_t type)
+{
+    switch (type) {
+    case HR_PARAM_NUMBER: return "number";
+    case HR_PARAM_STRING: return "string";
+    case HR_PARAM_OBJECT: return "object";
+    default: return "?";
+    }
+}
+
+static void print_param(const hr_param_spec *p)
+{
+    printf("      %-16s %-7s", p->name ? p->name : "?", type_name(p->type));
+    if (p->required) printf(" required");
+    else if (p->type == HR_PARAM_NUMBER) printf(" default %g", p->default_number);
+    if (p->type == HR_PARAM_NUMBER && (isfinite(p->min) || isfinite(p->max)))
+        printf(" range [%g, %g]", p->min, p->max);
+    if (p->help && *p->help) printf("  %s", p->help);
+    putchar('\n');
+}
+
+static void print_class(const hr_shape_class *cls)
+{
+    printf("  %s", cls->name ? cls->name : "?");
+    if (cls->help && *cls->help) printf(" - %s", cls->help);
+    putchar('\n');
+    if (cls->param_count == 0) printf("      (no parameters)\n");
+    for (int32_t i = 0; i < cls->param_count && cls->params; i++) print_param(&cls->params[i]);
+}
+
+static void print_module(const hr_module_entry *m)
+{
+    printf("%s\n", m->path ? m->path : "?");
+    if (!m->loaded) {
+        printf("  NOT LOADED: %s\n", m->error && *m->error ? m->error : "unknown error");
+        return;
+    }
+    printf("  module %s", m->name ? m->name : "?");
+    if (m->description && *m->description) printf(": %s", m->description);
+    putchar('\n');
+    for (int32_t i = 0; i < m->class_count && m->classes; i++)
+        if (m->classes[i]) print_class(m->classes[i]);
+}
+
+static int list_modules(hr_context *ctx)
+{
+    int32_t count = hr_context_module_count(ctx);
+    if (count <= 0)
+        return cli_error("no shape modules found (looked in HITRAY_SHAPE_PATH and in hitray/shapes next to libhitray)");
+    int refused = 0;
+    for (int32_t i = 0; i < count; i++) {
+        hr_module_entry m;
+        memset(&m, 0, sizeof m);
+        m.struct_size = sizeof m;
+        hr_status st = hr_context_module(ctx, i, &m);
+        if (st != HR_OK) return cli_library_error(ctx, st);
+        if (i > 0) putchar('\n');
+        print_module(&m);
+        refused += !m.loaded;
+    }
+    if (refused) printf("\n%d of %d modules could not be loaded\n", refused, (int)count);
+    return fflush(stdout) == 0 ? CLI_EXIT_OK : cli_error("cannot write to standard output");
+}
+
+int cmd_shapes(int argc, char **argv)
+{
+    cli_parser p;
+    cli_parser_init(&p, argc, argv, shapes_options);
+    const char *name, *value;
+    int kind;
+    while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
+        if (kind == CLI_BAD) return CLI_EXIT_ERROR;
+        if (kind == CLI_POSITIONAL) return cli_error("shapes: unexpected argument '%s'", value);
+        if (!strcmp(name, "--help")) {
+            fputs(shapes_help, stdout);
+            return CLI_EXIT_OK;
+        }
+    }
+    hr_context *ctx = NULL;
+    hr_status st = hr_context_create(&ctx);
+    if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
+    int rc = list_modules(ctx);
+    hr_context_destroy(ctx);
+    return rc;
+}

@@ -1,0 +1,47 @@
+/* hitray: the command-line front end of the library. This file only picks
+ * the verb; each verb lives in its own cmd_*.c. */
+#include <string.h>
+
+#include "cli.h"
+
+static const char usage[] =
+    "usage: hitray <command> [options]\n"
+    "\n"
+    "A ray tracer after F.S. Hill's Computer Graphics Using OpenGL, chapter 12.\n"
+    "\n"
+    "commands:\n"
+    "  render SCENE -o OUT   render an SDL scene file to an image (.png .exr .ppm .pfm)\n"
+    "  hits SCENE --origin X,Y,Z --dir X,Y,Z [--all]\n"
+    "                        where a ray meets the scene, as JSON lines\n"
+    "  shapes                list the shape modules found and their parameters\n"
+    "\n"
+    "options:\n"
+    "  -h, --help            this help; 'hitray <command> --help' for a command's\n"
+    "  --version             the version of hitray and of the library it runs on\n"
+    "\n"
+    "Exit status: 0 on success, 1 on an error (explained in one line on stderr).\n";
+
+static int print_version(void)
+{
+    int32_t major, minor, patch;
+    hr_version(&major, &minor, &patch);
+    printf("hitray %d.%d.%d (libhitray %d.%d.%d)\n", HR_VERSION_MAJOR, HR_VERSION_MINOR, HR_VERSION_PATCH,
+           (int)major, (int)minor, (int)patch);
+    return CLI_EXIT_OK;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) return cli_error("no command given (see 'hitray --help')");
+    const char *verb = argv[1];
+    if (!strcmp(verb, "-h") || !strcmp(verb, "--help") || !strcmp(verb, "help")) {
+        fputs(usage, stdout);
+        return CLI_EXIT_OK;
+    }
+    if (!strcmp(verb, "--version") || !strcmp(verb, "-V")) return print_version();
+    if (!strcmp(verb, "render")) return cmd_render(argc - 1, argv + 1);
+    if (!strcmp(verb, "hits")) return cmd_hits(argc - 1, argv + 1);
+    if (!strcmp(verb, "shapes")) return cmd_shapes(argc - 1, argv + 1);
+    if (verb[0] == '-') return cli_error("unknown option '%s' (see 'hitray --help')", verb);
+    return cli_error("unknown command '%s' (see 'hitray --help')", verb);
+}

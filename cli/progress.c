@@ -1,0 +1,79 @@
+/* The render progress bar and Ctrl-C (cli.h).
+ *
+ * hr_render calls the progress callback from one thread at a time as tiles
+ * finish. The bar goes to stderr, and only when stderr is a terminal, so
+ * logs and pipes get the summary line alone. The same callback turns a
+ * first Ctrl-C into a clean cancel (hr_render returns HR_ERROR_CANCELLED and
+ * no file is written); a second Ctrl-C kills the process as usual. */
+#include <signal.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+#define BAR_WIDTH 32
+
+static volatile sig_atomic_t interrupted;
+static struct sigaction previous_sigint;
+
+static void on_sigint(int signo)
+{
+    (void)signo;
+    interrupted = 1;
+}
+
+int cli_interrupted(void) { return interrupted != 0; }
+
+double cli_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void cli_progress_begin(cli_progress *p)
+{
+    memset(p, 0, sizeof *p);
+    p->draw = isatty(STDERR_FILENO);
+    p->last_shown = -1;
+    p->started = cli_now();
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sa.sa_flags = SA_RESETHAND; /* the second Ctrl-C is not caught */
+    sigemptyset(&sa.sa_mask);
+    interrupted = 0;
+    sigaction(SIGINT, &sa, &previous_sigint);
+}
+
+int32_t cli_progress_update(void *user, double fraction)
+{
+    cli_progress *p = user;
+    if (p->draw) {
+        int percent = (int)(fraction * 100.0 + 0.5);
+        if (percent < 0) percent = 0;
+        if (percent > 100) percent = 100;
+        /* Redraw only when the number changes: a big render finishes
+         * thousands of tiles, and the terminal need not see each. */
+        if (percent != p->last_shown) {
+            char bar[BAR_WIDTH + 1];
+            int filled = percent * BAR_WIDTH / 100;
+            for (int i = 0; i < BAR_WIDTH; i++) bar[i] = i < filled ? '#' : ' ';
+            bar[BAR_WIDTH] = '\0';
+            fprintf(stderr, "\rrendering [%s] %3d%%  %.1f s", bar, percent, cli_now() - p->started);
+            fflush(stderr);
+            p->last_shown = percent;
+        }
+    }
+    return interrupted ? 1 : 0;
+}
+
+void cli_progress_end(cli_progress *p)
+{
+    if (p->draw && p->last_shown >= 0) {
+        fputs("\r\033[K", stderr); /* clear the bar's line */
+        fflush(stderr);
+    }
+    sigaction(SIGINT, &previous_sigint, NULL);
+}

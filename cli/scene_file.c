@@ -1,0 +1,32 @@
+/* Loading a scene file for the verbs that need one (cli.h). */
+#include <string.h>
+
+#include "cli.h"
+
+int cli_scene_load(cli_scene *s, const char *path)
+{
+    memset(s, 0, sizeof *s);
+    hr_status st = hr_context_create(&s->ctx);
+    if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
+    s->sdl.struct_size = sizeof s->sdl;
+    st = hr_sdl_load_file(s->ctx, path, &s->sdl);
+    if (st != HR_OK) {
+        int rc = cli_library_error(s->ctx, st);
+        cli_scene_free(s);
+        return rc;
+    }
+    return 0;
+}
+
+int cli_scene_commit(cli_scene *s)
+{
+    hr_status st = hr_scene_commit(s->sdl.scene);
+    return st == HR_OK ? 0 : cli_library_error(s->ctx, st);
+}
+
+void cli_scene_free(cli_scene *s)
+{
+    hr_scene_destroy(s->sdl.scene);
+    hr_context_destroy(s->ctx);
+    memset(s, 0, sizeof *s);
+}

@@ -1,0 +1,141 @@
+/* Images of linear float pixels, and hr_image_write: argument checks, the
+ * choice of format, and the all-or-nothing file around each writer. */
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atomic_file.h"
+#include "errors.h"
+#include "image_writers.h"
+
+struct hr_image {
+    int32_t width, height, channels;
+    float *pixels;
+};
+
+HR_API hr_status hr_image_create(hr_context *ctx, int32_t width, int32_t height,
+                                 int32_t channels, hr_image **out)
+{
+    if (!out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: NULL output pointer");
+    *out = NULL;
+    if (width <= 0 || height <= 0)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: size %dx%d must be positive",
+                        (int)width, (int)height);
+    if (channels != 3 && channels != 4)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: %d channels; only 3 (RGB) or 4 (RGBA)",
+                        (int)channels);
+    size_t count = (size_t)width * (size_t)height;
+    if (count > SIZE_MAX / sizeof(float) / (size_t)channels)
+        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: %dx%d is too large", (int)width, (int)height);
+    count *= (size_t)channels;
+
+    hr_image *image = malloc(sizeof *image);
+    float *pixels = calloc(count, sizeof *pixels);
+    if (!image || !pixels) {
+        free(image);
+        free(pixels);
+        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: out of memory for %dx%d", (int)width,
+                        (int)height);
+    }
+    image->width = width;
+    image->height = height;
+    image->channels = channels;
+    image->pixels = pixels;
+    *out = image;
+    return HR_OK;
+}
+
+HR_API void hr_image_destroy(hr_image *image)
+{
+    if (!image) return;
+    free(image->pixels);
+    free(image);
+}
+
+HR_API int32_t hr_image_width(const hr_image *image) { return image ? image->width : 0; }
+HR_API int32_t hr_image_height(const hr_image *image) { return image ? image->height : 0; }
+HR_API int32_t hr_image_channels(const hr_image *image) { return image ? image->channels : 0; }
+HR_API float *hr_image_data(hr_image *image) { return image ? image->pixels : NULL; }
+
+HR_API void hr_image_write_options_default(hr_image_write_options *o)
+{
+    if (!o) return;
+    memset(o, 0, sizeof *o);
+    o->struct_size = sizeof *o;
+    o->format = HR_FORMAT_AUTO;
+    o->png_bits = 8;
+}
+
+/* Case-insensitive "ends with", for extensions such as ".PNG". */
+static int has_extension(const char *path, const char *ext)
+{
+    size_t np = strlen(path), ne = strlen(ext);
+    if (np < ne) return 0;
+    for (size_t i = 0; i < ne; i++)
+        if (tolower((unsigned char)path[np - ne + i]) != ext[i]) return 0;
+    return 1;
+}
+
+static int32_t format_from_extension(const char *path)
+{
+    if (has_extension(path, ".png")) return HR_FORMAT_PNG;
+    if (has_extension(path, ".exr")) return HR_FORMAT_EXR;
+    if (has_extension(path, ".ppm")) return HR_FORMAT_PPM;
+    if (has_extension(path, ".pfm")) return HR_FORMAT_PFM;
+    return HR_FORMAT_AUTO;
+}
+
+/* The caller's options over the defaults, reading only the bytes the caller
+ * says its struct has (common.h), then checked. */
+static hr_status read_options(const hr_context *ctx, const hr_image_write_options *given,
+                              const char *path, hr_image_write_options *o)
+{
+    hr_image_write_options_default(o);
+    if (given) {
+        if (given->struct_size < sizeof(uint32_t))
+            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write options: struct_size not set");
+        memcpy(o, given, given->struct_size < sizeof *o ? given->struct_size : sizeof *o);
+        o->struct_size = sizeof *o;
+    }
+    if (o->png_bits == 0) o->png_bits = 8;
+    if (o->png_bits != 8 && o->png_bits != 16)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': png_bits is %d; only 8 or 16",
+                        path, (int)o->png_bits);
+    if (o->format == HR_FORMAT_AUTO) {
+        o->format = format_from_extension(path);
+        if (o->format == HR_FORMAT_AUTO)
+            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                            "cannot write '%s': unknown image format (use .png, .exr, .ppm or .pfm)",
+                            path);
+    } else if (o->format < HR_FORMAT_PNG || o->format > HR_FORMAT_PFM) {
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown format code %d",
+                        path, (int)o->format);
+    }
+    return HR_OK;
+}
+
+HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const char *path,
+                                const hr_image_write_options *options)
+{
+    if (!image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: NULL image");
+    if (!path || !*path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: empty file name");
+    hr_image_write_options o;
+    hr_status st = read_options(ctx, options, path, &o);
+    if (st) return st;
+
+    hr_pixels px = {image->width, image->height, image->channels, image->pixels};
+    hr_atomic_file out;
+    st = hr_atomic_file_open(ctx, path, &out);
+    if (st) return st;
+    switch (o.format) {
+    case HR_FORMAT_PNG: st = hr_write_png(ctx, &px, &o, &out); break;
+    case HR_FORMAT_EXR: st = hr_write_exr(ctx, &px, &o, &out); break;
+    case HR_FORMAT_PPM: st = hr_write_ppm(ctx, &px, &out); break;
+    default: st = hr_write_pfm(ctx, &px, &out); break;
+    }
+    if (st) {
+        hr_atomic_file_abort(&out);
+        return st;
+    }
+    return hr_atomic_file_commit(ctx, &out);
+}

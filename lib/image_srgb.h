@@ -1,0 +1,16 @@
+/* Internal: turning linear light into integer code values for 8- and 16-bit
+ * files (PNG, PPM). */
+#ifndef HITRAY_LIB_IMAGE_SRGB_H
+#define HITRAY_LIB_IMAGE_SRGB_H
+
+#include <stdint.h>
+
+/* The sRGB transfer function (IEC 61966-2-1), the exact piecewise curve,
+ * of a linear value clamped to [0, 1]; NaN counts as 0. */
+double hr_srgb_encode(double linear);
+
+/* `linear` as a code value in 0..max_code (255 or 65535), rounded to
+ * nearest: sRGB-encoded if `srgb`, else only clamped (NaN gives 0). */
+uint32_t hr_code_value(float linear, int srgb, uint32_t max_code);
+
+#endif

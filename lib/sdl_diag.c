@@ -1,0 +1,77 @@
+/* Error messages of the SDL reader (lib/sdl_diag.h). */
+#include "sdl_diag.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Messages are kept in a fixed slot (a few KiB): a long chain of macro
+ * levels shows its outer and inner ends and says how many it left out. */
+#define SHOWN_OUTER_LEVELS 3
+#define SHOWN_INNER_LEVELS 4
+#define MESSAGE_SIZE 2048
+
+typedef struct text {
+    char data[MESSAGE_SIZE];
+    size_t length;
+} text;
+
+static void append(text *t, const char *fmt, ...) HR_PRINTF(2, 3);
+static void append(text *t, const char *fmt, ...)
+{
+    if (t->length + 1 >= sizeof t->data) return;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(t->data + t->length, sizeof t->data - t->length, fmt, ap);
+    va_end(ap);
+    if (n > 0) t->length += (size_t)n;
+    if (t->length >= sizeof t->data) t->length = sizeof t->data - 1;
+}
+
+hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt, ...)
+{
+    /* The caller's part first: its arguments may point into the context's
+     * error slot (a message being passed on), which hr_error_at rewrites. */
+    char what[MESSAGE_SIZE];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+
+    /* The expansions that led to `at`, innermost first. */
+    int32_t chain[SDL_MAX_MACRO_NESTING + 1];
+    int32_t levels = 0;
+    for (int32_t e = at.expansion; e >= 0 && levels < SDL_MAX_MACRO_NESTING + 1;
+         e = src->expansions[e].parent)
+        chain[levels++] = e;
+
+    const sdl_token *origin = levels > 0 ? src->expansions[chain[levels - 1]].use : at.token;
+    text t = {{0}, 0};
+    for (int32_t k = levels - 1; k >= 0; k--) {
+        int32_t outer_rank = levels - 1 - k; /* 0 for the outermost */
+        if (levels > SHOWN_OUTER_LEVELS + SHOWN_INNER_LEVELS && outer_rank == SHOWN_OUTER_LEVELS) {
+            int32_t skipped = levels - SHOWN_OUTER_LEVELS - SHOWN_INNER_LEVELS;
+            append(&t, "... (%d more macro levels) ...: ", (int)skipped);
+            k -= skipped - 1;
+            continue;
+        }
+        const sdl_expansion *e = &src->expansions[chain[k]];
+        const sdl_token *name = src->macros.macros[e->macro].name;
+        append(&t, "%s:%d:%d: in macro '%s' (defined at %s:%d:%d): ", src->file, (int)e->use->line,
+               (int)e->use->column, name->text, src->file, (int)name->line, (int)name->column);
+    }
+    append(&t, "%s:%d:%d: %s", src->file, (int)at.token->line, (int)at.token->column, what);
+    return hr_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
+}
+
+const char *sdl_describe(const sdl_token *token, char *buf, size_t size)
+{
+    enum { SHOWN_CHARS = 40 };
+    if (token->kind == SDL_TOKEN_END)
+        snprintf(buf, size, "end of file");
+    else if (strlen(token->text) > SHOWN_CHARS)
+        snprintf(buf, size, "'%.*s...'", (int)SHOWN_CHARS, token->text);
+    else
+        snprintf(buf, size, "'%s'", token->text);
+    return buf;
+}

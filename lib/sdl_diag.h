@@ -1,0 +1,23 @@
+/* Internal: error messages of the SDL reader. Every message starts with
+ * "file:line:col: " and says what was expected and what was found; inside an
+ * expanded macro it first names each `use` and the definition it expanded:
+ *   scene.dat:30:1: in macro 'leg' (defined at scene.dat:3:5): scene.dat:3:22: expected ...
+ * The line and column kept for hr_context_last_error_info are the first ones
+ * of the message: the place in the file's own text where the error arose. */
+#ifndef HITRAY_LIB_SDL_DIAG_H
+#define HITRAY_LIB_SDL_DIAG_H
+
+#include <stddef.h>
+
+#include "errors.h"
+#include "sdl_source.h"
+
+/* Raise `status` on the source's context for the token `at`; returns it. */
+hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt,
+                    ...) HR_PRINTF(4, 5);
+
+/* A token for "found ...": 'word' (long words shortened), '{', '}', or
+ * "end of file". Writes into buf and returns it. */
+const char *sdl_describe(const sdl_token *token, char *buf, size_t size);
+
+#endif

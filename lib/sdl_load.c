@@ -1,0 +1,183 @@
+/* The public SDL entry points (include/hitray/sdl.h): read the text, cut it
+ * into tokens, run the reader over a new scene, frame a camera if the file
+ * set none. On any error the partial scene is destroyed and out->scene is
+ * NULL. */
+#include <errno.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "errors.h"
+#include "sdl_lexer.h"
+#include "sdl_reader.h"
+#include "sdl_source.h"
+
+/* The caller's struct may be older (shorter) than ours; it must at least
+ * reach the scene pointer. */
+#define RESULT_MIN_SIZE (offsetof(hr_sdl_result, scene) + sizeof(hr_scene *))
+
+/* Copy the bytes the caller's struct has, keeping its struct_size. */
+static void give_result(hr_sdl_result *out, const hr_sdl_result *full)
+{
+    uint32_t size = out->struct_size;
+    memcpy(out, full, size < sizeof *full ? size : sizeof *full);
+    out->struct_size = size;
+}
+
+static void empty_result(hr_sdl_result *r)
+{
+    memset(r, 0, sizeof *r);
+    r->struct_size = sizeof *r;
+    hr_camera_default(&r->camera);
+}
+
+/* Also empties the result, so that every failure leaves out->scene NULL. */
+static hr_status check_arguments(hr_context *ctx, hr_sdl_result *out)
+{
+    if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
+    if (!out || out->struct_size < RESULT_MIN_SIZE)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "SDL: the result is NULL or its struct_size is not set");
+    hr_sdl_result empty;
+    empty_result(&empty);
+    give_result(out, &empty);
+    return HR_OK;
+}
+
+static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const char *name,
+                            const char *base_dir, hr_sdl_result *result)
+{
+    hr_scene *scene = NULL;
+    sdl_source src;
+    sdl_reader reader;
+    memset(&src, 0, sizeof src);
+    memset(&reader, 0, sizeof reader);
+    hr_status st = hr_scene_create(ctx, &scene);
+    if (!st) st = sdl_source_init(&src, ctx, name, tokens);
+    if (!st) st = sdl_reader_init(&reader, ctx, scene, &src, base_dir);
+    if (!st) st = sdl_reader_run(&reader);
+    if (!st) {
+        result->scene = scene;
+        result->has_camera = reader.has_camera;
+        if (reader.has_camera) {
+            result->camera = reader.camera;
+        } else {
+            hr_camera_default(&result->camera);
+            st = hr_scene_frame_camera(scene, &result->camera);
+        }
+    }
+    sdl_reader_release(&reader);
+    sdl_source_release(&src);
+    if (st) {
+        hr_scene_destroy(scene);
+        empty_result(result);
+    }
+    return st;
+}
+
+static hr_status load_text(hr_context *ctx, const char *text, size_t length, const char *name,
+                           const char *base_dir, hr_sdl_result *out)
+{
+    hr_sdl_result result;
+    empty_result(&result);
+    sdl_token_list tokens;
+    int32_t bad_line = 0, bad_column = 0;
+    hr_status st = sdl_lex(text, length, &tokens, &bad_line, &bad_column);
+    if (st == HR_ERROR_SDL)
+        hr_error_at(ctx, st, name, bad_line, bad_column,
+                    "%s:%d:%d: unexpected NUL byte (is this a text file?)", name, (int)bad_line,
+                    (int)bad_column);
+    else if (st)
+        hr_error(ctx, st, "out of memory reading '%s'", name);
+    else
+        st = read_scene(ctx, &tokens, name, base_dir, &result);
+    sdl_token_list_release(&tokens);
+    give_result(out, &result);
+    return st;
+}
+
+HR_API hr_status hr_sdl_load_string(hr_context *ctx, const char *text, const char *name,
+                                    const char *base_dir, hr_sdl_result *out)
+{
+    hr_status st = check_arguments(ctx, out);
+    if (st) return st;
+    if (!text) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_string: NULL text");
+    return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, out);
+}
+
+/* The whole file, read in pieces: its size is not asked first, so pipes and
+ * files that change size work too. */
+static hr_status read_file(hr_context *ctx, const char *path, char **text, size_t *length)
+{
+    *text = NULL;
+    *length = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the scene file: %s",
+                           path, strerror(errno));
+    size_t capacity = 0, used = 0;
+    char *data = NULL;
+    hr_status st = HR_OK;
+    for (;;) {
+        if (used == capacity) {
+            size_t grown_capacity = capacity ? 2 * capacity : 64 * 1024;
+            char *grown = grown_capacity > capacity ? realloc(data, grown_capacity) : NULL;
+            if (!grown) {
+                st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+                break;
+            }
+            data = grown;
+            capacity = grown_capacity;
+        }
+        size_t n = fread(data + used, 1, capacity - used, f);
+        used += n;
+        if (n == 0) {
+            if (ferror(f))
+                st = hr_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+                                 "%s: cannot read the scene file: %s", path, strerror(errno));
+            break;
+        }
+    }
+    fclose(f);
+    if (st) {
+        free(data);
+        return st;
+    }
+    *text = data;
+    *length = used;
+    return HR_OK;
+}
+
+/* "a/b/c.dat" -> "a/b"; "c.dat" -> "."; "/c.dat" -> "/". */
+static char *directory_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *dir = ".";
+    size_t n = 1;
+    if (slash == path) dir = "/";
+    else if (slash) dir = path, n = (size_t)(slash - path);
+    char *copy = malloc(n + 1);
+    if (!copy) return NULL;
+    memcpy(copy, dir, n);
+    copy[n] = '\0';
+    return copy;
+}
+
+HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)
+{
+    hr_status st = check_arguments(ctx, out);
+    if (st) return st;
+    if (!path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_file: NULL path");
+    char *text;
+    size_t length;
+    if ((st = read_file(ctx, path, &text, &length))) return st;
+    char *base_dir = directory_of(path);
+    if (!base_dir)
+        st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    else
+        st = load_text(ctx, text, length, path, base_dir, out);
+    free(base_dir);
+    free(text);
+    return st;
+}

@@ -1,0 +1,186 @@
+/* SDL's object commands (lib/sdl_reader.h): shapes, CSG booleans, and the
+ * solids the original read from data files this project does not have.
+ *
+ * Each leaf object is added with hr_scene_add_object, passing a copy of the
+ * current material and the top of the transform stack with its inverse (the
+ * exact one Hill's stack keeps). A shape class is named by its SDL keyword;
+ * when no module provides it the scene's message is passed on with the place
+ * of the keyword. A boolean `union A B` (also intersection, difference)
+ * reads A then B, each a whole object (booleans nest), adds them, then adds
+ * the boolean node with object parameters `a` and `b`, the identity
+ * transform and the default material: each leaf keeps its own. Booleans are
+ * read with a stack of pending nodes, not by recursion, so no nesting depth
+ * can exhaust the C stack. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "errors.h"
+#include "sdl_diag.h"
+#include "sdl_reader.h"
+
+#define ARGS_NONE 0        /* sphere, cube, ... */
+#define ARGS_TAPER 1       /* taperedCylinder s */
+#define ARGS_FILE 2        /* mesh file */
+#define ARGS_OPERANDS 3    /* union A B */
+#define ARGS_UNSUPPORTED 4 /* buckyball, diamond, teapot */
+
+static const struct {
+    const char *keyword;
+    int args;
+} objects[] = {
+    {"sphere", ARGS_NONE},
+    {"cube", ARGS_NONE},
+    {"square", ARGS_NONE},
+    {"plane", ARGS_NONE},
+    {"taperedCylinder", ARGS_TAPER},
+    {"cylinder", ARGS_NONE},
+    {"cone", ARGS_NONE},
+    {"torus", ARGS_NONE},
+    {"mesh", ARGS_FILE},
+    {"tetrahedron", ARGS_NONE},
+    {"octahedron", ARGS_NONE},
+    {"dodecahedron", ARGS_NONE},
+    {"icosahedron", ARGS_NONE},
+    {"union", ARGS_OPERANDS},
+    {"intersection", ARGS_OPERANDS},
+    {"difference", ARGS_OPERANDS},
+    {"buckyball", ARGS_UNSUPPORTED},
+    {"diamond", ARGS_UNSUPPORTED},
+    {"teapot", ARGS_UNSUPPORTED},
+};
+#define OBJECT_COUNT ((int)(sizeof objects / sizeof objects[0]))
+
+const char *sdl_object_keyword(int index)
+{
+    return index >= 0 && index < OBJECT_COUNT ? objects[index].keyword : NULL;
+}
+
+static int object_args(const char *word)
+{
+    for (int i = 0; i < OBJECT_COUNT; i++)
+        if (strcmp(word, objects[i].keyword) == 0) return objects[i].args;
+    return -1;
+}
+
+int sdl_is_object_keyword(const char *word) { return object_args(word) >= 0; }
+
+/* Add one object; any refusal is reported at its keyword. */
+static hr_status add(sdl_reader *r, sdl_located keyword, const hr_param *params, int32_t count,
+                     const hr_material *material, const hr_transform *transform, int64_t *index)
+{
+    hr_object_desc d;
+    memset(&d, 0, sizeof d);
+    d.struct_size = sizeof d;
+    d.shape = keyword.token->text;
+    d.param_count = count;
+    d.params = count ? params : NULL;
+    d.material = material;
+    d.transform = transform ? transform->m : NULL;
+    d.inverse = transform ? transform->inv : NULL;
+    d.base_dir = r->base_dir;
+    hr_status st = hr_scene_add_object(r->scene, &d, index);
+    if (st) return sdl_error(r->src, st, keyword, "%s", hr_context_last_error(r->ctx));
+    return HR_OK;
+}
+
+static hr_status add_leaf(sdl_reader *r, sdl_located keyword, int args, int64_t *index)
+{
+    hr_param param;
+    memset(&param, 0, sizeof param);
+    int32_t count = 0;
+    if (args == ARGS_UNSUPPORTED)
+        return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
+                         "'%s' is not supported: the original reader loaded it from a data file "
+                         "this project does not have",
+                         keyword.token->text);
+    if (args == ARGS_TAPER) {
+        hr_status st = sdl_read_number(r, keyword, &param.number, NULL);
+        if (st) return st;
+        param.name = "s";
+        param.type = HR_PARAM_NUMBER;
+        count = 1;
+    } else if (args == ARGS_FILE) {
+        sdl_located file;
+        hr_status st = sdl_source_next(r->src, &file);
+        if (st) return st;
+        if (file.token->kind != SDL_TOKEN_WORD) {
+            char found[64];
+            return sdl_error(r->src, HR_ERROR_SDL, file, "expected a file name after '%s', found %s",
+                             keyword.token->text, sdl_describe(file.token, found, sizeof found));
+        }
+        param.name = "file";
+        param.type = HR_PARAM_STRING;
+        param.string = file.token->text;
+        count = 1;
+    }
+    return add(r, keyword, &param, count, &r->material, sdl_current_transform(r), index);
+}
+
+/* A boolean whose operands are still being read. */
+typedef struct pending {
+    sdl_located keyword;
+    int64_t a; /* index of operand A, -1 until it is read */
+} pending;
+
+static hr_status next_operand(sdl_reader *r, const pending *p, sdl_located *keyword)
+{
+    char wanted[160];
+    snprintf(wanted, sizeof wanted, "an object for operand %s of '%s' at %s:%d:%d",
+             p->a < 0 ? "A" : "B", p->keyword.token->text, r->src->file,
+             (int)p->keyword.token->line, (int)p->keyword.token->column);
+    return sdl_next_object_keyword(r, wanted, keyword);
+}
+
+static hr_status add_boolean(sdl_reader *r, const pending *p, int64_t b, int64_t *index)
+{
+    hr_param params[2];
+    memset(params, 0, sizeof params);
+    params[0].name = "a";
+    params[0].type = HR_PARAM_OBJECT;
+    params[0].object = p->a;
+    params[1].name = "b";
+    params[1].type = HR_PARAM_OBJECT;
+    params[1].object = b;
+    return add(r, p->keyword, params, 2, NULL, NULL, index);
+}
+
+hr_status sdl_read_object(sdl_reader *r, sdl_located keyword, int64_t *index)
+{
+    pending *stack = NULL;
+    size_t count = 0, capacity = 0;
+    hr_status st = HR_OK;
+    int64_t last = -1;
+    for (;;) {
+        int args = object_args(keyword.token->text);
+        if (args == ARGS_OPERANDS) {
+            if (count == capacity) {
+                capacity = capacity ? 2 * capacity : 8;
+                pending *grown = realloc(stack, capacity * sizeof *grown);
+                if (!grown) {
+                    st = hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+                    break;
+                }
+                stack = grown;
+            }
+            stack[count].keyword = keyword;
+            stack[count].a = -1;
+            count++;
+            if ((st = next_operand(r, &stack[count - 1], &keyword))) break;
+            continue;
+        }
+        if ((st = add_leaf(r, keyword, args, &last))) break;
+        /* The object just added completes operand A or B of the innermost
+         * pending boolean; a completed boolean is in turn an operand. */
+        while (count > 0 && stack[count - 1].a >= 0) {
+            if ((st = add_boolean(r, &stack[count - 1], last, &last))) break;
+            count--;
+        }
+        if (st || count == 0) break;
+        stack[count - 1].a = last;
+        if ((st = next_operand(r, &stack[count - 1], &keyword))) break;
+    }
+    free(stack);
+    if (st == HR_OK && index) *index = last;
+    return st;
+}

@@ -1,0 +1,95 @@
+/* Internal: the SDL reader's state and the commands that change it.
+ *
+ * The reader is a client of the public API: it keeps Hill's state (a stack
+ * of transform pairs, the current material, the globals, the camera) and
+ * turns each object command into hr_scene_add_object with a copy of that
+ * state. The commands live in files by topic: sdl_transforms.c,
+ * sdl_material.c, sdl_settings.c (globals, lights, camera), sdl_objects.c
+ * (shapes and CSG); sdl_reader.c runs the command loop. */
+#ifndef HITRAY_LIB_SDL_READER_H
+#define HITRAY_LIB_SDL_READER_H
+
+#include <hitray/hitray.h>
+
+#include "sdl_source.h"
+
+/* Unbalanced `push` is harmless, but not without limit: each entry is two
+ * 4x4 matrices, and a macro used in a loop can push on every pass. */
+#define SDL_MAX_TRANSFORM_DEPTH 65536
+
+typedef struct sdl_reader {
+    hr_context *ctx;
+    hr_scene *scene;
+    sdl_source *src;
+    const char *base_dir; /* for relative file parameters (mesh); may be NULL */
+
+    hr_transform *stack;  /* Hill's affine stack: [count - 1] is current */
+    int32_t stack_count, stack_capacity;
+
+    hr_material material; /* current material; `parameters` points to ... */
+    double *parameters;   /* ... this array, owned by the reader */
+
+    hr_scene_globals globals; /* given to the scene at the end of the read */
+    int32_t has_camera;
+    hr_camera camera;
+} sdl_reader;
+
+/* Set up / tear down everything but the scene, which the caller owns. */
+hr_status sdl_reader_init(sdl_reader *r, hr_context *ctx, hr_scene *scene, sdl_source *src,
+                          const char *base_dir);
+void sdl_reader_release(sdl_reader *r);
+/* Run every command of the source, then hand the globals to the scene. */
+hr_status sdl_reader_run(sdl_reader *r);
+
+/* A command: `keyword` is its token, just read; it reads its arguments. */
+typedef hr_status (*sdl_command_fn)(sdl_reader *r, sdl_located keyword);
+
+/* Arguments, each with a message naming the keyword when it is missing or
+ * malformed ("expected a number after 'scale', found 'x'"). `at` (may be
+ * NULL) receives the argument's token. */
+hr_status sdl_read_number(sdl_reader *r, sdl_located keyword, double *out, sdl_located *at);
+hr_status sdl_read_numbers(sdl_reader *r, sdl_located keyword, int count, double *out);
+hr_status sdl_read_color(sdl_reader *r, sdl_located keyword, hr_color *out);
+/* A number that must be whole and within [min, max]. */
+hr_status sdl_read_whole(sdl_reader *r, sdl_located keyword, double min, double max,
+                         int64_t *out);
+
+/* The top of the transform stack. */
+hr_transform *sdl_current_transform(sdl_reader *r);
+
+/* The object keywords, by index; NULL past the last. */
+const char *sdl_object_keyword(int index);
+/* 1 if `word` starts an object (a shape, a boolean, or an unsupported
+ * solid); sdl_read_object then reads all of it. */
+int sdl_is_object_keyword(const char *word);
+/* Read the object that starts at `keyword` (for a boolean: both operands,
+ * running any state commands between them), add it, and give its index. */
+hr_status sdl_read_object(sdl_reader *r, sdl_located keyword, int64_t *index);
+/* Read commands until one starts an object, run those before it, and give
+ * that object's keyword. `wanted` says what for, in the message at the end
+ * of the file ("operand A of 'union' at f:3:1"). */
+hr_status sdl_next_object_keyword(sdl_reader *r, const char *wanted, sdl_located *keyword);
+
+/* The commands, by file. */
+hr_status sdl_cmd_translate(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_scale(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_rotate(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_push(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_pop(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_identity_affine(sdl_reader *r, sdl_located keyword);
+
+hr_status sdl_cmd_material_color(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_material_number(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_texture(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_parameters(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_default_materials(sdl_reader *r, sdl_located keyword);
+/* The material with SDL's defaults and no texture parameters. */
+void sdl_material_reset(sdl_reader *r);
+
+hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_global_threshold(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_max_recursion_depth(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_light(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_camera(sdl_reader *r, sdl_located keyword);
+
+#endif

@@ -1,0 +1,182 @@
+/* hitray built-in shapes: the small numerical toolkit they share.
+ *
+ * Everything is static inline, so each module stays one self-contained
+ * loadable file that links nothing of libhitray.
+ *
+ * Error analysis follows pbrt-v4 (and Higham, "Accuracy and Stability of
+ * Numerical Algorithms", ch. 3): with u the unit roundoff (2^-53 for double),
+ * every correctly rounded operation returns x (1 + d) with |d| <= u, and a
+ * chain of n such factors is (1 + theta_n) with |theta_n| <= gamma(n) =
+ * n u / (1 - n u). The shapes state their error bounds in these terms.
+ *
+ * The routines below avoid the usual losses of ray/quadric code:
+ * - two_product / two_sum are Knuth's and Dekker's error-free transforms
+ *   (they need the FMA of C99's fma(), which glibc maps to the instruction
+ *   where the CPU has one and emulates exactly where it does not);
+ * - shape_sum accumulates products with those transforms (Ogita, Rump and
+ *   Oishi's Dot2): the result is as accurate as a sum of products evaluated
+ *   in twice the working precision and rounded once, so a coefficient such
+ *   as |o|^2 - 1 keeps full relative accuracy even when it cancels;
+ * - difference_of_products is Kahan's a*b - c*d, within 1.5 ulp;
+ * - solve_half_quadratic uses the root pair that never subtracts nearly
+ *   equal numbers, and leaves the discriminant to the caller, who knows a
+ *   form of it that stays accurate for its geometry. */
+#ifndef HITRAY_SHAPE_MATH_H
+#define HITRAY_SHAPE_MATH_H
+
+#include <float.h>
+#include <math.h>
+
+#include <hitray/common.h>
+
+/* --- Rounding-error bookkeeping ------------------------------------------ */
+
+#define SHAPE_UNIT_ROUNDOFF (DBL_EPSILON * 0.5)
+
+/* Bound on |theta_n|, the relative error of n chained roundings. */
+static inline double shape_gamma(int n)
+{
+    return (n * SHAPE_UNIT_ROUNDOFF) / (1.0 - n * SHAPE_UNIT_ROUNDOFF);
+}
+
+/* --- Small vector helpers ------------------------------------------------- */
+
+static inline hr_vec3 shape_vec3(double x, double y, double z)
+{
+    hr_vec3 v = {x, y, z};
+    return v;
+}
+
+/* origin + t * dir, the point of a ray at time t. */
+static inline hr_vec3 shape_ray_at(const hr_ray *ray, double t)
+{
+    return shape_vec3(ray->origin.x + t * ray->dir.x, ray->origin.y + t * ray->dir.y,
+                      ray->origin.z + t * ray->dir.z);
+}
+
+static inline double shape_max3(double a, double b, double c)
+{
+    double m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
+static inline double shape_clamp(double x, double lo, double hi)
+{
+    return x < lo ? lo : x > hi ? hi : x;
+}
+
+static inline int shape_vec3_is_finite(hr_vec3 v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+/* Rounding error of shape_ray_at(ray, t), per coordinate, when t itself came
+ * from `t_roundings` chained roundings of exact inputs (t~ = t (1 + theta_m)).
+ * Coordinate i is fl(o_i + fl(t~ d_i)) = (o_i + t d_i (1 + theta_{m+1}))
+ * (1 + d), so its distance from the exact o_i + t d_i is at most
+ * gamma(m+1) |t d_i| + u |o_i + t d_i| (1 + gamma(m+1)) <= gamma(m+2)
+ * (|o_i| + |t d_i|). One more gamma covers evaluating this bound itself
+ * with the computed t~ instead of t. */
+static inline double shape_ray_point_error(const hr_ray *ray, double t, int t_roundings)
+{
+    const hr_vec3 o = ray->origin, d = ray->dir;
+    const double g = shape_gamma(t_roundings + 3);
+    return g * shape_max3(fabs(o.x) + fabs(t * d.x), fabs(o.y) + fabs(t * d.y),
+                          fabs(o.z) + fabs(t * d.z));
+}
+
+/* --- Error-free transforms and compensated sums ---------------------------- */
+
+/* a * b == product + *error exactly (barring underflow). */
+static inline double shape_two_product(double a, double b, double *error)
+{
+    double product = a * b;
+    *error = fma(a, b, -product);
+    return product;
+}
+
+/* a + b == sum + *error exactly (Knuth's branch-free TwoSum). */
+static inline double shape_two_sum(double a, double b, double *error)
+{
+    double sum = a + b;
+    double b_virtual = sum - a;
+    double a_virtual = sum - b_virtual;
+    *error = (a - a_virtual) + (b - b_virtual);
+    return sum;
+}
+
+/* A running sum of products carried as an unevaluated pair high + low. */
+typedef struct shape_sum {
+    double high, low;
+} shape_sum;
+
+static inline shape_sum shape_sum_start(double value)
+{
+    shape_sum s = {value, 0.0};
+    return s;
+}
+
+static inline void shape_sum_add_product(shape_sum *s, double a, double b)
+{
+    double product_error, sum_error;
+    double product = shape_two_product(a, b, &product_error);
+    s->high = shape_two_sum(s->high, product, &sum_error);
+    s->low += product_error + sum_error;
+}
+
+static inline double shape_sum_value(shape_sum s)
+{
+    return s.high + s.low;
+}
+
+/* a*b - c*d within 1.5 ulp (Kahan): the rounding of c*d is recovered by FMA
+ * and added back, so the difference of nearly equal products (a cross product
+ * of nearly parallel vectors, say) keeps its relative accuracy. */
+static inline double shape_difference_of_products(double a, double b, double c, double d)
+{
+    double cd = c * d;
+    double cd_error = fma(-c, d, cd);
+    double difference = fma(a, b, -cd);
+    return difference + cd_error;
+}
+
+/* --- Quadratics ------------------------------------------------------------- */
+
+/* Real roots of a t^2 + 2 half_b t + c = 0, given disc = half_b^2 - a c
+ * (the caller computes it in a form that does not cancel for its geometry;
+ * disc < 0 or NaN: no real root). Writes the roots sorted and returns how
+ * many there are:
+ * - 2 for a proper quadratic; a double root (disc == 0) comes back twice,
+ *   bit-identical, so a tangent is reported consistently;
+ * - 1 when a == 0 (the equation is linear: t = -c / (2 half_b));
+ * - 0 when there is no real root, or a == half_b == 0 (a constant: the
+ *   caller decides what c says).
+ * The pair q = -(half_b + sign(half_b) sqrt(disc)), t = q / a and t = c / q
+ * adds two numbers of the same sign, so neither root suffers cancellation.
+ * A root may be infinite when a or q is tiny; never NaN for finite input. */
+static inline int shape_solve_half_quadratic(double a, double half_b, double c, double disc,
+                                             double roots[2])
+{
+    if (!(disc >= 0.0)) return 0;
+    const double root = sqrt(disc);
+    const double q = -(half_b + copysign(root, half_b));
+    if (q == 0.0) { /* half_b == 0 and disc == 0: a double root at 0 (if any) */
+        if (a == 0.0) return 0;
+        roots[0] = roots[1] = 0.0;
+        return 2;
+    }
+    if (a == 0.0) {
+        roots[0] = c / q;
+        return 1;
+    }
+    if (disc == 0.0) {
+        roots[0] = roots[1] = q / a;
+        return 2;
+    }
+    const double t0 = q / a, t1 = c / q;
+    roots[0] = t0 < t1 ? t0 : t1;
+    roots[1] = t0 < t1 ? t1 : t0;
+    return 2;
+}
+
+#endif

@@ -1,0 +1,125 @@
+/* The generic cube of Hill's chapter 12: corners (+-1, +-1, +-1).
+ * Surfaces 0..5 are the faces +x, -x, +y, -y, +z, -z.
+ *
+ * Hit: the slab method. The cube is the intersection of the slabs
+ * |x| <= 1, |y| <= 1, |z| <= 1; the ray's span in each slab is found with
+ * shape_slab_span (which handles zero direction components, +0 and -0 alike,
+ * without dividing), and the cube's span is their intersection. Entering and
+ * exiting faces come from whichever slab ends the span, so they are always
+ * consistent, and a ray through an edge or a corner is entered and left
+ * exactly once. Faces are closed: a ray grazing a face from within its plane
+ * is inside that slab, and a ray touching only an edge is a zero-length visit
+ * (enter and leave at the same t).
+ *
+ * Ownership of an edge or corner hit at an exact tie: the slabs are
+ * intersected in the order x, y, z and a tie keeps the earlier one, so the
+ * x faces own their edges and corners, then the y faces.
+ *
+ * Point: origin + t dir with the face coordinate set exactly to +-1 and the
+ * other two clamped into [-1, 1] (a projection onto the face, which can only
+ * move the point closer to the exact one, as that lies on the face). t is
+ * fl(fl(+-1 - o) / d), two roundings, so the error is shape_ray_point_error
+ * with 2. */
+#include <math.h>
+
+#include <hitray/shape_module.h>
+
+#include "../common/shape_entry.h"
+#include "../common/shape_hits.h"
+#include "../common/shape_instance.h"
+#include "../common/shape_math.h"
+
+/* Face ids: 2 axis for the +1 face of an axis, 2 axis + 1 for the -1 face. */
+static shape_span cube_axis_span(double o, double d, int axis)
+{
+    return shape_slab_span(o, d, -1.0, 2 * axis + 1, 1.0, 2 * axis);
+}
+
+static int cube_crossings(const hr_ray *ray, shape_crossing out[2])
+{
+    const hr_vec3 o = ray->origin, d = ray->dir;
+    shape_span span = cube_axis_span(o.x, d.x, 0);
+    span = shape_span_intersect(span, cube_axis_span(o.y, d.y, 1));
+    span = shape_span_intersect(span, cube_axis_span(o.z, d.z, 2));
+    return shape_span_crossings(span, out);
+}
+
+static void cube_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    (void)shape;
+    const int axis = hit->surface / 2;
+    const double side = hit->surface % 2 == 0 ? 1.0 : -1.0;
+    hr_vec3 p = shape_ray_at(ray, hit->t);
+    p = shape_vec3(shape_clamp(p.x, -1.0, 1.0), shape_clamp(p.y, -1.0, 1.0),
+                   shape_clamp(p.z, -1.0, 1.0));
+    hr_vec3 n = shape_vec3(0.0, 0.0, 0.0);
+    if (axis == 0) p.x = side, n.x = side;
+    else if (axis == 1) p.y = side, n.y = side;
+    else p.z = side, n.z = side;
+    hit->point = p;
+    hit->normal = n;
+    hit->error = shape_ray_point_error(ray, hit->t, 2);
+}
+
+static hr_status cube_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossings[2];
+    const int count = cube_crossings(&args->ray, crossings);
+    return shape_report(args, mode, crossings, count, cube_fill);
+}
+
+static hr_status cube_hit(const hr_hit_args *args)
+{
+    return cube_trace(args, HR_TRACE_ALL);
+}
+
+static hr_status cube_first_hit(const hr_hit_args *args)
+{
+    return cube_trace(args, HR_TRACE_FIRST);
+}
+
+static hr_status cube_any_hit(const hr_hit_args *args)
+{
+    return cube_trace(args, HR_TRACE_ANY);
+}
+
+static void cube_bounds(const void *shape, hr_bounds *out)
+{
+    (void)shape;
+    shape_set_bounds(out, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0);
+}
+
+static const hr_shape_class cube_class = {
+    .struct_size = sizeof(hr_shape_class),
+    .flags = HR_SHAPE_CLOSED,
+    .name = "cube",
+    .help = "cube with corners (+-1, +-1, +-1); surfaces +x, -x, +y, -y, +z, -z",
+    .params = NULL,
+    .param_count = 0,
+    .surface_count = 6,
+    .create = shape_plain_create,
+    .destroy = shape_plain_destroy,
+    .bounds = cube_bounds,
+    .hit = cube_hit,
+    .first_hit = cube_first_hit,
+    .any_hit = cube_any_hit,
+};
+
+static const hr_shape_class *const cube_classes[] = {&cube_class};
+
+static const hr_module_info cube_module = {
+    .struct_size = sizeof(hr_module_info),
+    .abi_version = HR_SHAPE_ABI_VERSION,
+    .name = "cube",
+    .description = "Hill's generic cube: corners (+-1, +-1, +-1)",
+    .classes = cube_classes,
+    .class_count = 1,
+};
+
+/* The host checks abi_version and explains a mismatch. */
+HR_DEFINE_SHAPE_MODULE(host_version, host)
+{
+    (void)host_version;
+    (void)host;
+    return &cube_module;
+}

@@ -1,0 +1,305 @@
+/* Hill's tapered cylinder and its two special cases:
+ *   taperedCylinder s   radius 1 at z = 0, radius s at z = 1 (s >= 0)
+ *   cylinder            s = 1
+ *   cone                s = 0 (the apex at (0, 0, 1))
+ * A closed solid: the wall x^2 + y^2 = (1 + (s-1) z)^2 for 0 <= z <= 1
+ * (surface 0), the base disk z = 0, radius 1 (surface 1), and the cap disk
+ * z = 1, radius s (surface 2; absent when s = 0, where it is the apex, a
+ * point of the wall).
+ *
+ * The solid is the intersection of the slab 0 <= z <= 1 and the inside of
+ * the wall's quadric, Q(p) = x^2 + y^2 - w(z)^2 <= 0 with w(z) = 1 + k z,
+ * k = s - 1 (within the slab w >= 0, so Q <= 0 there is exactly our frustum
+ * and never the cone's other nappe). A ray's span in the solid is the
+ * intersection of its span in the slab (shape_slab_span) and in the quadric
+ * (wall_span below). The frustum is convex, so that is one span: one
+ * entering and one exiting hit, or none.
+ *
+ * Seam ownership: the slab is intersected first, so at an exact tie between
+ * a disk time and a wall time the disk owns the rim (shape_span_intersect
+ * keeps the earlier region on ties). Away from exact ties, the surface whose
+ * constraint binds owns the hit, so a sweep across the rim switches from one
+ * surface to the other with no gap and no double hit. For the cone, a span
+ * end on the z = 1 plane can only be the apex, and is reported as the wall.
+ *
+ * The quadric along the ray. With u = (o.x, o.y), e = (d.x, d.y),
+ * w0 = w(o.z) and omega = k d.z (the rate of w along the ray):
+ *   Q(t) = |u + t e|^2 - (w0 + omega t)^2 = a t^2 + 2 b t + c,
+ *   a = |e|^2 - omega^2,  b = u.e - w0 omega,  c = |u|^2 - w0^2,
+ * and, by Lagrange's identity (the analogue of the sphere's |d|^2 - |o x d|^2),
+ *   b^2 - a c = |w0 e - omega u|^2 - (u x e)^2,
+ * whose terms are differences of products (Kahan, 1.5 ulp each) instead of
+ * the two huge nearly equal products of b^2 - a c for a far ray.
+ * - a > 0: inside between the roots.
+ * - a < 0 (the ray is steeper than the wall): Q <= 0 on two half-lines, one
+ *   in each nappe; ours is where w grows toward +infinity, so the half-line
+ *   after the larger root when omega > 0, before the smaller when omega < 0.
+ *   A line always meets the double cone here (it must pass w = 0, where
+ *   Q >= 0), so a discriminant that rounding made negative is clamped to 0.
+ *   A ray through the apex has a double root there: it is one crossing, not
+ *   a tangent, and the half-line rule makes it one.
+ * - a == 0 (parallel to a generator line, or to the axis of a cylinder):
+ *   Q is linear or constant.
+ *
+ * Points and errors.
+ * Wall: p = origin + t dir, z clamped into [0, 1], then moved radially onto
+ * the wall at that height: (x, y) scaled by w(z) / sqrt(x^2 + y^2) (pbrt's
+ * re-projection for cylinders, with the tapered radius). The exact surface
+ * point is (x, y) w(z) / rho at the same z. w~ = fma(k~, z, 1) with
+ * k~ = (s - 1)(1 + d) is within gamma(2) R of w, R = 1 + |k| z;
+ * rho~ = rho (1 + theta_2); the scale and product add two roundings, so
+ * x~ - x w / rho = (x / rho)(w~ (1 + theta_4) - w), at most
+ * gamma(2) R + gamma(4) R (1 + gamma(2)) <= gamma(7) R. We report gamma(8) R.
+ * (On the axis, only at the apex, rho = 0: the point stays on the axis and
+ * w~ is added to the bound.) Like the sphere's, this bounds the distance to
+ * the surface, not the displacement along it.
+ * Disks: x, y from origin + t dir, z exactly 0 or 1; t = fl(fl(h - o.z)/d.z)
+ * has two roundings, see shape_ray_point_error.
+ * Normals: the wall's is the gradient of Q / 2, (x, y, -k w) (+z at the
+ * apex, where the gradient vanishes); the disks' are -z and +z. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <hitray/shape_module.h>
+
+#include "../common/shape_entry.h"
+#include "../common/shape_hits.h"
+#include "../common/shape_math.h"
+
+#define SURFACE_WALL 0
+#define SURFACE_BASE 1
+#define SURFACE_CAP 2
+
+#define TAPER_MAX 1e6
+
+typedef struct tapered_cylinder {
+    const hr_host *host;
+    double s;     /* radius at z = 1 */
+    double slope; /* k = s - 1: the wall's radius is w(z) = 1 + k z */
+} tapered_cylinder;
+
+/* The span of the ray inside the quadric Q <= 0, in our nappe. */
+static shape_span wall_span(const tapered_cylinder *shape, const hr_ray *ray)
+{
+    const hr_vec3 o = ray->origin, d = ray->dir;
+    const double k = shape->slope;
+    const double w0 = fma(k, o.z, 1.0);
+    const double omega = k * d.z;
+
+    shape_sum a = shape_sum_start(0.0), b = shape_sum_start(0.0), c = shape_sum_start(0.0);
+    shape_sum_add_product(&a, d.x, d.x);
+    shape_sum_add_product(&a, d.y, d.y);
+    shape_sum_add_product(&a, -omega, omega);
+    shape_sum_add_product(&b, o.x, d.x);
+    shape_sum_add_product(&b, o.y, d.y);
+    shape_sum_add_product(&b, -w0, omega);
+    shape_sum_add_product(&c, o.x, o.x);
+    shape_sum_add_product(&c, o.y, o.y);
+    shape_sum_add_product(&c, -w0, w0);
+
+    const double cross = shape_difference_of_products(o.x, d.y, o.y, d.x);
+    const double vx = shape_difference_of_products(w0, d.x, omega, o.x);
+    const double vy = shape_difference_of_products(w0, d.y, omega, o.y);
+    shape_sum disc = shape_sum_start(0.0);
+    shape_sum_add_product(&disc, vx, vx);
+    shape_sum_add_product(&disc, vy, vy);
+    shape_sum_add_product(&disc, -cross, cross);
+
+    const double qa = shape_sum_value(a), qb = shape_sum_value(b), qc = shape_sum_value(c);
+    double qdisc = shape_sum_value(disc);
+    /* Coefficients overflow only for absurdly far rays: call it a miss. */
+    if (!(isfinite(qa) && isfinite(qb) && isfinite(qc) && isfinite(qdisc)))
+        return shape_span_nowhere();
+    if (qa < 0.0 && qdisc < 0.0) qdisc = 0.0;
+
+    double roots[2];
+    const int count = shape_solve_half_quadratic(qa, qb, qc, qdisc, roots);
+    if (qa > 0.0)
+        return count == 2 ? shape_span_make(roots[0], SURFACE_WALL, roots[1], SURFACE_WALL)
+                          : shape_span_nowhere();
+    if (qa < 0.0) {
+        if (count != 2) return shape_span_nowhere(); /* cannot happen: disc >= 0 */
+        return omega > 0.0 ? shape_span_make(roots[1], SURFACE_WALL, INFINITY, SHAPE_NO_SURFACE)
+                           : shape_span_make(-INFINITY, SHAPE_NO_SURFACE, roots[0], SURFACE_WALL);
+    }
+    /* qa == 0: Q(t) = 2 b t + c, inside where that is <= 0. */
+    if (count == 1)
+        return qb > 0.0 ? shape_span_make(-INFINITY, SHAPE_NO_SURFACE, roots[0], SURFACE_WALL)
+                        : shape_span_make(roots[0], SURFACE_WALL, INFINITY, SHAPE_NO_SURFACE);
+    return qc <= 0.0 ? shape_span_everywhere() : shape_span_nowhere();
+}
+
+static int tapered_crossings(const tapered_cylinder *shape, const hr_ray *ray,
+                             shape_crossing out[2])
+{
+    shape_span span =
+        shape_slab_span(ray->origin.z, ray->dir.z, 0.0, SURFACE_BASE, 1.0, SURFACE_CAP);
+    if (shape_span_is_empty(span)) return 0;
+    span = shape_span_intersect(span, wall_span(shape, ray));
+    const int count = shape_span_crossings(span, out);
+    if (shape->s == 0.0)
+        for (int i = 0; i < count; i++)
+            if (out[i].surface == SURFACE_CAP) out[i].surface = SURFACE_WALL;
+    return count;
+}
+
+static void wall_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
+{
+    const double k = shape->slope;
+    const hr_vec3 p = shape_ray_at(ray, hit->t);
+    const double z = shape_clamp(p.z, 0.0, 1.0);
+    const double radius = fma(k, z, 1.0);
+    const double rho = sqrt(p.x * p.x + p.y * p.y);
+    const double bound = shape_gamma(8) * (1.0 + fabs(k) * z);
+    if (rho > 0.0) {
+        const double scale = radius / rho;
+        hit->point = shape_vec3(p.x * scale, p.y * scale, z);
+        hit->error = bound;
+    } else {
+        hit->point = shape_vec3(0.0, 0.0, z);
+        hit->error = bound + radius;
+    }
+    hit->normal = shape_vec3(hit->point.x, hit->point.y, -k * radius);
+    if (hit->normal.x == 0.0 && hit->normal.y == 0.0 && hit->normal.z == 0.0)
+        hit->normal = shape_vec3(0.0, 0.0, 1.0);
+}
+
+static void disk_fill(const hr_ray *ray, hr_hit *hit)
+{
+    const int cap = hit->surface == SURFACE_CAP;
+    hit->point = shape_vec3(ray->origin.x + hit->t * ray->dir.x,
+                            ray->origin.y + hit->t * ray->dir.y, cap ? 1.0 : 0.0);
+    hit->normal = shape_vec3(0.0, 0.0, cap ? 1.0 : -1.0);
+    hit->error = shape_ray_point_error(ray, hit->t, 2);
+}
+
+static void tapered_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    if (hit->surface == SURFACE_WALL) wall_fill(shape, ray, hit);
+    else disk_fill(ray, hit);
+}
+
+static hr_status tapered_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossings[2];
+    const int count = tapered_crossings(args->shape, &args->ray, crossings);
+    return shape_report(args, mode, crossings, count, tapered_fill);
+}
+
+static hr_status tapered_hit(const hr_hit_args *args)
+{
+    return tapered_trace(args, HR_TRACE_ALL);
+}
+
+static hr_status tapered_first_hit(const hr_hit_args *args)
+{
+    return tapered_trace(args, HR_TRACE_FIRST);
+}
+
+static hr_status tapered_any_hit(const hr_hit_args *args)
+{
+    return tapered_trace(args, HR_TRACE_ANY);
+}
+
+static void tapered_bounds(const void *shape, hr_bounds *out)
+{
+    const tapered_cylinder *c = shape;
+    const double r = c->s > 1.0 ? c->s : 1.0;
+    out->lo = shape_vec3(-r, -r, 0.0);
+    out->hi = shape_vec3(r, r, 1.0);
+}
+
+/* --- Creation ----------------------------------------------------------------- */
+
+static hr_status tapered_make(const hr_create_args *args, double s, void **out_shape)
+{
+    tapered_cylinder *shape = args->host->alloc(sizeof *shape);
+    if (!shape) return HR_ERROR_OUT_OF_MEMORY;
+    shape->host = args->host;
+    shape->s = s;
+    shape->slope = s - 1.0;
+    *out_shape = shape;
+    return HR_OK;
+}
+
+/* The host has checked the range already; the module still refuses what it
+ * cannot draw, in case a host (or a test) passes something else. */
+static hr_status tapered_cylinder_create(const hr_create_args *args, void **out_shape)
+{
+    double s = 1.0;
+    for (int32_t i = 0; i < args->param_count; i++)
+        if (args->params[i].name && strcmp(args->params[i].name, "s") == 0)
+            s = args->params[i].number;
+    if (!(s >= 0.0 && s <= TAPER_MAX)) {
+        if (args->error && args->error_size)
+            snprintf(args->error, args->error_size,
+                     "parameter 's' = %g must be a number in [0, %g]", s, TAPER_MAX);
+        return HR_ERROR_PARAMETER;
+    }
+    return tapered_make(args, s, out_shape);
+}
+
+static hr_status cylinder_create(const hr_create_args *args, void **out_shape)
+{
+    return tapered_make(args, 1.0, out_shape);
+}
+
+static hr_status cone_create(const hr_create_args *args, void **out_shape)
+{
+    return tapered_make(args, 0.0, out_shape);
+}
+
+static void tapered_destroy(void *shape)
+{
+    if (!shape) return;
+    const hr_host *host = ((tapered_cylinder *)shape)->host;
+    host->free(shape);
+}
+
+/* --- Classes ------------------------------------------------------------------ */
+
+static const hr_param_spec tapered_params[] = {
+    {"s", HR_PARAM_NUMBER, 0, 1.0, 0.0, TAPER_MAX,
+     "radius at z = 1 (the radius at z = 0 is 1): 0 makes a cone, 1 a cylinder"},
+};
+
+#define TAPERED_CLASS(class_name, class_help, params_list, params_count, create_fn)          \
+    {                                                                                       \
+        .struct_size = sizeof(hr_shape_class), .flags = HR_SHAPE_CLOSED, .name = class_name, \
+        .help = class_help, .params = params_list, .param_count = params_count,             \
+        .surface_count = 3, .create = create_fn, .destroy = tapered_destroy,                \
+        .bounds = tapered_bounds, .hit = tapered_hit, .first_hit = tapered_first_hit,       \
+        .any_hit = tapered_any_hit,                                                         \
+    }
+
+static const hr_shape_class tapered_cylinder_class =
+    TAPERED_CLASS("taperedCylinder",
+                  "axis +z from z = 0 (radius 1) to z = 1 (radius s); surfaces wall, base, cap",
+                  tapered_params, 1, tapered_cylinder_create);
+static const hr_shape_class cylinder_class =
+    TAPERED_CLASS("cylinder", "taperedCylinder with s = 1; surfaces wall, base, cap", NULL, 0,
+                  cylinder_create);
+static const hr_shape_class cone_class =
+    TAPERED_CLASS("cone", "taperedCylinder with s = 0, apex (0, 0, 1); surfaces wall, base",
+                  NULL, 0, cone_create);
+
+static const hr_shape_class *const tapered_classes[] = {&tapered_cylinder_class,
+                                                        &cylinder_class, &cone_class};
+
+static const hr_module_info tapered_module = {
+    .struct_size = sizeof(hr_module_info),
+    .abi_version = HR_SHAPE_ABI_VERSION,
+    .name = "cylinder",
+    .description = "Hill's tapered cylinder, cylinder and cone",
+    .classes = tapered_classes,
+    .class_count = 3,
+};
+
+/* The host checks abi_version and explains a mismatch. */
+HR_DEFINE_SHAPE_MODULE(host_version, host)
+{
+    (void)host_version;
+    (void)host;
+    return &tapered_module;
+}

@@ -1,0 +1,82 @@
+/* The generic plane of Hill's chapter 12: all of z = 0, normal +z.
+ *
+ * Not a solid: the side the normal points to counts as outside, so a ray
+ * moving against the normal enters. Hit: t = -o.z / d.z (one rounding; see
+ * shape_z0_crossing for parallel rays and shape_z0_fill for the point and
+ * its error bound). Unbounded: its bounds are infinite in x and y. */
+#include <math.h>
+
+#include <hitray/shape_module.h>
+
+#include "../common/shape_entry.h"
+#include "../common/shape_hits.h"
+#include "../common/shape_instance.h"
+
+static void plane_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    (void)shape;
+    shape_z0_fill(ray, hit);
+}
+
+static hr_status plane_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossing;
+    const int count = shape_z0_crossing(&args->ray, &crossing);
+    return shape_report(args, mode, &crossing, count, plane_fill);
+}
+
+static hr_status plane_hit(const hr_hit_args *args)
+{
+    return plane_trace(args, HR_TRACE_ALL);
+}
+
+static hr_status plane_first_hit(const hr_hit_args *args)
+{
+    return plane_trace(args, HR_TRACE_FIRST);
+}
+
+static hr_status plane_any_hit(const hr_hit_args *args)
+{
+    return plane_trace(args, HR_TRACE_ANY);
+}
+
+static void plane_bounds(const void *shape, hr_bounds *out)
+{
+    (void)shape;
+    shape_set_bounds(out, -INFINITY, -INFINITY, 0.0, INFINITY, INFINITY, 0.0);
+}
+
+static const hr_shape_class plane_class = {
+    .struct_size = sizeof(hr_shape_class),
+    .flags = 0,
+    .name = "plane",
+    .help = "the whole plane z = 0, normal +z (not a solid)",
+    .params = NULL,
+    .param_count = 0,
+    .surface_count = 1,
+    .create = shape_plain_create,
+    .destroy = shape_plain_destroy,
+    .bounds = plane_bounds,
+    .hit = plane_hit,
+    .first_hit = plane_first_hit,
+    .any_hit = plane_any_hit,
+};
+
+static const hr_shape_class *const plane_classes[] = {&plane_class};
+
+static const hr_module_info plane_module = {
+    .struct_size = sizeof(hr_module_info),
+    .abi_version = HR_SHAPE_ABI_VERSION,
+    .name = "plane",
+    .description = "Hill's generic plane: z = 0",
+    .classes = plane_classes,
+    .class_count = 1,
+};
+
+/* The host checks abi_version and explains a mismatch. */
+HR_DEFINE_SHAPE_MODULE(host_version, host)
+{
+    (void)host_version;
+    (void)host;
+    return &plane_module;
+}

@@ -1,0 +1,155 @@
+/* The generic sphere of Hill's chapter 12: radius 1, centred at the origin.
+ *
+ * Hit: the ray o + t d meets |p|^2 = 1 where a t^2 + 2 b t + c = 0 with
+ *   a = d.d,  b = o.d,  c = o.o - 1.
+ * The textbook discriminant b^2 - a c loses everything for a far ray: both
+ * terms are about |o|^2 |d|^2 and their difference about |d|^2, so at
+ * |o| = 1e6 twelve of the sixteen digits cancel. By Lagrange's identity
+ *   b^2 - a c = |d|^2 - |o x d|^2,
+ * which is |d|^2 (1 - distance^2 of the ray's line from the centre), the
+ * form Ray Tracing Gems ch. 7 recommends; with each component of o x d taken
+ * to 1.5 ulp by Kahan's difference of products, and a, b, c and the
+ * discriminant summed with compensated products (shape_sum), the only
+ * cancellation left is the true one of a near-tangent ray. The stable root
+ * pair then gives both roots to a few ulps (see tests/shapes for the measured
+ * accuracy against quad-precision roots). An exact tangent has disc == 0 and
+ * is reported as a double root: entering and exiting at the same t.
+ *
+ * Point: origin + t dir, then re-projected onto the sphere, p / |p| (as pbrt
+ * does), which removes the error that t's rounding puts along the ray.
+ * Error of the re-projected point: |p|^2 = px^2 + py^2 + pz^2 is computed
+ * with relative error theta_3, its square root adds theta_1 (and halves the
+ * rest), and the division and product one rounding each, so each coordinate
+ * is p_i / |p| (1 + theta_5) with p / |p| exactly on the sphere: the point is
+ * within gamma(5) |p_i| <= gamma(5) of a point of the surface. We report
+ * gamma(6), the extra gamma for evaluating the bound. This bounds the
+ * distance to the surface (what the host needs to offset new rays); the
+ * displacement along the surface that the error of t causes is not in it.
+ *
+ * The outward normal is the re-projected point itself. */
+#include <math.h>
+
+#include <hitray/shape_module.h>
+
+#include "../common/shape_entry.h"
+#include "../common/shape_hits.h"
+#include "../common/shape_instance.h"
+#include "../common/shape_math.h"
+
+static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
+{
+    const hr_vec3 o = ray->origin, d = ray->dir;
+    shape_sum a = shape_sum_start(0.0), b = shape_sum_start(0.0), c = shape_sum_start(-1.0);
+    shape_sum_add_product(&a, d.x, d.x);
+    shape_sum_add_product(&a, d.y, d.y);
+    shape_sum_add_product(&a, d.z, d.z);
+    shape_sum_add_product(&b, o.x, d.x);
+    shape_sum_add_product(&b, o.y, d.y);
+    shape_sum_add_product(&b, o.z, d.z);
+    shape_sum_add_product(&c, o.x, o.x);
+    shape_sum_add_product(&c, o.y, o.y);
+    shape_sum_add_product(&c, o.z, o.z);
+
+    const hr_vec3 cross = shape_vec3(shape_difference_of_products(o.y, d.z, o.z, d.y),
+                                     shape_difference_of_products(o.z, d.x, o.x, d.z),
+                                     shape_difference_of_products(o.x, d.y, o.y, d.x));
+    shape_sum disc = a;
+    shape_sum_add_product(&disc, -cross.x, cross.x);
+    shape_sum_add_product(&disc, -cross.y, cross.y);
+    shape_sum_add_product(&disc, -cross.z, cross.z);
+
+    const double qa = shape_sum_value(a), qb = shape_sum_value(b), qc = shape_sum_value(c);
+    const double qdisc = shape_sum_value(disc);
+    /* Coefficients overflow only for rays beyond 1e150 or so: call it a miss. */
+    if (!(isfinite(qa) && isfinite(qb) && isfinite(qc) && isfinite(qdisc))) return 0;
+
+    double roots[2];
+    /* a > 0 for any usable direction; a == 0 (|d| < 1e-162 underflows) gives
+     * one "root" of the degenerate linear equation: not a sphere hit. */
+    if (shape_solve_half_quadratic(qa, qb, qc, qdisc, roots) != 2) return 0;
+    return shape_span_crossings(shape_span_make(roots[0], 0, roots[1], 0), out);
+}
+
+static void sphere_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    (void)shape;
+    hr_vec3 p = shape_ray_at(ray, hit->t);
+    const double length = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    if (length > 0.0) {
+        const double scale = 1.0 / length;
+        p = shape_vec3(p.x * scale, p.y * scale, p.z * scale);
+        hit->point = p;
+        hit->normal = p;
+        hit->error = shape_gamma(6);
+    } else {
+        /* Unreachable for a finite hit (the sphere does not pass through the
+         * origin), kept so that no input can make a zero normal. */
+        hit->point = p;
+        hit->normal = shape_vec3(0.0, 0.0, 1.0);
+        hit->error = 1.0;
+    }
+}
+
+static hr_status sphere_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossings[2];
+    const int count = sphere_crossings(&args->ray, crossings);
+    return shape_report(args, mode, crossings, count, sphere_fill);
+}
+
+static hr_status sphere_hit(const hr_hit_args *args)
+{
+    return sphere_trace(args, HR_TRACE_ALL);
+}
+
+static hr_status sphere_first_hit(const hr_hit_args *args)
+{
+    return sphere_trace(args, HR_TRACE_FIRST);
+}
+
+static hr_status sphere_any_hit(const hr_hit_args *args)
+{
+    return sphere_trace(args, HR_TRACE_ANY);
+}
+
+static void sphere_bounds(const void *shape, hr_bounds *out)
+{
+    (void)shape;
+    shape_set_bounds(out, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0);
+}
+
+static const hr_shape_class sphere_class = {
+    .struct_size = sizeof(hr_shape_class),
+    .flags = HR_SHAPE_CLOSED,
+    .name = "sphere",
+    .help = "unit sphere centred at the origin",
+    .params = NULL,
+    .param_count = 0,
+    .surface_count = 1,
+    .create = shape_plain_create,
+    .destroy = shape_plain_destroy,
+    .bounds = sphere_bounds,
+    .hit = sphere_hit,
+    .first_hit = sphere_first_hit,
+    .any_hit = sphere_any_hit,
+};
+
+static const hr_shape_class *const sphere_classes[] = {&sphere_class};
+
+static const hr_module_info sphere_module = {
+    .struct_size = sizeof(hr_module_info),
+    .abi_version = HR_SHAPE_ABI_VERSION,
+    .name = "sphere",
+    .description = "Hill's generic sphere: radius 1 at the origin",
+    .classes = sphere_classes,
+    .class_count = 1,
+};
+
+/* The host checks abi_version and explains a mismatch, so the module always
+ * answers with its description. */
+HR_DEFINE_SHAPE_MODULE(host_version, host)
+{
+    (void)host_version;
+    (void)host;
+    return &sphere_module;
+}

@@ -1,0 +1,399 @@
+"""Tests of the `hitray` command line, run as a user runs it.
+
+The binary comes from the build tree named by HITRAY_BUILD_DIR (the Makefile's
+`test-python` sets it; default: ./build). Every user error must end the
+process with status 1 and exactly one line "hitray: ..." on stderr: no crash,
+no traceback, no partial output file.
+"""
+
+import json
+import math
+import os
+import pathlib
+import pty
+import struct
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+BUILD = pathlib.Path(os.environ.get("HITRAY_BUILD_DIR", ROOT / "build"))
+HITRAY = BUILD / "bin" / "hitray"
+
+# A small scene with a camera: two spheres on a floor, one light.
+SCENE = """\
+camera 0 2 8   0 0.5 0   0 1 0   40
+background 0.1 0.2 0.3
+light 5 8 6   1 1 1
+push translate -1 1 0  diffuse 0.8 0.2 0.2  sphere pop
+push translate 1.2 1 -0.5  diffuse 0.2 0.8 0.2  specular 0.5 0.5 0.5  specularExponent 20  sphere pop
+push rotate -90 1 0 0  plane pop
+"""
+
+
+@pytest.fixture(scope="session", autouse=True)
+def built():
+    if not HITRAY.is_file():
+        pytest.fail(f"{HITRAY} is missing: build first (make build), or set HITRAY_BUILD_DIR")
+
+
+def run(*args, env=None, cwd=None):
+    full_env = dict(os.environ)
+    full_env.pop("HITRAY_SHAPE_PATH", None)
+    if env:
+        full_env.update(env)
+    return subprocess.run([str(HITRAY), *map(str, args)], capture_output=True, text=True,
+                          env=full_env, cwd=cwd, timeout=120)
+
+
+@pytest.fixture
+def scene(tmp_path):
+    path = tmp_path / "scene.sdl"
+    path.write_text(SCENE)
+    return path
+
+
+def write_sdl(tmp_path, name, text):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def png_chunks(data):
+    """The chunk types and payloads of a PNG, in order."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    chunks, at = [], 8
+    while at < len(data):
+        (length,) = struct.unpack(">I", data[at:at + 4])
+        kind = data[at + 4:at + 8].decode("ascii")
+        chunks.append((kind, data[at + 8:at + 8 + length]))
+        at += 12 + length
+    return chunks
+
+
+def png_header(path):
+    chunks = png_chunks(path.read_bytes())
+    kind, ihdr = chunks[0]
+    assert kind == "IHDR"
+    width, height, bits, colour = struct.unpack(">IIBB", ihdr[:10])
+    return width, height, bits, colour, [k for k, _ in chunks]
+
+
+def read_pfm(path):
+    """(width, height, rows top to bottom of (r, g, b) tuples)."""
+    data = path.read_bytes()
+    parts = data.split(b"\n", 3)
+    assert parts[0] == b"PF"
+    width, height = map(int, parts[1].split())
+    assert float(parts[2]) == -1.0
+    floats = struct.unpack(f"<{width * height * 3}f", parts[3])
+    rows = [[tuple(floats[(r * width + x) * 3:(r * width + x) * 3 + 3]) for x in range(width)]
+            for r in range(height)]
+    return width, height, rows[::-1]  # the file stores the bottom row first
+
+
+# --- render ------------------------------------------------------------------
+
+def test_render_writes_png_and_exr_and_prints_summary(scene, tmp_path):
+    out, exr = tmp_path / "out.png", tmp_path / "out.exr"
+    r = run("render", scene, "-o", out, "--exr", exr, "--size", "40x30")
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ""  # no progress bar: stderr is not a terminal
+    width, height, bits, colour, chunks = png_header(out)
+    assert (width, height, bits, colour) == (40, 30, 8, 2)
+    assert "sRGB" in chunks
+    assert exr.read_bytes()[:4] == b"\x76\x2f\x31\x01"
+    lines = r.stdout.splitlines()
+    assert len(lines) == 1
+    assert "40x30" in lines[0] and "rays" in lines[0] and "rays/s" in lines[0]
+    assert str(out) in lines[0] and str(exr) in lines[0]
+    assert list(tmp_path.iterdir()) != [] and not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+
+def test_render_default_size_is_640x480(scene, tmp_path):
+    out = tmp_path / "big.png"
+    r = run("render", scene, "-o", out, "--threads", "2")
+    assert r.returncode == 0, r.stderr
+    assert png_header(out)[:2] == (640, 480)
+
+
+@pytest.mark.parametrize("flags, bits, has_srgb", [([], 8, True), (["--png16"], 16, True),
+                                                   (["--linear-png"], 8, False),
+                                                   (["--png16", "--linear-png"], 16, False)])
+def test_png_variants(scene, tmp_path, flags, bits, has_srgb):
+    out = tmp_path / "v.png"
+    r = run("render", scene, "-o", out, "--size", "8x6", *flags)
+    assert r.returncode == 0, r.stderr
+    _, _, got_bits, _, chunks = png_header(out)
+    assert got_bits == bits
+    assert ("sRGB" in chunks) == has_srgb
+    assert "gAMA" in chunks
+
+
+def test_ppm_and_pfm_outputs(scene, tmp_path):
+    ppm, pfm = tmp_path / "a.ppm", tmp_path / "a.PFM"
+    assert run("render", scene, "-o", ppm, "--size", "9x7").returncode == 0
+    assert ppm.read_bytes().startswith(b"P6\n9 7\n255\n")
+    assert len(ppm.read_bytes()) == len(b"P6\n9 7\n255\n") + 9 * 7 * 3
+    assert run("render", scene, "-o", pfm, "--size", "9x7").returncode == 0
+    width, height, rows = read_pfm(pfm)
+    assert (width, height) == (9, 7)
+
+
+def test_stats_json_keys(scene, tmp_path):
+    stats = tmp_path / "stats.json"
+    r = run("render", scene, "-o", tmp_path / "s.png", "--size", "16x12", "--stats-json", stats, "--threads", "2")
+    assert r.returncode == 0, r.stderr
+    data = json.loads(stats.read_text())
+    assert set(data) == {"primary", "shadow", "reflected", "refracted", "seconds", "effects", "threads",
+                         "width", "height"}
+    assert data["primary"] == 16 * 12  # one ray per pixel at 1 spp
+    assert data["shadow"] > 0  # one light, lit surfaces
+    assert data["reflected"] == 0 and data["refracted"] == 0  # no mirror, no glass
+    assert (data["width"], data["height"]) == (16, 12)
+    assert 1 <= data["threads"] <= 2
+    assert data["seconds"] >= 0
+    assert "shadows" in data["effects"] and "diffuse" in data["effects"]
+    assert "reflection" not in data["effects"]
+    assert all(isinstance(e, str) for e in data["effects"])
+
+
+def test_stats_flag_prints_ray_kinds_and_effects(scene, tmp_path):
+    r = run("render", scene, "-o", tmp_path / "s.png", "--size", "8x8", "--stats", "--spp", "4")
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert len(lines) == 3
+    assert lines[1].startswith("rays: primary 256, shadow ")
+    assert "reflected 0" in lines[1] and "refracted 0" in lines[1]
+    assert lines[2].startswith("effects: ") and "supersampling" in lines[2]
+
+
+def test_render_is_the_same_whatever_the_thread_count(scene, tmp_path):
+    one, many = tmp_path / "one.pfm", tmp_path / "many.pfm"
+    assert run("render", scene, "-o", one, "--size", "33x17", "--threads", "1").returncode == 0
+    assert run("render", scene, "-o", many, "--size", "33x17", "--threads", "3").returncode == 0
+    assert one.read_bytes() == many.read_bytes()
+
+
+def test_camera_override(scene, tmp_path):
+    # From high above the floor looking straight up, away from every object:
+    # each pixel is the background colour.
+    out = tmp_path / "sky.pfm"
+    r = run("render", scene, "-o", out, "--size", "6x4", "--camera", "0,50,0,0,100,0,0,0,1,30")
+    assert r.returncode == 0, r.stderr
+    _, _, rows = read_pfm(out)
+    for row in rows:
+        for pixel in row:
+            assert pixel == pytest.approx((0.1, 0.2, 0.3), abs=1e-6)
+    seen = tmp_path / "seen.pfm"
+    assert run("render", scene, "-o", seen, "--size", "6x4").returncode == 0
+    assert seen.read_bytes() != out.read_bytes()
+
+
+def test_scene_without_camera_is_framed(tmp_path):
+    path = write_sdl(tmp_path, "nocam.sdl", "light 3 3 3 1 1 1\npush translate 40 0 0 sphere pop\n")
+    out = tmp_path / "framed.pfm"
+    assert run("render", path, "-o", out, "--size", "8x8").returncode == 0
+    _, _, rows = read_pfm(out)
+    assert rows[4][4] != pytest.approx(rows[0][0])  # the sphere is in the middle of the picture
+
+
+def test_block_and_depth_options(scene, tmp_path):
+    stats = tmp_path / "b.json"
+    r = run("render", scene, "-o", tmp_path / "b.png", "--size", "16x16", "--block", "4", "--depth", "0",
+            "--stats-json", stats)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(stats.read_text())["primary"] == 16  # one ray per 4x4 block
+
+
+def test_progress_bar_only_on_a_terminal(scene, tmp_path):
+    master, slave = pty.openpty()
+    try:
+        proc = subprocess.run([str(HITRAY), "render", str(scene), "-o", str(tmp_path / "p.png"),
+                               "--size", "64x64"], stdout=subprocess.PIPE, stderr=slave, timeout=120)
+        os.close(slave)
+        slave = -1
+        seen = b""
+        while True:
+            try:
+                chunk = os.read(master, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            seen += chunk
+    finally:
+        if slave >= 0:
+            os.close(slave)
+        os.close(master)
+    assert proc.returncode == 0
+    assert b"rendering [" in seen and b"100%" in seen
+    assert b"rendering" not in proc.stdout
+
+
+# --- hits --------------------------------------------------------------------
+
+def hits(*args):
+    r = run("hits", *args)
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ""
+    return [json.loads(line) for line in r.stdout.splitlines()]
+
+
+def test_hits_plane_worked_example(tmp_path):
+    # Hill's worked example: the generic plane z = 0 and the ray from (4,1,3)
+    # along (-3,-5,-3) meet at t = 1, the point (1,-4,0).
+    path = write_sdl(tmp_path, "plane.sdl", "plane\n")
+    (hit,) = hits(path, "--origin", "4,1,3", "--dir", "-3,-5,-3")
+    assert hit["t"] == 1.0
+    assert hit["point"] == [1.0, -4.0, 0.0]
+    assert hit["normal"] == [0.0, 0.0, 1.0]
+    assert hit["entering"] is True
+    assert hit["surface"] == 0 and hit["object"] == 0 and hit["shape"] == "plane"
+    assert set(hit) == {"t", "point", "normal", "entering", "surface", "object", "shape"}
+
+
+def test_hits_all_are_sorted_and_first_matches(tmp_path):
+    path = write_sdl(tmp_path, "row.sdl", "sphere\npush translate 0 0 -3 sphere pop\nplane\n")
+    every = hits(path, "--origin", "0,0,5", "--dir", "0,0,-1", "--all")
+    assert [h["t"] for h in every] == [4.0, 5.0, 6.0, 7.0, 9.0]
+    assert [h["shape"] for h in every] == ["sphere", "plane", "sphere", "sphere", "sphere"]
+    assert [h["object"] for h in every] == [0, 2, 0, 1, 1]
+    spheres = [h["entering"] for h in every if h["shape"] == "sphere"]
+    assert spheres == [True, False, True, False]
+    (first,) = hits(path, "--origin", "0,0,5", "--dir", "0,0,-1")
+    assert first == every[0]
+
+
+def test_hits_none_prints_nothing(tmp_path):
+    path = write_sdl(tmp_path, "s.sdl", "sphere\n")
+    assert hits(path, "--origin", "0,0,5", "--dir", "0,0,1") == []
+    assert hits(path, "--origin", "0,0,5", "--dir", "0,0,1", "--all") == []
+
+
+def test_hits_numbers_round_trip(tmp_path):
+    path = write_sdl(tmp_path, "s.sdl", "sphere\n")
+    r = run("hits", path, "--origin", "0.1,0.2,5", "--dir", "0,0,-1")
+    (hit,) = [json.loads(line) for line in r.stdout.splitlines()]
+    expected = 5 - math.sqrt(1 - 0.1 ** 2 - 0.2 ** 2)
+    assert hit["t"] == pytest.approx(expected, rel=1e-14)
+    # 17 significant digits: the text is exactly the double the library had.
+    text = r.stdout.split('"t": ')[1].split(",")[0]
+    assert len(text.replace("-", "").replace(".", "").lstrip("0")) >= 15
+    assert hit["point"][2] == pytest.approx(5 - hit["t"], abs=1e-15)
+
+
+# --- shapes ------------------------------------------------------------------
+
+def test_shapes_lists_modules_classes_and_parameters():
+    r = run("shapes")
+    assert r.returncode == 0, r.stderr
+    out = r.stdout
+    for name in ("sphere", "plane", "cube", "square"):
+        assert f"  {name}" in out, name
+    module_paths = [line for line in out.splitlines() if line.endswith(".so")]
+    assert module_paths and all(pathlib.Path(p).is_file() for p in module_paths)
+    if "taperedCylinder" in out:  # a class with a parameter: name, default, range, help
+        line = next(l for l in out.splitlines() if l.strip().startswith("s "))
+        assert "default" in line and "range" in line
+
+
+def test_shapes_reports_modules_that_failed(tmp_path):
+    (tmp_path / "broken.so").write_text("not a shared object")
+    r = run("shapes", env={"HITRAY_SHAPE_PATH": str(tmp_path)})
+    assert r.returncode == 0, r.stderr
+    assert str(tmp_path / "broken.so") in r.stdout
+    assert "NOT LOADED" in r.stdout
+    assert "sphere" in r.stdout  # the built-in modules are still found
+
+
+# --- help and version --------------------------------------------------------
+
+@pytest.mark.parametrize("verb", ["render", "hits", "shapes"])
+def test_help_of_each_verb(verb):
+    for flag in ("--help", "-h"):
+        r = run(verb, flag)
+        assert r.returncode == 0
+        assert r.stdout.startswith(f"usage: hitray {verb}")
+        assert r.stderr == ""
+
+
+def test_top_level_help_and_version():
+    for flag in ("--help", "-h", "help"):
+        r = run(flag)
+        assert r.returncode == 0 and "usage: hitray" in r.stdout
+        for verb in ("render", "hits", "shapes"):
+            assert verb in r.stdout
+    r = run("--version")
+    assert r.returncode == 0 and r.stdout.startswith("hitray 0.")
+
+
+# --- user errors: status 1, one line, nothing left behind --------------------
+
+def error_cases(tmp_path, scene):
+    bad_sdl = write_sdl(tmp_path, "bad.sdl", "sphere\nrotate 1 2\n")
+    directory_png = tmp_path / "dir.png"
+    directory_png.mkdir()
+    out = tmp_path / "o.png"
+    return {
+        "no command": [],
+        "unknown command": ["paint"],
+        "unknown top-level option": ["--frobnicate"],
+        "unknown option": ["render", scene, "-o", out, "--frobnicate"],
+        "size not a number": ["render", scene, "-o", out, "--size", "10xq"],
+        "size zero": ["render", scene, "-o", out, "--size", "0x5"],
+        "size huge": ["render", scene, "-o", out, "--size", "99999999999x5"],
+        "spp not a number": ["render", scene, "-o", out, "--spp", "many"],
+        "spp zero": ["render", scene, "-o", out, "--spp", "0"],
+        "threads negative": ["render", scene, "-o", out, "--threads", "-1"],
+        "depth with junk": ["render", scene, "-o", out, "--depth", "3x"],
+        "camera too short": ["render", scene, "-o", out, "--camera", "1,2,3"],
+        "camera angle": ["render", scene, "-o", out, "--camera", "0,0,5,0,0,0,0,1,0,0"],
+        "camera up parallel": ["render", scene, "-o", out, "--camera", "0,0,5,0,0,0,0,0,1,40"],
+        "option without value": ["render", scene, "-o", out, "--spp"],
+        "flag with value": ["render", scene, "-o", out, "--stats=yes"],
+        "missing output": ["render", scene],
+        "missing scene": ["render", "-o", out],
+        "two scenes": ["render", scene, scene, "-o", out],
+        "no such scene": ["render", tmp_path / "absent.sdl", "-o", out],
+        "scene syntax error": ["render", bad_sdl, "-o", out],
+        "unknown extension": ["render", scene, "-o", tmp_path / "o.tiff"],
+        "missing directory": ["render", scene, "-o", tmp_path / "no" / "such" / "o.png"],
+        "exr into missing directory": ["render", scene, "-o", out, "--exr", tmp_path / "no" / "o.exr"],
+        "stats into missing directory": ["render", scene, "-o", out, "--stats-json", tmp_path / "no" / "s.json"],
+        "output is a directory": ["render", scene, "-o", directory_png, "--size", "4x4"],
+        "hits without dir": ["hits", scene, "--origin", "0,0,0"],
+        "hits without origin": ["hits", scene, "--dir", "0,0,1"],
+        "hits bad origin": ["hits", scene, "--origin", "0,0,nan", "--dir", "0,0,1"],
+        "hits zero dir": ["hits", scene, "--origin", "0,0,0", "--dir", "0,0,0"],
+        "hits four numbers": ["hits", scene, "--origin", "0,0,0,0", "--dir", "0,0,1"],
+        "hits no such scene": ["hits", tmp_path / "absent.sdl", "--origin", "0,0,0", "--dir", "0,0,1"],
+        "shapes extra argument": ["shapes", "sphere"],
+    }
+
+
+def test_user_errors_exit_1_with_one_line(tmp_path, scene):
+    for name, args in error_cases(tmp_path, scene).items():
+        r = run(*args)
+        assert r.returncode == 1, f"{name}: status {r.returncode}, stderr {r.stderr!r}"
+        lines = r.stderr.splitlines()
+        assert len(lines) == 1, f"{name}: {r.stderr!r}"
+        assert lines[0].startswith("hitray: ") and len(lines[0]) > len("hitray: ") + 5, name
+        assert "Traceback" not in r.stderr and "Sanitizer" not in r.stderr, name
+        assert r.stdout == "", f"{name}: {r.stdout!r}"
+    # No output image and no temporary file was left by any of them.
+    leftovers = sorted(p.name for p in tmp_path.iterdir())
+    assert leftovers == ["bad.sdl", "dir.png", "scene.sdl"]
+    assert list((tmp_path / "dir.png").iterdir()) == []
+
+
+def test_error_messages_say_what_is_wrong(tmp_path, scene):
+    r = run("render", scene, "-o", tmp_path / "o.png", "--size", "10xq")
+    assert "--size" in r.stderr and "10xq" in r.stderr
+    r = run("render", tmp_path / "absent.sdl", "-o", tmp_path / "o.png")
+    assert "absent.sdl" in r.stderr
+    bad = write_sdl(tmp_path, "bad.sdl", "sphere\nrotate 1 2\n")
+    r = run("render", bad, "-o", tmp_path / "o.png")
+    assert "bad.sdl:" in r.stderr  # file:line:col from the SDL reader
+    r = run("render", scene, "-o", tmp_path / "no" / "o.png")
+    assert str(tmp_path / "no") in r.stderr

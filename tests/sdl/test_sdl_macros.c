@@ -1,0 +1,161 @@
+/* SDL macros: pasting runs in the current state and its changes persist,
+ * names are looked up when used, errors inside expansions name the `use` and
+ * the definition, and expansion that would never end stops quickly. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sdl_test_support.h"
+
+static void pasting(hr_context *ctx)
+{
+    hr_sdl_result r;
+    /* State changes inside a macro persist (no implicit push/pop), and a
+     * macro may pop what its caller pushed. */
+    const char *text = "def red { diffuse 1 0 0 }\n"
+                       "def right { translate 1 0 0 }\n"
+                       "def finish { sphere pop }\n"
+                       "use red use right cube\n"        /* 0: red at (1,0,0) */
+                       "push use right use finish\n"     /* 1: (2,0,0), then pop */
+                       "cube\n";                         /* 2: back at (1,0,0) */
+    if (LOAD_OK(ctx, text, &r)) {
+        CHECK(hr_scene_object_count(r.scene) == 3);
+        hr_object_info o = sdl_test_object(r.scene, 0);
+        CHECK_COLOR(o.material.diffuse, 1, 0, 0, 0);
+        CHECK(o.transform[3] == 1);
+        o = sdl_test_object(r.scene, 1);
+        CHECK(o.transform[3] == 2 && strcmp(o.shape, "sphere") == 0);
+        o = sdl_test_object(r.scene, 2);
+        CHECK(o.transform[3] == 1);
+        CHECK_COLOR(o.material.diffuse, 1, 0, 0, 0);
+        hr_scene_destroy(r.scene);
+    }
+    /* Names are looked up when used: a body may use a macro defined after
+     * it, so long as that definition comes before the use is expanded. */
+    if (LOAD_OK(ctx, "def outer { use inner use inner }\ndef inner { sphere }\nuse outer", &r)) {
+        CHECK(hr_scene_object_count(r.scene) == 2);
+        hr_scene_destroy(r.scene);
+    }
+    /* Arguments may come from outside the body: the text is pasted. */
+    if (LOAD_OK(ctx, "def shift { translate }\nuse shift 3 4 5 sphere", &r)) {
+        hr_object_info o = sdl_test_object(r.scene, 0);
+        CHECK(o.transform[3] == 3 && o.transform[7] == 4 && o.transform[11] == 5);
+        hr_scene_destroy(r.scene);
+    }
+    /* An unused definition is never run, whatever it holds. */
+    if (LOAD_OK(ctx, "def never { mesh missing.3vn frobnicate use nothing }\nsphere", &r)) {
+        CHECK(hr_scene_object_count(r.scene) == 1);
+        hr_scene_destroy(r.scene);
+    }
+    /* Macro names: letters, digits, '.', '_'; keywords may be names too. */
+    if (LOAD_OK(ctx, "def a.b_3 { sphere } def sphere { cube cube } use a.b_3 use sphere", &r)) {
+        CHECK(hr_scene_object_count(r.scene) == 3);
+        hr_scene_destroy(r.scene);
+    }
+    /* A deep but finite chain of distinct macros works. */
+    char *chain = malloc(64 * 160 + 64);
+    size_t len = (size_t)sprintf(chain, "def m0 { sphere }\n");
+    for (int i = 1; i < 150; i++) len += (size_t)sprintf(chain + len, "def m%d { use m%d }\n", i, i - 1);
+    sprintf(chain + len, "use m149 use m149\n");
+    if (LOAD_OK(ctx, chain, &r)) {
+        CHECK(hr_scene_object_count(r.scene) == 2);
+        hr_scene_destroy(r.scene);
+    }
+    free(chain);
+}
+
+static void errors_inside_macros(hr_context *ctx)
+{
+    /* The error's place is the `use` in the file; the message names the
+     * definition and the token in the body. */
+    EXPECT_ERROR(ctx,
+                 "def leg {\n"
+                 "  push scale 1 x 1 pop\n"
+                 "}\n"
+                 "sphere\n"
+                 "use leg\n",
+                 HR_ERROR_SDL, 5, 1,
+                 "t.dat:5:1: in macro 'leg' (defined at t.dat:1:5): t.dat:2:16: expected a "
+                 "number after 'scale', found 'x'");
+    /* Two levels: each `use` and each definition is named. */
+    EXPECT_ERROR(ctx,
+                 "def leg { scale 0 1 1 }\n"
+                 "def chair {\n"
+                 "  use leg\n"
+                 "}\n"
+                 "  use chair\n",
+                 HR_ERROR_SDL, 5, 3,
+                 "t.dat:5:3: in macro 'chair' (defined at t.dat:2:5): t.dat:3:3: in macro 'leg' "
+                 "(defined at t.dat:1:5): t.dat:1:17: 'scale' factors must be non-zero");
+    /* Running out of arguments at the end of a body reads on after the use. */
+    EXPECT_ERROR(ctx, "def t { translate 1 }\nuse t 2 x", HR_ERROR_SDL, 2, 9,
+                 "t.dat:2:9: expected a number after 'translate', found 'x'");
+    /* Unknown keywords and unmatched pops inside bodies. */
+    EXPECT_ERROR(ctx, "def bad { spere }\n\nuse bad", HR_ERROR_SDL, 3, 1,
+                 "in macro 'bad' (defined at t.dat:1:5): t.dat:1:11: unknown keyword 'spere'");
+    EXPECT_ERROR(ctx, "def p { pop }\nuse p", HR_ERROR_SDL, 2, 1,
+                 "t.dat:1:9: 'pop' without a matching 'push'");
+    /* A def cannot run from inside a body. */
+    EXPECT_ERROR(ctx, "def m { def x }\nuse m", HR_ERROR_SDL, 2, 1,
+                 "t.dat:1:9: 'def' inside a macro body");
+}
+
+static void endless_expansion(hr_context *ctx)
+{
+    /* A macro that uses itself stops at once, naming the use and the def. */
+    double t0 = sdl_test_seconds();
+    EXPECT_ERROR(ctx, "def a { use a }\nuse a", HR_ERROR_SDL, 2, 1,
+                 "t.dat:2:1: in macro 'a' (defined at t.dat:1:5): t.dat:1:9: macro 'a' uses "
+                 "itself");
+    EXPECT_ERROR(ctx, "def a { sphere use a }\nuse a", HR_ERROR_SDL, 2, 1, "macro 'a' uses itself");
+    /* Through another macro. */
+    EXPECT_ERROR(ctx, "def a { use b }\ndef b { cube use a }\nsphere use a", HR_ERROR_SDL, 3, 8,
+                 "in macro 'a' (defined at t.dat:1:5): t.dat:1:9: in macro 'b' (defined at "
+                 "t.dat:2:5): t.dat:2:14: macro 'a' uses itself");
+    double self_seconds = sdl_test_seconds() - t0;
+    CHECK_MSG(self_seconds < 1.0, "self-recursive macros took %.2f s", self_seconds);
+
+    /* Doubling: a40 would paste 2^40 copies. The expansion bound stops it,
+     * naming the outermost use and the definitions on the way down. */
+    char *text = malloc(64 * 64);
+    size_t len = (size_t)sprintf(text, "def a0 { push pop }\n");
+    for (int i = 1; i <= 40; i++)
+        len += (size_t)sprintf(text + len, "def a%d { use a%d use a%d }\n", i, i - 1, i - 1);
+    sprintf(text + len, "use a40\n");
+    t0 = sdl_test_seconds();
+    EXPECT_ERROR(ctx, text, HR_ERROR_SDL, 42, 1, "t.dat:42:1: in macro 'a40' (defined at t.dat:41:5)",
+                 "t.dat:41:11: in macro 'a39' (defined at t.dat:40:5)", "more macro levels",
+                 "macro expansion passed 1000000 tokens");
+    double doubling_seconds = sdl_test_seconds() - t0;
+    CHECK_MSG(doubling_seconds < 5.0, "the doubling chain took %.2f s to stop", doubling_seconds);
+    fprintf(stderr, "self-recursion stopped in %.3f s, doubling chain in %.3f s\n", self_seconds,
+            doubling_seconds);
+
+    /* The same with objects in the body: it stops too, and the partial
+     * scene (thousands of objects) is destroyed without a leak. */
+    memcpy(text, "def a0 { sphere }  ", 19);
+    t0 = sdl_test_seconds();
+    EXPECT_ERROR(ctx, text, HR_ERROR_SDL, 42, 1, "macro expansion passed");
+    doubling_seconds = sdl_test_seconds() - t0;
+    CHECK_MSG(doubling_seconds < 20.0, "the doubling chain of spheres took %.2f s", doubling_seconds);
+    free(text);
+
+    /* Nesting bound: 201 distinct macros, each using the previous. */
+    text = malloc(210 * 40);
+    len = (size_t)sprintf(text, "def m0 { sphere }\n");
+    for (int i = 1; i <= 201; i++) len += (size_t)sprintf(text + len, "def m%d { use m%d }\n", i, i - 1);
+    sprintf(text + len, "use m201\n");
+    EXPECT_ERROR(ctx, text, HR_ERROR_SDL, 203, 1, "macros nested more than 200 levels deep",
+                 "t.dat:203:1: in macro 'm201'", "more macro levels");
+    free(text);
+}
+
+int main(void)
+{
+    hr_context *ctx = sdl_test_context(SDL_STUB_SHAPES);
+    pasting(ctx);
+    errors_inside_macros(ctx);
+    endless_expansion(ctx);
+    hr_context_destroy(ctx);
+    return hr_test_end();
+}

@@ -1,0 +1,79 @@
+/* A test host for shape modules: loads a module file straight from the build
+ * tree with dlopen, hands it a small hr_host, creates shapes and calls their
+ * hit functions, checking the module contract (shape_module.h) on every call.
+ * It needs nothing of libhitray, so the shapes can be tested on their own. */
+#ifndef HR_TEST_MODULE_HARNESS_H
+#define HR_TEST_MODULE_HARNESS_H
+
+#include <hitray/shape_module.h>
+
+/* Hit-function modes of harness_trace (the same numbers as HR_TRACE_*). */
+#define HARNESS_ALL HR_TRACE_ALL
+#define HARNESS_FIRST HR_TRACE_FIRST
+#define HARNESS_ANY HR_TRACE_ANY
+
+/* The most hits a call may return (the free space the host promises). */
+#define HARNESS_MAX_HITS HR_MIN_HIT_CAPACITY
+
+typedef struct harness_module {
+    void *handle;
+    const hr_module_info *info;
+    char path[512];
+} harness_module;
+
+/* One shape made by a class, with the module that owns the class. */
+typedef struct harness_shape {
+    harness_module module;
+    const hr_shape_class *cls;
+    void *shape;
+} harness_shape;
+
+/* The host table passed to every module and create call. */
+const hr_host *harness_host(void);
+
+/* Loads HR_TEST_SHAPE_DIR/<file_stem>.so and calls its entry point.
+ * Returns 1 on success; on failure records a test failure and returns 0. */
+int harness_load(const char *file_stem, harness_module *out);
+void harness_unload(harness_module *module);
+const hr_shape_class *harness_find_class(const harness_module *module, const char *class_name);
+
+/* Calls cls->create with every parameter of the class at its default, then
+ * the number parameters in `names`/`values` (count of them) overriding.
+ * Returns create's status; `error` receives create's message. */
+hr_status harness_create(const hr_shape_class *cls, const char *const *names,
+                         const double *values, int count, void **out_shape, char *error,
+                         size_t error_size);
+
+/* Loads the module, finds the class and creates a shape with default
+ * parameters (and `s` when s_or_nan is not NaN). Returns 1 on success. */
+int harness_open(harness_shape *out, const char *file_stem, const char *class_name,
+                 double s_or_nan);
+void harness_close(harness_shape *shape);
+
+/* Calls the class's hit (HARNESS_ALL), first_hit or any_hit on `ray` and
+ * copies what it appended into hits[] (HARNESS_MAX_HITS of room); returns
+ * the count. Every call checks: HR_OK; the existing entries of the host's
+ * list untouched; count within the free space (at most 1 for first/any);
+ * t strictly inside (tmin, tmax); sorted; every field finite; error >= 0;
+ * normal non-zero; surface id in range; entering 0 or 1; `object` not
+ * written; for a closed shape in HARNESS_ALL mode, entering flags
+ * alternating. */
+int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tmax,
+                  int32_t mode, hr_hit hits[HARNESS_MAX_HITS]);
+
+/* harness_trace in HARNESS_ALL mode over (0, +infinity). */
+int harness_hits(const harness_shape *shape, hr_ray ray, hr_hit hits[HARNESS_MAX_HITS]);
+
+hr_ray harness_ray(double ox, double oy, double oz, double dx, double dy, double dz);
+hr_vec3 harness_vec(double x, double y, double z);
+
+/* Checks one hit against values worked out by hand: t within 4 ulps (hand
+ * values are decimals rounded to double, and the shapes' t carries a few
+ * roundings); the surface id and entering flag exactly; the point within the
+ * hit's own error bound plus 4 ulps of the expected coordinates (their
+ * rounding to double); the normal's direction within 1e-12 of `normal`
+ * (any length is allowed from a shape, so both are normalised). */
+void harness_expect_hit(const char *what, const hr_hit *hit, double t, int surface, int entering,
+                        hr_vec3 point, hr_vec3 normal);
+
+#endif
