@@ -179,8 +179,9 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
     if (o->tile_size < 1 || o->tile_size > 4096)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: tile size %d must be within 1..4096",
                         (int)o->tile_size);
-    if (o->max_depth > 1000)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: depth %d must be at most 1000", (int)o->max_depth);
+    if (o->max_depth > HR_MAX_RECURSION_DEPTH)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: depth %d must be at most %d",
+                        (int)o->max_depth, HR_MAX_RECURSION_DEPTH);
     if (o->effects != HR_EFFECTS_AUTO && o->effects != HR_EFFECTS_ALL)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: effects must be HR_EFFECTS_AUTO or HR_EFFECTS_ALL");
     return HR_OK;

@@ -305,9 +305,10 @@ HR_API hr_status hr_scene_set_globals(hr_scene *s, const hr_scene_globals *g)
     hr_scene_globals_default(&v);
     COPY_SIZED(&v, g);
     v.struct_size = sizeof v;
-    if (v.max_recursion_depth < 0)
+    if (v.max_recursion_depth < 0 || v.max_recursion_depth > HR_MAX_RECURSION_DEPTH)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "globals: maxRecursionDepth must be >= 0, not %d", (int)v.max_recursion_depth);
+                        "globals: maxRecursionDepth must be within 0..%d, not %d",
+                        HR_MAX_RECURSION_DEPTH, (int)v.max_recursion_depth);
     if (!color_finite(v.background) || !color_finite(v.global_ambient) ||
         !isfinite(v.min_reflectivity) || !isfinite(v.min_transparency))
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "globals: every value must be finite");

@@ -41,7 +41,7 @@ hr_status sdl_cmd_global_threshold(sdl_reader *r, sdl_located keyword)
 hr_status sdl_cmd_max_recursion_depth(sdl_reader *r, sdl_located keyword)
 {
     int64_t depth;
-    hr_status st = sdl_read_whole(r, keyword, 0.0, (double)INT32_MAX, &depth);
+    hr_status st = sdl_read_whole(r, keyword, 0.0, (double)HR_MAX_RECURSION_DEPTH, &depth);
     if (st) return st;
     r->globals.max_recursion_depth = (int32_t)depth;
     return HR_OK;

@@ -312,6 +312,9 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
     if (!out) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: NULL output");
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
+    if (max_depth > HR_MAX_RECURSION_DEPTH)
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
+                        (int)max_depth, HR_MAX_RECURSION_DEPTH);
     int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
     *out = hr_shade_ray(&tc, ray, 0, depth);
     return finish_query(&tc);

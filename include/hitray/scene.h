@@ -44,10 +44,14 @@ typedef struct hr_light {
     hr_color color;
 } hr_light;
 
+/* Bounces are recursive calls: bound them so no scene can exhaust the stack. */
+#define HR_MAX_RECURSION_DEPTH 1000
+
 /* Scene-wide settings, with SDL's defaults from hr_scene_globals_default. */
 typedef struct hr_scene_globals {
     uint32_t struct_size;
-    int32_t max_recursion_depth; /* default 3: primary rays are depth 0 */
+    int32_t max_recursion_depth; /* default 3: primary rays are depth 0;
+                                    at most HR_MAX_RECURSION_DEPTH */
     hr_color background;         /* default 0 0 0.6 */
     hr_color global_ambient;     /* default 0.1 0.1 0.1 */
     double min_reflectivity;     /* default 0.5: reflect only if >= this */

@@ -153,6 +153,11 @@ typedef struct hr_module_info {
 typedef const hr_module_info *(*hr_shape_module_fn)(uint32_t host_abi_version,
                                                      const hr_host *host);
 
+/* The entry point every module defines (declared here so a module's
+ * definition has a prototype; the host finds it with dlsym). */
+HR_EXPORT_ATTR const hr_module_info *HR_SHAPE_MODULE_ENTRY(uint32_t host_abi_version,
+                                                           const hr_host *host);
+
 /* A module defines its entry point with this macro, so the name and
  * signature cannot drift:
  *   HR_DEFINE_SHAPE_MODULE(host_version, host) { ...; return &info; } */

@@ -33,7 +33,10 @@ static void keywords_and_numbers(hr_context *ctx)
     EXPECT_ERROR(ctx, "maxRecursionDepth 2.5", HR_ERROR_SDL, 1, 19,
                  "expected a whole number after 'maxRecursionDepth', found '2.5'");
     EXPECT_ERROR(ctx, "maxRecursionDepth -1", HR_ERROR_SDL, 1, 19,
-                 "'maxRecursionDepth' must be between 0 and 2147483647, found '-1'");
+                 "'maxRecursionDepth' must be between 0 and 1000, found '-1'");
+    /* Bounces are recursion: a depth past HR_MAX_RECURSION_DEPTH is refused. */
+    EXPECT_ERROR(ctx, "maxRecursionDepth 1001", HR_ERROR_SDL, 1, 19,
+                 "'maxRecursionDepth' must be between 0 and 1000, found '1001'");
     EXPECT_ERROR(ctx, "texture 1.5", HR_ERROR_SDL, 1, 9,
                  "expected a whole number after 'texture', found '1.5'");
     EXPECT_ERROR(ctx, "texture 3e9", HR_ERROR_SDL, 1, 9, "'texture' must be between");

@@ -1,0 +1,42 @@
+# libhitray's ABI surface: every dynamic symbol it defines starts with hr_
+# (everything else is hidden), and its SONAME is libhitray.so.0.
+# Variables: LIB (the library file) NM READELF SANITIZE (ON in sanitizer builds)
+cmake_minimum_required(VERSION 3.18)
+
+execute_process(COMMAND "${NM}" -D --defined-only "${LIB}" RESULT_VARIABLE rc OUTPUT_VARIABLE symbols
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${NM} failed on ${LIB}: ${err}")
+endif()
+string(REPLACE "\n" ";" lines "${symbols}")
+set(count 0)
+set(stray "")
+foreach(line IN LISTS lines)
+  # "<address> <type> <name>[@version]"
+  if(NOT line MATCHES "^[0-9a-fA-F]+ +([A-Za-z]) +([^ @]+)")
+    continue()
+  endif()
+  set(name "${CMAKE_MATCH_2}")
+  if(name MATCHES "^hr_")
+    math(EXPR count "${count} + 1")
+  elseif(SANITIZE AND name MATCHES "^(__asan|__ubsan|__odr_asan|__sancov|___asan)")
+    # instrumentation the sanitizers add; absent from a normal build
+  else()
+    list(APPEND stray "${name}")
+  endif()
+endforeach()
+if(stray)
+  message(FATAL_ERROR "libhitray exports symbols without the hr_ prefix: ${stray}")
+endif()
+if(count LESS 50)
+  message(FATAL_ERROR "only ${count} hr_ symbols exported by ${LIB}: is the export macro broken?")
+endif()
+
+execute_process(COMMAND "${READELF}" -d "${LIB}" RESULT_VARIABLE rc OUTPUT_VARIABLE dynamic ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${READELF} failed on ${LIB}: ${err}")
+endif()
+if(NOT dynamic MATCHES "\\(SONAME\\)[^\n]*\\[libhitray\\.so\\.0\\]")
+  message(FATAL_ERROR "libhitray's SONAME is not libhitray.so.0:\n${dynamic}")
+endif()
+message(STATUS "${count} exported symbols, all hr_*; SONAME libhitray.so.0")

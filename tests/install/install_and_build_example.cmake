@@ -1,0 +1,92 @@
+# Install the build tree into a fresh prefix, move the prefix elsewhere (the
+# installed tree must not depend on where it was installed), then build
+# examples/c against it as a user would and run the result:
+#   MODE=cmake      find_package(hitray CONFIG) and hitray::hitray
+#   MODE=pkgconfig  cc spheres.c $(pkg-config --cflags --libs hitray)
+# Variables: MODE BUILD_DIR SOURCE_DIR WORK_DIR LIBDIR GENERATOR C_COMPILER
+#            EXTRA_FLAGS (sanitizer flags of the build, may be empty) VERSION
+cmake_minimum_required(VERSION 3.18)
+
+function(run_checked what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${ARGN}\n${out}\n${err}")
+  endif()
+  set(LAST_OUTPUT "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_file path)
+  if(NOT EXISTS "${path}")
+    message(FATAL_ERROR "not installed: ${path}")
+  endif()
+endfunction()
+
+function(expect_png path)
+  expect_file("${path}")
+  file(READ "${path}" magic LIMIT 8 HEX)
+  if(NOT magic STREQUAL "89504e470d0a1a0a")
+    message(FATAL_ERROR "${path} is not a PNG (starts with ${magic})")
+  endif()
+  file(SIZE "${path}" size)
+  if(size LESS 200)
+    message(FATAL_ERROR "${path} is suspiciously small (${size} bytes)")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(staging "${WORK_DIR}/staging")
+set(prefix "${WORK_DIR}/moved prefix") # a space, to catch unquoted paths
+run_checked("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${staging}")
+file(RENAME "${staging}" "${prefix}")
+
+# The layout the package promises.
+expect_file("${prefix}/include/hitray/hitray.h")
+expect_file("${prefix}/include/hitray/shape_module.h")
+expect_file("${prefix}/${LIBDIR}/libhitray.so.0")
+expect_file("${prefix}/${LIBDIR}/libhitray.so")
+expect_file("${prefix}/${LIBDIR}/hitray/shapes/sphere.so")
+expect_file("${prefix}/${LIBDIR}/cmake/hitray/hitrayConfig.cmake")
+expect_file("${prefix}/${LIBDIR}/cmake/hitray/hitrayConfigVersion.cmake")
+expect_file("${prefix}/${LIBDIR}/pkgconfig/hitray.pc")
+expect_file("${prefix}/bin/hitray")
+
+# The installed command runs from its new place and finds the installed
+# library and shape modules through relative paths alone.
+run_checked("installed hitray --version" "${prefix}/bin/hitray" --version)
+if(NOT LAST_OUTPUT MATCHES "hitray ${VERSION}")
+  message(FATAL_ERROR "unexpected version output: ${LAST_OUTPUT}")
+endif()
+run_checked("installed hitray shapes" "${prefix}/bin/hitray" shapes)
+if(NOT LAST_OUTPUT MATCHES "moved prefix/[^\n]*hitray/shapes/sphere\\.so")
+  message(FATAL_ERROR "the installed hitray did not find the installed modules:\n${LAST_OUTPUT}")
+endif()
+
+set(image "${WORK_DIR}/spheres.png")
+if(MODE STREQUAL "cmake")
+  run_checked("configuring examples/c" "${CMAKE_COMMAND}" -S "${SOURCE_DIR}/examples/c" -B "${WORK_DIR}/example"
+    -G "${GENERATOR}" "-DCMAKE_C_COMPILER=${C_COMPILER}" "-DCMAKE_PREFIX_PATH=${prefix}"
+    "-DCMAKE_C_FLAGS=${EXTRA_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${EXTRA_FLAGS}")
+  run_checked("building examples/c" "${CMAKE_COMMAND}" --build "${WORK_DIR}/example")
+  run_checked("running the example" "${WORK_DIR}/example/spheres" "${image}" 64x48)
+elseif(MODE STREQUAL "pkgconfig")
+  find_program(PKG_CONFIG pkg-config REQUIRED)
+  set(ENV{PKG_CONFIG_PATH} "${prefix}/${LIBDIR}/pkgconfig")
+  run_checked("pkg-config --modversion" "${PKG_CONFIG}" --modversion hitray)
+  string(STRIP "${LAST_OUTPUT}" version)
+  if(NOT version STREQUAL VERSION)
+    message(FATAL_ERROR "pkg-config says version ${version}, expected ${VERSION}")
+  endif()
+  run_checked("pkg-config --cflags --libs" "${PKG_CONFIG}" --cflags --libs hitray)
+  string(STRIP "${LAST_OUTPUT}" flags)
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  separate_arguments(extra UNIX_COMMAND "${EXTRA_FLAGS}")
+  # The same thing a user types: cc spheres.c $(pkg-config --cflags --libs hitray).
+  run_checked("compiling with pkg-config flags" "${C_COMPILER}" -std=c11 -Wall -Werror ${extra}
+    "${SOURCE_DIR}/examples/c/spheres.c" -o "${WORK_DIR}/spheres" ${flags}
+    "-Wl,-rpath,${prefix}/${LIBDIR}")
+  run_checked("running the example" "${WORK_DIR}/spheres" "${image}" 64x48)
+else()
+  message(FATAL_ERROR "unknown MODE '${MODE}'")
+endif()
+expect_png("${image}")
+message(STATUS "installed, built with ${MODE}, ran: ${image}")
