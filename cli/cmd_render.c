@@ -112,17 +112,18 @@ static int parse_request(int argc, char **argv, render_request *r)
             r->scene_path = value;
             continue;
         }
-        int ok = 1;
         if (!strcmp(name, "--help")) {
             fputs(render_help, stdout);
             return PARSE_HELP;
-        } else if (!strcmp(name, "--output")) r->output = value;
+        }
+        int ok = 1;
+        if (!strcmp(name, "--output")) r->output = value;
         else if (!strcmp(name, "--exr")) r->exr_output = value;
         else if (!strcmp(name, "--stats-json")) r->stats_json = value;
         else if (!strcmp(name, "--size")) ok = cli_parse_size(name, value, &r->width, &r->height);
         else if (!strcmp(name, "--spp")) ok = cli_parse_int(name, value, 1, 65536, &r->spp);
         else if (!strcmp(name, "--threads")) ok = cli_parse_int(name, value, 0, 4096, &r->threads);
-        else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, 1000, &r->depth);
+        else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, HR_MAX_RECURSION_DEPTH, &r->depth);
         else if (!strcmp(name, "--block")) ok = cli_parse_int(name, value, 1, 4096, &r->block);
         else if (!strcmp(name, "--camera")) ok = r->has_camera = cli_parse_doubles(name, value, 10, r->camera);
         else if (!strcmp(name, "--png16")) r->png16 = 1;

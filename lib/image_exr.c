@@ -8,6 +8,7 @@
 #include <openexr.h>
 
 #include <errno.h>
+#include <stdint.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -121,6 +122,10 @@ static exr_result_t write_chunks(exr_context_t exr, const hr_pixels *px)
 hr_status hr_write_exr(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out)
 {
+    /* The encoder takes a row's length in bytes as an int32_t. */
+    if ((size_t)px->width * (size_t)px->channels * sizeof(float) > INT32_MAX)
+        return hr_error(ctx, HR_ERROR_UNSUPPORTED, "cannot write '%s': %d pixels is too wide for the EXR writer",
+                        out->target, (int)px->width);
     /* OpenEXRCore writes with pwrite at offsets of its own; nothing may sit
      * in the stdio buffer in front of it. */
     if (fflush(out->fp) != 0)

@@ -9,6 +9,18 @@
  * chain of n such factors is (1 + theta_n) with |theta_n| <= gamma(n) =
  * n u / (1 - n u). The shapes state their error bounds in these terms.
  *
+ * What hr_hit.error bounds here, taking the ray's origin and direction as
+ * exact: per coordinate, how far `point` may be from a point of the exact
+ * surface. Curved surfaces (sphere, tapered wall) re-project the point onto
+ * the surface, as pbrt does, and bound the rounding of that projection: the
+ * bound is then what the host needs to offset new rays off the surface, but
+ * it does not cover the sideways slip that the error of t causes along the
+ * surface (for a grazing ray that slip can be much larger). Flat surfaces
+ * set their plane coordinate exactly and bound the other two by the rounding
+ * of origin + t dir (shape_ray_point_error), which covers the distance to
+ * the exact intersection point itself. tests/shapes/test_shape_accuracy.c
+ * checks both against quad-precision references.
+ *
  * The routines below avoid the usual losses of ray/quadric code:
  * - two_product / two_sum are Knuth's and Dekker's error-free transforms
  *   (they need the FMA of C99's fma(), which glibc maps to the instruction

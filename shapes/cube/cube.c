@@ -24,7 +24,6 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_entry.h"
 #include "../common/shape_hits.h"
 #include "../common/shape_instance.h"
 #include "../common/shape_math.h"

@@ -63,7 +63,6 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_entry.h"
 #include "../common/shape_hits.h"
 #include "../common/shape_math.h"
 

@@ -1,6 +1,6 @@
 # libhitray's ABI surface: every dynamic symbol it defines starts with hr_
 # (everything else is hidden), and its SONAME is libhitray.so.0.
-# Variables: LIB (the library file) NM READELF SANITIZE (ON in sanitizer builds)
+# Variables: LIB (the library file) NM READELF
 cmake_minimum_required(VERSION 3.18)
 
 execute_process(COMMAND "${NM}" -D --defined-only "${LIB}" RESULT_VARIABLE rc OUTPUT_VARIABLE symbols
@@ -19,8 +19,6 @@ foreach(line IN LISTS lines)
   set(name "${CMAKE_MATCH_2}")
   if(name MATCHES "^hr_")
     math(EXPR count "${count} + 1")
-  elseif(SANITIZE AND name MATCHES "^(__asan|__ubsan|__odr_asan|__sancov|___asan)")
-    # instrumentation the sanitizers add; absent from a normal build
   else()
     list(APPEND stray "${name}")
   endif()

@@ -11,8 +11,11 @@ import math
 import os
 import pathlib
 import pty
+import select
+import signal
 import struct
 import subprocess
+import time
 
 import pytest
 
@@ -229,6 +232,47 @@ def test_progress_bar_only_on_a_terminal(scene, tmp_path):
     assert proc.returncode == 0
     assert b"rendering [" in seen and b"100%" in seen
     assert b"rendering" not in proc.stdout
+
+
+def test_ctrl_c_cancels_cleanly(tmp_path):
+    """A first Ctrl-C stops the render: status 130, one line, no image."""
+    out = tmp_path / "never.png"
+    master, slave = pty.openpty()
+    proc = subprocess.Popen([str(HITRAY), "render", str(ROOT / "scenes" / "demo.sdl"), "-o", str(out),
+                             "--size", "1024x1024", "--spp", "256", "--threads", "2"],
+                            stdout=subprocess.PIPE, stderr=slave)
+    os.close(slave)
+    seen = b""
+    try:
+        # Wait for the progress bar: the handler is installed by then.
+        deadline = time.monotonic() + 60
+        while b"rendering [" not in seen and time.monotonic() < deadline:
+            ready, _, _ = select.select([master], [], [], 1.0)
+            if ready:
+                seen += os.read(master, 4096)
+        assert b"rendering [" in seen
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=60)
+        while True:
+            ready, _, _ = select.select([master], [], [], 0.2)
+            if not ready:
+                break
+            try:
+                chunk = os.read(master, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            seen += chunk
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        os.close(master)
+    assert proc.returncode == 130
+    assert b"hitray: render interrupted" in seen
+    assert not out.exists()
+    assert [p.name for p in tmp_path.iterdir()] == []
 
 
 # --- hits --------------------------------------------------------------------

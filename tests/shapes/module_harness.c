@@ -300,3 +300,17 @@ void harness_expect_hit(const char *what, const hr_hit *hit, double t, int surfa
               "%s: normal (%g, %g, %g), expected (%g, %g, %g)", what, n.x, n.y, n.z, m.x, m.y,
               m.z);
 }
+
+const harness_class_ref harness_catalog[] = {
+    {"sphere", "sphere", NAN},
+    {"plane", "plane", NAN},
+    {"square", "square", NAN},
+    {"cube", "cube", NAN},
+    {"cylinder", "cylinder", NAN},
+    {"cylinder", "cone", NAN},
+    {"cylinder", "taperedCylinder", 0.5},
+    {"cylinder", "taperedCylinder", 0.0},
+    {"cylinder", "taperedCylinder", 3.0},
+    {"cylinder", "taperedCylinder", 1000.0},
+};
+const int harness_catalog_count = (int)(sizeof harness_catalog / sizeof harness_catalog[0]);

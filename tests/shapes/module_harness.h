@@ -64,6 +64,17 @@ int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tm
 /* harness_trace in HARNESS_ALL mode over (0, +infinity). */
 int harness_hits(const harness_shape *shape, hr_ray ray, hr_hit hits[HARNESS_MAX_HITS]);
 
+/* Every class of the built-in modules, with a few tapers of taperedCylinder
+ * (s is NaN for classes without parameters). */
+typedef struct harness_class_ref {
+    const char *module;
+    const char *name;
+    double s;
+} harness_class_ref;
+
+extern const harness_class_ref harness_catalog[];
+extern const int harness_catalog_count;
+
 hr_ray harness_ray(double ox, double oy, double oz, double dx, double dy, double dz);
 hr_vec3 harness_vec(double x, double y, double z);
 

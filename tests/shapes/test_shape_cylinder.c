@@ -78,6 +78,30 @@ static void test_cylinder_rim(void)
     harness_expect_hit("rim base", &h[1], 2, BASE, 0, harness_vec(0, 0, 0), harness_vec(0, 0, -1));
 }
 
+/* Tangent to the wall. Cylinder: (-2, 1, 0.5) + t (1, 0, 0) has
+ * u x e = 0 * 0 - 1 * 1 = -1, so disc = |e|^2 - (u x e)^2 = 0 exactly: a
+ * double root t = 2 at (0, 1, 0.5). Cone: (-2, 0.5, 0.5) + t (1, 0, 0) at
+ * height 0.5 (radius 0.5): w0 = 0.5, omega = 0, disc = 0.25 - 0.5^2 = 0, the
+ * touching point (0, 0.5, 0.5) with normal (0, 0.5, 0.5) ~ (0, 1, 1). A
+ * tangent is reported as a zero-length visit: enter and leave at the same
+ * t, both on the wall. */
+static void test_wall_tangent(void)
+{
+    hr_hit h[HARNESS_MAX_HITS];
+    CHECK(harness_hits(&cylinder, harness_ray(-2, 1, 0.5, 1, 0, 0), h) == 2);
+    harness_expect_hit("tangent in", &h[0], 2, WALL, 1, harness_vec(0, 1, 0.5), harness_vec(0, 1, 0));
+    harness_expect_hit("tangent out", &h[1], 2, WALL, 0, harness_vec(0, 1, 0.5),
+                       harness_vec(0, 1, 0));
+    CHECK(h[0].t == h[1].t);
+    CHECK(harness_hits(&cone, harness_ray(-2, 0.5, 0.5, 1, 0, 0), h) == 2);
+    harness_expect_hit("cone tangent in", &h[0], 2, WALL, 1, harness_vec(0, 0.5, 0.5),
+                       harness_vec(0, 1, 1));
+    CHECK(h[0].t == h[1].t && h[1].entering == 0);
+    /* One ulp outside the tangent line: a miss or a tiny chord, never one hit. */
+    const int n = harness_hits(&cylinder, harness_ray(-2, nextafter(1, 2), 0.5, 1, 0, 0), h);
+    CHECK(n == 0 || n == 2);
+}
+
 /* Sweeps across a seam in steps of 1e-7. Each ray must enter exactly once and
  * leave exactly once (no hole, no double hit), the entering surface switching
  * from `below` (i < 0) to `above` (i > 0), and the entering point staying
@@ -296,6 +320,7 @@ int main(void)
     test_cylinder_in_wall();
     test_cylinder_wall_then_cap();
     test_cylinder_rim();
+    test_wall_tangent();
     test_seam_sweeps();
     test_tapered_seam();
     test_cone_axis();

@@ -1,1 +1,116 @@
-int main(void){return 0;}
+/* Every built-in shape module loads, declares the ABI it was built for, and
+ * describes complete classes: a full vtable (create, destroy, bounds, hit,
+ * first_hit, any_hit), the right flags, surface counts and parameters; every
+ * class creates and destroys a shape (LeakSanitizer, in the sanitizer build,
+ * sees any leak) and reports the bounds of its generic shape. */
+#include <math.h>
+#include <string.h>
+
+#include "hr_test.h"
+#include "module_harness.h"
+
+typedef struct expected_class {
+    const char *module;
+    const char *name;
+    int32_t flags;
+    int32_t surface_count;
+    int32_t param_count;
+    hr_bounds bounds; /* with default parameters */
+} expected_class;
+
+static const expected_class expected[] = {
+    {"sphere", "sphere", HR_SHAPE_CLOSED, 1, 0, {{-1, -1, -1}, {1, 1, 1}}},
+    {"plane", "plane", 0, 1, 0, {{-INFINITY, -INFINITY, 0}, {INFINITY, INFINITY, 0}}},
+    {"square", "square", 0, 1, 0, {{-1, -1, 0}, {1, 1, 0}}},
+    {"cube", "cube", HR_SHAPE_CLOSED, 6, 0, {{-1, -1, -1}, {1, 1, 1}}},
+    {"cylinder", "taperedCylinder", HR_SHAPE_CLOSED, 3, 1, {{-1, -1, 0}, {1, 1, 1}}},
+    {"cylinder", "cylinder", HR_SHAPE_CLOSED, 3, 0, {{-1, -1, 0}, {1, 1, 1}}},
+    {"cylinder", "cone", HR_SHAPE_CLOSED, 3, 0, {{-1, -1, 0}, {1, 1, 1}}},
+};
+#define EXPECTED_COUNT (int)(sizeof expected / sizeof expected[0])
+
+static int same_bounds(const hr_bounds *a, const hr_bounds *b)
+{
+    return a->lo.x == b->lo.x && a->lo.y == b->lo.y && a->lo.z == b->lo.z &&
+           a->hi.x == b->hi.x && a->hi.y == b->hi.y && a->hi.z == b->hi.z;
+}
+
+static void test_module_info(const char *stem, int class_count)
+{
+    harness_module module;
+    if (!harness_load(stem, &module)) return;
+    const hr_module_info *info = module.info;
+    CHECK(info->struct_size == sizeof(hr_module_info));
+    CHECK(info->abi_version == HR_SHAPE_ABI_VERSION);
+    CHECK(info->name && strcmp(info->name, stem) == 0);
+    CHECK(info->description && info->description[0]);
+    CHECK_MSG(info->class_count == class_count, "%s: %d classes", stem, (int)info->class_count);
+    for (int32_t i = 0; i < info->class_count; i++) {
+        const hr_shape_class *c = info->classes[i];
+        CHECK(c != NULL);
+        if (!c) continue;
+        CHECK_MSG(c->struct_size == sizeof(hr_shape_class), "%s: struct_size", c->name);
+        CHECK_MSG(c->name && c->help && c->help[0], "%s: name and help", stem);
+        CHECK_MSG(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit,
+                  "%s: incomplete vtable", c->name);
+        CHECK(c->param_count == 0 || c->params != NULL);
+    }
+    /* The same table on a second call: no state behind the entry point. */
+    harness_module again;
+    if (harness_load(stem, &again)) {
+        CHECK(again.info == info);
+        harness_unload(&again);
+    }
+    harness_unload(&module);
+}
+
+static void test_class(const expected_class *e)
+{
+    harness_shape s;
+    if (!harness_open(&s, e->module, e->name, NAN)) {
+        harness_close(&s);
+        return;
+    }
+    CHECK_MSG(s.cls->flags == e->flags, "%s: flags %d", e->name, (int)s.cls->flags);
+    CHECK_MSG(s.cls->surface_count == e->surface_count, "%s: surface_count %d", e->name,
+              (int)s.cls->surface_count);
+    CHECK_MSG(s.cls->param_count == e->param_count, "%s: param_count %d", e->name,
+              (int)s.cls->param_count);
+    hr_bounds b;
+    s.cls->bounds(s.shape, &b);
+    CHECK_MSG(same_bounds(&b, &e->bounds), "%s: bounds (%g %g %g) (%g %g %g)", e->name, b.lo.x,
+              b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+    harness_close(&s);
+}
+
+/* taperedCylinder's one parameter: s, a number, optional, default 1, range
+ * [0, 1e6] (the host checks the range from this). */
+static void test_tapered_parameter(void)
+{
+    harness_module module;
+    if (!harness_load("cylinder", &module)) return;
+    const hr_shape_class *c = harness_find_class(&module, "taperedCylinder");
+    CHECK(c && c->param_count == 1);
+    if (c && c->param_count == 1) {
+        const hr_param_spec *p = &c->params[0];
+        CHECK(strcmp(p->name, "s") == 0);
+        CHECK(p->type == HR_PARAM_NUMBER);
+        CHECK(p->required == 0);
+        CHECK(p->default_number == 1.0);
+        CHECK(p->min == 0.0 && p->max == 1e6);
+        CHECK(p->help && p->help[0]);
+    }
+    harness_unload(&module);
+}
+
+int main(void)
+{
+    test_module_info("sphere", 1);
+    test_module_info("plane", 1);
+    test_module_info("square", 1);
+    test_module_info("cube", 1);
+    test_module_info("cylinder", 3);
+    for (int i = 0; i < EXPECTED_COUNT; i++) test_class(&expected[i]);
+    test_tapered_parameter();
+    return hr_test_end();
+}
