@@ -4,10 +4,11 @@
 PREFIX ?= /usr/local
 BUILD ?= build
 ASAN_BUILD ?= build-asan
+TSAN_BUILD ?= build-tsan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-c test-asan test-python install clean
+.PHONY: all deps build demo test test-c test-asan test-tsan test-python install clean
 
 all: build
 
@@ -25,8 +26,9 @@ demo: build
 	$(BUILD)/bin/hitray render scenes/demo.sdl -o out/demo.png --exr out/demo.exr
 
 # Every test: the C suite (ctest), the same suite under AddressSanitizer and
-# UndefinedBehaviorSanitizer, and the Python tests of the command line.
-test: test-c test-asan test-python
+# UndefinedBehaviorSanitizer and again under ThreadSanitizer, and the Python
+# tests of the command line.
+test: test-c test-asan test-tsan test-python
 
 test-c: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -39,6 +41,13 @@ test-asan: deps $(ASAN_BUILD)/build.ninja
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
+$(TSAN_BUILD)/build.ninja: | deps
+	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DHITRAY_TSAN=ON $(CMAKE_FLAGS)
+
+test-tsan: deps $(TSAN_BUILD)/build.ninja
+	cmake --build $(TSAN_BUILD) -j $(JOBS)
+	TSAN_OPTIONS=halt_on_error=1 ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
+
 test-python: build
 	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
 
@@ -46,4 +55,4 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) out

@@ -209,8 +209,9 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
     uint64_t rays = total_rays(s);
     char rate[32];
     format_rate(rate, sizeof rate, s->seconds > 0 ? (double)rays / s->seconds : 0.0);
-    printf("rendered %dx%d (%d spp) in %.3f s on %d threads: %" PRIu64 " rays, %srays/s -> %s%s%s\n",
-           (int)r->width, (int)r->height, (int)r->spp, s->seconds, (int)s->threads, rays, rate, r->output,
+    printf("rendered %dx%d (%d spp) in %.3f s on %d thread%s: %" PRIu64 " rays, %srays/s -> %s%s%s\n",
+           (int)r->width, (int)r->height, (int)r->spp, s->seconds, (int)s->threads,
+           s->threads == 1 ? "" : "s", rays, rate, r->output,
            r->exr_output ? ", " : "", r->exr_output ? r->exr_output : "");
     if (r->stats) {
         printf("rays: primary %" PRIu64 ", shadow %" PRIu64 ", reflected %" PRIu64 ", refracted %" PRIu64 "\n",

@@ -216,7 +216,11 @@ static char *default_shape_dir(void)
 {
     Dl_info info;
     if (!dladdr((void *)&default_shape_dir, &info) || !info.dli_fname) return NULL;
-    char *libdir = hr_path_dirname(info.dli_fname);
+    /* The loader reports the path it was given (often bin/../lib/...); the
+     * canonical one reads better in messages and `hitray shapes`. */
+    char *real = realpath(info.dli_fname, NULL);
+    char *libdir = hr_path_dirname(real ? real : info.dli_fname);
+    free(real);
     if (!libdir) return NULL;
     char *dir = hr_path_join(libdir, "hitray/shapes");
     free(libdir);

@@ -146,6 +146,23 @@ static inline hr_status shape_report(const hr_hit_args *args, int32_t mode,
     return HR_OK;
 }
 
+/* The three entry points of the vtable (hit, first_hit, any_hit) differ only
+ * in the mode they pass to the shape's one trace function; this defines them
+ * as <prefix>_hit, <prefix>_first_hit and <prefix>_any_hit. */
+#define SHAPE_DEFINE_HIT_MODES(prefix, trace)                                  \
+    static hr_status prefix##_hit(const hr_hit_args *args)                     \
+    {                                                                          \
+        return trace(args, HR_TRACE_ALL);                                      \
+    }                                                                          \
+    static hr_status prefix##_first_hit(const hr_hit_args *args)               \
+    {                                                                          \
+        return trace(args, HR_TRACE_FIRST);                                    \
+    }                                                                          \
+    static hr_status prefix##_any_hit(const hr_hit_args *args)                 \
+    {                                                                          \
+        return trace(args, HR_TRACE_ANY);                                      \
+    }
+
 /* --- The plane z = 0, shared by the plane and the square ----------------- */
 
 /* The crossing of the ray with z = 0: t = -o.z / d.z, one rounding. A ray

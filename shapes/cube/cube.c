@@ -67,20 +67,7 @@ static hr_status cube_trace(const hr_hit_args *args, int32_t mode)
     return shape_report(args, mode, crossings, count, cube_fill);
 }
 
-static hr_status cube_hit(const hr_hit_args *args)
-{
-    return cube_trace(args, HR_TRACE_ALL);
-}
-
-static hr_status cube_first_hit(const hr_hit_args *args)
-{
-    return cube_trace(args, HR_TRACE_FIRST);
-}
-
-static hr_status cube_any_hit(const hr_hit_args *args)
-{
-    return cube_trace(args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(cube, cube_trace)
 
 static void cube_bounds(const void *shape, hr_bounds *out)
 {

@@ -186,20 +186,7 @@ static hr_status tapered_trace(const hr_hit_args *args, int32_t mode)
     return shape_report(args, mode, crossings, count, tapered_fill);
 }
 
-static hr_status tapered_hit(const hr_hit_args *args)
-{
-    return tapered_trace(args, HR_TRACE_ALL);
-}
-
-static hr_status tapered_first_hit(const hr_hit_args *args)
-{
-    return tapered_trace(args, HR_TRACE_FIRST);
-}
-
-static hr_status tapered_any_hit(const hr_hit_args *args)
-{
-    return tapered_trace(args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(tapered, tapered_trace)
 
 static void tapered_bounds(const void *shape, hr_bounds *out)
 {

@@ -24,20 +24,7 @@ static hr_status plane_trace(const hr_hit_args *args, int32_t mode)
     return shape_report(args, mode, &crossing, count, plane_fill);
 }
 
-static hr_status plane_hit(const hr_hit_args *args)
-{
-    return plane_trace(args, HR_TRACE_ALL);
-}
-
-static hr_status plane_first_hit(const hr_hit_args *args)
-{
-    return plane_trace(args, HR_TRACE_FIRST);
-}
-
-static hr_status plane_any_hit(const hr_hit_args *args)
-{
-    return plane_trace(args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(plane, plane_trace)
 
 static void plane_bounds(const void *shape, hr_bounds *out)
 {

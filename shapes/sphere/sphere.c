@@ -96,20 +96,7 @@ static hr_status sphere_trace(const hr_hit_args *args, int32_t mode)
     return shape_report(args, mode, crossings, count, sphere_fill);
 }
 
-static hr_status sphere_hit(const hr_hit_args *args)
-{
-    return sphere_trace(args, HR_TRACE_ALL);
-}
-
-static hr_status sphere_first_hit(const hr_hit_args *args)
-{
-    return sphere_trace(args, HR_TRACE_FIRST);
-}
-
-static hr_status sphere_any_hit(const hr_hit_args *args)
-{
-    return sphere_trace(args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(sphere, sphere_trace)
 
 static void sphere_bounds(const void *shape, hr_bounds *out)
 {

@@ -32,20 +32,7 @@ static hr_status square_trace(const hr_hit_args *args, int32_t mode)
     return shape_report(args, mode, &crossing, count, square_fill);
 }
 
-static hr_status square_hit(const hr_hit_args *args)
-{
-    return square_trace(args, HR_TRACE_ALL);
-}
-
-static hr_status square_first_hit(const hr_hit_args *args)
-{
-    return square_trace(args, HR_TRACE_FIRST);
-}
-
-static hr_status square_any_hit(const hr_hit_args *args)
-{
-    return square_trace(args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(square, square_trace)
 
 static void square_bounds(const void *shape, hr_bounds *out)
 {
