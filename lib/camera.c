@@ -62,7 +62,10 @@ HR_API hr_status hr_camera_validate(hr_context *ctx, const hr_camera *cam)
 HR_API hr_status hr_camera_ray(const hr_camera *cam, double px, double py, hr_ray *out)
 {
     hr_vec3 u, v, n;
-    if (!cam || !out || cam->width <= 0 || cam->height <= 0 || !camera_axes(cam, &u, &v, &n))
+    /* The same refusals as hr_camera_validate, and a finite position: the
+     * direction promised is unit length, never NaN. */
+    if (!cam || !out || cam->width <= 0 || cam->height <= 0 || !isfinite(px) || !isfinite(py) ||
+        !(cam->view_angle > 0.0 && cam->view_angle < 180.0) || !camera_axes(cam, &u, &v, &n))
         return HR_ERROR_INVALID_ARGUMENT;
     double H = tan(0.5 * cam->view_angle * DEG2RAD);
     double W = H * (double)cam->width / (double)cam->height;

@@ -198,7 +198,9 @@ static void scan_dir(hr_context *ctx, const char *dir)
         count++;
     }
     closedir(d);
-    qsort(names, count, sizeof *names, compare_names);
+    /* qsort's base must not be NULL even for no elements (a directory with
+     * no module never allocated the list). */
+    if (count > 1) qsort(names, count, sizeof *names, compare_names);
     for (size_t i = 0; i < count; i++) {
         char *path = hr_path_join(dir, names[i]);
         if (path && !known_path(ctx, path)) {
@@ -290,8 +292,14 @@ static void list_one(hr_context *ctx, const char *dir, void *user)
     if (n > 0) l->len += (size_t)n;
 }
 
-/* "no shape module provides 'x'" with where we looked and what was refused. */
-static hr_status not_found(hr_context *ctx, const char *name)
+/* Errors found while holding ctx->lock are written to a buffer and raised
+ * after unlocking: raising calls the context's error callback, which may call
+ * back into the context (list its modules, say) and would deadlock. */
+#define MESSAGE_SIZE (2 * 2048 + 256) /* not_found's two lists and more */
+
+/* "no shape module provides 'x'" with where we looked and what was refused,
+ * into msg. */
+static hr_status not_found(hr_context *ctx, const char *name, char *msg, size_t size)
 {
     search_listing dirs = {{0}, 0};
     for_each_search_dir(ctx, list_one, &dirs);
@@ -302,8 +310,9 @@ static hr_status not_found(hr_context *ctx, const char *name)
         int n = snprintf(refused + len, sizeof refused - len, "; %s", ctx->modules[i]->error);
         if (n > 0) len += (size_t)n;
     }
-    return hr_error(ctx, HR_ERROR_MODULE, "no shape module provides '%s' (searched: %s)%s", name,
-                    dirs.len ? dirs.text : "nothing", refused);
+    snprintf(msg, size, "no shape module provides '%s' (searched: %s)%s", name,
+             dirs.len ? dirs.text : "nothing", refused);
+    return HR_ERROR_MODULE;
 }
 
 HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
@@ -312,6 +321,7 @@ HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
 {
     if (!ctx || !name || !out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL argument");
     hr_class_entry scratch;
+    char msg[MESSAGE_SIZE];
     pthread_mutex_lock(&ctx->lock);
     const hr_class_entry *e = find_loaded(ctx, name, &scratch);
     if (!e) {
@@ -323,10 +333,10 @@ HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
         *out = e->cls;
         if (module_path) *module_path = e->origin;
     } else {
-        st = not_found(ctx, name);
+        st = not_found(ctx, name, msg, sizeof msg);
     }
     pthread_mutex_unlock(&ctx->lock);
-    return st;
+    return st ? hr_error(ctx, st, "%s", msg) : HR_OK;
 }
 
 /* Put a class in front of the searched modules. */
@@ -334,7 +344,7 @@ static hr_status add_explicit_class(hr_context *ctx, const hr_shape_class *cls, 
 {
     hr_class_entry *grown =
         realloc(ctx->classes, (size_t)(ctx->class_count + 1) * sizeof *grown);
-    if (!grown) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!grown) return HR_ERROR_OUT_OF_MEMORY; /* raised by the caller, unlocked */
     ctx->classes = grown;
     /* Later explicit loads win over earlier ones: insert at the front. */
     memmove(ctx->classes + 1, ctx->classes, (size_t)ctx->class_count * sizeof *grown);
@@ -348,23 +358,25 @@ HR_API hr_status hr_context_load_module(hr_context *ctx, const char *path)
 {
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
     if (!path || !*path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "empty module path");
+    char msg[MESSAGE_SIZE] = "out of memory";
     pthread_mutex_lock(&ctx->lock);
     hr_module *m = load_file(ctx, path);
     hr_status st = HR_OK;
     if (!m) {
-        st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        st = HR_ERROR_OUT_OF_MEMORY;
     } else if (m->error) {
-        st = hr_error(ctx, HR_ERROR_MODULE, "%s", m->error);
+        st = HR_ERROR_MODULE;
+        snprintf(msg, sizeof msg, "%s", m->error);
         module_free(m);
     } else if (!append_module(ctx, m)) {
         module_free(m);
-        st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        st = HR_ERROR_OUT_OF_MEMORY;
     } else {
         for (int32_t i = m->class_count - 1; i >= 0 && st == HR_OK; i--)
             st = add_explicit_class(ctx, &m->classes[i], m->path);
     }
     pthread_mutex_unlock(&ctx->lock);
-    return st;
+    return st ? hr_error(ctx, st, "%s", msg) : HR_OK;
 }
 
 HR_API hr_status hr_context_register_shape_class(hr_context *ctx, const hr_shape_class *cls,
@@ -372,6 +384,7 @@ HR_API hr_status hr_context_register_shape_class(hr_context *ctx, const hr_shape
 {
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
     if (!cls) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL shape class");
+    char msg[MESSAGE_SIZE] = "out of memory";
     pthread_mutex_lock(&ctx->lock);
     hr_status st = HR_OK;
     hr_module *m = calloc(1, sizeof *m);
@@ -379,22 +392,23 @@ HR_API hr_status hr_context_register_shape_class(hr_context *ctx, const hr_shape
         !(m->classes = calloc(1, sizeof *m->classes)) ||
         !(m->class_ptrs = calloc(1, sizeof *m->class_ptrs))) {
         module_free(m);
-        st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        st = HR_ERROR_OUT_OF_MEMORY;
     } else if (!copy_class(m, cls, &m->classes[0])) {
-        st = hr_error(ctx, HR_ERROR_MODULE, "%s", m->error);
+        st = HR_ERROR_MODULE;
+        snprintf(msg, sizeof msg, "%s", m->error ? m->error : "out of memory");
         module_free(m);
     } else {
         m->class_ptrs[0] = &m->classes[0];
         m->class_count = 1;
         if (!append_module(ctx, m)) {
             module_free(m);
-            st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+            st = HR_ERROR_OUT_OF_MEMORY;
         } else {
             st = add_explicit_class(ctx, &m->classes[0], m->path);
         }
     }
     pthread_mutex_unlock(&ctx->lock);
-    return st;
+    return st ? hr_error(ctx, st, "%s", msg) : HR_OK;
 }
 
 HR_API int32_t hr_context_module_count(hr_context *ctx)

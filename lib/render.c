@@ -33,10 +33,11 @@ typedef struct render_job {
     hr_render_options opt;
     float *pixels;
     int32_t width, height;
-    int32_t tiles_x, tiles_y, tile_count;
+    /* 65536 x 65536 pixels in tiles of 1 is 2^32 tiles: past int32. */
+    int64_t tiles_x, tiles_y, tile_count;
     int32_t max_depth;
-    atomic_int next_tile;
-    atomic_int tiles_done;
+    atomic_llong next_tile;
+    atomic_llong tiles_done;
     atomic_int cancelled;
     pthread_mutex_t progress_lock;
     hr_status failure; /* first shape failure (guarded by progress_lock) */
@@ -68,14 +69,14 @@ static void sample_offset(int32_t k, int32_t n, double *dx, double *dy)
     *dy = y >= 1.0 ? y - 1.0 : y;
 }
 
-static void render_tile(worker *w, int32_t tile)
+static void render_tile(worker *w, int64_t tile)
 {
     render_job *job = w->job;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, job->scene);
     tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
     int32_t tsize = job->opt.tile_size;
-    int32_t x0 = (tile % job->tiles_x) * tsize, y0 = (tile / job->tiles_x) * tsize;
+    int32_t x0 = (int32_t)(tile % job->tiles_x) * tsize, y0 = (int32_t)(tile / job->tiles_x) * tsize;
     int32_t x1 = x0 + tsize < job->width ? x0 + tsize : job->width;
     int32_t y1 = y0 + tsize < job->height ? y0 + tsize : job->height;
     int32_t block = job->opt.block_size, spp = job->opt.samples_per_pixel;
@@ -129,14 +130,14 @@ static void *worker_main(void *arg)
     render_job *job = w->job;
     for (;;) {
         if (atomic_load(&job->cancelled)) break;
-        int32_t tile = atomic_fetch_add(&job->next_tile, 1);
+        int64_t tile = atomic_fetch_add(&job->next_tile, 1);
         if (tile >= job->tile_count) break;
         render_tile(w, tile);
-        int32_t done = atomic_fetch_add(&job->tiles_done, 1) + 1;
+        int64_t done = atomic_fetch_add(&job->tiles_done, 1) + 1;
         if (job->opt.progress) {
             pthread_mutex_lock(&job->progress_lock);
             if (!atomic_load(&job->cancelled) &&
-                job->opt.progress(job->opt.progress_user, (double)done / job->tile_count))
+                job->opt.progress(job->opt.progress_user, (double)done / (double)job->tile_count))
                 atomic_store(&job->cancelled, 1);
             pthread_mutex_unlock(&job->progress_lock);
         }
@@ -234,7 +235,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     pthread_mutex_init(&job->progress_lock, NULL);
 
     int32_t nthreads = job->opt.threads > 0 ? job->opt.threads : core_count();
-    if (nthreads > job->tile_count) nthreads = job->tile_count;
+    if (nthreads > job->tile_count) nthreads = (int32_t)job->tile_count;
     worker *workers = calloc((size_t)nthreads, sizeof *workers);
     double t0 = now_seconds();
     int32_t started = 0;
@@ -262,7 +263,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
             s.refracted += workers[i].refracted;
         }
         s.seconds = seconds;
-        s.effects = scene->effects | (job->opt.samples_per_pixel > 1 ? HR_EFFECT_SUPERSAMPLING : 0u);
+        /* Bounces run at the depth this render used, which may differ from
+         * the scene's own. */
+        uint32_t bounces = HR_EFFECT_REFLECTION | HR_EFFECT_REFRACTION;
+        s.effects = (scene->effects & ~bounces) | (job->max_depth > 0 ? scene->bounce_effects : 0u) |
+                    (job->opt.samples_per_pixel > 1 ? HR_EFFECT_SUPERSAMPLING : 0u);
         if (job->opt.effects == HR_EFFECTS_ALL) s.effects = (1u << HR_EFFECT_COUNT) - 1u;
         memcpy(stats, &s, s.struct_size);
     }

@@ -77,6 +77,21 @@ HR_API hr_context *hr_scene_context(const hr_scene *scene) { return scene ? scen
 
 static int color_finite(hr_color c) { return isfinite(c.r) && isfinite(c.g) && isfinite(c.b); }
 
+/* Input bounds that keep every pixel finite. With |colour| <= HR_MAX_COLOR,
+ * weights in [0, 1] and an exponent >= 0 (so (h.m)^e <= 1), each ray traced
+ * adds at most (2 + lights) * 1e12 to its pixel, weighted by products of
+ * coefficients <= 1. A pixel is a sum over the rays it traced, so it stays
+ * far below float's 3.4e38 for any render that can finish (it would take
+ * ~1e20 rays per pixel to get there). */
+#define HR_MAX_COLOR 1e6
+#define HR_MAX_EXPONENT 1e6
+
+static int color_in_range(hr_color c)
+{
+    return color_finite(c) && fabs(c.r) <= HR_MAX_COLOR && fabs(c.g) <= HR_MAX_COLOR &&
+           fabs(c.b) <= HR_MAX_COLOR;
+}
+
 static hr_status check_material(hr_context *ctx, const hr_material *m)
 {
     static const struct {
@@ -88,14 +103,24 @@ static hr_status check_material(hr_context *ctx, const hr_material *m)
                   {"emissive", offsetof(hr_material, emissive)}};
     for (size_t i = 0; i < sizeof colors / sizeof colors[0]; i++) {
         const hr_color *c = (const hr_color *)((const char *)m + colors[i].offset);
-        if (!color_finite(*c))
-            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: %s must be finite",
-                            colors[i].name);
+        if (!color_in_range(*c))
+            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                            "material: %s (%g %g %g) must be finite, each within +-%g",
+                            colors[i].name, c->r, c->g, c->b, HR_MAX_COLOR);
     }
-    if (!isfinite(m->specular_exponent) || !isfinite(m->reflectivity) ||
-        !isfinite(m->transparency) || !isfinite(m->specular_fraction) ||
-        !isfinite(m->surface_roughness))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: every coefficient must be finite");
+    if (!(m->specular_exponent >= 0 && m->specular_exponent <= HR_MAX_EXPONENT))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: specularExponent %g must be within [0, %g]",
+                        m->specular_exponent, HR_MAX_EXPONENT);
+    if (!(m->reflectivity >= 0 && m->reflectivity <= 1))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: reflectivity %g must be within [0, 1]", m->reflectivity);
+    if (!(m->transparency >= 0 && m->transparency <= 1))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: transparency %g must be within [0, 1]", m->transparency);
+    if (!isfinite(m->specular_fraction) || !isfinite(m->surface_roughness))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: specularFraction and surfaceRoughness must be finite");
     if (!(m->speed_of_light > 0.0) || !isfinite(m->speed_of_light))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: speedOfLight must be positive and finite, not %g",
@@ -282,8 +307,12 @@ HR_API hr_status hr_scene_add_light(hr_scene *s, const hr_light *light)
     hr_light l = {0};
     COPY_SIZED(&l, light);
     l.struct_size = sizeof l;
-    if (!v3_is_finite(l.position) || !color_finite(l.color))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: position and colour must be finite");
+    if (!v3_is_finite(l.position))
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: position must be finite");
+    if (!color_in_range(l.color))
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "light: colour (%g %g %g) must be finite, each within +-%g", l.color.r,
+                        l.color.g, l.color.b, HR_MAX_COLOR);
     if (s->light_count == s->light_cap) {
         int32_t cap = s->light_cap ? s->light_cap * 2 : 8;
         hr_light *grown = realloc(s->lights, (size_t)cap * sizeof *grown);
@@ -309,9 +338,13 @@ HR_API hr_status hr_scene_set_globals(hr_scene *s, const hr_scene_globals *g)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
                         "globals: maxRecursionDepth must be within 0..%d, not %d",
                         HR_MAX_RECURSION_DEPTH, (int)v.max_recursion_depth);
-    if (!color_finite(v.background) || !color_finite(v.global_ambient) ||
-        !isfinite(v.min_reflectivity) || !isfinite(v.min_transparency))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "globals: every value must be finite");
+    if (!color_in_range(v.background) || !color_in_range(v.global_ambient))
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "globals: background and globalAmbient must be finite, each within +-%g",
+                        HR_MAX_COLOR);
+    if (!isfinite(v.min_reflectivity) || !isfinite(v.min_transparency))
+        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "globals: minReflectivity and minTransparency must be finite");
     s->globals = v;
     return HR_OK;
 }
@@ -327,7 +360,10 @@ HR_API hr_status hr_scene_get_globals(const hr_scene *s, hr_scene_globals *out)
 
 /* Which effects each material and the whole scene call for. A coefficient
  * below Hill's threshold spawns no ray and contributes nothing (the ray is
- * not worth tracing), so such a material does not make the scene reflect. */
+ * not worth tracing), so such a material does not make the scene reflect.
+ * The material flags do not depend on maxRecursionDepth: hr_scene_shade and
+ * hr_render may ask for more depth than the scene's, and shade stops at the
+ * depth it is given. Only the scene's effects say what its own depth does. */
 static void work_out_effects(hr_scene *s)
 {
     const hr_scene_globals *g = &s->globals;
@@ -346,10 +382,8 @@ static void work_out_effects(hr_scene *s)
         if (!rgb_is_zero(rgb_mul(m->ambient, g->global_ambient))) f |= HR_MAT_AMBIENT;
         if (lit && !rgb_is_zero(m->diffuse)) f |= HR_MAT_DIFFUSE;
         if (lit && !rgb_is_zero(m->specular)) f |= HR_MAT_SPECULAR;
-        if (g->max_recursion_depth > 0 && m->reflectivity > 0 && m->reflectivity >= g->min_reflectivity)
-            f |= HR_MAT_REFLECTS;
-        if (g->max_recursion_depth > 0 && m->transparency > 0 && m->transparency >= g->min_transparency)
-            f |= HR_MAT_REFRACTS;
+        if (m->reflectivity > 0 && m->reflectivity >= g->min_reflectivity) f |= HR_MAT_REFLECTS;
+        if (m->transparency > 0 && m->transparency >= g->min_transparency) f |= HR_MAT_REFRACTS;
         o->mat_flags = f;
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;
@@ -358,6 +392,8 @@ static void work_out_effects(hr_scene *s)
         if (f & HR_MAT_REFLECTS) effects |= HR_EFFECT_REFLECTION;
         if (f & HR_MAT_REFRACTS) effects |= HR_EFFECT_REFRACTION;
     }
+    s->bounce_effects = effects & (HR_EFFECT_REFLECTION | HR_EFFECT_REFRACTION);
+    if (g->max_recursion_depth == 0) effects &= ~s->bounce_effects;
     s->effects = effects;
 }
 
@@ -400,6 +436,11 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
     free(boxes);
     if (!ok) {
         free(owner);
+        /* The scene stays uncommitted and commit may be tried again, which
+         * allocates this anew. */
+        free(s->unbounded);
+        s->unbounded = NULL;
+        s->unbounded_count = 0;
         return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory building the BVH");
     }
     /* Items name BVH inputs; map them to object indices once. */

@@ -39,6 +39,9 @@ struct hr_scene {
     hr_scene_globals globals;
     int32_t committed;
     uint32_t effects;           /* HR_EFFECT_* the scene calls for */
+    uint32_t bounce_effects;    /* REFLECTION/REFRACTION the materials call for
+                                   at any depth (a render or shade may ask for
+                                   more depth than the scene's) */
     hr_bvh bvh;                 /* over bounded top-level objects */
     const hr_object **unbounded; /* top-level objects outside the BVH */
     int32_t unbounded_count;

@@ -62,6 +62,17 @@ static void sort_from(hr_intersection *list, int32_t start)
     }
 }
 
+/* Scale v by a power of two (exact) so its largest component is in
+ * [0.5, 1); the zero vector and non-finite ones are left alone. */
+static hr_vec3 rescale(hr_vec3 v)
+{
+    double big = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+    if (!(big > 0.0) || !isfinite(big)) return v;
+    int e;
+    frexp(big, &e);
+    return v3(ldexp(v.x, -e), ldexp(v.y, -e), ldexp(v.z, -e));
+}
+
 /* Error of a point after p' = M p: |M| e (error carried through) plus the
  * rounding of the product, gamma(3) (|M| |p| + |translation|) per row. */
 static double transformed_error(const double m[16], hr_vec3 p, double e)
@@ -107,27 +118,55 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         out->count = start;
         return tc->status = st;
     }
-    if (mode != HR_TRACE_ALL && out->count > start + 1) out->count = start + 1;
-    if (mode == HR_TRACE_ANY) return HR_OK;
+    /* A count below where it started, or beyond the room the list has, means
+     * the class wrote where it had no room or dropped hits that were not its
+     * own: nothing it returned can be trusted, and reading on would leave
+     * the list. */
+    if (out->count < start || out->count > out->capacity) {
+        out->count = start;
+        return tc->status = HR_ERROR_MODULE;
+    }
     int composite = (cls->flags & HR_SHAPE_COMPOSITE) != 0;
     int32_t kept = start;
     for (int32_t i = start; i < out->count; i++) {
         hr_hit h = out->hits[i];
         /* The host enforces the contract instead of trusting it: a hit outside
-         * (tmin, tmax) or with a non-finite field is dropped. */
-        if (!(h.t > tmin && h.t < tmax) || !v3_is_finite(h.point) || !v3_is_finite(h.normal) ||
-            !isfinite(h.error))
-            continue;
-        if (!composite) h.object = obj->index;
+         * (tmin, tmax) or with a non-finite field is dropped, before a first
+         * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
+         * answers carry only t. */
+        if (!(h.t > tmin && h.t < tmax)) continue;
+        if (mode == HR_TRACE_ANY) {
+            out->hits[start] = h;
+            out->count = start + 1;
+            return HR_OK;
+        }
+        if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
+        /* A composite's hit names its leaf; one naming no object of the scene
+         * is taken as the composite's own, so shading never indexes past the
+         * object list. */
+        if (!composite || h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
+        /* Normals may have any non-zero length: bring them to a safe scale
+         * (exactly, by a power of two) before and after the transform, so
+         * neither M^-T nor normalising overflows or underflows. */
+        h.normal = rescale(h.normal);
         if (!obj->identity) {
             h.error = transformed_error(obj->m, h.point, h.error);
             h.point = hr_transform_point(obj->m, h.point);
-            h.normal = hr_transform_normal(obj->inv, h.normal);
+            h.normal = rescale(hr_transform_normal(obj->inv, h.normal));
+            if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
         }
         if (unit_normals) h.normal = v3_normalize(h.normal);
         out->hits[kept++] = h;
     }
     out->count = kept;
+    if (mode == HR_TRACE_FIRST && kept > start + 1) {
+        /* The nearest, whatever order the class listed its hits in. */
+        int32_t best = start;
+        for (int32_t i = start + 1; i < kept; i++)
+            if (hit_before(&out->hits[i], &out->hits[best])) best = i;
+        out->hits[start] = out->hits[best];
+        out->count = start + 1;
+    }
     return HR_OK;
 }
 
@@ -300,7 +339,9 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
         const hr_object *o = s->objects[i];
         if (o->top_level) hr_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
     }
-    qsort(out->hits, (size_t)out->count, sizeof *out->hits, compare_hits);
+    /* qsort's base must not be NULL, even for no elements (a scene with no
+     * object never gave the list storage). */
+    if (out->count > 1) qsort(out->hits, (size_t)out->count, sizeof *out->hits, compare_hits);
     if (tc.status) out->count = 0;
     return finish_query(&tc);
 }
@@ -316,7 +357,11 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
                         (int)max_depth, HR_MAX_RECURSION_DEPTH);
     int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
-    *out = hr_shade_ray(&tc, ray, 0, depth);
+    /* The colour does not depend on the direction's length, but shapes and
+     * shade's normalising square it: bring it near 1 (exactly, by a power
+     * of two) so any finite length works, as the header promises. */
+    hr_ray r = {ray->origin, rescale(ray->dir)};
+    *out = hr_shade_ray(&tc, &r, 0, depth);
     return finish_query(&tc);
 }
 

@@ -33,6 +33,25 @@ static void apply_step(hr_transform *t, const double step[16], const double step
     memcpy(t->inv, inv, sizeof inv);
 }
 
+static int all_finite(const double m[16])
+{
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(m[i])) return 0;
+    return 1;
+}
+
+/* apply_step for the calls that can refuse: a step whose own inverse is not
+ * representable (a factor of 1e-310 has none in double) is refused like a
+ * zero factor, keeping `t` as it was. A product that over- or underflows
+ * over several steps is left to hr_scene_add_object, which refuses any
+ * non-finite matrix with the object that uses it. */
+static hr_status checked_step(hr_transform *t, const double step[16], const double step_inv[16])
+{
+    if (!all_finite(step) || !all_finite(step_inv)) return HR_ERROR_NUMERIC;
+    apply_step(t, step, step_inv);
+    return HR_OK;
+}
+
 HR_API void hr_transform_identity(hr_transform *t)
 {
     if (!t) return;
@@ -61,8 +80,7 @@ HR_API hr_status hr_transform_scale(hr_transform *t, double sx, double sy, doubl
     mat_identity(si);
     s[0] = sx, s[5] = sy, s[10] = sz;
     si[0] = 1.0 / sx, si[5] = 1.0 / sy, si[10] = 1.0 / sz;
-    apply_step(t, s, si);
-    return HR_OK;
+    return checked_step(t, s, si);
 }
 
 /* Rodrigues' rotation matrix about a unit axis; its inverse is its
@@ -94,8 +112,7 @@ HR_API hr_status hr_transform_rotate(hr_transform *t, double degrees, double ux,
     double ri[16];
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++) ri[4 * i + j] = r[4 * j + i];
-    apply_step(t, r, ri);
-    return HR_OK;
+    return checked_step(t, r, ri);
 }
 
 HR_API void hr_transform_compose(hr_transform *t, const hr_transform *other)
@@ -135,6 +152,9 @@ HR_API hr_status hr_transform_from_matrix(hr_transform *t, const double m[16])
     }
     inv[12] = inv[13] = inv[14] = 0.0;
     inv[15] = 1.0;
+    /* Well conditioned but tiny (all factors ~1e-310): the inverse is not
+     * representable in double. */
+    if (!all_finite(inv)) return HR_ERROR_NUMERIC;
     memcpy(t->m, m, sizeof t->m);
     memcpy(t->inv, inv, sizeof t->inv);
     return HR_OK;

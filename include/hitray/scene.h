@@ -16,7 +16,10 @@ extern "C" {
 #endif
 
 /* A material as Hill's SDL describes it; every field is per object.
- * hr_material_default gives SDL's defaults. */
+ * hr_material_default gives SDL's defaults. hr_scene_add_object refuses
+ * values that could make a pixel infinite: a colour component beyond +-1e6,
+ * a reflectivity or transparency outside [0, 1], a specular exponent outside
+ * [0, 1e6], a speed of light <= 0. Light colours obey the same +-1e6. */
 typedef struct hr_material {
     uint32_t struct_size;
     int32_t texture;          /* 0 none; stored, not yet used in shading */

@@ -188,9 +188,74 @@ static void refraction_slab(void)
     hr_scene_destroy(s);
 }
 
+/* Values that could make a pixel infinite are refused when the object or
+ * light is added, naming the field; the extremes allowed stay finite. */
+static void refused_materials(void)
+{
+    hr_scene *s;
+    hr_scene_create(ctx, &s);
+    hr_object_desc d = {0};
+    d.struct_size = sizeof d;
+    d.shape = "sphere";
+    hr_material m;
+    hr_material_default(&m);
+    m.specular_exponent = -1;
+    d.material = &m;
+    CHECK(hr_scene_add_object(s, &d, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "specularExponent -1 must be within [0, 1e+06]") != NULL);
+    hr_material_default(&m);
+    m.reflectivity = 1.5;
+    CHECK(hr_scene_add_object(s, &d, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "reflectivity 1.5 must be within [0, 1]") != NULL);
+    hr_material_default(&m);
+    m.transparency = -0.1;
+    CHECK(hr_scene_add_object(s, &d, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "transparency") != NULL);
+    hr_material_default(&m);
+    m.emissive.g = 1e7;
+    CHECK(hr_scene_add_object(s, &d, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "emissive") != NULL);
+    hr_material_default(&m);
+    m.speed_of_light = 0;
+    CHECK(hr_scene_add_object(s, &d, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "speedOfLight") != NULL);
+    hr_light l = {sizeof l, 0, {0, 0, 10}, {INFINITY, 1, 1}};
+    CHECK(hr_scene_add_light(s, &l) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "light: colour") != NULL);
+    CHECK(hr_scene_object_count(s) == 0);
+
+    /* The extremes allowed: everything at the bounds, mirrors and glass at
+     * weight 1 both, deep recursion. Every shaded value is finite. */
+    hr_material_default(&m);
+    m.ambient = m.diffuse = m.specular = m.emissive = (hr_color){1e6, -1e6, 1e6};
+    m.specular_exponent = 0;
+    m.reflectivity = m.transparency = 1;
+    m.speed_of_light = 1e-9;
+    CHECK_OK(hr_scene_add_object(s, &d, NULL));
+    hr_transform t = tb_place(0, 0, -3, 1);
+    d.transform = t.m, d.inverse = t.inv;
+    CHECK_OK(hr_scene_add_object(s, &d, NULL));
+    l.color = (hr_color){1e6, 1e6, -1e6};
+    CHECK_OK(hr_scene_add_light(s, &l));
+    hr_scene_globals g;
+    hr_scene_globals_default(&g);
+    g.max_recursion_depth = 12;
+    g.global_ambient = (hr_color){1e6, 1e6, 1e6};
+    CHECK_OK(hr_scene_set_globals(s, &g));
+    CHECK_OK(hr_scene_commit(s));
+    for (int i = 0; i < 8; i++) {
+        hr_ray r = {{0.1 * i, 0.05 * i, 5}, {0.01 * i, -0.02 * i, -1}};
+        hr_color c;
+        CHECK_OK(hr_scene_shade(s, &r, -1, &c));
+        CHECK(isfinite(c.r) && isfinite(c.g) && isfinite(c.b));
+    }
+    hr_scene_destroy(s);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
+    refused_materials();
     ambient_only();
     diffuse_head_on();
     in_shadow();

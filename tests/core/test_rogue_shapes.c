@@ -1,0 +1,306 @@
+/* Shape classes that break the contract of shape_module.h (hits out of
+ * order, outside (tmin, tmax), NaN, more hits than the room they were given,
+ * a composite naming an object that does not exist, normals of extreme
+ * length). The host says it enforces the contract instead of trusting it:
+ * whatever such a class returns, the scene queries must stay in bounds, keep
+ * their own promises (nearest hit, unit normals, finite values) or report
+ * an error. Registered in process, so no module file is needed. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <hitray/hitray.h>
+
+#include "hr_test.h"
+#include "scene_builder.h"
+
+static hr_context *ctx;
+
+/* What a rogue instance does wrong. */
+#define ROGUE_UNSORTED 1       /* hits at t = 3 then t = 1 */
+#define ROGUE_OUT_OF_RANGE 2   /* a hit before tmin, then one at t = 2 */
+#define ROGUE_ANY_BEYOND 3     /* no hits, but any_hit reports t > tmax */
+#define ROGUE_ANY_NAN 4        /* no hits, but any_hit reports t = NaN */
+#define ROGUE_OVERFLOW 6       /* claims more hits than the list can hold */
+#define ROGUE_TINY_NORMAL 7    /* a hit at t = 2 with normal (0, 0, 1e-200) */
+#define ROGUE_HUGE_NORMAL 8    /* a hit at t = 2 with normal (0, 0, 1e300) */
+#define ROGUE_SHRINK 9         /* lowers out->count below where it started */
+
+typedef struct rogue {
+    int mode;
+} rogue;
+
+static const hr_param_spec rogue_params[] = {
+    {"mode", HR_PARAM_NUMBER, 1, 0, 0, 100, "which rule to break"},
+};
+
+static hr_status rogue_create(const hr_create_args *a, void **out)
+{
+    rogue *r = a->host->alloc(sizeof *r);
+    if (!r) return HR_ERROR_OUT_OF_MEMORY;
+    r->mode = (int)a->params[0].number;
+    *out = r;
+    return HR_OK;
+}
+
+static void rogue_destroy(void *shape) { free(shape); }
+
+static void unbounded(const void *shape, hr_bounds *b)
+{
+    (void)shape;
+    b->lo = (hr_vec3){-INFINITY, -INFINITY, -INFINITY};
+    b->hi = (hr_vec3){INFINITY, INFINITY, INFINITY};
+}
+
+static void put(const hr_hit_args *a, double t, hr_vec3 normal)
+{
+    hr_hit *h = &a->out->hits[a->out->count++];
+    memset(h, 0, sizeof *h);
+    h->t = t;
+    h->point = (hr_vec3){a->ray.origin.x + t * a->ray.dir.x, a->ray.origin.y + t * a->ray.dir.y,
+                         a->ray.origin.z + t * a->ray.dir.z};
+    h->normal = normal;
+    h->entering = 1;
+}
+
+static hr_status rogue_hit(const hr_hit_args *a)
+{
+    const rogue *r = a->shape;
+    hr_vec3 up = {0, 0, 1};
+    switch (r->mode) {
+    case ROGUE_UNSORTED:
+        put(a, 3, up);
+        put(a, 1, up);
+        break;
+    case ROGUE_OUT_OF_RANGE:
+        put(a, a->tmin - 1, up);
+        put(a, 2, up);
+        break;
+    case ROGUE_OVERFLOW:
+        /* Writes nothing, but says it wrote far past the capacity. */
+        a->out->count = a->out->capacity + 100;
+        break;
+    case ROGUE_TINY_NORMAL: put(a, 2, (hr_vec3){0, 0, 1e-200}); break;
+    case ROGUE_HUGE_NORMAL: put(a, 2, (hr_vec3){0, 0, 1e300}); break;
+    case ROGUE_SHRINK: a->out->count = -5; break;
+    default: break;
+    }
+    return HR_OK;
+}
+
+static hr_status rogue_any(const hr_hit_args *a)
+{
+    const rogue *r = a->shape;
+    if (r->mode == ROGUE_ANY_BEYOND) put(a, a->tmax + 1, (hr_vec3){0, 0, 1});
+    else if (r->mode == ROGUE_ANY_NAN) put(a, NAN, (hr_vec3){0, 0, 1});
+    else return rogue_hit(a);
+    return HR_OK;
+}
+
+static const hr_shape_class rogue_class = {
+    sizeof(hr_shape_class), 0, "rogue", "breaks the shape contract on purpose",
+    rogue_params, 1, 1, rogue_create, rogue_destroy, unbounded, rogue_hit, NULL, rogue_any,
+};
+
+/* A composite that makes a hit of its own and leaves `object` naming no
+ * object of the scene (the contract says modules leave it alone). */
+static hr_status composite_create(const hr_create_args *a, void **out)
+{
+    *out = a->host->alloc(1);
+    return *out ? HR_OK : HR_ERROR_OUT_OF_MEMORY;
+}
+
+static hr_status composite_hit(const hr_hit_args *a)
+{
+    put(a, 2, (hr_vec3){0, 0, 1});
+    a->out->hits[a->out->count - 1].object = (int64_t)1 << 40;
+    return HR_OK;
+}
+
+static const hr_shape_class composite_class = {
+    sizeof(hr_shape_class), HR_SHAPE_COMPOSITE, "rogueComposite", "names a leaf that is not there",
+    NULL, 0, 1, composite_create, rogue_destroy, unbounded, composite_hit, NULL, NULL,
+};
+
+static hr_scene *rogue_scene(int mode, const hr_transform *t)
+{
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    hr_param p = {"mode", HR_PARAM_NUMBER, 0, mode, NULL, 0};
+    hr_object_desc d = {0};
+    d.struct_size = sizeof d;
+    d.shape = "rogue";
+    d.param_count = 1;
+    d.params = &p;
+    d.transform = t ? t->m : NULL;
+    d.inverse = t ? t->inv : NULL;
+    CHECK_OK(hr_scene_add_object(s, &d, NULL));
+    return s;
+}
+
+static const hr_ray down = {{0, 0, 5}, {0, 0, -1}};
+
+/* getFirstHit is the nearest hit even when the class lists hits out of
+ * order (it has no first_hit, so the host asks `hit` for everything). */
+static void unsorted_hits(void)
+{
+    hr_scene *s = rogue_scene(ROGUE_UNSORTED, NULL);
+    CHECK_OK(hr_scene_commit(s));
+    hr_hit h;
+    int32_t found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    CHECK(found == 1);
+    CHECK_MSG(h.t == 1.0, "first hit at t = %g, expected 1", h.t);
+    hr_intersection all;
+    hr_intersection_init(&all);
+    CHECK_OK(hr_scene_all_hits(s, &down, 0, INFINITY, &all));
+    CHECK(all.count == 2 && all.hits[0].t == 1.0 && all.hits[1].t == 3.0);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
+/* A hit before tmin is dropped, and the valid hit after it still counts. */
+static void out_of_range_first(void)
+{
+    hr_scene *s = rogue_scene(ROGUE_OUT_OF_RANGE, NULL);
+    CHECK_OK(hr_scene_commit(s));
+    hr_hit h;
+    int32_t found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    CHECK_MSG(found == 1 && h.t == 2.0, "found %d at t = %g, expected the hit at t = 2",
+              (int)found, found ? h.t : NAN);
+    hr_scene_destroy(s);
+}
+
+/* A shadow ray is blocked only by a hit strictly between the point and the
+ * light: an any_hit answer beyond the light or NaN blocks nothing. */
+static void any_hit_outside(int mode)
+{
+    hr_scene *s = rogue_scene(mode, NULL);
+    hr_material white = tb_black();
+    white.diffuse = (hr_color){1, 1, 1};
+    CHECK(tb_add(s, "sphere", &white, NULL) >= 0);
+    tb_light(s, 0, 0, 10, 1, 1, 1);
+    tb_dark_globals(s, 0);
+    CHECK_OK(hr_scene_commit(s));
+    hr_color c;
+    CHECK_OK(hr_scene_shade(s, &down, -1, &c));
+    /* The sphere's top faces the light head on: diffuse 1 * light 1. */
+    CHECK_MSG(fabs(c.r - 1.0) < 1e-9, "mode %d: colour %g, expected 1 (lit)", mode, c.r);
+    hr_scene_destroy(s);
+}
+
+/* More hits than the room given (without host->reserve): the host reports
+ * the module's failure instead of reading past the list. */
+static void overflowing_count(int mode)
+{
+    hr_scene *s = rogue_scene(mode, NULL);
+    CHECK_OK(hr_scene_commit(s));
+    hr_hit h;
+    int32_t found = 0;
+    hr_status st = hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found);
+    CHECK_MSG(st != HR_OK && found == 0, "mode %d: first hit returned %d, found %d", mode, (int)st,
+              (int)found);
+    hr_intersection all;
+    hr_intersection_init(&all);
+    st = hr_scene_all_hits(s, &down, 0, INFINITY, &all);
+    CHECK_MSG(st != HR_OK && all.count == 0, "mode %d: all hits returned %d, count %d", mode,
+              (int)st, (int)all.count);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
+/* Normals of any non-zero length are allowed from a shape; the world normal
+ * of a hit is unit length and finite, through any transform. */
+static void extreme_normals(void)
+{
+    hr_scene *s = rogue_scene(ROGUE_TINY_NORMAL, NULL);
+    CHECK_OK(hr_scene_commit(s));
+    hr_hit h;
+    int32_t found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    CHECK(found == 1);
+    CHECK_MSG(fabs(h.normal.z - 1.0) < 1e-15, "tiny normal came back as (%g %g %g)", h.normal.x,
+              h.normal.y, h.normal.z);
+    hr_scene_destroy(s);
+
+    /* Squashed along z: M^-T scales the object normal's z by 1e10. */
+    hr_transform t;
+    hr_transform_identity(&t);
+    CHECK_OK(hr_transform_scale(&t, 1, 1, 1e-10));
+    s = rogue_scene(ROGUE_HUGE_NORMAL, &t);
+    CHECK_OK(hr_scene_commit(s));
+    found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    CHECK(found == 1);
+    CHECK_MSG(fabs(h.normal.z - 1.0) < 1e-15, "huge normal came back as (%g %g %g)", h.normal.x,
+              h.normal.y, h.normal.z);
+    hr_intersection all;
+    hr_intersection_init(&all);
+    CHECK_OK(hr_scene_all_hits(s, &down, 0, INFINITY, &all));
+    CHECK(all.count == 1 && fabs(all.hits[0].normal.z - 1.0) < 1e-15);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
+/* A committed scene with no objects: every query answers "nothing". */
+static void empty_scene(void)
+{
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    CHECK_OK(hr_scene_commit(s));
+    hr_intersection all;
+    hr_intersection_init(&all);
+    CHECK_OK(hr_scene_all_hits(s, &down, 0, INFINITY, &all));
+    CHECK(all.count == 0);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
+/* A composite's hit naming an object the scene does not have is the
+ * composite's own hit: it never indexes past the object list. */
+static void composite_bad_leaf(void)
+{
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    hr_object_desc d = {0};
+    d.struct_size = sizeof d;
+    d.shape = "rogueComposite";
+    int64_t index = -1;
+    CHECK_OK(hr_scene_add_object(s, &d, &index));
+    CHECK_OK(hr_scene_commit(s));
+    hr_hit h;
+    int32_t found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    CHECK(found == 1);
+    CHECK_MSG(h.object == index, "hit names object %lld, the scene has %lld", (long long)h.object,
+              (long long)hr_scene_object_count(s));
+    hr_intersection all;
+    hr_intersection_init(&all);
+    CHECK_OK(hr_scene_all_hits(s, &down, 0, INFINITY, &all));
+    CHECK(all.count == 1 && all.hits[0].object == index);
+    hr_intersection_release(&all);
+    /* Shading looks the object up: this must not read past the list. */
+    hr_color c;
+    CHECK_OK(hr_scene_shade(s, &down, -1, &c));
+    CHECK(isfinite(c.r) && isfinite(c.g) && isfinite(c.b));
+    hr_scene_destroy(s);
+}
+
+int main(void)
+{
+    CHECK_OK(hr_context_create(&ctx));
+    CHECK_OK(hr_context_register_shape_class(ctx, &rogue_class, "test_rogue_shapes.c"));
+    CHECK_OK(hr_context_register_shape_class(ctx, &composite_class, "test_rogue_shapes.c"));
+    empty_scene();
+    unsorted_hits();
+    out_of_range_first();
+    any_hit_outside(ROGUE_ANY_BEYOND);
+    any_hit_outside(ROGUE_ANY_NAN);
+    overflowing_count(ROGUE_OVERFLOW);
+    overflowing_count(ROGUE_SHRINK);
+    extreme_normals();
+    composite_bad_leaf();
+    hr_context_destroy(ctx);
+    return hr_test_end();
+}
