@@ -36,9 +36,10 @@ static double area(const hr_bounds *b)
 
 static double axis_of(const hr_vec3 *v, int axis) { return axis == 0 ? v->x : axis == 1 ? v->y : v->z; }
 
+/* Halves first: lo + hi overflows for boxes near +-DBL_MAX. */
 static double centroid(const hr_bounds *b, int axis)
 {
-    return 0.5 * (axis_of(&b->lo, axis) + axis_of(&b->hi, axis));
+    return 0.5 * axis_of(&b->lo, axis) + 0.5 * axis_of(&b->hi, axis);
 }
 
 typedef struct builder {
@@ -60,7 +61,7 @@ static int bin_of(double c, double lo, double scale)
     return i < 0 ? 0 : i >= BINS ? BINS - 1 : i;
 }
 
-static void build(builder *b, int32_t node, int32_t first, int32_t count)
+static void build(builder *b, int32_t node, int32_t first, int32_t count, int32_t depth)
 {
     hr_bvh *bvh = b->bvh;
     int32_t *items = bvh->items;
@@ -82,8 +83,9 @@ static void build(builder *b, int32_t node, int32_t first, int32_t count)
     int best_axis = -1, best_split = 0;
     for (int axis = 0; axis < 3; axis++) {
         double lo = axis_of(&cbox.lo, axis), hi = axis_of(&cbox.hi, axis);
-        if (!(hi > lo)) continue;
         double scale = BINS / (hi - lo);
+        /* A subnormal spread gives an infinite scale: no binning possible. */
+        if (!(hi > lo) || !isfinite(scale)) continue;
         hr_bounds bin_box[BINS];
         int32_t bin_count[BINS] = {0};
         for (int k = 0; k < BINS; k++) bin_box[k] = empty_box();
@@ -117,9 +119,13 @@ static void build(builder *b, int32_t node, int32_t first, int32_t count)
     double leaf_cost = (double)count;
     double split_cost = parent_area > 0 ? TRAVERSAL_COST + best_cost / parent_area : DBL_MAX;
     int32_t mid;
-    if (best_axis < 0) {
-        /* All centroids coincide: split in the middle to bound leaf size. */
-        if (count <= MAX_LEAF) return;
+    if (best_axis < 0 || depth >= HR_BVH_SAH_DEPTH) {
+        /* All centroids coincide, or SAH has gone deep (geometric spacing
+         * can make it split one item off at a time): halve the range, which
+         * bounds the rest of the tree to log2(count) levels, so the whole
+         * tree stays within HR_BVH_MAX_DEPTH. */
+        if (count <= MAX_LEAF && best_axis < 0) return;
+        if (count <= 1) return;
         mid = first + count / 2;
     } else {
         if (count <= MAX_LEAF && leaf_cost <= split_cost) return;
@@ -142,8 +148,8 @@ static void build(builder *b, int32_t node, int32_t first, int32_t count)
     if (left < 0 || right < 0) return;
     bvh->nodes[node].first = left;
     bvh->nodes[node].count = 0;
-    build(b, left, first, mid - first);
-    build(b, right, mid, first + count - mid);
+    build(b, left, first, mid - first, depth + 1);
+    build(b, right, mid, first + count - mid, depth + 1);
 }
 
 int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count)
@@ -160,7 +166,7 @@ int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count)
     for (int32_t i = 0; i < count; i++) bvh->items[i] = i;
     bvh->item_count = count;
     bvh->node_count = 1;
-    build(&b, 0, 0, count);
+    build(&b, 0, 0, count, 0);
     return 1;
 }
 

@@ -4,6 +4,12 @@
 
 #include <hitray/common.h>
 
+/* SAH splits down to this depth, halving below it; with at most 2^31 items
+ * the tree is at most HR_BVH_MAX_DEPTH levels deep, which sizes the
+ * traversal stack (two entries per level). */
+#define HR_BVH_SAH_DEPTH 64
+#define HR_BVH_MAX_DEPTH (HR_BVH_SAH_DEPTH + 32)
+
 typedef struct hr_bvh_node {
     hr_bounds box;
     int32_t first; /* leaf: first item in `items`; inner: index of left child */

@@ -106,6 +106,20 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         args.ray.origin = hr_transform_point(obj->inv, ray->origin);
         args.ray.dir = hr_transform_vector(obj->inv, ray->dir);
     }
+    /* A direction whose squared length would under- or overflow (a sphere
+     * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
+     * unit length by a power of two, 2^-e, and t scaled by 2^e: exact both
+     * ways, so every shape sees a well-scaled ray and no shape needs its own
+     * guard. Normal rays skip this with one comparison. */
+    int t_exp = 0;
+    double big = fmax(fabs(args.ray.dir.x), fmax(fabs(args.ray.dir.y), fabs(args.ray.dir.z)));
+    if (big < 0x1p-200 || big > 0x1p200) {
+        frexp(big, &t_exp);
+        args.ray.dir = v3(ldexp(args.ray.dir.x, -t_exp), ldexp(args.ray.dir.y, -t_exp),
+                          ldexp(args.ray.dir.z, -t_exp));
+        tmin = ldexp(tmin, t_exp);
+        tmax = ldexp(tmax, t_exp);
+    }
     args.tmin = tmin;
     args.tmax = tmax;
     args.out = out;
@@ -135,6 +149,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
          * answers carry only t. */
         if (!(h.t > tmin && h.t < tmax)) continue;
+        h.t = ldexp(h.t, -t_exp);
         if (mode == HR_TRACE_ANY) {
             out->hits[start] = h;
             out->count = start + 1;
@@ -172,7 +187,9 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
 
 /* --- Whole-scene queries ------------------------------------------------- */
 
-#define BVH_STACK 128
+/* Each level pops one node and pushes at most two, so the stack never holds
+ * more than depth + 1 entries. */
+#define BVH_STACK (HR_BVH_MAX_DEPTH + 2)
 
 typedef struct first_state {
     hr_trace_ctx *tc;
@@ -209,12 +226,16 @@ static void traverse(first_state *fs)
     hr_bvh_ray br;
     hr_bvh_ray_init(&br, fs->ray);
     int32_t stack[BVH_STACK];
+    double entry[BVH_STACK]; /* where the ray enters each stacked box */
     int32_t top = 0;
     double t;
     if (!hr_bvh_ray_box(&br, &s->bvh.nodes[0].box, fs->tmin, fs->best, &t)) return;
-    stack[top++] = 0;
+    stack[top] = 0, entry[top++] = t;
     while (top > 0) {
-        const hr_bvh_node *n = &s->bvh.nodes[stack[--top]];
+        --top;
+        /* The best hit may have come nearer since this box was pushed. */
+        if (entry[top] > fs->best) continue;
+        const hr_bvh_node *n = &s->bvh.nodes[stack[top]];
         if (n->count > 0) {
             for (int32_t i = 0; i < n->count; i++)
                 if (visit_object(fs, s->objects[s->bvh.items[n->first + i]])) return;
@@ -223,22 +244,15 @@ static void traverse(first_state *fs)
         double tl, tr;
         int hl = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first].box, fs->tmin, fs->best, &tl);
         int hr = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first + 1].box, fs->tmin, fs->best, &tr);
-        if (top + 2 > BVH_STACK) { /* deeper than any SAH tree we build; stay safe */
-            for (int32_t i = 0; i < s->object_count; i++)
-                if (s->objects[i]->top_level && s->objects[i]->bounded &&
-                    visit_object(fs, s->objects[i]))
-                    return;
-            return;
-        }
         /* Push the far child first so the near one is visited first. */
         if (hl && hr) {
             int near_left = tl <= tr;
-            stack[top++] = n->first + (near_left ? 1 : 0);
-            stack[top++] = n->first + (near_left ? 0 : 1);
+            stack[top] = n->first + (near_left ? 1 : 0), entry[top++] = near_left ? tr : tl;
+            stack[top] = n->first + (near_left ? 0 : 1), entry[top++] = near_left ? tl : tr;
         } else if (hl) {
-            stack[top++] = n->first;
+            stack[top] = n->first, entry[top++] = tl;
         } else if (hr) {
-            stack[top++] = n->first + 1;
+            stack[top] = n->first + 1, entry[top++] = tr;
         }
     }
 }

@@ -133,14 +133,26 @@ HR_API hr_status hr_transform_from_matrix(hr_transform *t, const double m[16])
                 i = m[10];
     long double A = e * i - f * h, B = -(d * i - f * g), C = d * h - e * g;
     long double det = a * A + b * B + c * C;
-    long double scale = 0;
-    for (int k = 0; k < 12; k++)
-        if (k % 4 != 3 && fabsl((long double)m[k]) > scale) scale = fabsl((long double)m[k]);
-    /* Singular relative to the matrix's own size: the inverse would be noise. */
-    if (scale == 0 || fabsl(det) <= scale * scale * scale * 1e-14L) return HR_ERROR_NUMERIC;
+    if (det == 0 || !isfinite(det)) return HR_ERROR_NUMERIC;
     long double inv3[9] = {A / det, -(b * i - c * h) / det, (b * f - c * e) / det,
                            B / det, (a * i - c * g) / det,  -(a * f - c * d) / det,
                            C / det, -(a * h - b * g) / det, (a * e - b * d) / det};
+    /* Refuse what is singular in practice, judged by the condition number
+     * ||A|| ||A^-1|| (max-row-sum norms), not by the determinant: diag(1e6,
+     * 1e-6, 1) is perfectly invertible with det 1e0 while a scaled rotation
+     * may have a tiny one. Past 1e15 (eps * cond > 0.1) the inverse carries
+     * no correct digit. */
+    long double norm = 0, norm_inv = 0;
+    for (int r = 0; r < 3; r++) {
+        long double row = 0, row_inv = 0;
+        for (int k = 0; k < 3; k++) {
+            row += fabsl((long double)m[4 * r + k]);
+            row_inv += fabsl(inv3[3 * r + k]);
+        }
+        if (row > norm) norm = row;
+        if (row_inv > norm_inv) norm_inv = row_inv;
+    }
+    if (!(norm * norm_inv <= 1e15L)) return HR_ERROR_NUMERIC;
     double inv[16];
     for (int r = 0; r < 3; r++) {
         long double tr = 0;

@@ -19,6 +19,8 @@ extern "C" {
  * to the libhitray file itself (so a build tree and an installed tree both
  * work without setup). The first module that provides a class name wins. */
 HR_API hr_status hr_context_create(hr_context **out);
+/* Destroy a context no other thread is using. The calling thread's error
+ * message is freed here; another thread's is freed when that thread exits. */
 HR_API void hr_context_destroy(hr_context *ctx);
 
 /* The message of the calling thread's last error on this context ("" if
@@ -36,7 +38,9 @@ typedef struct hr_error_info {
 } hr_error_info;
 HR_API hr_status hr_context_last_error_info(const hr_context *ctx, hr_error_info *out);
 
-/* Called with every error as it is raised (from the thread that raised it). */
+/* Called with every error as it is raised (from the thread that raised it;
+ * it may call back into the context). Set it before the context is shared
+ * between threads: the setting itself is not synchronised. */
 typedef void (*hr_error_fn)(void *user, hr_status status, const char *message);
 HR_API void hr_context_set_error_callback(hr_context *ctx, hr_error_fn fn, void *user);
 

@@ -166,9 +166,41 @@ static void several(void)
     hr_scene_destroy(s);
 }
 
+/* Objects scaled to the ends of the double range: the object-space
+ * direction is ~1e300 or ~1e-160 long, so a shape's d.d would overflow or go
+ * subnormal. The host rescales it by a power of two; t comes back exact.
+ * References: a sphere of radius r at the origin, ray from z = -10 r along
+ * +z, meets it at t = 9 r and 11 r (r * 9 is one rounding: 1 ulp). */
+static void extreme_scales(void)
+{
+    const double radii[3] = {1e-300, 1e160, 0x1p-1000};
+    for (int i = 0; i < 3; i++) {
+        double r = radii[i];
+        hr_scene *s = new_scene();
+        hr_transform t;
+        hr_transform_identity(&t);
+        CHECK_OK(hr_transform_scale(&t, r, r, r));
+        add(s, "sphere", &t);
+        CHECK_OK(hr_scene_commit(s));
+        hr_ray ray = {{0, 0, -10 * r}, {0, 0, 1}};
+        hr_intersection all;
+        hr_intersection_init(&all);
+        CHECK_OK(hr_scene_all_hits(s, &ray, 0, INFINITY, &all));
+        CHECK_MSG(all.count == 2, "radius %g: %d hits", r, (int)all.count);
+        if (all.count == 2) {
+            CHECK_MSG(hr_test_ulps(all.hits[0].t, 9 * r) <= 4, "radius %g: t0 %.17g", r, all.hits[0].t);
+            CHECK_MSG(hr_test_ulps(all.hits[1].t, 11 * r) <= 4, "radius %g: t1 %.17g", r, all.hits[1].t);
+            CHECK_NEAR(all.hits[0].normal.z, -1, 1e-15);
+        }
+        hr_intersection_release(&all);
+        hr_scene_destroy(s);
+    }
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
+    extreme_scales();
     plane_example();
     ellipsoid();
     rotated_scaled();

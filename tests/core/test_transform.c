@@ -65,6 +65,13 @@ int main(void)
     CHECK(hr_transform_rotate(&t, 10, 0, 0, 0) == HR_ERROR_NUMERIC);
     const double singular[16] = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     CHECK(hr_transform_from_matrix(&u, singular) == HR_ERROR_NUMERIC);
+    /* Badly scaled is not singular: diag(1e6, 1e-6, 1) has condition 1e12
+     * and an exact inverse; a matrix with two rows equal to 1e-16 is. */
+    const double skewed[16] = {1e6, 0, 0, 0, 0, 1e-6, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    CHECK_OK(hr_transform_from_matrix(&u, skewed));
+    CHECK(u.inv[0] == 1e-6 && u.inv[5] == 1e6 && u.inv[10] == 1);
+    const double nearly[16] = {1, 1, 0, 0, 1, 1 + 0x1p-52, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    CHECK(hr_transform_from_matrix(&u, nearly) == HR_ERROR_NUMERIC);
     const double projective[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1};
     CHECK(hr_transform_from_matrix(&u, projective) == HR_ERROR_NUMERIC);
     return hr_test_end();
