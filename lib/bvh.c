@@ -189,25 +189,28 @@ void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray)
 }
 
 /* Slab test. A zero direction component gives infinite slab distances; the
- * only NaN case (origin exactly on a slab plane, 0 * inf) is replaced by the
- * answer the limit gives: the ray runs inside that slab. The far distance is
+ * only NaN case (origin exactly on a slab plane, 0 * inf) must read as "the
+ * ray runs inside that slab", and the comparisons below are written so a NaN
+ * leaves the running bound as it was: exactly that. The far distance is
  * widened by 1 + 2*gamma(3) (pbrt) so rounding never loses a box the ray
  * touches. */
+#define WIDEN (1.0 + 2.0 * (3.0 * DBL_EPSILON * 0.5) / (1.0 - 3.0 * DBL_EPSILON * 0.5))
+#define SLAB(axis, lo_v, hi_v)                                                 \
+    do {                                                                       \
+        double near = ((r->neg[axis] ? (hi_v) : (lo_v)) - r->o[axis]) * r->inv_d[axis]; \
+        double far = ((r->neg[axis] ? (lo_v) : (hi_v)) - r->o[axis]) * r->inv_d[axis];  \
+        far += fabs(far) * (WIDEN - 1.0);                                      \
+        if (near > tmin) tmin = near;                                          \
+        if (far < tmax) tmax = far;                                            \
+    } while (0)
+
 int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double tmin, double tmax,
                    double *t_enter)
 {
-    const double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z};
-    const double widen = 1.0 + 2.0 * (3.0 * DBL_EPSILON * 0.5) / (1.0 - 3.0 * DBL_EPSILON * 0.5);
-    for (int a = 0; a < 3; a++) {
-        double near = ((r->neg[a] ? hi[a] : lo[a]) - r->o[a]) * r->inv_d[a];
-        double far = ((r->neg[a] ? lo[a] : hi[a]) - r->o[a]) * r->inv_d[a];
-        if (isnan(near)) near = -INFINITY;
-        if (isnan(far)) far = INFINITY;
-        far += fabs(far) * (widen - 1.0);
-        if (near > tmin) tmin = near;
-        if (far < tmax) tmax = far;
-        if (tmin > tmax) return 0;
-    }
+    SLAB(0, b->lo.x, b->hi.x);
+    SLAB(1, b->lo.y, b->hi.y);
+    SLAB(2, b->lo.z, b->hi.z);
+    if (!(tmin <= tmax)) return 0;
     *t_enter = tmin;
     return 1;
 }

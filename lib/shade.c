@@ -27,8 +27,8 @@
 static hr_vec3 spawn_origin(const hr_hit *h, hr_vec3 side)
 {
     hr_vec3 p = h->point;
-    double mag = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
-    double err = fmax(h->error, 8.0 * DBL_EPSILON * mag);
+    double floor_err = 8.0 * DBL_EPSILON * v3_max_abs(p);
+    double err = h->error > floor_err ? h->error : floor_err;
     double d = err * (fabs(side.x) + fabs(side.y) + fabs(side.z));
     hr_vec3 o = v3_madd(p, side, d);
     /* Round away from the surface so the offset survives the addition. */

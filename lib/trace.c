@@ -62,16 +62,6 @@ static void sort_from(hr_intersection *list, int32_t start)
     }
 }
 
-/* Scale v by a power of two (exact) so its largest component is in
- * [0.5, 1); the zero vector and non-finite ones are left alone. */
-static hr_vec3 rescale(hr_vec3 v)
-{
-    double big = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-    if (!(big > 0.0) || !isfinite(big)) return v;
-    int e;
-    frexp(big, &e);
-    return v3(ldexp(v.x, -e), ldexp(v.y, -e), ldexp(v.z, -e));
-}
 
 /* Error of a point after p' = M p: |M| e (error carried through) plus the
  * rounding of the product, gamma(3) (|M| |p| + |translation|) per row. */
@@ -111,12 +101,9 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
      * unit length by a power of two, 2^-e, and t scaled by 2^e: exact both
      * ways, so every shape sees a well-scaled ray and no shape needs its own
      * guard. Normal rays skip this with one comparison. */
-    int t_exp = 0;
-    double big = fmax(fabs(args.ray.dir.x), fmax(fabs(args.ray.dir.y), fabs(args.ray.dir.z)));
-    if (big < 0x1p-200 || big > 0x1p200) {
-        frexp(big, &t_exp);
-        args.ray.dir = v3(ldexp(args.ray.dir.x, -t_exp), ldexp(args.ray.dir.y, -t_exp),
-                          ldexp(args.ray.dir.z, -t_exp));
+    int t_exp = v3_rescale_exponent(args.ray.dir);
+    if (t_exp) {
+        args.ray.dir = v3_ldexp(args.ray.dir, -t_exp);
         tmin = ldexp(tmin, t_exp);
         tmax = ldexp(tmax, t_exp);
     }
@@ -163,11 +150,12 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         /* Normals may have any non-zero length: bring them to a safe scale
          * (exactly, by a power of two) before and after the transform, so
          * neither M^-T nor normalising overflows or underflows. */
-        h.normal = rescale(h.normal);
+        h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
             h.error = transformed_error(obj->m, h.point, h.error);
             h.point = hr_transform_point(obj->m, h.point);
-            h.normal = rescale(hr_transform_normal(obj->inv, h.normal));
+            h.normal = hr_transform_normal(obj->inv, h.normal);
+            h.normal = v3_unit_exponent(h.normal);
             if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
         }
         if (unit_normals) h.normal = v3_normalize(h.normal);
@@ -374,7 +362,7 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
     /* The colour does not depend on the direction's length, but shapes and
      * shade's normalising square it: bring it near 1 (exactly, by a power
      * of two) so any finite length works, as the header promises. */
-    hr_ray r = {ray->origin, rescale(ray->dir)};
+    hr_ray r = {ray->origin, v3_unit_exponent(ray->dir)};
     *out = hr_shade_ray(&tc, &r, 0, depth);
     return finish_query(&tc);
 }

@@ -3,6 +3,8 @@
 #define HITRAY_LIB_VEC_H
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include <hitray/common.h>
 
@@ -32,6 +34,51 @@ static inline hr_vec3 v3_madd(hr_vec3 a, hr_vec3 b, double s)
     return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s);
 }
 static inline int v3_is_finite(hr_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+/* Largest |component| (inline: fmax is a libm call on the hot path). */
+static inline double v3_max_abs(hr_vec3 a)
+{
+    double x = fabs(a.x), y = fabs(a.y), z = fabs(a.z);
+    double m = x > y ? x : y;
+    return m > z ? m : z;
+}
+/* The power of two e such that a * 2^-e is near unit length, for a vector
+ * whose squared length would under- or overflow (a component beyond
+ * 2^+-200); 0 for every other vector, zero, inf and NaN included. Scaling
+ * by 2^-e is exact. */
+static inline int v3_rescale_exponent(hr_vec3 a)
+{
+    double big = v3_max_abs(a);
+    if (!(big < 0x1p-200 || big > 0x1p200) || !(big > 0.0) || !isfinite(big)) return 0;
+    int e;
+    frexp(big, &e);
+    return e;
+}
+static inline hr_vec3 v3_ldexp(hr_vec3 a, int e)
+{
+    return e ? v3(ldexp(a.x, e), ldexp(a.y, e), ldexp(a.z, e)) : a;
+}
+/* a scaled by a power of two so its largest |component| is in [1, 2):
+ * exact, for normals of any length before and after a transform, so neither
+ * M^-T nor normalising can overflow or underflow. The factor is built from
+ * the exponent bits (no libm call on the hot path); zero, subnormal,
+ * infinite and NaN inputs take the slow path or stay as they are. */
+static inline hr_vec3 v3_unit_exponent(hr_vec3 a)
+{
+    double big = v3_max_abs(a);
+    uint64_t bits;
+    memcpy(&bits, &big, sizeof bits);
+    int biased = (int)((bits >> 52) & 0x7ff);
+    if (biased == 0x7ff || !(big > 0.0)) return a;
+    if (biased == 0 || biased >= 2046) {
+        int e;
+        frexp(big, &e);
+        return v3_ldexp(a, 1 - e);
+    }
+    uint64_t factor_bits = (uint64_t)(2046 - biased) << 52; /* 2^(1023 - biased) */
+    double factor;
+    memcpy(&factor, &factor_bits, sizeof factor);
+    return v3_scale(a, factor);
+}
 
 static inline hr_color rgb(double r, double g, double b)
 {
