@@ -1,4 +1,5 @@
 /* Option parsing and error reporting for the `hitray` verbs (cli.h). */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -75,6 +76,12 @@ int cli_next(cli_parser *p, const char **name, const char **value)
         return CLI_BAD;
     }
     *name = o->name;
+    unsigned long bit = 1ul << (o - p->options);
+    if (p->seen & bit) {
+        cli_error("%s: option %s given twice", p->verb, o->name);
+        return CLI_BAD;
+    }
+    p->seen |= bit;
     if (!o->takes_value) {
         if (equals) {
             cli_error("%s: option %s takes no value", p->verb, o->name);
@@ -119,7 +126,7 @@ static int parse_double(const char *text, const char **end, double *out)
     double v = strtod(text, &stop);
     /* strtod skips leading blanks and accepts "nan" and "inf": neither is a
      * coordinate anyone means. */
-    if (stop == text || text[0] == ' ' || text[0] == '\t' || !isfinite(v) || errno == ERANGE) return 0;
+    if (stop == text || isspace((unsigned char)text[0]) || !isfinite(v) || errno == ERANGE) return 0;
     *end = stop;
     *out = v;
     return 1;

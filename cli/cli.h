@@ -43,6 +43,7 @@ typedef struct cli_parser {
     const char *verb;       /* for messages */
     const cli_option *options; /* ends with a zeroed entry */
     int only_positionals;   /* after "--" */
+    unsigned long seen;     /* bit i: options[i] was given (each at most once) */
 } cli_parser;
 
 #define CLI_END 0
@@ -53,7 +54,8 @@ typedef struct cli_parser {
 void cli_parser_init(cli_parser *p, int argc, char **argv, const cli_option *options);
 /* The next argument: an option (*name is its table name, *value its value
  * or NULL), a positional (*value), the end, or an error (reported). Accepts
- * "--name value", "--name=value" and "-o value". */
+ * "--name value", "--name=value" and "-o value"; an option given twice is
+ * an error. */
 int cli_next(cli_parser *p, const char **name, const char **value);
 
 /* Strict number parsing: the whole text must be the number. Each reports its
@@ -71,7 +73,10 @@ void json_number(FILE *f, double v);
 void json_vec3(FILE *f, hr_vec3 v);
 
 /* A progress bar on stderr, drawn only when stderr is a terminal
- * (progress.c). The callback also lets Ctrl-C stop a render cleanly. */
+ * (progress.c). The callback also lets Ctrl-C stop a render cleanly; the
+ * Ctrl-C handler cli_progress_begin installs stays until
+ * cli_interrupt_release, so that a Ctrl-C while the files are written lets
+ * them be finished instead of killing the process half way. */
 typedef struct cli_progress {
     int draw;       /* stderr is a terminal */
     int last_shown; /* per mille last drawn, -1 before the first */
@@ -80,6 +85,7 @@ typedef struct cli_progress {
 void cli_progress_begin(cli_progress *p);
 int32_t cli_progress_update(void *user, double fraction);
 void cli_progress_end(cli_progress *p);
+void cli_interrupt_release(void);
 /* 1 once SIGINT arrived during a render. */
 int cli_interrupted(void);
 double cli_now(void);

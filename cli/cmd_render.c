@@ -5,6 +5,7 @@
  * long render should not end in "cannot write". */
 #include <errno.h>
 #include <inttypes.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
@@ -68,9 +69,11 @@ static int has_image_extension(const char *path)
     return 0;
 }
 
-/* The directory a file would go to must exist and be writable. */
+/* The directory a file would go to must exist and be writable, and the
+ * name must be one a file can have there. */
 static int check_writable(const char *option, const char *path)
 {
+    if (!*path) return cli_error("%s: the file name is empty", option);
     char dir[4096];
     const char *slash = strrchr(path, '/');
     if (!slash) {
@@ -87,6 +90,15 @@ static int check_writable(const char *option, const char *path)
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
         return cli_error("cannot write '%s': no directory '%s'", path, dir);
     if (access(dir, W_OK) != 0) return cli_error("cannot write '%s': directory '%s' is not writable", path, dir);
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) return cli_error("cannot write '%s': it is a directory", path);
+    return 0;
+}
+
+/* Two outputs named alike would overwrite each other (by name only: two
+ * spellings of one path are not caught). */
+static int check_distinct(const char *option_a, const char *a, const char *option_b, const char *b)
+{
+    if (a && b && strcmp(a, b) == 0) return cli_error("render: %s and %s both name '%s'", option_a, option_b, a);
     return 0;
 }
 
@@ -140,6 +152,10 @@ static int parse_request(int argc, char **argv, render_request *r)
     if (check_writable("--output", r->output)) return PARSE_ERROR;
     if (r->exr_output && check_writable("--exr", r->exr_output)) return PARSE_ERROR;
     if (r->stats_json && check_writable("--stats-json", r->stats_json)) return PARSE_ERROR;
+    if (check_distinct("--output", r->output, "--exr", r->exr_output) ||
+        check_distinct("--output", r->output, "--stats-json", r->stats_json) ||
+        check_distinct("--exr", r->exr_output, "--stats-json", r->stats_json))
+        return PARSE_ERROR;
     return PARSE_OK;
 }
 
@@ -222,10 +238,29 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
     }
 }
 
+/* The statistics go to a temporary file beside the target that is renamed
+ * over it only once complete, as hr_image_write does with images: a failed
+ * write leaves whatever file was there before. check_writable has made sure
+ * the directory part is shorter than 4096 bytes. */
 static int write_stats_json(const render_request *r, const hr_render_stats *s)
 {
-    FILE *f = fopen(r->stats_json, "w");
-    if (!f) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
+    const char *slash = strrchr(r->stats_json, '/');
+    int dir_len = slash ? (int)(slash - r->stats_json) + 1 : 0;
+    char temp[4096 + 256];
+    snprintf(temp, sizeof temp, "%.*s.%.200s.XXXXXX", dir_len, r->stats_json, r->stats_json + dir_len);
+    struct stat st;
+    mode_t mask = umask(0); /* read it (nothing else runs now) */
+    umask(mask);
+    mode_t mode = stat(r->stats_json, &st) == 0 && S_ISREG(st.st_mode) ? st.st_mode & 07777 : 0666 & ~mask;
+    int fd = mkstemp(temp);
+    if (fd < 0) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
+    FILE *f = fchmod(fd, mode) == 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        int err = errno;
+        close(fd);
+        unlink(temp);
+        return cli_error("cannot write '%s': %s", r->stats_json, strerror(err));
+    }
     fprintf(f,
             "{\"primary\": %" PRIu64 ", \"shadow\": %" PRIu64 ", \"reflected\": %" PRIu64
             ", \"refracted\": %" PRIu64 ", \"seconds\": ",
@@ -235,9 +270,14 @@ static int write_stats_json(const render_request *r, const hr_render_stats *s)
     print_effects(f, s->effects, 1);
     fprintf(f, "], \"threads\": %d, \"width\": %d, \"height\": %d}\n", (int)s->threads, (int)r->width,
             (int)r->height);
-    int failed = ferror(f);
-    if (fclose(f) != 0) failed = 1;
-    if (failed) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
+    int failed = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
+    int err = errno;
+    if (fclose(f) != 0 && !failed) failed = 1, err = errno;
+    if (!failed && rename(temp, r->stats_json) != 0) failed = 1, err = errno;
+    if (failed) {
+        unlink(temp);
+        return cli_error("cannot write '%s': %s", r->stats_json, strerror(err));
+    }
     return 0;
 }
 
@@ -273,7 +313,7 @@ static int render_and_write(const render_request *r, cli_scene *s)
     if (rc) return rc;
     if (r->stats_json && write_stats_json(r, &stats)) return CLI_EXIT_ERROR;
     print_summary(r, &stats);
-    return CLI_EXIT_OK;
+    return fflush(stdout) == 0 ? CLI_EXIT_OK : cli_error("cannot write to standard output");
 }
 
 int cmd_render(int argc, char **argv)
@@ -284,6 +324,7 @@ int cmd_render(int argc, char **argv)
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : render_and_write(&r, &s);
+    cli_interrupt_release();
     cli_scene_free(&s);
     return rc;
 }

@@ -4,7 +4,10 @@
  * finish. The bar goes to stderr, and only when stderr is a terminal, so
  * logs and pipes get the summary line alone. The same callback turns a
  * first Ctrl-C into a clean cancel (hr_render returns HR_ERROR_CANCELLED and
- * no file is written); a second Ctrl-C kills the process as usual. */
+ * no file is written); a second Ctrl-C kills the process as usual. A
+ * Ctrl-C that comes after the render, while the files are being written, is
+ * held until they are complete (cli_interrupt_release): killing the process
+ * there would leave a temporary file behind. */
 #include <signal.h>
 #include <string.h>
 #include <time.h>
@@ -16,6 +19,7 @@
 
 static volatile sig_atomic_t interrupted;
 static struct sigaction previous_sigint;
+static int handler_installed;
 
 static void on_sigint(int signo)
 {
@@ -45,6 +49,9 @@ void cli_progress_begin(cli_progress *p)
     sigemptyset(&sa.sa_mask);
     interrupted = 0;
     sigaction(SIGINT, &sa, &previous_sigint);
+    handler_installed = 1;
+    /* Ignored when we started (a shell's background job): stay ignored. */
+    if (!(previous_sigint.sa_flags & SA_SIGINFO) && previous_sigint.sa_handler == SIG_IGN) cli_interrupt_release();
 }
 
 int32_t cli_progress_update(void *user, double fraction)
@@ -75,5 +82,11 @@ void cli_progress_end(cli_progress *p)
         fputs("\r\033[K", stderr); /* clear the bar's line */
         fflush(stderr);
     }
+}
+
+void cli_interrupt_release(void)
+{
+    if (!handler_installed) return;
     sigaction(SIGINT, &previous_sigint, NULL);
+    handler_installed = 0;
 }

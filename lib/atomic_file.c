@@ -40,6 +40,11 @@ static mode_t mode_for(const char *target)
     return (mode_t)0666 & ~current_umask();
 }
 
+/* The most of the target's name that goes into the temporary one: with the
+ * 8 bytes around it, a name of NAME_MAX (255) bytes still gets a temporary
+ * file (truncating a UTF-8 sequence in a hidden name is harmless). */
+#define TEMP_BASE_MAX 200
+
 /* "dir/.name.XXXXXX" for "dir/name": hidden, and in the same directory. */
 static char *temp_template(const char *target)
 {
@@ -47,9 +52,10 @@ static char *temp_template(const char *target)
     const char *base = slash ? slash + 1 : target;
     char *dir = hr_path_dirname(target);
     if (!dir) return NULL;
-    size_t n = strlen(dir) + strlen(base) + sizeof "/..XXXXXX";
+    size_t nb = strlen(base) < TEMP_BASE_MAX ? strlen(base) : TEMP_BASE_MAX;
+    size_t n = strlen(dir) + nb + sizeof "/..XXXXXX";
     char *templ = malloc(n);
-    if (templ) snprintf(templ, n, "%s/.%s.XXXXXX", dir, base);
+    if (templ) snprintf(templ, n, "%s/.%.*s.XXXXXX", dir, (int)nb, base);
     free(dir);
     return templ;
 }

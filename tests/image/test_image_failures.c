@@ -199,6 +199,28 @@ static void check_permissions(const char *dir)
     hr_image_destroy(image);
 }
 
+/* A name the filesystem accepts (up to 255 bytes) must be writable: the
+ * temporary file beside it may not need a longer name than the target. */
+static void check_longest_name(const char *dir)
+{
+    hr_image *image = fixture_image(ctx, 4, 4, 3, 0);
+    char name[256];
+    memset(name, 'n', 251);
+    memcpy(name + 251, ".png", 5); /* 255 bytes, NAME_MAX on Linux */
+    char path[4096];
+    fixture_format(path, sizeof path, "%s", fixture_path(dir, name));
+    hr_status st = hr_image_write(ctx, image, path, NULL);
+    CHECK_MSG(st == HR_OK, "a 255-byte name: %s", hr_context_last_error(ctx));
+    fixture_png png;
+    if (st == HR_OK && fixture_read_png(path, &png) == 0) {
+        CHECK(png.width == 4 && png.height == 4);
+        free(png.samples);
+    }
+    CHECK(fixture_count_entries(dir) == (st == HR_OK ? 1 : 0));
+    remove(path);
+    hr_image_destroy(image);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -210,6 +232,7 @@ int main(void)
     check_disk_full(dir);
     check_target_is_directory(dir);
     check_permissions(dir);
+    check_longest_name(dir);
     CHECK(fixture_count_entries(dir) == 0);
     hr_context_destroy(ctx);
     return hr_test_end();

@@ -413,6 +413,18 @@ def error_cases(tmp_path, scene):
         "hits four numbers": ["hits", scene, "--origin", "0,0,0,0", "--dir", "0,0,1"],
         "hits no such scene": ["hits", tmp_path / "absent.sdl", "--origin", "0,0,0", "--dir", "0,0,1"],
         "shapes extra argument": ["shapes", "sphere"],
+        "size twice": ["render", scene, "-o", out, "--size", "4x4", "--size", "8x8"],
+        "output twice": ["render", scene, "-o", out, "-o", tmp_path / "p.png", "--size", "4x4"],
+        "hits origin twice": ["hits", scene, "--origin", "0,0,9", "--origin", "0,0,5", "--dir", "0,0,-1"],
+        "empty exr name": ["render", scene, "-o", out, "--size", "4x4", "--exr", ""],
+        "empty stats name": ["render", scene, "-o", out, "--size", "4x4", "--stats-json", ""],
+        "exr is a directory": ["render", scene, "-o", out, "--size", "4x4", "--exr", directory_png],
+        "stats is a directory": ["render", scene, "-o", out, "--size", "4x4", "--stats-json", directory_png],
+        "stats over the image": ["render", scene, "-o", out, "--size", "4x4", "--stats-json", out],
+        "exr over the image": ["render", scene, "-o", tmp_path / "o.exr", "--size", "4x4",
+                               "--exr", tmp_path / "o.exr"],
+        "newline before a number": ["hits", scene, "--origin", "\n0,0,5", "--dir", "0,0,-1"],
+        "newline after a comma": ["hits", scene, "--origin", "0,\n0,5", "--dir", "0,0,-1"],
     }
 
 
@@ -441,3 +453,98 @@ def test_error_messages_say_what_is_wrong(tmp_path, scene):
     assert "bad.sdl:" in r.stderr  # file:line:col from the SDL reader
     r = run("render", scene, "-o", tmp_path / "no" / "o.png")
     assert str(tmp_path / "no") in r.stderr
+
+
+def test_stats_json_write_failure_keeps_the_old_file(scene, tmp_path):
+    """A --stats-json write that fails part way (the disk fills up) must
+    leave the file that was there before, not a truncated JSON object."""
+    import resource
+
+    stats = tmp_path / "stats.json"
+    stats.write_text('{"old": true}\n')
+
+    def small_files():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # write() fails with EFBIG instead
+        resource.setrlimit(resource.RLIMIT_FSIZE, (100, 100))  # the 2x2 PPM fits, the JSON not
+
+    r = subprocess.run([str(HITRAY), "render", str(scene), "-o", str(tmp_path / "o.ppm"), "--size", "2x2",
+                        "--stats-json", str(stats)], capture_output=True, text=True, preexec_fn=small_files,
+                       timeout=120)
+    assert r.returncode == 1, r.stderr
+    assert len(r.stderr.splitlines()) == 1 and str(stats) in r.stderr
+    assert stats.read_text() == '{"old": true}\n'
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["o.ppm", "scene.sdl", "stats.json"]
+
+
+def test_ctrl_c_while_writing_leaves_no_temporary_file(tmp_path):
+    """Ctrl-C after the render, while the (big, slow) PNG is being written,
+    must not kill the process between creating its temporary file and
+    renaming it: the write finishes, and nothing else is left behind."""
+    scene = write_sdl(tmp_path, "one.sdl", "light 3 3 3 1 1 1\nsphere\n")
+    out = tmp_path / "big.png"
+    master, slave = pty.openpty()
+    # One ray per 2048x2048 block: the render is instant, the 16-bit PNG is not.
+    proc = subprocess.Popen([str(HITRAY), "render", str(scene), "-o", str(out), "--size", "4096x4096",
+                             "--block", "2048", "--png16"], stdout=subprocess.PIPE, stderr=slave)
+    os.close(slave)
+    seen = b""
+    try:
+        deadline = time.monotonic() + 60
+        while b"\x1b[K" not in seen and time.monotonic() < deadline:  # the bar is cleared: writing
+            ready, _, _ = select.select([master], [], [], 1.0)
+            if ready:
+                try:
+                    seen += os.read(master, 4096)
+                except OSError:
+                    break
+        assert b"\x1b[K" in seen
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        os.close(master)
+    assert proc.returncode == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["big.png", "one.sdl"]
+    assert png_header(out)[:3] == (4096, 4096, 16)
+
+
+def test_ignored_sigint_stays_ignored(tmp_path):
+    """A shell starts background jobs with SIGINT ignored so that Ctrl-C at
+    the terminal leaves them running: the render must not be cancelled."""
+    out = tmp_path / "bg.png"
+    master, slave = pty.openpty()
+    proc = subprocess.Popen([str(HITRAY), "render", str(ROOT / "scenes" / "demo.sdl"), "-o", str(out),
+                             "--size", "256x256", "--spp", "16", "--threads", "2"],
+                            stdout=subprocess.PIPE, stderr=slave,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+    os.close(slave)
+    seen = b""
+    try:
+        deadline = time.monotonic() + 60
+        while b"rendering [" not in seen and time.monotonic() < deadline:
+            ready, _, _ = select.select([master], [], [], 1.0)
+            if ready:
+                try:
+                    seen += os.read(master, 4096)
+                except OSError:
+                    break
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        os.close(master)
+    assert proc.returncode == 0
+    assert png_header(out)[:2] == (256, 256)
+
+
+def test_render_summary_that_cannot_be_written_is_an_error(scene, tmp_path):
+    """Like hits and shapes: output lost to a full disk is not success."""
+    with open("/dev/full", "w") as full:
+        r = subprocess.run([str(HITRAY), "render", str(scene), "-o", str(tmp_path / "f.png"), "--size", "2x2"],
+                           stdout=full, stderr=subprocess.PIPE, text=True, timeout=120)
+    assert r.returncode == 1
+    assert len(r.stderr.splitlines()) == 1 and r.stderr.startswith("hitray: ")
