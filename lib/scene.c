@@ -92,6 +92,8 @@ static int color_in_range(hr_color c)
            fabs(c.b) <= HR_MAX_COLOR;
 }
 
+/* The checks on a full-size material; hr_material_validate is the public
+ * door, which first reads only the bytes the caller declared. */
 static hr_status check_material(hr_context *ctx, const hr_material *m)
 {
     static const struct {
@@ -128,6 +130,16 @@ static hr_status check_material(hr_context *ctx, const hr_material *m)
     if (m->parameter_count < 0 || (m->parameter_count > 0 && !m->parameters))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: bad texture parameter list");
     return HR_OK;
+}
+
+HR_API hr_status hr_material_validate(hr_context *ctx, const hr_material *m)
+{
+    if (!m || m->struct_size < sizeof(uint32_t))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: NULL or struct_size not set");
+    hr_material full;
+    hr_material_default(&full);
+    COPY_SIZED(&full, m);
+    return check_material(ctx, &full);
 }
 
 static int is_identity(const double m[16])

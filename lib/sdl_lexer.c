@@ -59,7 +59,8 @@ hr_status sdl_lex(const char *text, size_t length, sdl_token_list *out, int32_t 
             if (line < INT32_MAX) line++;
             column = 1, i++;
         } else if (is_blank(c)) {
-            column++, i++;
+            if (column < INT32_MAX) column++;
+            i++;
         } else if (c == '!') {
             while (i < length && text[i] != '\n') i++; /* the newline ends the comment */
         } else if (c == '\0') {
@@ -70,7 +71,8 @@ hr_status sdl_lex(const char *text, size_t length, sdl_token_list *out, int32_t 
             t[0] = c, t[1] = '\0';
             used += 2;
             st = push_token(out, t, c == '{' ? SDL_TOKEN_OPEN : SDL_TOKEN_CLOSE, line, column);
-            column++, i++;
+            if (column < INT32_MAX) column++;
+            i++;
         } else {
             char *t = store + used;
             int32_t start_column = column;

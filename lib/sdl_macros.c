@@ -18,11 +18,20 @@ void sdl_macros_release(sdl_macro_table *table)
     memset(table, 0, sizeof *table);
 }
 
-/* FNV-1a: short names, no adversary worth more. */
+/* FNV-1a, then a finaliser (MurmurHash3's fmix64). The index uses the low
+ * bits, and the low k bits of a plain FNV-1a state depend only on the low k
+ * bits before each step: a file could pick thousands of names that share
+ * them in seconds and make every probe walk one cluster. Mixed, the low bits
+ * depend on all 64. */
 static size_t hash_name(const char *name)
 {
     uint64_t h = 1469598103934665603u;
     for (; *name; name++) h = (h ^ (unsigned char)*name) * 1099511628211u;
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdu;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53u;
+    h ^= h >> 33;
     return (size_t)h;
 }
 

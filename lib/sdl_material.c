@@ -8,6 +8,7 @@
  * shows them, for a later texture or Cook-Torrance shader. */
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -46,6 +47,17 @@ void sdl_material_reset(sdl_reader *r)
     r->material.parameter_count = 0;
 }
 
+/* A value the scene would refuse is reported here, at the place that set
+ * it, not at the next object (nor never, if no object follows). The limits
+ * are the library's own: hr_material_validate. */
+static hr_status check_value(sdl_reader *r, sdl_located at)
+{
+    if (hr_material_validate(r->ctx, &r->material) == HR_OK) return HR_OK;
+    char why[512];
+    snprintf(why, sizeof why, "%s", hr_context_last_error(r->ctx));
+    return sdl_error(r->src, HR_ERROR_SDL, at, "%s", why);
+}
+
 hr_status sdl_cmd_material_color(sdl_reader *r, sdl_located keyword)
 {
     for (size_t i = 0; i < sizeof color_fields / sizeof color_fields[0]; i++)
@@ -54,7 +66,7 @@ hr_status sdl_cmd_material_color(sdl_reader *r, sdl_located keyword)
             hr_status st = sdl_read_color(r, keyword, &c);
             if (st) return st;
             memcpy((char *)&r->material + color_fields[i].offset, &c, sizeof c);
-            return HR_OK;
+            return check_value(r, keyword);
         }
     return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a material colour",
                     keyword.token->text);
@@ -68,13 +80,8 @@ hr_status sdl_cmd_material_number(sdl_reader *r, sdl_located keyword)
             sdl_located at;
             hr_status st = sdl_read_number(r, keyword, &v, &at);
             if (st) return st;
-            /* Snell's law divides by it; the scene would refuse it later, far
-             * from the line that set it. */
-            if (number_fields[i].offset == offsetof(hr_material, speed_of_light) && !(v > 0.0))
-                return sdl_error(r->src, HR_ERROR_SDL, at,
-                                 "'speedOfLight' must be positive, found '%s'", at.token->text);
             memcpy((char *)&r->material + number_fields[i].offset, &v, sizeof v);
-            return HR_OK;
+            return check_value(r, at);
         }
     return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a material number",
                     keyword.token->text);

@@ -23,6 +23,10 @@ hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
         r->globals.background = c;
     else
         r->globals.global_ambient = c;
+    /* Hand them over now, so that a colour the scene refuses is reported
+     * here rather than at the end of the file. */
+    if ((st = hr_scene_set_globals(r->scene, &r->globals)))
+        return sdl_error(r->src, st, keyword, "%s", hr_context_last_error(r->ctx));
     return HR_OK;
 }
 

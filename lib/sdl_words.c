@@ -1,7 +1,7 @@
 /* Numbers and macro names of SDL (lib/sdl_words.h). */
 #include "sdl_words.h"
 
-#include <locale.h>
+#include <langinfo.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,13 +32,15 @@ static int is_decimal(const char *s)
 
 /* strtod reads the decimal point of the current locale; a program that set,
  * say, a German locale would read "0.5" as 0. Swap the point for the locale's
- * own before converting. */
+ * own before converting. The point comes from nl_langinfo, which reads the
+ * calling thread's locale like strtod: localeconv() fills one static struct
+ * that any other thread's call rewrites meanwhile. */
 static double convert(const char *word, int *ok)
 {
-    const char *point = localeconv()->decimal_point;
+    const char *point = nl_langinfo(RADIXCHAR);
     char *end = NULL;
     double value;
-    if (!point || strcmp(point, ".") == 0 || !strchr(word, '.')) {
+    if (!point || !*point || strcmp(point, ".") == 0 || !strchr(word, '.')) {
         value = strtod(word, &end);
         *ok = end && *end == '\0';
     } else {

@@ -38,6 +38,9 @@ typedef struct hr_material {
     const double *parameters;
 } hr_material;
 HR_API void hr_material_default(hr_material *m);
+/* Check a material as hr_scene_add_object will (the bounds above); the
+ * message names the field and its value. `ctx` may be NULL (no message). */
+HR_API hr_status hr_material_validate(hr_context *ctx, const hr_material *m);
 
 /* A point light in world coordinates; one colour for diffuse and specular. */
 typedef struct hr_light {

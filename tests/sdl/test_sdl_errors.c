@@ -49,7 +49,17 @@ static void keywords_and_numbers(hr_context *ctx)
     EXPECT_ERROR(ctx, "parameters 2000000000 1 2 sphere", HR_ERROR_SDL, 1, 27,
                  "expected a number after 'parameters', found 'sphere'");
     EXPECT_ERROR(ctx, "speedOfLight 0", HR_ERROR_SDL, 1, 14,
-                 "'speedOfLight' must be positive, found '0'");
+                 "material: speedOfLight must be positive and finite, not 0");
+    /* Material values the scene would refuse are reported where they are set,
+     * even with no object after them. */
+    EXPECT_ERROR(ctx, "sphere\nreflectivity 1.5", HR_ERROR_SDL, 2, 14,
+                 "material: reflectivity 1.5 must be within [0, 1]");
+    EXPECT_ERROR(ctx, "transparency -0.25 sphere", HR_ERROR_SDL, 1, 14,
+                 "material: transparency -0.25 must be within [0, 1]");
+    EXPECT_ERROR(ctx, "specularExponent -2", HR_ERROR_SDL, 1, 18,
+                 "material: specularExponent -2 must be within [0, 1e+06]");
+    EXPECT_ERROR(ctx, "emissive 1 2e6 3", HR_ERROR_SDL, 1, 1,
+                 "material: emissive (1 2e+06 3) must be finite");
 }
 
 static void transforms(hr_context *ctx)
@@ -167,6 +177,20 @@ static void missing_modules(hr_context *ctx)
     }
 }
 
+/* Values the scene refuses are reported at the command that set them, not
+ * at the end of the file where the reader hands the globals over. */
+static void settings(hr_context *ctx)
+{
+    EXPECT_ERROR(ctx, "sphere\nbackground 2e6 0 0\nsphere\n\n", HR_ERROR_INVALID_ARGUMENT, 2,
+                 1, "t.dat:2:1: globals: background and globalAmbient must be finite");
+    EXPECT_ERROR(ctx, "globalAmbient 0 0 -1e7 sphere", HR_ERROR_INVALID_ARGUMENT, 1, 1,
+                 "globalAmbient");
+    EXPECT_ERROR(ctx, "def dark { background 0 0 1e9 }\nsphere\nuse dark sphere",
+                 HR_ERROR_INVALID_ARGUMENT, 3, 1,
+                 "t.dat:3:1: in macro 'dark' (defined at t.dat:1:5): t.dat:1:12: globals:");
+    EXPECT_ERROR(ctx, "light 0 0 0 2e6 1 1", HR_ERROR_INVALID_ARGUMENT, 1, 1, "light: colour");
+}
+
 static void partial_scenes(hr_context *ctx)
 {
     /* Errors after many objects, lights and parameters: the partial scene
@@ -187,6 +211,7 @@ int main(void)
     macros(ctx);
     objects(ctx);
     missing_modules(ctx);
+    settings(ctx);
     hr_context_destroy(ctx);
     /* With CSG stubs the partial scene includes a composite. */
     ctx = sdl_test_context(SDL_STUB_SHAPES | SDL_STUB_CSG);

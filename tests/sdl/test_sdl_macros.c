@@ -1,6 +1,7 @@
 /* SDL macros: pasting runs in the current state and its changes persist,
  * names are looked up when used, errors inside expansions name the `use` and
  * the definition, and expansion that would never end stops quickly. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,12 +151,78 @@ static void endless_expansion(hr_context *ctx)
     free(text);
 }
 
+/* `def NAME { }` for every name of 2^16 that picks one of two spellings for
+ * each of 16 four-letter pieces, then a `use` of the last. */
+static char *many_defs(const char (*pieces)[2][5])
+{
+    enum { PIECES = 16, NAME = 1 + 4 * PIECES };
+    char *text = malloc(((size_t)1 << PIECES) * (NAME + 12) + NAME + 8);
+    size_t len = 0;
+    char name[NAME + 1];
+    for (uint32_t bits = 0; bits < (1u << PIECES); bits++) {
+        name[0] = 'm';
+        for (int i = 0; i < PIECES; i++) memcpy(name + 1 + 4 * i, pieces[i][(bits >> i) & 1], 4);
+        name[NAME] = '\0';
+        len += (size_t)sprintf(text + len, "def %s { }\n", name);
+    }
+    sprintf(text + len, "use %s sphere\n", name);
+    return text;
+}
+
+static double seconds_to_load(hr_context *ctx, const char *text)
+{
+    hr_sdl_result r;
+    double t0 = sdl_test_seconds();
+    if (LOAD_OK(ctx, text, &r)) {
+        CHECK(hr_scene_object_count(r.scene) == 1);
+        hr_scene_destroy(r.scene);
+    }
+    return sdl_test_seconds() - t0;
+}
+
+static void many_names(hr_context *ctx)
+{
+    /* Each pair of pieces leaves the same low 24 bits of an FNV-1a state
+     * (from the state after "m"), so all 65536 names below agreed in the
+     * low bits of a plain FNV-1a hash: one cluster in the macro index, and
+     * a quadratic number of probes (about 10 s in a release build). Names
+     * of the same shape with random pieces are the yardstick. */
+    static const char colliding[16][2][5] = {
+        {"xHpK", "WU29"}, {"qJtB", "LHIP"}, {"2Wwa", "3RxF"}, {"oTBb", "a65g"},
+        {"zu6K", "X5tw"}, {"oOJG", "D28U"}, {"WSJE", "3zvH"}, {"E1Gh", "9MrK"},
+        {"gNEU", "WKvu"}, {"bPBj", "RuXq"}, {"cVHH", "ssNW"}, {"BgaP", "IcMy"},
+        {"jtRX", "NGZS"}, {"Y6kT", "eWQo"}, {"TQxm", "kQUC"}, {"Xddu", "Qn6j"},
+    };
+    char random_pieces[16][2][5];
+    uint32_t seed = 12345;
+    for (int i = 0; i < 16; i++)
+        for (int j = 0; j < 2; j++) {
+            for (int k = 0; k < 4; k++) {
+                seed = seed * 1103515245u + 12345u;
+                random_pieces[i][j][k] = (char)('a' + (seed >> 16) % 26);
+            }
+            random_pieces[i][j][4] = '\0';
+        }
+    char *text = many_defs(random_pieces);
+    double random_seconds = seconds_to_load(ctx, text);
+    free(text);
+    text = many_defs(colliding);
+    double colliding_seconds = seconds_to_load(ctx, text);
+    free(text);
+    fprintf(stderr, "65536 defs: %.3f s with random names, %.3f s with colliding ones\n",
+            random_seconds, colliding_seconds);
+    CHECK_MSG(colliding_seconds < 4 * random_seconds + 0.5,
+              "65536 defs with colliding names took %.2f s (random names: %.2f s)",
+              colliding_seconds, random_seconds);
+}
+
 int main(void)
 {
     hr_context *ctx = sdl_test_context(SDL_STUB_SHAPES);
     pasting(ctx);
     errors_inside_macros(ctx);
     endless_expansion(ctx);
+    many_names(ctx);
     hr_context_destroy(ctx);
     return hr_test_end();
 }
