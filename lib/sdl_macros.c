@@ -6,6 +6,7 @@
 
 #include "errors.h"
 #include "sdl_diag.h"
+#include "sdl_hash.h"
 #include "sdl_source.h"
 #include "sdl_words.h"
 
@@ -18,28 +19,11 @@ void sdl_macros_release(sdl_macro_table *table)
     memset(table, 0, sizeof *table);
 }
 
-/* FNV-1a, then a finaliser (MurmurHash3's fmix64). The index uses the low
- * bits, and the low k bits of a plain FNV-1a state depend only on the low k
- * bits before each step: a file could pick thousands of names that share
- * them in seconds and make every probe walk one cluster. Mixed, the low bits
- * depend on all 64. */
-static size_t hash_name(const char *name)
-{
-    uint64_t h = 1469598103934665603u;
-    for (; *name; name++) h = (h ^ (unsigned char)*name) * 1099511628211u;
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdu;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53u;
-    h ^= h >> 33;
-    return (size_t)h;
-}
-
 int32_t sdl_macros_find(const sdl_macro_table *table, const char *name)
 {
     if (table->slot_count == 0) return -1;
     size_t mask = table->slot_count - 1;
-    for (size_t i = hash_name(name) & mask;; i = (i + 1) & mask) {
+    for (size_t i = sdl_hash_name(name) & mask;; i = (i + 1) & mask) {
         int32_t slot = table->slots[i];
         if (slot == 0) return -1;
         if (strcmp(table->macros[slot - 1].name->text, name) == 0) return slot - 1;
@@ -49,7 +33,7 @@ int32_t sdl_macros_find(const sdl_macro_table *table, const char *name)
 static void place_in_slots(int32_t *slots, size_t slot_count, const char *name, int32_t index)
 {
     size_t mask = slot_count - 1;
-    size_t i = hash_name(name) & mask;
+    size_t i = sdl_hash_name(name) & mask;
     while (slots[i] != 0) i = (i + 1) & mask;
     slots[i] = index + 1;
 }
