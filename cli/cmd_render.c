@@ -149,6 +149,12 @@ static int parse_request(int argc, char **argv, render_request *r)
     if (!has_image_extension(r->output))
         return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          r->output);
+    /* --exr always writes OpenEXR: a file named otherwise would lie about
+     * its content. */
+    size_t exr_len = r->exr_output ? strlen(r->exr_output) : 0;
+    if (r->exr_output && *r->exr_output &&
+        (exr_len < 4 || strcasecmp(r->exr_output + exr_len - 4, ".exr") != 0))
+        return cli_error("--exr: '%s' does not end in .exr", r->exr_output);
     if (check_writable("--output", r->output)) return PARSE_ERROR;
     if (r->exr_output && check_writable("--exr", r->exr_output)) return PARSE_ERROR;
     if (r->stats_json && check_writable("--stats-json", r->stats_json)) return PARSE_ERROR;

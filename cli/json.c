@@ -1,5 +1,6 @@
 /* Writing JSON values (cli.h). */
 #include <math.h>
+#include <string.h>
 
 #include "cli.h"
 
@@ -23,9 +24,18 @@ void json_string(FILE *f, const char *s)
 
 void json_number(FILE *f, double v)
 {
-    /* 17 significant digits: parsing the text gives back the same double. */
-    if (isfinite(v)) fprintf(f, "%.17g", v);
-    else fputs("null", f);
+    /* 17 significant digits: parsing the text gives back the same double.
+     * A number %g prints without '.' or exponent ("1", "-0") gets ".0", so
+     * readers that tell integers from floats (Python's json) keep it a
+     * double, and -0.0 keeps its sign. */
+    if (!isfinite(v)) {
+        fputs("null", f);
+        return;
+    }
+    char buf[40];
+    snprintf(buf, sizeof buf, "%.17g", v);
+    fputs(buf, f);
+    if (!strpbrk(buf, ".eEn")) fputs(".0", f);
 }
 
 void json_vec3(FILE *f, hr_vec3 v)

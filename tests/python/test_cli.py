@@ -295,6 +295,17 @@ def test_hits_plane_worked_example(tmp_path):
     assert hit["entering"] is True
     assert hit["surface"] == 0 and hit["object"] == 0 and hit["shape"] == "plane"
     assert set(hit) == {"t", "point", "normal", "entering", "surface", "object", "shape"}
+    # Every number reads back as a float, whole ones too ("1.0", not "1").
+    assert all(type(v) is float for v in [hit["t"], *hit["point"], *hit["normal"]])
+
+
+def test_hits_negative_zero_keeps_its_sign(tmp_path):
+    # Origin and direction with x = -0.0 meet the plane at x = -0 + 2 * -0 =
+    # -0.0 exactly; it must come back as the float -0.0, not the integer 0.
+    path = write_sdl(tmp_path, "plane.sdl", "plane\n")
+    (hit,) = hits(path, "--origin", "-0,0,-2", "--dir", "-0,0,1")
+    assert type(hit["point"][0]) is float
+    assert math.copysign(1.0, hit["point"][0]) == -1.0
 
 
 def test_hits_all_are_sorted_and_first_matches(tmp_path):
@@ -378,6 +389,8 @@ def error_cases(tmp_path, scene):
     bad_sdl = write_sdl(tmp_path, "bad.sdl", "sphere\nrotate 1 2\n")
     directory_png = tmp_path / "dir.png"
     directory_png.mkdir()
+    directory_exr = tmp_path / "dir.exr"
+    directory_exr.mkdir()
     out = tmp_path / "o.png"
     return {
         "no command": [],
@@ -418,7 +431,8 @@ def error_cases(tmp_path, scene):
         "hits origin twice": ["hits", scene, "--origin", "0,0,9", "--origin", "0,0,5", "--dir", "0,0,-1"],
         "empty exr name": ["render", scene, "-o", out, "--size", "4x4", "--exr", ""],
         "empty stats name": ["render", scene, "-o", out, "--size", "4x4", "--stats-json", ""],
-        "exr is a directory": ["render", scene, "-o", out, "--size", "4x4", "--exr", directory_png],
+        "exr is a directory": ["render", scene, "-o", out, "--size", "4x4", "--exr", directory_exr],
+        "exr not named .exr": ["render", scene, "-o", out, "--size", "4x4", "--exr", tmp_path / "e.png"],
         "stats is a directory": ["render", scene, "-o", out, "--size", "4x4", "--stats-json", directory_png],
         "stats over the image": ["render", scene, "-o", out, "--size", "4x4", "--stats-json", out],
         "exr over the image": ["render", scene, "-o", tmp_path / "o.exr", "--size", "4x4",
@@ -439,8 +453,9 @@ def test_user_errors_exit_1_with_one_line(tmp_path, scene):
         assert r.stdout == "", f"{name}: {r.stdout!r}"
     # No output image and no temporary file was left by any of them.
     leftovers = sorted(p.name for p in tmp_path.iterdir())
-    assert leftovers == ["bad.sdl", "dir.png", "scene.sdl"]
+    assert leftovers == ["bad.sdl", "dir.exr", "dir.png", "scene.sdl"]
     assert list((tmp_path / "dir.png").iterdir()) == []
+    assert list((tmp_path / "dir.exr").iterdir()) == []
 
 
 def test_error_messages_say_what_is_wrong(tmp_path, scene):
