@@ -36,7 +36,8 @@ static mode_t current_umask(void)
 static mode_t mode_for(const char *target)
 {
     struct stat st;
-    if (stat(target, &st) == 0 && S_ISREG(st.st_mode)) return st.st_mode & 07777;
+    /* Permission bits only: a set-user-ID bit must not pass to new content. */
+    if (stat(target, &st) == 0 && S_ISREG(st.st_mode)) return st.st_mode & 0777;
     return (mode_t)0666 & ~current_umask();
 }
 
@@ -69,23 +70,35 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
     if (target[len - 1] == '/')
         return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': the name is a directory", target);
 
-    char *templ = temp_template(target);
-    if (!templ) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+    /* Through a symbolic link to the file it names, so the rename replaces
+     * that file and the link survives. */
+    struct stat link_st;
+    char *destination = NULL;
+    if (lstat(target, &link_st) == 0 && S_ISLNK(link_st.st_mode)) destination = realpath(target, NULL);
+    if (!destination) destination = hr_strdup(target);
+    char *templ = destination ? temp_template(destination) : NULL;
+    if (!templ) {
+        free(destination);
+        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+    }
     int fd = mkstemp(templ);
     if (fd < 0) {
         int err = errno;
         free(templ);
+        free(destination);
         return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
     }
     FILE *fp = NULL;
-    if (fchmod(fd, mode_for(target)) != 0 || !(fp = fdopen(fd, "wb"))) {
+    if (fchmod(fd, mode_for(destination)) != 0 || !(fp = fdopen(fd, "wb"))) {
         int err = errno;
         close(fd);
         unlink(templ);
         free(templ);
+        free(destination);
         return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
     }
     out->target = target;
+    out->destination = destination;
     out->temp_path = templ;
     out->fp = fp;
     return HR_OK;
@@ -94,6 +107,7 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
 static void release(hr_atomic_file *f)
 {
     free(f->temp_path);
+    free(f->destination);
     memset(f, 0, sizeof *f);
 }
 
@@ -105,7 +119,7 @@ hr_status hr_atomic_file_commit(const hr_context *ctx, hr_atomic_file *f)
     if (fflush(f->fp) != 0 || fsync(fileno(f->fp)) != 0) err = errno;
     if (fclose(f->fp) != 0 && !err) err = errno;
     f->fp = NULL;
-    if (!err && rename(f->temp_path, f->target) != 0) err = errno;
+    if (!err && rename(f->temp_path, f->destination) != 0) err = errno;
     if (err) {
         unlink(f->temp_path);
         hr_status st = hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err));

@@ -3,7 +3,9 @@
  * The data goes to a uniquely named temporary file in the target's own
  * directory (so the final rename stays on one filesystem and is atomic), and
  * only a complete, flushed file is renamed over the target. A failure removes
- * the temporary file and leaves the target as it was. */
+ * the temporary file and leaves the target as it was. A target that is a
+ * symbolic link to an existing file is written through: the file it points
+ * to is replaced and the link stays (a dangling link is replaced itself). */
 #ifndef HITRAY_LIB_ATOMIC_FILE_H
 #define HITRAY_LIB_ATOMIC_FILE_H
 
@@ -13,6 +15,8 @@
 
 typedef struct hr_atomic_file {
     const char *target; /* the path the caller asked for (not owned) */
+    char *destination;  /* where the rename goes: the target, or the file a
+                           symbolic link named as target points to (owned) */
     char *temp_path;    /* the temporary file beside it (owned) */
     FILE *fp;           /* open for writing on the temporary file */
 } hr_atomic_file;

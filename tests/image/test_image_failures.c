@@ -221,6 +221,35 @@ static void check_longest_name(const char *dir)
     hr_image_destroy(image);
 }
 
+/* A target that is a symbolic link is written through: the file it points
+ * to gets the image, the link stays a link. */
+static void check_symlink_target(const char *dir)
+{
+    hr_image *image = fixture_image(ctx, 4, 4, 3, 0);
+    char real[4096], link_path[4096];
+    fixture_format(real, sizeof real, "%s", fixture_path(dir, "real.png"));
+    fixture_format(link_path, sizeof link_path, "%s", fixture_path(dir, "link.png"));
+    FILE *f = fopen(real, "wb");
+    CHECK(f != NULL);
+    if (f) fclose(f);
+    CHECK(symlink("real.png", link_path) == 0);
+    CHECK_OK(hr_image_write(ctx, image, link_path, NULL));
+    struct stat st;
+    CHECK(lstat(link_path, &st) == 0 && S_ISLNK(st.st_mode));
+    CHECK(stat(real, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0);
+    fixture_png png;
+    if (fixture_read_png(real, &png) == 0) {
+        CHECK(png.width == 4 && png.height == 4);
+        free(png.samples);
+    } else {
+        CHECK_MSG(0, "the linked-to file is not the PNG");
+    }
+    CHECK(fixture_count_entries(dir) == 2); /* the link and its file, no temporary */
+    remove(link_path);
+    remove(real);
+    hr_image_destroy(image);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -233,6 +262,7 @@ int main(void)
     check_target_is_directory(dir);
     check_permissions(dir);
     check_longest_name(dir);
+    check_symlink_target(dir);
     CHECK(fixture_count_entries(dir) == 0);
     hr_context_destroy(ctx);
     return hr_test_end();
