@@ -124,9 +124,11 @@ static int parse_double(const char *text, const char **end, double *out)
     char *stop = NULL;
     errno = 0;
     double v = strtod(text, &stop);
-    /* strtod skips leading blanks and accepts "nan" and "inf": neither is a
-     * coordinate anyone means. */
-    if (stop == text || isspace((unsigned char)text[0]) || !isfinite(v) || errno == ERANGE) return 0;
+    /* strtod skips leading blanks and accepts "nan", "inf" and hexadecimal
+     * ("0x1p3"): none is a decimal number as the options document them. */
+    int hex = strpbrk(text, "xX") != NULL && strpbrk(text, "xX") < stop;
+    if (stop == text || isspace((unsigned char)text[0]) || !isfinite(v) || errno == ERANGE || hex)
+        return 0;
     *end = stop;
     *out = v;
     return 1;

@@ -34,11 +34,19 @@ int main(int argc, char **argv)
 {
     if (argc < 2) return cli_error("no command given (see 'hitray --help')");
     const char *verb = argv[1];
-    if (!strcmp(verb, "-h") || !strcmp(verb, "--help") || !strcmp(verb, "help")) {
+    int help = !strcmp(verb, "-h") || !strcmp(verb, "--help") || !strcmp(verb, "help");
+    int version = !strcmp(verb, "--version") || !strcmp(verb, "-V");
+    /* `hitray --help render` is a typo for `hitray render --help`: say so
+     * rather than print the general help as if nothing were wrong. */
+    if ((help || version) && argc > 2)
+        return cli_error("'%s' takes nothing after it, found '%s' (for a command's help: "
+                         "'hitray <command> --help')",
+                         verb, argv[2]);
+    if (help) {
         fputs(usage, stdout);
         return CLI_EXIT_OK;
     }
-    if (!strcmp(verb, "--version") || !strcmp(verb, "-V")) return print_version();
+    if (version) return print_version();
     if (!strcmp(verb, "render")) return cmd_render(argc - 1, argv + 1);
     if (!strcmp(verb, "hits")) return cmd_hits(argc - 1, argv + 1);
     if (!strcmp(verb, "shapes")) return cmd_shapes(argc - 1, argv + 1);
