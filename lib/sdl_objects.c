@@ -24,6 +24,8 @@
 #define ARGS_FILE 2        /* mesh file */
 #define ARGS_OPERANDS 3    /* union A B */
 #define ARGS_UNSUPPORTED 4 /* buckyball, diamond, teapot */
+#define ARGS_MODULE 5      /* a module's class beyond Hill's list: its parameters */
+#define SDL_MAX_MODULE_PARAMS 64
 
 static const struct {
     const char *keyword;
@@ -63,7 +65,74 @@ static int object_args(const char *word)
     return -1;
 }
 
-int sdl_is_object_keyword(const char *word) { return object_args(word) >= 0; }
+/* Whether a module provides a class called `word`, asked of the module
+ * listing so that a miss raises no error (the word may be a typo the reader
+ * reports as an unknown keyword). */
+static int module_class_exists(hr_context *ctx, const char *word)
+{
+    int32_t n = hr_context_module_count(ctx);
+    for (int32_t i = 0; i < n; i++) {
+        hr_module_entry e;
+        memset(&e, 0, sizeof e);
+        e.struct_size = sizeof e;
+        if (hr_context_module(ctx, i, &e) != HR_OK || !e.loaded) continue;
+        for (int32_t k = 0; k < e.class_count; k++)
+            if (strcmp(e.classes[k]->name, word) == 0) return 1;
+    }
+    return 0;
+}
+
+int sdl_is_object_keyword(sdl_reader *r, const char *word)
+{
+    if (object_args(word) >= 0) return 1;
+    /* Hill's commands keep their meaning whatever a module calls its class. */
+    return !sdl_is_command_keyword(word) && module_class_exists(r->ctx, word);
+}
+
+/* A class from a module beyond Hill's list, in the form of Hill's own
+ * `taperedCylinder s` and `mesh FILE`: its name, then one argument per
+ * parameter in the order the class declares them (`hitray shapes` lists
+ * them): a number for a number, a word for a string. Object parameters
+ * (composites) have no SDL form here. */
+static hr_status read_module_params(sdl_reader *r, sdl_located keyword, hr_param *params,
+                                    int32_t *count)
+{
+    const hr_shape_class *cls;
+    if (hr_context_find_shape_class(r->ctx, keyword.token->text, &cls, NULL) != HR_OK)
+        return sdl_error(r->src, HR_ERROR_MODULE, keyword, "%s", hr_context_last_error(r->ctx));
+    if (cls->param_count > SDL_MAX_MODULE_PARAMS)
+        return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
+                         "shape '%s' has %d parameters; SDL reads at most %d",
+                         keyword.token->text, (int)cls->param_count, SDL_MAX_MODULE_PARAMS);
+    for (int32_t i = 0; i < cls->param_count; i++) {
+        const hr_param_spec *spec = &cls->params[i];
+        hr_param *p = &params[i];
+        memset(p, 0, sizeof *p);
+        p->name = spec->name;
+        p->type = spec->type;
+        if (spec->type == HR_PARAM_NUMBER) {
+            hr_status st = sdl_read_number(r, keyword, &p->number, NULL);
+            if (st) return st;
+        } else if (spec->type == HR_PARAM_STRING) {
+            sdl_located word;
+            hr_status st = sdl_source_next(r->src, &word);
+            if (st) return st;
+            if (word.token->kind != SDL_TOKEN_WORD) {
+                char found[64];
+                return sdl_error(r->src, HR_ERROR_SDL, word, "expected a word for '%s' of '%s', found %s",
+                                 spec->name, keyword.token->text,
+                                 sdl_describe(word.token, found, sizeof found));
+            }
+            p->string = word.token->text;
+        } else {
+            return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
+                             "shape '%s' takes object parameters ('%s'), which SDL cannot give",
+                             keyword.token->text, spec->name);
+        }
+    }
+    *count = cls->param_count;
+    return HR_OK;
+}
 
 /* Add one object; any refusal is reported at its keyword. */
 static hr_status add(sdl_reader *r, sdl_located keyword, const hr_param *params, int32_t count,
@@ -89,6 +158,12 @@ static hr_status add_leaf(sdl_reader *r, sdl_located keyword, int args, int64_t 
     hr_param param;
     memset(&param, 0, sizeof param);
     int32_t count = 0;
+    if (args == ARGS_MODULE) {
+        hr_param params[SDL_MAX_MODULE_PARAMS];
+        hr_status st = read_module_params(r, keyword, params, &count);
+        if (st) return st;
+        return add(r, keyword, params, count, &r->material, sdl_current_transform(r), index);
+    }
     if (args == ARGS_UNSUPPORTED)
         return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
                          "'%s' is not supported: the original reader loaded it from a data file "
@@ -153,6 +228,7 @@ hr_status sdl_read_object(sdl_reader *r, sdl_located keyword, int64_t *index)
     int64_t last = -1;
     for (;;) {
         int args = object_args(keyword.token->text);
+        if (args < 0) args = ARGS_MODULE; /* the caller found a module's class */
         if (args == ARGS_OPERANDS) {
             if (count == capacity) {
                 capacity = capacity ? 2 * capacity : 8;

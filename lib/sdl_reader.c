@@ -181,6 +181,13 @@ static hr_status not_a_command(sdl_reader *r, sdl_located t)
     return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s", found);
 }
 
+int sdl_is_command_keyword(const char *word)
+{
+    for (size_t i = 0; i < COMMAND_COUNT; i++)
+        if (strcmp(word, commands[i].keyword) == 0) return 1;
+    return 0;
+}
+
 /* Run one state command (anything but an object). */
 static hr_status run_state_command(sdl_reader *r, sdl_located t)
 {
@@ -198,7 +205,7 @@ hr_status sdl_next_object_keyword(sdl_reader *r, const char *wanted, sdl_located
         if (st) return st;
         if (t.token->kind == SDL_TOKEN_END)
             return sdl_error(r->src, HR_ERROR_SDL, t, "expected %s, found end of file", wanted);
-        if (t.token->kind == SDL_TOKEN_WORD && sdl_is_object_keyword(t.token->text)) {
+        if (t.token->kind == SDL_TOKEN_WORD && sdl_is_object_keyword(r, t.token->text)) {
             *keyword = t;
             return HR_OK;
         }
@@ -213,7 +220,7 @@ hr_status sdl_reader_run(sdl_reader *r)
         hr_status st = sdl_source_next(r->src, &t);
         if (st) return st;
         if (t.token->kind == SDL_TOKEN_END) break;
-        if (t.token->kind == SDL_TOKEN_WORD && sdl_is_object_keyword(t.token->text))
+        if (t.token->kind == SDL_TOKEN_WORD && sdl_is_object_keyword(r, t.token->text))
             st = sdl_read_object(r, t, NULL);
         else
             st = run_state_command(r, t);

@@ -59,9 +59,12 @@ hr_transform *sdl_current_transform(sdl_reader *r);
 
 /* The object keywords, by index; NULL past the last. */
 const char *sdl_object_keyword(int index);
-/* 1 if `word` starts an object (a shape, a boolean, or an unsupported
- * solid); sdl_read_object then reads all of it. */
-int sdl_is_object_keyword(const char *word);
+/* 1 if `word` starts an object: one of Hill's (a shape, a boolean, or an
+ * unsupported solid), or, if it is not a command, the name of a shape class
+ * some module provides (a user's plugin); sdl_read_object then reads it. */
+int sdl_is_object_keyword(sdl_reader *r, const char *word);
+/* 1 if `word` is a state command (translate, light, def, ...). */
+int sdl_is_command_keyword(const char *word);
 /* Read the object that starts at `keyword` (for a boolean: both operands,
  * running any state commands between them), add it, and give its index. */
 hr_status sdl_read_object(sdl_reader *r, sdl_located keyword, int64_t *index);

@@ -119,6 +119,25 @@ if(NOT magic STREQUAL "89504e470d0a1a0a")
   message(FATAL_ERROR "${image} is not a PNG (starts with ${magic})")
 endif()
 
+# From SDL: a module's class is an object keyword followed by its parameters.
+# The installed hitray renders the example scene and traces it: the disk of
+# radius 2.5 turned to face +y; a ray down from (1, 5, 1) meets it at t = 5.
+set(sdl_image "${WORK_DIR}/disk_sdl.png")
+run_checked("hitray render disk.sdl" "${hitray}" render "${SOURCE_DIR}/examples/shape_plugin/disk.sdl"
+  -o "${sdl_image}" --size 64x48)
+file(READ "${sdl_image}" magic LIMIT 8 HEX)
+if(NOT magic STREQUAL "89504e470d0a1a0a")
+  message(FATAL_ERROR "${sdl_image} is not a PNG (starts with ${magic})")
+endif()
+run_checked("hitray hits disk.sdl" "${hitray}" hits "${SOURCE_DIR}/examples/shape_plugin/disk.sdl"
+  --origin 1,5,1 --dir 0,-1,0)
+string(FIND "${LAST_OUTPUT}"
+  "{\"t\": 5.0, \"point\": [1.0, 0.0, 1.0], \"normal\": [0.0, 1.0, 0.0], \"entering\": true, \"surface\": 0, \"object\": 0, \"shape\": \"disk\"}"
+  at)
+if(at LESS 0)
+  message(FATAL_ERROR "hitray hits on disk.sdl: unexpected output:\n${LAST_OUTPUT}")
+endif()
+
 # The other way to install a plugin: copy it next to the built-in shapes.
 unset(ENV{HITRAY_SHAPE_PATH})
 file(COPY "${module}" DESTINATION "${prefix}/${LIBDIR}/hitray/shapes")
