@@ -7,37 +7,9 @@
 #            EXTRA_FLAGS (sanitizer flags of the build, may be empty) VERSION
 cmake_minimum_required(VERSION 3.18)
 
-function(run_checked what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what} failed (${rc}):\n${ARGN}\n${out}\n${err}")
-  endif()
-  set(LAST_OUTPUT "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/install_common.cmake)
 
-function(expect_file path)
-  if(NOT EXISTS "${path}")
-    message(FATAL_ERROR "not installed: ${path}")
-  endif()
-endfunction()
-
-function(expect_png path)
-  expect_file("${path}")
-  file(READ "${path}" magic LIMIT 8 HEX)
-  if(NOT magic STREQUAL "89504e470d0a1a0a")
-    message(FATAL_ERROR "${path} is not a PNG (starts with ${magic})")
-  endif()
-  file(SIZE "${path}" size)
-  if(size LESS 200)
-    message(FATAL_ERROR "${path} is suspiciously small (${size} bytes)")
-  endif()
-endfunction()
-
-file(REMOVE_RECURSE "${WORK_DIR}")
-set(staging "${WORK_DIR}/staging")
-set(prefix "${WORK_DIR}/moved prefix") # a space, to catch unquoted paths
-run_checked("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${staging}")
-file(RENAME "${staging}" "${prefix}")
+install_into_moved_prefix()
 
 # The layout the package promises.
 expect_file("${prefix}/include/hitray/hitray.h")

@@ -15,13 +15,7 @@
 #            EXTRA_FLAGS (sanitizer flags of the build, may be empty) READELF NM
 cmake_minimum_required(VERSION 3.18)
 
-function(run_checked what)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${what} failed (${rc}):\n${ARGN}\n${out}\n${err}")
-  endif()
-  set(LAST_OUTPUT "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/install_common.cmake)
 
 # Run a command that must fail with exit status 1 and a message on stderr
 # matching `pattern`.
@@ -35,11 +29,7 @@ function(run_refused what pattern)
   endif()
 endfunction()
 
-file(REMOVE_RECURSE "${WORK_DIR}")
-set(staging "${WORK_DIR}/staging")
-set(prefix "${WORK_DIR}/moved prefix") # a space, to catch unquoted paths
-run_checked("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${staging}")
-file(RENAME "${staging}" "${prefix}")
+install_into_moved_prefix()
 set(hitray "${prefix}/bin/hitray")
 
 # Build the plugin as a user would. -Werror with the example's own -Wall
@@ -114,10 +104,7 @@ run_refused("radius 2e6" "parameter 'radius' = 2e\\+06 is outside \\[0, 1e\\+06\
 # The example scene renders.
 set(image "${WORK_DIR}/disk.png")
 run_checked("disk_demo render" "${demo}" 1.5 render "${image}" 64x48)
-file(READ "${image}" magic LIMIT 8 HEX)
-if(NOT magic STREQUAL "89504e470d0a1a0a")
-  message(FATAL_ERROR "${image} is not a PNG (starts with ${magic})")
-endif()
+expect_png("${image}")
 
 # From SDL: a module's class is an object keyword followed by its parameters.
 # The installed hitray renders the example scene and traces it: the disk of
@@ -125,10 +112,7 @@ endif()
 set(sdl_image "${WORK_DIR}/disk_sdl.png")
 run_checked("hitray render disk.sdl" "${hitray}" render "${SOURCE_DIR}/examples/shape_plugin/disk.sdl"
   -o "${sdl_image}" --size 64x48)
-file(READ "${sdl_image}" magic LIMIT 8 HEX)
-if(NOT magic STREQUAL "89504e470d0a1a0a")
-  message(FATAL_ERROR "${sdl_image} is not a PNG (starts with ${magic})")
-endif()
+expect_png("${sdl_image}")
 run_checked("hitray hits disk.sdl" "${hitray}" hits "${SOURCE_DIR}/examples/shape_plugin/disk.sdl"
   --origin 1,5,1 --dir 0,-1,0)
 string(FIND "${LAST_OUTPUT}"
