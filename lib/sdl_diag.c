@@ -64,6 +64,20 @@ hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, con
     return hr_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
 }
 
+const char *sdl_describe_run_on(const sdl_source *src, sdl_located keyword, sdl_located found,
+                                char *buf, size_t size)
+{
+    buf[0] = '\0';
+    if (keyword.expansion < 0 || keyword.expansion == found.expansion) return buf;
+    const sdl_expansion *e = &src->expansions[keyword.expansion];
+    const sdl_token *name = src->macros.macros[e->macro].name;
+    snprintf(buf, size,
+             " (the arguments of '%s' in macro '%s', defined at %s:%d:%d, run on past the end of "
+             "its body)",
+             keyword.token->text, name->text, src->file, (int)name->line, (int)name->column);
+    return buf;
+}
+
 const char *sdl_describe(const sdl_token *token, char *buf, size_t size)
 {
     enum { SHOWN_CHARS = 40 };

@@ -16,6 +16,13 @@
 hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt,
                     ...) HR_PRINTF(4, 5);
 
+/* When `keyword` came from a macro body and `found` (an argument it wanted)
+ * did not come from that same expansion, the arguments ran on past the end
+ * of the body: writes " (the arguments of 'K' in macro 'M', defined at
+ * f:L:C, run on past the end of its body)" to buf; otherwise "". Returns buf. */
+const char *sdl_describe_run_on(const sdl_source *src, sdl_located keyword, sdl_located found,
+                                char *buf, size_t size);
+
 /* A token for "found ...": 'word' (long words shortened), '{', '}', or
  * "end of file". Writes into buf and returns it. */
 const char *sdl_describe(const sdl_token *token, char *buf, size_t size);

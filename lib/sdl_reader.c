@@ -93,14 +93,15 @@ hr_status sdl_read_number(sdl_reader *r, sdl_located keyword, double *out, sdl_l
     int parsed = t.token->kind == SDL_TOKEN_WORD ? sdl_parse_number(t.token->text, out)
                                                  : SDL_NUMBER_NOT_A_NUMBER;
     if (parsed == SDL_NUMBER_OK) return HR_OK;
-    char found[64];
+    char found[64], run_on[256];
     sdl_describe(t.token, found, sizeof found);
+    sdl_describe_run_on(r->src, keyword, t, run_on, sizeof run_on);
     if (parsed == SDL_NUMBER_TOO_LARGE)
         return sdl_error(r->src, HR_ERROR_SDL, t,
-                         "number %s after '%s' is beyond the range of a double", found,
-                         keyword.token->text);
-    return sdl_error(r->src, HR_ERROR_SDL, t, "expected a number after '%s', found %s",
-                     keyword.token->text, found);
+                         "number %s after '%s' is beyond the range of a double%s", found,
+                         keyword.token->text, run_on);
+    return sdl_error(r->src, HR_ERROR_SDL, t, "expected a number after '%s', found %s%s",
+                     keyword.token->text, found, run_on);
 }
 
 hr_status sdl_read_numbers(sdl_reader *r, sdl_located keyword, int count, double *out)

@@ -90,9 +90,13 @@ static void errors_inside_macros(hr_context *ctx)
                  HR_ERROR_SDL, 5, 3,
                  "t.dat:5:3: in macro 'chair' (defined at t.dat:2:5): t.dat:3:3: in macro 'leg' "
                  "(defined at t.dat:1:5): t.dat:1:17: 'scale' factors must be non-zero");
-    /* Running out of arguments at the end of a body reads on after the use. */
+    /* Running out of arguments at the end of a body reads on after the use
+     * (the text is pasted); an error there names the macro it started in. */
     EXPECT_ERROR(ctx, "def t { translate 1 }\nuse t 2 x", HR_ERROR_SDL, 2, 9,
-                 "t.dat:2:9: expected a number after 'translate', found 'x'");
+                 "t.dat:2:9: expected a number after 'translate', found 'x' (the arguments of "
+                 "'translate' in macro 't', defined at t.dat:1:5, run on past the end of its body)");
+    EXPECT_ERROR(ctx, "def t { translate 1 2 3 }\nuse t scale 1 1 x", HR_ERROR_SDL, 2, 17,
+                 "t.dat:2:17: expected a number after 'scale', found 'x'");
     /* Unknown keywords and unmatched pops inside bodies. */
     EXPECT_ERROR(ctx, "def bad { spere }\n\nuse bad", HR_ERROR_SDL, 3, 1,
                  "in macro 'bad' (defined at t.dat:1:5): t.dat:1:11: unknown keyword 'spere'");
