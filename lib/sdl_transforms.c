@@ -33,8 +33,10 @@ hr_status sdl_cmd_scale(sdl_reader *r, sdl_located keyword)
                              at.token->text);
     }
     if (hr_transform_scale(sdl_current_transform(r), s[0], s[1], s[2]) != HR_OK)
-        return sdl_error(r->src, HR_ERROR_NUMERIC, keyword, "'scale' %g %g %g was refused", s[0],
-                         s[1], s[2]);
+        return sdl_error(r->src, HR_ERROR_NUMERIC, keyword,
+                         "'scale' %g %g %g was refused: the transform or its inverse would "
+                         "leave the range of a double",
+                         s[0], s[1], s[2]);
     return HR_OK;
 }
 

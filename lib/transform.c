@@ -42,13 +42,18 @@ static int all_finite(const double m[16])
 
 /* apply_step for the calls that can refuse: a step whose own inverse is not
  * representable (a factor of 1e-310 has none in double) is refused like a
- * zero factor, keeping `t` as it was. A product that over- or underflows
- * over several steps is left to hr_scene_add_object, which refuses any
- * non-finite matrix with the object that uses it. */
+ * zero factor, and so is a step after which the pair over- or underflows
+ * (scale 1e-200 twice: M ~ 1e-400 = 0, M^-1 ~ 1e400 = inf), so the error
+ * names the step that caused it. A refused step leaves `t` as it was. */
 static hr_status checked_step(hr_transform *t, const double step[16], const double step_inv[16])
 {
     if (!all_finite(step) || !all_finite(step_inv)) return HR_ERROR_NUMERIC;
+    hr_transform before = *t;
     apply_step(t, step, step_inv);
+    if (!all_finite(t->m) || !all_finite(t->inv)) {
+        *t = before;
+        return HR_ERROR_NUMERIC;
+    }
     return HR_OK;
 }
 

@@ -21,7 +21,10 @@ typedef struct hr_transform {
 
 HR_API void hr_transform_identity(hr_transform *t);
 HR_API void hr_transform_translate(hr_transform *t, double dx, double dy, double dz);
-/* A zero factor is refused (HR_ERROR_NUMERIC): the inverse would not exist. */
+/* A zero factor is refused (HR_ERROR_NUMERIC): the inverse would not exist.
+ * So is a step after which the matrix or its inverse would leave double's
+ * range (over- or underflow); a refused step leaves `t` unchanged. The same
+ * holds for hr_transform_rotate. */
 HR_API hr_status hr_transform_scale(hr_transform *t, double sx, double sy, double sz);
 /* Right-handed rotation by `degrees` about the axis (normalised here); a
  * zero axis is refused (HR_ERROR_NUMERIC). */

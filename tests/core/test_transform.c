@@ -1,4 +1,6 @@
 /* Hill's transform pairs: worked examples and exactness. */
+#include <string.h>
+
 #include <hitray/hitray.h>
 
 #include "hr_test.h"
@@ -63,6 +65,13 @@ int main(void)
     /* Refusals: zero scale, zero axis, singular or non-affine matrix. */
     CHECK(hr_transform_scale(&t, 0, 1, 1) == HR_ERROR_NUMERIC);
     CHECK(hr_transform_rotate(&t, 10, 0, 0, 0) == HR_ERROR_NUMERIC);
+    /* Each step fine, the product out of range: refused, t unchanged. */
+    hr_transform w;
+    hr_transform_identity(&w);
+    CHECK_OK(hr_transform_scale(&w, 1e-200, 1, 1));
+    hr_transform kept = w;
+    CHECK(hr_transform_scale(&w, 1e-200, 1, 1) == HR_ERROR_NUMERIC);
+    CHECK(memcmp(&w, &kept, sizeof w) == 0);
     const double singular[16] = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     CHECK(hr_transform_from_matrix(&u, singular) == HR_ERROR_NUMERIC);
     /* Badly scaled is not singular: diag(1e6, 1e-6, 1) has condition 1e12

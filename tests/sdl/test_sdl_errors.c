@@ -140,7 +140,11 @@ static void objects(hr_context *ctx)
                  "expected an object for operand A of 'difference' at t.dat:2:1");
     EXPECT_ERROR(ctx, "union sphere frob cube", HR_ERROR_SDL, 1, 14, "unknown keyword 'frob'");
     /* A degenerate transform reaches the scene as a non-finite inverse. */
-    EXPECT_ERROR(ctx, "scale 1e-200 1 1 scale 1e-200 1 1 sphere", HR_ERROR_NUMERIC, 1, 35, "");
+    /* Two steps each fine, their product not: refused at the second. */
+    EXPECT_ERROR(ctx, "scale 1e-200 1 1 scale 1e-200 1 1 sphere", HR_ERROR_NUMERIC, 1, 18,
+                 "'scale' 1e-200 1 1 was refused: the transform or its inverse would leave the "
+                 "range of a double");
+    EXPECT_ERROR(ctx, "scale 1e200 1 1 scale 1e200 1 1 sphere", HR_ERROR_NUMERIC, 1, 17, "refused");
 }
 
 /* Shapes no module provides yet (torus, mesh, the regular solids, CSG) fail
