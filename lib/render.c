@@ -268,7 +268,13 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         uint32_t bounces = HR_EFFECT_REFLECTION | HR_EFFECT_REFRACTION;
         s.effects = (scene->effects & ~bounces) | (job->max_depth > 0 ? scene->bounce_effects : 0u) |
                     (job->opt.samples_per_pixel > 1 ? HR_EFFECT_SUPERSAMPLING : 0u);
-        if (job->opt.effects == HR_EFFECTS_ALL) s.effects = (1u << HR_EFFECT_COUNT) - 1u;
+        /* Forced: every shading path ran (bounces only if the depth allows
+         * one); supersampling is a matter of the sample count either way. */
+        if (job->opt.effects == HR_EFFECTS_ALL)
+            s.effects = (HR_EFFECT_EMISSION | HR_EFFECT_AMBIENT | HR_EFFECT_DIFFUSE |
+                         HR_EFFECT_SPECULAR | HR_EFFECT_SHADOWS) |
+                        (job->max_depth > 0 ? bounces : 0u) |
+                        (s.effects & HR_EFFECT_SUPERSAMPLING);
         memcpy(stats, &s, s.struct_size);
     }
     free(workers);

@@ -93,11 +93,19 @@ hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
         c = rgb_add(c, direct_light(tc, o, &h, m, to_eye, flags));
     if (depth >= max_depth) return c;
 
+    /* Under HR_EFFECTS_ALL every bounce is traced, weighted by what the
+     * material calls for: 0 where it calls for none. c starts at +0 and its
+     * terms are finite, so adding 0 * colour leaves every bit of it as it
+     * was: the image is the same, only the work differs. */
+    double reflect_weight = flags & HR_MAT_REFLECTS ? mat->reflectivity : 0.0;
+    double refract_weight = flags & HR_MAT_REFRACTS ? mat->transparency : 0.0;
+    if (tc->force_all_effects) flags |= HR_MAT_REFLECTS | HR_MAT_REFRACTS;
+
     double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
     if (flags & HR_MAT_REFLECTS) {
         hr_ray r = {spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
-        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &r, depth + 1, max_depth), mat->reflectivity));
+        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &r, depth + 1, max_depth), reflect_weight));
     }
     if (flags & HR_MAT_REFRACTS) {
         /* Snell with Hill's speeds: sin(t) = (c2 / c1) sin(i). Entering goes
@@ -116,7 +124,7 @@ hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
             t.dir = v3_add(v3_scale(dir, ratio), v3_scale(m, ratio * cos_i - sqrt(cos_t2)));
             tc->rays_refracted++;
         }
-        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &t, depth + 1, max_depth), mat->transparency));
+        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &t, depth + 1, max_depth), refract_weight));
     }
     return c;
 }

@@ -172,9 +172,39 @@ static void cancelling(void)
     hr_scene_destroy(s);
 }
 
+/* HR_EFFECTS_ALL runs every path (shadow rays to every light, reflected and
+ * transmitted rays at every hit) yet gives the same image bit for bit: on a
+ * scene without mirrors or glass, AUTO casts no bounce at all. */
+static void effects_all(void)
+{
+    for (int busy = 0; busy < 2; busy++) {
+        hr_scene *s = busy_scene(busy);
+        hr_camera c = view(40, 30);
+        hr_render_options o;
+        hr_render_options_default(&o);
+        o.threads = 2;
+        hr_render_stats auto_st = {0}, all_st = {0};
+        auto_st.struct_size = all_st.struct_size = sizeof auto_st;
+        hr_image *a = render(s, &c, &o, &auto_st);
+        o.effects = HR_EFFECTS_ALL;
+        hr_image *b = render(s, &c, &o, &all_st);
+        CHECK(a && b && memcmp(hr_image_data(a), hr_image_data(b), 40 * 30 * 3 * sizeof(float)) == 0);
+        if (!busy) CHECK(auto_st.reflected == 0 && auto_st.refracted == 0);
+        CHECK(all_st.reflected > auto_st.reflected && all_st.refracted > auto_st.refracted);
+        CHECK(all_st.shadow > auto_st.shadow);
+        CHECK(all_st.primary == auto_st.primary);
+        CHECK(all_st.effects & HR_EFFECT_REFLECTION && all_st.effects & HR_EFFECT_REFRACTION);
+        CHECK(!(all_st.effects & HR_EFFECT_SUPERSAMPLING));
+        hr_image_destroy(a);
+        hr_image_destroy(b);
+        hr_scene_destroy(s);
+    }
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
+    effects_all();
     centres_and_threads();
     blocks();
     cancelling();
