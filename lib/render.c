@@ -85,13 +85,13 @@ static void render_tile(worker *w, int64_t tile)
     for (int32_t y = y0; y < y1; y++) {
         for (int32_t x = x0; x < x1; x++) {
             int32_t bx = x - x % block, by = y - y % block;
-            if (block > 1 && (x != bx && x != x0) ) {
+            if (block > 1 && x != bx && x != x0) {
                 /* Copy from the pixel to the left, inside this tile and block. */
                 memcpy(&job->pixels[3 * ((size_t)y * job->width + x)],
                        &job->pixels[3 * ((size_t)y * job->width + x - 1)], 3 * sizeof(float));
                 continue;
             }
-            if (block > 1 && (y != by && y != y0)) {
+            if (block > 1 && y != by && y != y0) {
                 memcpy(&job->pixels[3 * ((size_t)y * job->width + x)],
                        &job->pixels[3 * ((size_t)(y - 1) * job->width + x)], 3 * sizeof(float));
                 continue;
