@@ -8,6 +8,7 @@
 #define HITRAY_CLI_H
 
 #include <stdint.h>
+#include <signal.h>
 #include <stdio.h>
 
 #include <hitray/hitray.h>
@@ -85,6 +86,11 @@ typedef struct cli_progress {
 void cli_progress_begin(cli_progress *p);
 int32_t cli_progress_update(void *user, double fraction);
 void cli_progress_end(cli_progress *p);
+/* Hold SIGINT, SIGTERM, SIGHUP and SIGQUIT while output files are written
+ * (cli_release_signals delivers any that came), so no signal can leave a
+ * half-written temporary file. */
+void cli_hold_signals(sigset_t *previous);
+void cli_release_signals(const sigset_t *previous);
 void cli_interrupt_release(void);
 /* 1 once SIGINT arrived during a render. */
 int cli_interrupted(void);

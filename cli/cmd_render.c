@@ -314,10 +314,16 @@ static int render_and_write(const render_request *r, cli_scene *s)
         return CLI_EXIT_INTERRUPTED;
     }
     if (st != HR_OK) return cli_library_error(s->ctx, st);
+    /* A signal that kills the process mid-write would leave a temporary file
+     * (the library writes beside the target, then renames): SIGTERM, SIGHUP,
+     * SIGQUIT and a second Ctrl-C wait until the files are complete. */
+    sigset_t held;
+    cli_hold_signals(&held);
     int rc = write_images(r, s->ctx, image);
     hr_image_destroy(image);
+    if (!rc && r->stats_json && write_stats_json(r, &stats)) rc = CLI_EXIT_ERROR;
+    cli_release_signals(&held);
     if (rc) return rc;
-    if (r->stats_json && write_stats_json(r, &stats)) return CLI_EXIT_ERROR;
     print_summary(r, &stats);
     return fflush(stdout) == 0 ? CLI_EXIT_OK : cli_error("cannot write to standard output");
 }

@@ -90,3 +90,21 @@ void cli_interrupt_release(void)
     sigaction(SIGINT, &previous_sigint, NULL);
     handler_installed = 0;
 }
+
+void cli_hold_signals(sigset_t *previous)
+{
+    sigset_t hold;
+    sigemptyset(&hold);
+    sigaddset(&hold, SIGINT);
+    sigaddset(&hold, SIGTERM);
+    sigaddset(&hold, SIGHUP);
+    sigaddset(&hold, SIGQUIT);
+    /* The render's threads have ended: the process mask is this thread's. */
+    sigprocmask(SIG_BLOCK, &hold, previous);
+}
+
+void cli_release_signals(const sigset_t *previous)
+{
+    /* A signal that came meanwhile is delivered here, after the rename. */
+    sigprocmask(SIG_SETMASK, previous, NULL);
+}

@@ -528,6 +528,39 @@ def test_ctrl_c_while_writing_leaves_no_temporary_file(tmp_path):
     assert png_header(out)[:3] == (4096, 4096, 16)
 
 
+def test_sigterm_while_writing_waits_for_the_file(tmp_path):
+    """SIGTERM (or SIGHUP, or a second Ctrl-C) during the write is held until
+    the image is complete and renamed: the process then dies of it, leaving
+    the whole image and no temporary file."""
+    scene = write_sdl(tmp_path, "one.sdl", "light 3 3 3 1 1 1\nsphere\n")
+    out = tmp_path / "big.png"
+    master, slave = pty.openpty()
+    proc = subprocess.Popen([str(HITRAY), "render", str(scene), "-o", str(out), "--size", "4096x4096",
+                             "--block", "2048", "--png16"], stdout=subprocess.PIPE, stderr=slave)
+    os.close(slave)
+    seen = b""
+    try:
+        deadline = time.monotonic() + 60
+        while b"\x1b[K" not in seen and time.monotonic() < deadline:  # the bar is cleared: writing
+            ready, _, _ = select.select([master], [], [], 1.0)
+            if ready:
+                try:
+                    seen += os.read(master, 4096)
+                except OSError:
+                    break
+        assert b"\x1b[K" in seen
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        os.close(master)
+    assert proc.returncode == -signal.SIGTERM
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["big.png", "one.sdl"]
+    assert png_header(out)[:3] == (4096, 4096, 16)
+
+
 def test_ignored_sigint_stays_ignored(tmp_path):
     """A shell starts background jobs with SIGINT ignored so that Ctrl-C at
     the terminal leaves them running: the render must not be cancelled."""
