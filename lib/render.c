@@ -69,12 +69,29 @@ static void sample_offset(int32_t k, int32_t n, double *dx, double *dy)
     *dy = y >= 1.0 ? y - 1.0 : y;
 }
 
+/* Called from inside shading every HR_POLL_INTERVAL rays: report progress
+ * (and so let the callback cancel) without waiting for the tile to end. A
+ * busy lock means another thread is reporting: skip, the next poll comes. */
+static void poll_progress(void *user)
+{
+    render_job *job = user;
+    if (!job->opt.progress || pthread_mutex_trylock(&job->progress_lock) != 0) return;
+    if (!atomic_load(&job->cancelled) &&
+        job->opt.progress(job->opt.progress_user,
+                          (double)atomic_load(&job->tiles_done) / (double)job->tile_count))
+        atomic_store(&job->cancelled, 1);
+    pthread_mutex_unlock(&job->progress_lock);
+}
+
 static void render_tile(worker *w, int64_t tile)
 {
     render_job *job = w->job;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, job->scene);
     tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
+    tc.cancelled = &job->cancelled;
+    tc.poll = poll_progress;
+    tc.poll_user = job;
     int32_t tsize = job->opt.tile_size;
     int32_t x0 = (int32_t)(tile % job->tiles_x) * tsize, y0 = (int32_t)(tile / job->tiles_x) * tsize;
     int32_t x1 = x0 + tsize < job->width ? x0 + tsize : job->width;

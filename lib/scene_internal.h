@@ -2,6 +2,8 @@
 #ifndef HITRAY_LIB_SCENE_INTERNAL_H
 #define HITRAY_LIB_SCENE_INTERNAL_H
 
+#include <stdatomic.h>
+
 #include <hitray/hitray.h>
 
 #include "bvh.h"
@@ -57,7 +59,18 @@ typedef struct hr_trace_ctx {
     hr_status status;           /* first failure inside a shape, if any */
     uint64_t rays_shadow, rays_reflected, rays_refracted;
     int32_t force_all_effects;
+    /* Cancelling from inside a pixel: a render can spend forever in one
+     * pixel (glass facing glass at depth 60 is 2^60 rays), and a progress
+     * callback called only between tiles could then never stop it. Every
+     * HR_POLL_INTERVAL shade calls the renderer's `poll` runs (it may call
+     * the progress callback); shade returns at once while `*cancelled`. */
+    const atomic_int *cancelled; /* NULL: nothing can cancel (public queries) */
+    void (*poll)(void *user);
+    void *poll_user;
+    uint32_t shade_calls;
 } hr_trace_ctx;
+
+#define HR_POLL_INTERVAL 65536u
 
 void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene);
 void hr_trace_ctx_release(hr_trace_ctx *tc);

@@ -73,6 +73,11 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
     const hr_scene *s = tc->scene;
+    if (tc->cancelled) {
+        if (tc->poll && ++tc->shade_calls % HR_POLL_INTERVAL == 0) tc->poll(tc->poll_user);
+        /* The image is thrown away: unwind as fast as possible. */
+        if (atomic_load_explicit(tc->cancelled, memory_order_relaxed)) return rgb(0, 0, 0);
+    }
     hr_hit h;
     if (!hr_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;
     const hr_object *o = s->objects[h.object];

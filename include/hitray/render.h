@@ -13,9 +13,10 @@
 extern "C" {
 #endif
 
-/* Called from one thread at a time as tiles finish, with the fraction done
- * in [0, 1]. Return non-zero to cancel: hr_render then stops early and
- * returns HR_ERROR_CANCELLED, with no image. */
+/* Called from one thread at a time as tiles finish, and every 65536 rays
+ * within a tile (so even a render stuck in one costly pixel can be stopped),
+ * with the fraction of tiles done in [0, 1]. Return non-zero to cancel:
+ * hr_render then stops early and returns HR_ERROR_CANCELLED, with no image. */
 typedef int32_t (*hr_progress_fn)(void *user, double fraction);
 
 #define HR_EFFECTS_AUTO 0 /* simulate only what the scene calls for */

@@ -143,7 +143,7 @@ static int calls;
 static int32_t cancel_after_two(void *user, double fraction)
 {
     (void)user;
-    CHECK(fraction > 0 && fraction <= 1);
+    CHECK(fraction >= 0 && fraction <= 1);
     return ++calls >= 2;
 }
 
@@ -201,9 +201,53 @@ static void effects_all(void)
     }
 }
 
+static int32_t cancel_at_once(void *user, double fraction)
+{
+    (void)fraction;
+    ++*(int *)user;
+    return 1;
+}
+
+/* One pixel that would cost 2^60 rays: a mirror-and-glass ball inside a
+ * mirror box, both bounces at every hit, depth 60. The progress callback is
+ * called from inside the pixel and cancels; hr_render returns. (Before, the
+ * callback ran only between tiles: this never returned; ctest's timeout is
+ * the guard.) */
+static void cancel_inside_a_pixel(void)
+{
+    hr_scene *s;
+    hr_scene_create(ctx, &s);
+    hr_scene_globals g;
+    hr_scene_globals_default(&g);
+    g.max_recursion_depth = 60;
+    hr_scene_set_globals(s, &g);
+    hr_material m = tb_black();
+    m.reflectivity = 1;
+    m.transparency = 1;
+    m.speed_of_light = 0.7;
+    tb_add(s, "sphere", &m, NULL);
+    hr_transform box = tb_place(0, 0, 0, 4);
+    tb_add(s, "cube", &m, &box);
+    hr_scene_commit(s);
+    hr_camera c = view(1, 1);
+    c.eye = (hr_vec3){0, 0, 3};
+    c.look = (hr_vec3){0, 0, 0};
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.threads = 1;
+    int polls = 0;
+    o.progress = cancel_at_once;
+    o.progress_user = &polls;
+    hr_image *img = (hr_image *)1;
+    CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_CANCELLED);
+    CHECK(img == NULL && polls == 1);
+    hr_scene_destroy(s);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
+    cancel_inside_a_pixel();
     effects_all();
     centres_and_threads();
     blocks();
