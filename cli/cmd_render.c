@@ -308,17 +308,23 @@ static int render_and_write(const render_request *r, cli_scene *s)
     hr_image *image = NULL;
     cli_progress_begin(&progress);
     hr_status st = hr_render(s->sdl.scene, &cam, &o, &image, &stats);
+    /* A signal that kills the process mid-write would leave a temporary file
+     * (the library writes beside the target, then renames): SIGTERM, SIGHUP,
+     * SIGQUIT and a second Ctrl-C wait until the files are complete. They
+     * are held before the bar is cleared, so a cleared bar means "writing,
+     * and safe from signals". */
+    sigset_t held;
+    cli_hold_signals(&held);
     cli_progress_end(&progress);
     if (st == HR_ERROR_CANCELLED && cli_interrupted()) {
+        cli_release_signals(&held);
         cli_error("render interrupted; nothing written");
         return CLI_EXIT_INTERRUPTED;
     }
-    if (st != HR_OK) return cli_library_error(s->ctx, st);
-    /* A signal that kills the process mid-write would leave a temporary file
-     * (the library writes beside the target, then renames): SIGTERM, SIGHUP,
-     * SIGQUIT and a second Ctrl-C wait until the files are complete. */
-    sigset_t held;
-    cli_hold_signals(&held);
+    if (st != HR_OK) {
+        cli_release_signals(&held);
+        return cli_library_error(s->ctx, st);
+    }
     int rc = write_images(r, s->ctx, image);
     hr_image_destroy(image);
     if (!rc && r->stats_json && write_stats_json(r, &stats)) rc = CLI_EXIT_ERROR;

@@ -494,14 +494,14 @@ def test_stats_json_write_failure_keeps_the_old_file(scene, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o.ppm", "scene.sdl", "stats.json"]
 
 
-def test_ctrl_c_while_writing_leaves_no_temporary_file(tmp_path):
-    """Ctrl-C after the render, while the (big, slow) PNG is being written,
-    must not kill the process between creating its temporary file and
-    renaming it: the write finishes, and nothing else is left behind."""
+def signal_while_writing(tmp_path, signo):
+    """Render a big 16-bit PNG (one ray per 2048x2048 block: the render is
+    instant, the write is not), send `signo` once the progress bar is cleared,
+    that is, while the file is being written; return the exit status and the
+    image's path."""
     scene = write_sdl(tmp_path, "one.sdl", "light 3 3 3 1 1 1\nsphere\n")
     out = tmp_path / "big.png"
     master, slave = pty.openpty()
-    # One ray per 2048x2048 block: the render is instant, the 16-bit PNG is not.
     proc = subprocess.Popen([str(HITRAY), "render", str(scene), "-o", str(out), "--size", "4096x4096",
                              "--block", "2048", "--png16"], stdout=subprocess.PIPE, stderr=slave)
     os.close(slave)
@@ -516,14 +516,22 @@ def test_ctrl_c_while_writing_leaves_no_temporary_file(tmp_path):
                 except OSError:
                     break
         assert b"\x1b[K" in seen
-        proc.send_signal(signal.SIGINT)
+        proc.send_signal(signo)
         proc.wait(timeout=120)
     finally:
         if proc.poll() is None:
             proc.kill()
             proc.wait()
         os.close(master)
-    assert proc.returncode == 0
+    return proc.returncode, out
+
+
+def test_ctrl_c_while_writing_leaves_no_temporary_file(tmp_path):
+    """Ctrl-C after the render, while the (big, slow) PNG is being written,
+    must not kill the process between creating its temporary file and
+    renaming it: the write finishes, and nothing else is left behind."""
+    returncode, out = signal_while_writing(tmp_path, signal.SIGINT)
+    assert returncode == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["big.png", "one.sdl"]
     assert png_header(out)[:3] == (4096, 4096, 16)
 
@@ -532,31 +540,8 @@ def test_sigterm_while_writing_waits_for_the_file(tmp_path):
     """SIGTERM (or SIGHUP, or a second Ctrl-C) during the write is held until
     the image is complete and renamed: the process then dies of it, leaving
     the whole image and no temporary file."""
-    scene = write_sdl(tmp_path, "one.sdl", "light 3 3 3 1 1 1\nsphere\n")
-    out = tmp_path / "big.png"
-    master, slave = pty.openpty()
-    proc = subprocess.Popen([str(HITRAY), "render", str(scene), "-o", str(out), "--size", "4096x4096",
-                             "--block", "2048", "--png16"], stdout=subprocess.PIPE, stderr=slave)
-    os.close(slave)
-    seen = b""
-    try:
-        deadline = time.monotonic() + 60
-        while b"\x1b[K" not in seen and time.monotonic() < deadline:  # the bar is cleared: writing
-            ready, _, _ = select.select([master], [], [], 1.0)
-            if ready:
-                try:
-                    seen += os.read(master, 4096)
-                except OSError:
-                    break
-        assert b"\x1b[K" in seen
-        proc.send_signal(signal.SIGTERM)
-        proc.wait(timeout=120)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-        os.close(master)
-    assert proc.returncode == -signal.SIGTERM
+    returncode, out = signal_while_writing(tmp_path, signal.SIGTERM)
+    assert returncode == -signal.SIGTERM
     assert sorted(p.name for p in tmp_path.iterdir()) == ["big.png", "one.sdl"]
     assert png_header(out)[:3] == (4096, 4096, 16)
 
