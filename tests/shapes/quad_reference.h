@@ -1,6 +1,7 @@
 /* Reference answers for the built-in shapes, computed in quad precision
  * (__float128, 113-bit significand, libquadmath) from the same double
- * inputs the modules get. Independent of the modules' code on purpose: each
+ * inputs the modules get (the torus's quartic is solved by Sturm sequences in
+ * quad, see quad_poly.h). Independent of the modules' code on purpose: each
  * surface patch is intersected on its own with the textbook formulas (which
  * quad precision makes accurate enough here; see quad_reference.c), where the
  * modules intersect spans.
@@ -21,6 +22,7 @@ typedef __float128 quad;
 #define REF_SQUARE 2
 #define REF_CUBE 3
 #define REF_TAPERED 4 /* cylinder (s = 1), cone (s = 0), taperedCylinder */
+#define REF_TORUS 5   /* s is the tube radius (0.2 for NaN) */
 
 typedef struct ref_shape {
     int kind;
