@@ -221,26 +221,34 @@ static double torus_eval(const torus_frame *fr, double u, double *deriv, double 
     return fma(G, G, 4.0 * W);
 }
 
-static double eval_f(const torus_frame *fr, double u, double *deriv)
+static double eval_f(const torus_frame *fr, double u, double *deriv, double *bound)
 {
-    return torus_eval(fr, u, deriv, NULL);
+    return torus_eval(fr, u, deriv, bound);
 }
 
-/* f'(u) and f''(u) by Horner from the expanded coefficients. */
-static double eval_df(const torus_frame *fr, double u, double *deriv)
+/* f'(u) and f''(u) by Horner from the expanded coefficients, with a bound on
+ * the rounding of f' (Horner's: 2 n u times the sum of the magnitudes of the
+ * terms, n = 3, doubled for the coefficients' own rounding). */
+static double eval_df(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const double *c = fr->c;
+    const double au = fabs(u);
     *deriv = (12.0 * c[4] * u + 6.0 * c[3]) * u + 2.0 * c[2];
+    *bound = 12.0 * SHAPE_UNIT_ROUNDOFF *
+             (((4.0 * fabs(c[4]) * au + 3.0 * fabs(c[3])) * au + 2.0 * fabs(c[2])) * au +
+              fabs(c[1]));
     return ((4.0 * c[4] * u + 3.0 * c[3]) * u + 2.0 * c[2]) * u + c[1];
 }
 
-typedef double (*eval_fn)(const torus_frame *fr, double u, double *deriv);
+typedef double (*eval_fn)(const torus_frame *fr, double u, double *deriv, double *bound);
 
 /* The one root of a function monotone on [x0, x1], given its values f0, f1
  * there, nonzero and of opposite signs: Newton steps from the regula falsi
  * point, replaced by bisection whenever a step leaves the bracket (which
- * shrinks at every evaluation), until the step or the bracket is down to
- * rounding. */
+ * shrinks at every evaluation), until the value is within its rounding
+ * bound (no step can then do better than noise: one last Newton step takes
+ * the root to where the noise is centred), or the step or the bracket is
+ * down to rounding. */
 static double bracketed_root(const torus_frame *fr, eval_fn fn, double x0, double x1, double f0,
                              double f1)
 {
@@ -249,13 +257,15 @@ static double bracketed_root(const torus_frame *fr, eval_fn fn, double x0, doubl
     double x = x0 - f0 * ((x1 - x0) / (f1 - f0));
     if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
     for (int i = 0; i < 80; i++) {
-        double dfx;
-        const double fx = fn(fr, x, &dfx);
+        double dfx, bound;
+        const double fx = fn(fr, x, &dfx, &bound);
         if (fx == 0.0) return x;
         if ((fx > 0.0) == rising) hi = x;
         else lo = x;
         double next = x - fx / dfx;
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        const int inside = next >= lo && next <= hi;
+        if (inside && (fabs(fx) <= bound || next == x)) return next;
+        if (!inside) next = 0.5 * (lo + hi);
         const double step = fabs(next - x);
         x = next;
         if (step <= DBL_EPSILON * (fabs(x) + 0x1p-40)) break;
@@ -319,10 +329,10 @@ static void solve_bracketing(const torus_frame *fr, collector *col)
     double x[6];
     int nx = 0;
     x[nx++] = lo;
-    double dummy;
-    double fa = eval_df(fr, split[0], &dummy);
+    double dummy, dummy_bound;
+    double fa = eval_df(fr, split[0], &dummy, &dummy_bound);
     for (int i = 0; i + 1 < n_split; i++) {
-        const double fb = eval_df(fr, split[i + 1], &dummy);
+        const double fb = eval_df(fr, split[i + 1], &dummy, &dummy_bound);
         if (fa != 0.0 && fb != 0.0 && (fa < 0.0) != (fb < 0.0)) {
             const double root = bracketed_root(fr, eval_df, split[i], split[i + 1], fa, fb);
             if (root > x[nx - 1] && root < hi) x[nx++] = root;
@@ -436,7 +446,7 @@ static double newton_polish(const torus_frame *fr, double u)
     double best = u, best_f = INFINITY;
     for (int i = 0; i < 5; i++) {
         double df;
-        const double fx = eval_f(fr, u, &df);
+        const double fx = torus_eval(fr, u, &df, NULL);
         if (fabs(fx) < best_f) {
             best_f = fabs(fx);
             best = u;
