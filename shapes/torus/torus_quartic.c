@@ -221,9 +221,20 @@ static double torus_eval(const torus_frame *fr, double u, double *deriv, double 
     return fma(G, G, 4.0 * W);
 }
 
-static double eval_f(const torus_frame *fr, double u, double *deriv, double *bound)
+/* f(u) and f'(u) by Horner from the expanded coefficients (a third of
+ * torus_eval's cost), with Horner's bound (2 n u times the sum of the
+ * magnitudes of the terms, n = 4, doubled for the coefficients' own
+ * rounding). Good enough to bracket and approach a root; the last steps use
+ * torus_eval, whose error is relative to the tube (see polish_root). */
+static double eval_f_horner(const torus_frame *fr, double u, double *deriv, double *bound)
 {
-    return torus_eval(fr, u, deriv, bound);
+    const double *c = fr->c;
+    const double au = fabs(u);
+    *deriv = ((4.0 * c[4] * u + 3.0 * c[3]) * u + 2.0 * c[2]) * u + c[1];
+    *bound = 16.0 * SHAPE_UNIT_ROUNDOFF *
+             ((((fabs(c[4]) * au + fabs(c[3])) * au + fabs(c[2])) * au + fabs(c[1])) * au +
+              fabs(c[0]));
+    return (((c[4] * u + c[3]) * u + c[2]) * u + c[1]) * u + c[0];
 }
 
 /* f'(u) and f''(u) by Horner from the expanded coefficients, with a bound on
@@ -272,6 +283,22 @@ static double bracketed_root(const torus_frame *fr, eval_fn fn, double x0, doubl
         if (hi - lo <= DBL_EPSILON * (fabs(lo) + fabs(hi)) + 0x1p-60) break;
     }
     return x;
+}
+
+/* Newton steps on the accurate f from a root found with Horner's f, which
+ * is within Horner's noise of it: at most three, stopping once |f| is
+ * within its rounding bound, and never leaving [lo, hi]. */
+static double polish_root(const torus_frame *fr, double u, double lo, double hi)
+{
+    for (int i = 0; i < 3; i++) {
+        double df, bound;
+        const double fx = torus_eval(fr, u, &df, &bound);
+        if (fabs(fx) <= bound) break;
+        const double next = u - fx / df;
+        if (!(next >= lo && next <= hi) || next == u) break;
+        u = next;
+    }
+    return u;
 }
 
 /* --- Output ------------------------------------------------------------------ */
@@ -372,7 +399,10 @@ static void solve_bracketing(const torus_frame *fr, collector *col)
         if (fa2 != 0.0 && fb2 != 0.0 && (fa2 < 0.0) != (fb2 < 0.0)) {
             if (frame_t(fr, x[j]) >= col->tmax) break;
             if (frame_t(fr, x[j + 1]) > col->tmin)
-                emit(col, bracketed_root(fr, eval_f, x[j], x[j + 1], fa2, fb2), fa2 > 0.0);
+                emit(col,
+                     polish_root(fr, bracketed_root(fr, eval_f_horner, x[j], x[j + 1], fa2, fb2),
+                                 x[j], x[j + 1]),
+                     fa2 > 0.0);
         }
         if (fb2 != 0.0) left = sign_of(fb2);
     }
@@ -440,18 +470,19 @@ static int ferrari_roots(const torus_frame *fr, double u[4])
     return count;
 }
 
-/* Up to four Newton steps on the accurate f, keeping the best iterate. */
+/* Up to four Newton steps on the accurate f, keeping the best iterate and
+ * stopping once |f| is within its rounding bound. */
 static double newton_polish(const torus_frame *fr, double u)
 {
     double best = u, best_f = INFINITY;
     for (int i = 0; i < 5; i++) {
-        double df;
-        const double fx = torus_eval(fr, u, &df, NULL);
+        double df, bound;
+        const double fx = torus_eval(fr, u, &df, &bound);
         if (fabs(fx) < best_f) {
             best_f = fabs(fx);
             best = u;
         }
-        if (fx == 0.0 || i == 4) break;
+        if (fabs(fx) <= bound || i == 4) break;
         const double next = u - fx / df;
         if (!isfinite(next) || next == u) break;
         u = next;

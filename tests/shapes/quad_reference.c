@@ -310,10 +310,23 @@ static void sort_hits(ref_trace *out)
     }
 }
 
+static void trace_line(ref_shape shape, qvec origin, qvec dir, ref_trace *out);
+
 void ref_trace_ray(ref_shape shape, hr_ray ray, ref_trace *out)
 {
+    trace_line(shape, qv(ray.origin), qv(ray.dir), out);
+}
+
+void ref_trace_quad_ray(ref_shape shape, const quad origin[3], const quad dir[3], ref_trace *out)
+{
+    const qvec o = {origin[0], origin[1], origin[2]}, d = {dir[0], dir[1], dir[2]};
+    trace_line(shape, o, d, out);
+}
+
+static void trace_line(ref_shape shape, qvec origin, qvec dir, ref_trace *out)
+{
     memset(out, 0, sizeof *out);
-    collector col = {out, qv(ray.origin), qv(ray.dir), (quad)INFINITY};
+    collector col = {out, origin, dir, (quad)INFINITY};
     switch (shape.kind) {
     case REF_SPHERE: trace_sphere(&col); break;
     case REF_PLANE: trace_flat_z(&col, 0, 0, 1, -1, -1); break;

@@ -62,6 +62,10 @@ typedef struct ref_trace {
  * the outward normal. */
 void ref_trace_ray(ref_shape shape, hr_ray ray, ref_trace *out);
 
+/* The same for a line given in quad precision (an object-space ray a test
+ * carried through a transform itself, without rounding it to double). */
+void ref_trace_quad_ray(ref_shape shape, const quad origin[3], const quad dir[3], ref_trace *out);
+
 /* Euclidean distance from p to the given surface patch of the shape. */
 double ref_surface_distance(ref_shape shape, int surface, hr_vec3 p);
 
