@@ -89,6 +89,7 @@ typedef struct torus_frame {
     double shift_high, shift_low; /* t = (shift + u) * scale */
     double scale;                 /* a power of two */
     double c[5];                  /* f(u) = sum c[k] u^k */
+    double c_size[5];             /* the sums of the magnitudes of c[k]'s terms */
     double lo, hi;                /* every root lies in [lo, hi] */
 } torus_frame;
 
@@ -184,8 +185,14 @@ static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *f
     fr->c[2] = 4.0 * b * b + 2.0 * a * g0 + 4.0 * e.z * e.z;
     fr->c[1] = 4.0 * b * g0 + 8.0 * o.z * e.z;
     fr->c[0] = g0 * g0 + 4.0 * w0;
+    const double ab = fabs(b), ag0 = fabs(g0);
+    fr->c_size[4] = fr->c[4];
+    fr->c_size[3] = fabs(fr->c[3]);
+    fr->c_size[2] = 4.0 * b * b + 2.0 * a * ag0 + 4.0 * e.z * e.z;
+    fr->c_size[1] = 4.0 * ab * ag0 + 8.0 * fabs(o.z * e.z);
+    fr->c_size[0] = g0 * g0 + 4.0 * fabs(w0);
     for (int i = 0; i < 5; i++)
-        if (!isfinite(fr->c[i])) return 0;
+        if (!isfinite(fr->c[i]) || !isfinite(fr->c_size[i])) return 0;
     return 1;
 }
 
@@ -221,33 +228,38 @@ static double torus_eval(const torus_frame *fr, double u, double *deriv, double 
     return fma(G, G, 4.0 * W);
 }
 
+/* A bound on the rounding of Horner's f from the expanded coefficients:
+ * each coefficient is a sum of at most three rounded products, within 4 u of
+ * the sum of its terms' magnitudes (c_size), and Horner adds 2 n = 8
+ * roundings; 16 u covers both with room for the second-order terms. */
+static double horner_bound(const torus_frame *fr, double au)
+{
+    const double *m = fr->c_size;
+    return 16.0 * SHAPE_UNIT_ROUNDOFF * ((((m[4] * au + m[3]) * au + m[2]) * au + m[1]) * au + m[0]);
+}
+
 /* f(u) and f'(u) by Horner from the expanded coefficients (a third of
- * torus_eval's cost), with Horner's bound (2 n u times the sum of the
- * magnitudes of the terms, n = 4, doubled for the coefficients' own
- * rounding). Good enough to bracket and approach a root; the last steps use
- * torus_eval, whose error is relative to the tube (see polish_root). */
+ * torus_eval's cost), with horner_bound. Good enough to bracket and
+ * approach a root; the last steps use torus_eval, whose error is relative
+ * to the tube (see polish_root). */
 static double eval_f_horner(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const double *c = fr->c;
-    const double au = fabs(u);
     *deriv = ((4.0 * c[4] * u + 3.0 * c[3]) * u + 2.0 * c[2]) * u + c[1];
-    *bound = 16.0 * SHAPE_UNIT_ROUNDOFF *
-             ((((fabs(c[4]) * au + fabs(c[3])) * au + fabs(c[2])) * au + fabs(c[1])) * au +
-              fabs(c[0]));
+    *bound = horner_bound(fr, fabs(u));
     return (((c[4] * u + c[3]) * u + c[2]) * u + c[1]) * u + c[0];
 }
 
 /* f'(u) and f''(u) by Horner from the expanded coefficients, with a bound on
- * the rounding of f' (Horner's: 2 n u times the sum of the magnitudes of the
- * terms, n = 3, doubled for the coefficients' own rounding). */
+ * the rounding of f' (as horner_bound: 4 u for the coefficients, 2 n = 6
+ * roundings for Horner, rounded up to 12 u). */
 static double eval_df(const torus_frame *fr, double u, double *deriv, double *bound)
 {
-    const double *c = fr->c;
+    const double *c = fr->c, *m = fr->c_size;
     const double au = fabs(u);
     *deriv = (12.0 * c[4] * u + 6.0 * c[3]) * u + 2.0 * c[2];
     *bound = 12.0 * SHAPE_UNIT_ROUNDOFF *
-             (((4.0 * fabs(c[4]) * au + 3.0 * fabs(c[3])) * au + 2.0 * fabs(c[2])) * au +
-              fabs(c[1]));
+             (((4.0 * m[4] * au + 3.0 * m[3]) * au + 2.0 * m[2]) * au + m[1]);
     return ((4.0 * c[4] * u + 3.0 * c[3]) * u + 2.0 * c[2]) * u + c[1];
 }
 
@@ -370,13 +382,18 @@ static void solve_bracketing(const torus_frame *fr, collector *col)
     }
     x[nx++] = hi;
 
-    /* f at the ends (outside: positive) and at the critical points, where a
-     * value within its rounding bound counts as zero: a tangent. */
+    /* f at the ends: outside the grown sphere or slab, positive (2^-20 of
+     * growth puts f there far above any rounding). At the critical points:
+     * Horner's sign where it is clear of its bound, else the accurate value,
+     * where a value within its own bound counts as zero: a tangent. */
     double f[6];
-    for (int j = 0; j < nx; j++) {
+    f[0] = f[nx - 1] = 1.0;
+    for (int j = 1; j + 1 < nx; j++) {
         double bound;
+        f[j] = eval_f_horner(fr, x[j], &dummy, &bound);
+        if (fabs(f[j]) > bound) continue;
         f[j] = torus_eval(fr, x[j], NULL, &bound);
-        if (j > 0 && j + 1 < nx && fabs(f[j]) <= bound) f[j] = 0.0;
+        if (fabs(f[j]) <= bound) f[j] = 0.0;
     }
 
     int left = sign_of(f[0]);
@@ -452,7 +469,13 @@ static int ferrari_roots(const torus_frame *fr, double u[4])
     double m = 0.0;
     if (q != 0.0) m = cubic_largest_root(p, 0.25 * p * p - r0, -0.125 * q * q);
     if (q != 0.0 && m > 0.0 && isfinite(m)) {
-        const double s = sqrt(2.0 * m), h = 0.5 * q / s, base = 0.5 * p + m;
+        /* h = q / (2 s) is also +-sqrt((m + p/2)^2 - r0): the quotient is
+         * inaccurate when m is tiny (the cubic formula gives it with an
+         * absolute, not relative, error), the square root when it cancels;
+         * take the square root unless (m + p/2)^2 is within 2 |r0|. */
+        const double s = sqrt(2.0 * m), base = 0.5 * p + m;
+        const double h2 = base * base - r0;
+        const double h = h2 > 2.0 * fabs(r0) ? copysign(sqrt(h2), q) : 0.5 * q / s;
         n += monic_quadratic(s, base - h, y + n);
         n += monic_quadratic(-s, base + h, y + n);
     } else { /* biquadratic: z = y^2 */
