@@ -155,16 +155,35 @@ static void torus_destroy(void *shape)
     host->free(shape);
 }
 
-/* The numbers in the solver's help come from bench/torus_solvers (see that
- * file for the command and the rays). */
+/* The numbers in the solver's help were measured with
+ *   build/bench/torus_solvers --rays=20000 --repeats=7     (accuracy)
+ *   bench/torus_solvers_instructions.sh build 2000          (instructions)
+ *   build/bench/torus_solvers --rays=5000 --repeats=25 --no-reference (ns)
+ * on the 2-core AMD EPYC development VM (ns: the best pass of 25 on a busy
+ * machine; the instruction counts do not depend on the load). Per solve,
+ * every hit / first hit, over the ray sets of that benchmark (near, far 1e4,
+ * far 1e6, grazing, thin tube near and grazing):
+ *
+ *   solver          instructions         ns         worst |t error|      wrong counts on
+ *                   all        first     all        (u * condition)      20000 near rays
+ *   ferrari         1180-1650  1180-1620 160-270    3.3e9 (1.6e-6 rel.)  4 spurious
+ *   ferrari-newton  1200-2200  1190-2190 190-340    4.1                  4 spurious
+ *   bracketing      1150-4840  1130-3440 150-690    2.5                  none
+ *
+ * (The ranges run from the thin tube's rays, whose bracket, the slab
+ * |z| <= tube, is short and mostly empty, to the grazing rays.) Within 1e-12 of a tangency the Ferrari solvers miss
+ * roots that bracketing finds (9 in the near set, 4 in the thin one); the
+ * counts that differ from the reference the other way there (15-24 per
+ * set, for every solver) are lines lying exactly in the tangent plane
+ * z = tube, whose double roots the quad reference itself cannot resolve. */
 static const hr_param_spec torus_params[] = {
     {"tube", HR_PARAM_NUMBER, 0, 0.2, TUBE_MIN, TUBE_MAX,
      "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole"},
     {"solver", HR_PARAM_STRING, 0, 0.0, 0.0, 0.0,
-     "root solver of the quartic: 'bracketing' (default) never misses a root or a tangent, "
-     "~0.25 us per ray, error within a few ulps of the root's condition; 'ferrari-newton' "
-     "~0.15 us, as accurate where it finds a root but loses near-tangent pairs; 'ferrari' "
-     "~0.09 us, closed form, errors up to ~1e-6 near tangents and on thin tubes"},
+     "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent, "
+     "t within 2.5 u*condition, 150-690 ns per ray; 'ferrari-newton' (closed form + Newton) "
+     "190-340 ns, as accurate where it finds the roots but may invent or lose a close pair; "
+     "'ferrari' (closed form) 160-270 ns, t errors up to 2e-6 relative near tangents"},
 };
 
 static const hr_shape_class torus_class = {
