@@ -439,5 +439,7 @@ int main(void)
         test_random_rays(1e-3, solver, UINT64_C(0x7070e) + (uint64_t)solver);
         test_random_rays(0.9, solver, UINT64_C(0x70717) + (uint64_t)solver);
     }
+    /* The thinnest tube the module accepts, with the default solver. */
+    test_random_rays(1e-6, DEFAULT_SOLVER, UINT64_C(0x70720));
     return hr_test_end();
 }
