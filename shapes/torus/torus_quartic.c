@@ -17,9 +17,11 @@
  *      c1 = 4 b g0 + 8 o'z ez, c0 = g0^2 + 4 (o'z^2 - r^2).
  *    b is ~0 after the shift (so the quartic is nearly depressed already);
  *    g0 and o'z^2 - r^2 are compensated sums, accurate where they cancel.
- *    The expanded coefficients serve the closed form and the derivatives;
- *    f itself is evaluated at the point (torus_eval): p by FMA, then G and
- *    Z^2 - r^2 compensated, which keeps relative accuracy near thin tubes.
+ *    The expanded coefficients serve the closed form, the derivatives and
+ *    Horner's cheap f; where accuracy decides (the last Newton steps, a
+ *    tangent or not) f is evaluated at the point instead (torus_eval): p by
+ *    FMA, then G and Z^2 - r^2 compensated, which keeps its error relative
+ *    to the tube's size, where Horner's is relative to 1.
  *
  * 3. Every root lies where the line is inside both the bounding sphere
  *    |p| <= 1 + r and the slab |z| <= r. Both are grown by 2^-20 so that the
@@ -30,10 +32,11 @@
  * The solvers:
  * - ferrari: depress the monic quartic, take the largest root of Ferrari's
  *   resolvent cubic (trigonometric or Cardano form), split into two
- *   quadratics solved without cancellation. About 20 flops and a cbrt or
- *   acos; roots lose accuracy near tangency and for thin tubes (the
- *   resolvent's root feeds q / (2 sqrt(2m)), which cancels), and a pair of
- *   close roots can vanish into a slightly negative discriminant.
+ *   quadratics solved without cancellation. About 40 flops and a cbrt or
+ *   acos and cos; roots lose accuracy near tangency and for thin tubes (the
+ *   resolvent's root carries an absolute error that the split amplifies),
+ *   and a pair of close roots can vanish into a slightly negative
+ *   discriminant, or a spurious pair appear.
  * - ferrari-newton: the same, then up to four Newton steps on each root with
  *   the accurate evaluation of f (keeping the best). Recovers full accuracy
  *   wherever the closed form found the root, but cannot restore a pair that
@@ -44,7 +47,8 @@
  *   piece brackets one critical point of f, found by safeguarded Newton on
  *   f'; the critical points split [lo, hi] into pieces where f is monotone,
  *   so a sign change of f brackets exactly one root and no sign change means
- *   none. A critical point where |f| is within the bound of its own rounding
+ *   none. Each root is approached by safeguarded Newton on Horner's f and
+ *   finished by Newton on torus_eval. A critical point where |f| is within the bound of its own rounding
  *   error (torus_eval) is a tangent: a double root, reported as two
  *   crossings at one t. Nothing is missed; pieces wholly before tmin are not
  *   searched and a first-hit query stops at its first root.
@@ -345,65 +349,70 @@ static int sign_of(double v)
     return (v > 0.0) - (v < 0.0);
 }
 
-static void solve_bracketing(const torus_frame *fr, collector *col)
+/* [lo, hi] split at the critical points of f: x[0] = lo, x[n-1] = hi, and
+ * between them one point per sign change of f' on the pieces where f' is
+ * monotone (split at the roots of f''), sorted. Returns n (2 to 5). */
+static int critical_points(const torus_frame *fr, double x[5])
 {
     const double *c = fr->c;
     const double lo = fr->lo, hi = fr->hi;
-
-    /* Pieces where f' is monotone: split at the roots of f''/2. */
     double split[4];
     int n_split = 0;
     split[n_split++] = lo;
-    {
-        double s[2];
-        const double half_b = 1.5 * c[3], qa = 6.0 * c[4];
-        const double disc = shape_difference_of_products(half_b, half_b, qa, c[2]);
-        const int n = shape_solve_half_quadratic(qa, half_b, c[2], disc, s);
-        for (int i = 0; i < n; i++)
-            if (s[i] > split[n_split - 1] && s[i] < hi) split[n_split++] = s[i];
-    }
+    double s[2];
+    const double half_b = 1.5 * c[3], qa = 6.0 * c[4]; /* f''/2 = qa u^2 + 2 half_b u + c2 */
+    const double disc = shape_difference_of_products(half_b, half_b, qa, c[2]);
+    const int n_roots = shape_solve_half_quadratic(qa, half_b, c[2], disc, s);
+    for (int i = 0; i < n_roots; i++)
+        if (s[i] > split[n_split - 1] && s[i] < hi) split[n_split++] = s[i];
     split[n_split++] = hi;
 
-    /* Critical points of f: one per sign change of f' on those pieces. */
-    double x[6];
-    int nx = 0;
-    x[nx++] = lo;
-    double dummy, dummy_bound;
-    double fa = eval_df(fr, split[0], &dummy, &dummy_bound);
+    int n = 0;
+    x[n++] = lo;
+    double slope, bound;
+    double left = eval_df(fr, split[0], &slope, &bound);
     for (int i = 0; i + 1 < n_split; i++) {
-        const double fb = eval_df(fr, split[i + 1], &dummy, &dummy_bound);
-        if (fa != 0.0 && fb != 0.0 && (fa < 0.0) != (fb < 0.0)) {
-            const double root = bracketed_root(fr, eval_df, split[i], split[i + 1], fa, fb);
-            if (root > x[nx - 1] && root < hi) x[nx++] = root;
-        } else if (fb == 0.0 && i + 2 < n_split && split[i + 1] > x[nx - 1]) {
-            x[nx++] = split[i + 1];
+        const double right = eval_df(fr, split[i + 1], &slope, &bound);
+        if (left != 0.0 && right != 0.0 && (left < 0.0) != (right < 0.0)) {
+            const double root = bracketed_root(fr, eval_df, split[i], split[i + 1], left, right);
+            if (root > x[n - 1] && root < hi) x[n++] = root;
+        } else if (right == 0.0 && i + 2 < n_split && split[i + 1] > x[n - 1]) {
+            x[n++] = split[i + 1]; /* f' touches zero at a root of f'' */
         }
-        fa = fb;
+        left = right;
     }
-    x[nx++] = hi;
+    x[n++] = hi;
+    return n;
+}
+
+static void solve_bracketing(const torus_frame *fr, collector *col)
+{
+    double x[5];
+    const int n = critical_points(fr, x);
 
     /* f at the ends: outside the grown sphere or slab, positive (2^-20 of
      * growth puts f there far above any rounding). At the critical points:
      * Horner's sign where it is clear of its bound, else the accurate value,
      * where a value within its own bound counts as zero: a tangent. */
-    double f[6];
-    f[0] = f[nx - 1] = 1.0;
-    for (int j = 1; j + 1 < nx; j++) {
-        double bound;
-        f[j] = eval_f_horner(fr, x[j], &dummy, &bound);
+    double f[5];
+    f[0] = f[n - 1] = 1.0;
+    for (int j = 1; j + 1 < n; j++) {
+        double slope, bound;
+        f[j] = eval_f_horner(fr, x[j], &slope, &bound);
         if (fabs(f[j]) > bound) continue;
         f[j] = torus_eval(fr, x[j], NULL, &bound);
         if (fabs(f[j]) <= bound) f[j] = 0.0;
     }
 
-    int left = sign_of(f[0]);
-    if (left == 0) left = 1;
-    for (int j = 0; j < nx && !col->done; j++) {
-        if (j > 0 && j + 1 < nx && f[j] == 0.0) {
+    /* In order along the ray: a zero at a critical point is a touch (the
+     * sign is the same on both sides) or, rarely, a crossing at a stationary
+     * point; a sign change across a piece is one crossing. */
+    int left = 1; /* the sign of f before the point or piece at hand */
+    for (int j = 0; j < n && !col->done; j++) {
+        if (j > 0 && j + 1 < n && f[j] == 0.0) {
             int right = 0;
-            for (int k = j + 1; k < nx && right == 0; k++) right = sign_of(f[k]);
-            if (right == 0) right = 1;
-            if (right == left) { /* touches: in and out, or out and in */
+            for (int k = j + 1; k < n && right == 0; k++) right = sign_of(f[k]);
+            if (right == left) { /* in and out, or out and in */
                 emit(col, x[j], left > 0);
                 emit(col, x[j], left < 0);
             } else {
@@ -411,17 +420,18 @@ static void solve_bracketing(const torus_frame *fr, collector *col)
             }
             left = right;
         }
-        if (j + 1 >= nx) break;
-        const double fa2 = f[j], fb2 = f[j + 1];
-        if (fa2 != 0.0 && fb2 != 0.0 && (fa2 < 0.0) != (fb2 < 0.0)) {
+        if (j + 1 == n) break;
+        const double f_start = f[j], f_end = f[j + 1];
+        if (f_start != 0.0 && f_end != 0.0 && (f_start < 0.0) != (f_end < 0.0)) {
             if (frame_t(fr, x[j]) >= col->tmax) break;
-            if (frame_t(fr, x[j + 1]) > col->tmin)
-                emit(col,
-                     polish_root(fr, bracketed_root(fr, eval_f_horner, x[j], x[j + 1], fa2, fb2),
-                                 x[j], x[j + 1]),
-                     fa2 > 0.0);
+            /* A piece wholly before tmin holds no wanted root. */
+            if (frame_t(fr, x[j + 1]) > col->tmin) {
+                const double root =
+                    bracketed_root(fr, eval_f_horner, x[j], x[j + 1], f_start, f_end);
+                emit(col, polish_root(fr, root, x[j], x[j + 1]), f_start > 0.0);
+            }
         }
-        if (fb2 != 0.0) left = sign_of(fb2);
+        if (f_end != 0.0) left = sign_of(f_end);
     }
 }
 
