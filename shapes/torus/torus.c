@@ -169,7 +169,7 @@ static void torus_destroy(void *shape)
  *                   all        first     all        (u * condition)      20000 near rays
  *   ferrari         1180-1650  1180-1620 160-270    3.3e9 (1.6e-6 rel.)  4 spurious
  *   ferrari-newton  1200-2200  1190-2190 190-340    4.1                  4 spurious
- *   bracketing      1150-4840  1130-3440 150-690    2.5                  none
+ *   bracketing      1150-4850  1130-3450 150-690    2.5                  none
  *
  * (The ranges run from the thin tube's rays, whose bracket, the slab
  * |z| <= tube, is short and mostly empty, to the grazing rays.) Within 1e-12 of a tangency the Ferrari solvers miss
