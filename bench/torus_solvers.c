@@ -53,37 +53,6 @@ static double now_ns(void)
     return ts.tv_sec * 1e9 + ts.tv_nsec;
 }
 
-static hr_ray make_ray(double ox, double oy, double oz, double dx, double dy, double dz)
-{
-    hr_ray r = {{ox, oy, oz}, {dx, dy, dz}};
-    return r;
-}
-
-static hr_ray far_ray(ray_rng *rng, const hr_bounds *b, double distance)
-{
-    const double tx = rng_uniform(rng, b->lo.x, b->hi.x), ty = rng_uniform(rng, b->lo.y, b->hi.y);
-    const double tz = rng_uniform(rng, b->lo.z, b->hi.z);
-    const hr_vec3 away = rng_unit_vector(rng);
-    const double length = exp2(rng_uniform(rng, -3, 3));
-    return make_ray(tx + distance * away.x, ty + distance * away.y, tz + distance * away.z,
-                    -away.x * length, -away.y * length, -away.z * length);
-}
-
-static hr_ray grazing_ray(ray_rng *rng, double tube)
-{
-    const double phi = rng_uniform(rng, 0, 6.283185307179586);
-    const double theta = rng_uniform(rng, 0, 6.283185307179586);
-    const hr_vec3 n = {cos(theta) * cos(phi), cos(theta) * sin(phi), sin(theta)};
-    const hr_vec3 p = {(1 + tube * cos(theta)) * cos(phi), (1 + tube * cos(theta)) * sin(phi),
-                       tube * sin(theta)};
-    hr_vec3 v = rng_unit_vector(rng);
-    const double vn = v.x * n.x + v.y * n.y + v.z * n.z;
-    v.x -= vn * n.x, v.y -= vn * n.y, v.z -= vn * n.z;
-    const double off = (rng_chance(rng, 0.5) ? 1 : -1) * pow(10, -rng_uniform(rng, 4, 12));
-    return make_ray(p.x + off * n.x - 4 * v.x, p.y + off * n.y - 4 * v.y,
-                    p.z + off * n.z - 4 * v.z, v.x, v.y, v.z);
-}
-
 static int compare_doubles(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -152,9 +121,9 @@ static void run_set(const ray_set *set, int count, int repeats, int only_solver,
     const ref_shape ref = ref_shape_of("torus", set->tube);
     for (int i = 0; i < count; i++) {
         rays[i] = set->kind == 0   ? random_ray_near(&rng, &b)
-                  : set->kind == 1 ? far_ray(&rng, &b, 1e4)
-                  : set->kind == 2 ? far_ray(&rng, &b, 1e6)
-                                   : grazing_ray(&rng, set->tube);
+                  : set->kind == 1 ? random_ray_far(&rng, &b, 1e4)
+                  : set->kind == 2 ? random_ray_far(&rng, &b, 1e6)
+                                   : random_ray_grazing_torus(&rng, set->tube);
         if (with_reference) ref_trace_ray(ref, rays[i], &refs[i]);
     }
     for (int solver = 0; solver < TORUS_SOLVER_COUNT; solver++) {

@@ -167,24 +167,26 @@ static void torus_destroy(void *shape)
  *
  *   solver          instructions         ns         worst |t error|      wrong counts on
  *                   all        first     all        (u * condition)      20000 near rays
- *   ferrari         1180-1650  1180-1620 160-270    3.3e9 (1.6e-6 rel.)  4 spurious
- *   ferrari-newton  1200-2200  1190-2190 190-340    4.1                  4 spurious
- *   bracketing      1150-4850  1130-3450 150-690    2.5                  none
+ *   ferrari         1180-1650  1180-1620 180-240    3.3e9 (1.6e-6 rel.)  4 spurious
+ *   ferrari-newton  1200-2200  1190-2180 160-300    4.1                  4 spurious
+ *   bracketing      1150-4840  1130-3450 120-600    2.4                  none
  *
- * (The ranges run from the thin tube's rays, whose bracket, the slab
- * |z| <= tube, is short and mostly empty, to the grazing rays.) Within 1e-12 of a tangency the Ferrari solvers miss
- * roots that bracketing finds (9 in the near set, 4 in the thin one); the
- * counts that differ from the reference the other way there (15-24 per
- * set, for every solver) are lines lying exactly in the tangent plane
- * z = tube, whose double roots the quad reference itself cannot resolve. */
+ * The ranges run from the thin tube's rays, whose bracket (the slab
+ * |z| <= tube) is short and mostly empty, to the grazing rays. Within 1e-12
+ * of a tangency the Ferrari solvers miss roots that bracketing finds (9 in
+ * the near set, 4 in the thin one); the counts that differ from the
+ * reference the other way there (15-24 per set, for every solver) are lines
+ * lying exactly in the tangent plane z = tube, whose double roots the quad
+ * reference itself cannot resolve. */
 static const hr_param_spec torus_params[] = {
     {"tube", HR_PARAM_NUMBER, 0, 0.2, TUBE_MIN, TUBE_MAX,
      "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole"},
     {"solver", HR_PARAM_STRING, 0, 0.0, 0.0, 0.0,
      "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent, "
-     "t within 2.5 u*condition, 150-690 ns per ray; 'ferrari-newton' (closed form + Newton) "
-     "190-340 ns, as accurate where it finds the roots but may invent or lose a close pair; "
-     "'ferrari' (closed form) 160-270 ns, t errors up to 2e-6 relative near tangents"},
+     "t within 2.4 u*condition, 1150-4840 instructions (120-600 ns) per ray; 'ferrari-newton' "
+     "(closed form + Newton) 1200-2200 (160-300 ns), as accurate where it finds the roots but "
+     "may invent or lose a close pair; 'ferrari' (closed form) 1180-1650 (180-240 ns), t errors "
+     "up to 2e-6 relative near tangents"},
 };
 
 static const hr_shape_class torus_class = {

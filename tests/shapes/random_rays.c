@@ -86,6 +86,46 @@ hr_ray random_ray_near(ray_rng *rng, const hr_bounds *b)
     return ray;
 }
 
+hr_ray random_ray_far(ray_rng *rng, const hr_bounds *b, double distance)
+{
+    const double lx = finite_or(b->lo.x, -2), hx = finite_or(b->hi.x, 2);
+    const double ly = finite_or(b->lo.y, -2), hy = finite_or(b->hi.y, 2);
+    const double lz = finite_or(b->lo.z, -2), hz = finite_or(b->hi.z, 2);
+    const hr_vec3 target = {rng_uniform(rng, lx, hx), rng_uniform(rng, ly, hy),
+                            rng_uniform(rng, lz, hz)};
+    const hr_vec3 away = rng_unit_vector(rng);
+    const double length = exp2(rng_uniform(rng, -3, 3));
+    hr_ray ray;
+    ray.origin.x = target.x + distance * away.x;
+    ray.origin.y = target.y + distance * away.y;
+    ray.origin.z = target.z + distance * away.z;
+    ray.dir.x = -away.x * length;
+    ray.dir.y = -away.y * length;
+    ray.dir.z = -away.z * length;
+    return ray;
+}
+
+hr_ray random_ray_grazing_torus(ray_rng *rng, double tube)
+{
+    const double two_pi = 6.283185307179586;
+    const double phi = rng_uniform(rng, 0, two_pi), theta = rng_uniform(rng, 0, two_pi);
+    const hr_vec3 n = {cos(theta) * cos(phi), cos(theta) * sin(phi), sin(theta)};
+    const hr_vec3 p = {(1 + tube * cos(theta)) * cos(phi), (1 + tube * cos(theta)) * sin(phi),
+                       tube * sin(theta)};
+    hr_vec3 v = rng_unit_vector(rng); /* made tangent: its normal part removed */
+    const double vn = v.x * n.x + v.y * n.y + v.z * n.z;
+    v.x -= vn * n.x, v.y -= vn * n.y, v.z -= vn * n.z;
+    const double length = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    v.x /= length, v.y /= length, v.z /= length;
+    const double off = (rng_chance(rng, 0.5) ? 1 : -1) * pow(10, -rng_uniform(rng, 4, 12));
+    hr_ray ray;
+    ray.origin.x = p.x + off * n.x - 4 * v.x;
+    ray.origin.y = p.y + off * n.y - 4 * v.y;
+    ray.origin.z = p.z + off * n.z - 4 * v.z;
+    ray.dir = v;
+    return ray;
+}
+
 void random_interval(ray_rng *rng, double *tmin, double *tmax)
 {
     const int kind = (int)(rng_next(rng) % 4);

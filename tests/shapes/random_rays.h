@@ -29,6 +29,17 @@ hr_vec3 rng_unit_vector(ray_rng *rng);
  * an origin coordinate snapped to a face value of the bounds or to 0. */
 hr_ray random_ray_near(ray_rng *rng, const hr_bounds *b);
 
+/* A ray from `distance` away in a random direction, aimed at a random point
+ * of the bounds `b` (infinite sides taken as +-2), its direction's length
+ * random over 2^-3..2^3. */
+hr_ray random_ray_far(ray_rng *rng, const hr_bounds *b, double distance);
+
+/* A ray grazing the torus of ring radius 1 and tube radius `tube`: through a
+ * random point of its surface along a random tangent direction (unit
+ * length), moved off the surface along the normal by +-10^-(4..12), from 4
+ * away. */
+hr_ray random_ray_grazing_torus(ray_rng *rng, double tube);
+
 /* A random (tmin, tmax): mostly (0, inf), sometimes finite ends. */
 void random_interval(ray_rng *rng, double *tmin, double *tmax);
 

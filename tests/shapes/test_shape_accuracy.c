@@ -107,26 +107,6 @@ static void compare_ray(const harness_shape *shape, ref_shape ref, hr_ray ray, s
 #undef RAY_ARGS
 }
 
-/* A ray from `distance` away in a random direction, aimed at a random point
- * of the bounds (infinite sides taken as +-2), with a random length. */
-static hr_ray far_ray(ray_rng *rng, const hr_bounds *b, double distance)
-{
-    const double lx = isfinite(b->lo.x) ? b->lo.x : -2, hx = isfinite(b->hi.x) ? b->hi.x : 2;
-    const double ly = isfinite(b->lo.y) ? b->lo.y : -2, hy = isfinite(b->hi.y) ? b->hi.y : 2;
-    const hr_vec3 target = {rng_uniform(rng, lx, hx), rng_uniform(rng, ly, hy),
-                            rng_uniform(rng, b->lo.z, b->hi.z)};
-    const hr_vec3 away = rng_unit_vector(rng);
-    const double length = exp2(rng_uniform(rng, -3, 3));
-    hr_ray ray;
-    ray.origin.x = target.x + distance * away.x;
-    ray.origin.y = target.y + distance * away.y;
-    ray.origin.z = target.z + distance * away.z;
-    ray.dir.x = -away.x * length;
-    ray.dir.y = -away.y * length;
-    ray.dir.z = -away.z * length;
-    return ray;
-}
-
 static void test_random_rays(const harness_class_ref *cref, uint64_t seed)
 {
     harness_shape shape;
@@ -144,7 +124,7 @@ static void test_random_rays(const harness_class_ref *cref, uint64_t seed)
         compare_ray(&shape, ref, random_ray_near(&rng, &bounds), &near, "near");
     for (int i = 0; i < FAR_RAYS; i++) {
         const double distance = i % 2 ? 1e6 : 1e4;
-        compare_ray(&shape, ref, far_ray(&rng, &bounds, distance), &far, "far");
+        compare_ray(&shape, ref, random_ray_far(&rng, &bounds, distance), &far, "far");
     }
     printf("%-16s s=%-6g near: %5d compared %4d skipped, worst t %.3g u*cond, point %.3g error;"
            " far: %4d compared %3d skipped, worst t %.3g, point %.3g\n",

@@ -30,7 +30,6 @@
 
 static const char *const solvers[] = {"ferrari", "ferrari-newton", "bracketing", ""};
 #define SOLVER_COUNT 4
-#define TWO_PI 6.283185307179586
 #define DEFAULT_SOLVER 3 /* "" is the default, which is "bracketing" */
 
 static hr_status create_torus(const hr_shape_class *cls, double tube, const char *solver,
@@ -288,35 +287,6 @@ static void compare_ray(const harness_shape *s, ref_shape ref, hr_ray ray, stats
 #undef RAY_ARGS
 }
 
-/* A ray from `distance` away in a random direction, aimed at a random point
- * of the bounds, with a random length. */
-static hr_ray far_ray(ray_rng *rng, const hr_bounds *b, double distance)
-{
-    const hr_vec3 target = {rng_uniform(rng, b->lo.x, b->hi.x), rng_uniform(rng, b->lo.y, b->hi.y),
-                            rng_uniform(rng, b->lo.z, b->hi.z)};
-    const hr_vec3 away = rng_unit_vector(rng);
-    const double length = exp2(rng_uniform(rng, -3, 3));
-    return harness_ray(target.x + distance * away.x, target.y + distance * away.y,
-                       target.z + distance * away.z, -away.x * length, -away.y * length,
-                       -away.z * length);
-}
-
-/* A ray grazing the surface: through a random surface point along a random
- * tangent direction, moved off the surface by +-10^-(4..12), from 4 away. */
-static hr_ray grazing_ray(ray_rng *rng, double tube)
-{
-    const double phi = rng_uniform(rng, 0, TWO_PI), theta = rng_uniform(rng, 0, TWO_PI);
-    const hr_vec3 n = {cos(theta) * cos(phi), cos(theta) * sin(phi), sin(theta)};
-    const hr_vec3 p = {(1 + tube * cos(theta)) * cos(phi), (1 + tube * cos(theta)) * sin(phi),
-                       tube * sin(theta)};
-    hr_vec3 v = rng_unit_vector(rng); /* tangent: v minus its normal part */
-    const double vn = v.x * n.x + v.y * n.y + v.z * n.z;
-    v.x -= vn * n.x, v.y -= vn * n.y, v.z -= vn * n.z;
-    const double off = (rng_chance(rng, 0.5) ? 1 : -1) * pow(10, -rng_uniform(rng, 4, 12));
-    return harness_ray(p.x + off * n.x - 4 * v.x, p.y + off * n.y - 4 * v.y,
-                       p.z + off * n.z - 4 * v.z, v.x, v.y, v.z);
-}
-
 #define RAY_SETS 4
 static const char *const set_names[RAY_SETS] = {"near", "far 1e4", "grazing", "far 1e6"};
 
@@ -339,9 +309,9 @@ static void test_random_rays(double tube, int solver, uint64_t seed)
         const int rays = set == 0 ? 6000 : 2000;
         for (int i = 0; i < rays; i++) {
             const hr_ray ray = set == 0   ? random_ray_near(&rng, &b)
-                               : set == 1 ? far_ray(&rng, &b, 1e4)
-                               : set == 2 ? grazing_ray(&rng, tube)
-                                          : far_ray(&rng, &b, 1e6);
+                               : set == 1 ? random_ray_far(&rng, &b, 1e4)
+                               : set == 2 ? random_ray_grazing_torus(&rng, tube)
+                                          : random_ray_far(&rng, &b, 1e6);
             compare_ray(&s, ref, ray, &st, strict, set_names[set]);
         }
         printf("tube %-6g %-15s %-8s: %5d compared %4d skipped; wrong: %d counts, %d flags, "
