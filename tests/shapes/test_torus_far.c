@@ -187,10 +187,39 @@ static void check_solver(hr_context *ctx, int solver)
     hr_scene_destroy(w.scene);
 }
 
+/* Through the library, a refused parameter names the shape, the module's
+ * path, the parameter and what it may be. */
+static void check_refusals(hr_context *ctx)
+{
+    hr_scene *scene;
+    CHECK_OK(hr_scene_create(ctx, &scene));
+    hr_param p;
+    memset(&p, 0, sizeof p);
+    hr_object_desc d;
+    memset(&d, 0, sizeof d);
+    d.struct_size = sizeof d;
+    d.shape = "torus";
+    d.params = &p;
+    d.param_count = 1;
+    p.name = "solver", p.type = HR_PARAM_STRING, p.string = "newton";
+    CHECK(hr_scene_add_object(scene, &d, NULL) == HR_ERROR_PARAMETER);
+    const char *message = hr_context_last_error(ctx);
+    CHECK_MSG(strstr(message, "torus.so") && strstr(message, "'solver' = 'newton'") &&
+                  strstr(message, "'ferrari-newton'") && strstr(message, "'bracketing'"),
+              "message: %s", message);
+    p.name = "tube", p.type = HR_PARAM_NUMBER, p.number = 1.0, p.string = NULL;
+    CHECK(hr_scene_add_object(scene, &d, NULL) == HR_ERROR_PARAMETER);
+    message = hr_context_last_error(ctx);
+    CHECK_MSG(strstr(message, "'tube'") && strstr(message, "0.999"), "message: %s", message);
+    CHECK(hr_scene_object_count(scene) == 0);
+    hr_scene_destroy(scene);
+}
+
 int main(void)
 {
     hr_context *ctx;
     CHECK_OK(hr_context_create(&ctx));
+    check_refusals(ctx);
     for (int solver = 0; solver < 4; solver++) check_solver(ctx, solver);
     hr_context_destroy(ctx);
     return hr_test_end();
