@@ -326,6 +326,90 @@ static void test_random_rays(double tube, int solver, uint64_t seed)
     harness_close(&s);
 }
 
+/* --- Spawned rays ----------------------------------------------------------------- */
+
+/* The host starts a spawned ray off the surface by the hit's error bound
+ * projected on the normal, rounded away from the surface (lib/shade.c,
+ * spawn_origin); this does the same in object space. */
+static hr_vec3 spawn_origin(const hr_hit *h, hr_vec3 side)
+{
+    const double d = h->error * (fabs(side.x) + fabs(side.y) + fabs(side.z));
+    hr_vec3 o = harness_vec(h->point.x + d * side.x, h->point.y + d * side.y,
+                            h->point.z + d * side.z);
+    o.x = side.x > 0 ? nextafter(o.x, INFINITY) : side.x < 0 ? nextafter(o.x, -INFINITY) : o.x;
+    o.y = side.y > 0 ? nextafter(o.y, INFINITY) : side.y < 0 ? nextafter(o.y, -INFINITY) : o.y;
+    o.z = side.z > 0 ? nextafter(o.z, INFINITY) : side.z < 0 ? nextafter(o.z, -INFINITY) : o.z;
+    return o;
+}
+
+/* pbrt's test of error bounds: rays re-shot from hit points, outward
+ * (reflection) and inward (refraction), in random directions on that side,
+ * a quarter of them within 1e-3 of the tangent plane, must never hit the
+ * surface they start from. A hit closer than 1e-9 (a true second crossing
+ * that near needs a direction within ~1e-9 of the surface) counts as a
+ * self-hit. */
+static void test_no_self_hits(double tube, uint64_t seed)
+{
+    harness_shape s;
+    if (!open_torus(&s, tube, "")) {
+        harness_close(&s);
+        return;
+    }
+    hr_bounds b;
+    s.cls->bounds(s.shape, &b);
+    ray_rng rng;
+    rng_seed(&rng, seed);
+    int spawned = 0, self_hits = 0;
+    for (int i = 0; i < 4000; i++) {
+        /* Half the rays near the bounds, half aimed at a random point of the
+         * surface from outside it (a thin tube is rarely hit otherwise). */
+        hr_ray ray = random_ray_near(&rng, &b);
+        if (i % 2) {
+            const double phi = rng_uniform(&rng, 0, 6.283185307179586);
+            const double theta = rng_uniform(&rng, 0, 6.283185307179586);
+            const hr_vec3 n = {cos(theta) * cos(phi), cos(theta) * sin(phi), sin(theta)};
+            const hr_vec3 p = {(1 + tube * cos(theta)) * cos(phi),
+                               (1 + tube * cos(theta)) * sin(phi), tube * sin(theta)};
+            hr_vec3 w = rng_unit_vector(&rng);
+            const double wn = w.x * n.x + w.y * n.y + w.z * n.z;
+            if (wn < 0) w.x -= 2 * wn * n.x, w.y -= 2 * wn * n.y, w.z -= 2 * wn * n.z;
+            ray = harness_ray(p.x + 3 * w.x, p.y + 3 * w.y, p.z + 3 * w.z, -w.x, -w.y, -w.z);
+        }
+        hr_hit h[HARNESS_MAX_HITS];
+        const int n = harness_hits(&s, ray, h);
+        for (int k = 0; k < n; k++) {
+            const hr_vec3 nrm = h[k].normal;
+            for (int side = -1; side <= 1; side += 2) {
+                const hr_vec3 out = harness_vec(side * nrm.x, side * nrm.y, side * nrm.z);
+                hr_vec3 v = rng_unit_vector(&rng);
+                double along = v.x * out.x + v.y * out.y + v.z * out.z;
+                if (along < 0) v.x -= 2 * along * out.x, v.y -= 2 * along * out.y,
+                               v.z -= 2 * along * out.z, along = -along;
+                if (rng_chance(&rng, 0.25)) { /* graze: keep 1e-3 of the normal part */
+                    const double keep = 1e-3 - 1;
+                    v.x += keep * along * out.x, v.y += keep * along * out.y,
+                        v.z += keep * along * out.z;
+                }
+                const hr_ray spawn = {spawn_origin(&h[k], out), v};
+                hr_hit again[HARNESS_MAX_HITS];
+                const int m = harness_trace(&s, spawn, 0.0, INFINITY, HARNESS_FIRST, again);
+                const double length = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+                spawned++;
+                if (m && again[0].t * length < 1e-9) {
+                    self_hits++;
+                    CHECK_MSG(0, "tube %g: a ray spawned %s from (%.17g, %.17g, %.17g) hits "
+                                 "itself at t = %.3g",
+                              tube, side > 0 ? "outward" : "inward", h[k].point.x, h[k].point.y,
+                              h[k].point.z, again[0].t);
+                }
+            }
+        }
+    }
+    printf("tube %-6g spawned rays: %d, self-hits %d\n", tube, spawned, self_hits);
+    CHECK(spawned > 4000);
+    harness_close(&s);
+}
+
 /* --- Parameters ------------------------------------------------------------------ */
 
 static void test_parameters(void)
@@ -411,5 +495,8 @@ int main(void)
     }
     /* The thinnest tube the module accepts, with the default solver. */
     test_random_rays(1e-6, DEFAULT_SOLVER, UINT64_C(0x70720));
+    test_no_self_hits(0.2, UINT64_C(0x5e1f));
+    test_no_self_hits(1e-3, UINT64_C(0x5e20));
+    test_no_self_hits(0.9, UINT64_C(0x5e21));
     return hr_test_end();
 }
