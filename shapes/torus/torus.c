@@ -167,15 +167,15 @@ static void torus_destroy(void *shape)
  *
  *   solver          instructions         ns         worst |t error|      wrong counts on
  *                   all        first     all        (u * condition)      20000 near rays
- *   ferrari         1180-1650  1180-1620 180-240    3.3e9 (1.6e-6 rel.)  4 spurious
- *   ferrari-newton  1200-2200  1190-2180 160-300    4.1                  4 spurious
- *   bracketing      1150-4840  1130-3450 120-600    2.4                  none
+ *   ferrari         850-1320   850-1290  120-220    4.2e9 (2.0e-6 rel.)  6 spurious
+ *   ferrari-newton  870-1870   860-1850  130-290    4.1                  6 spurious
+ *   bracketing      820-4510   800-3110  100-600    2.4                  none
  *
  * The ranges run from the thin tube's rays, whose bracket (the slab
  * |z| <= tube) is short and mostly empty, to the grazing rays. Within 1e-12
- * of a tangency the Ferrari solvers miss roots that bracketing finds (9 in
+ * of a tangency the Ferrari solvers miss roots that bracketing finds (11 in
  * the near set, 4 in the thin one); the counts that differ from the
- * reference the other way there (15-24 per set, for every solver) are lines
+ * reference the other way there (13-24 per set, for every solver) are lines
  * lying exactly in the tangent plane z = tube, whose double roots the quad
  * reference itself cannot resolve. */
 static const hr_param_spec torus_params[] = {
@@ -183,9 +183,9 @@ static const hr_param_spec torus_params[] = {
      "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole"},
     {"solver", HR_PARAM_STRING, 0, 0.0, 0.0, 0.0,
      "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent, "
-     "t within 2.4 u*condition, 1150-4840 instructions (120-600 ns) per ray; 'ferrari-newton' "
-     "(closed form + Newton) 1200-2200 (160-300 ns), as accurate where it finds the roots but "
-     "may invent or lose a close pair; 'ferrari' (closed form) 1180-1650 (180-240 ns), t errors "
+     "t within 2.4 u*condition, 820-4510 instructions (100-600 ns) per ray; 'ferrari-newton' "
+     "(closed form + Newton) 870-1870 (130-290 ns), as accurate where it finds the roots but "
+     "may invent or lose a close pair; 'ferrari' (closed form) 850-1320 (120-220 ns), t errors "
      "up to 2e-6 relative near tangents"},
 };
 

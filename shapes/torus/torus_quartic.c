@@ -142,9 +142,12 @@ static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *f
     hr_vec3 o = ray->origin;
     if (!shape_vec3_is_finite(o)) return 0;
 
-    const double a = compensated_dot(e, e, 0.0);
+    /* a in [1, 3] needs no compensation; nor does the b that picks the
+     * shift (any shift is exact: only o' is rounded). The b of the quartic,
+     * ~0 after the shift, is compensated. */
+    const double a = e.x * e.x + e.y * e.y + e.z * e.z;
     double shift_high = 0.0, shift_low = 0.0;
-    double b = compensated_dot(o, e, 0.0);
+    double b = o.x * e.x + o.y * e.y + o.z * e.z;
     for (int pass = 0; pass < 3; pass++) {
         const double uc = -b / a;
         if (!isfinite(uc)) return 0;
@@ -165,7 +168,7 @@ static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *f
     /* The bracket: inside the grown sphere and slab. */
     const double r = g->r;
     const double sphere = (1.0 + r) * (1.0 + BOUND_GROWTH);
-    const double c_sphere = compensated_dot(o, o, -sphere * sphere);
+    const double c_sphere = fr->o_norm2 - sphere * sphere; /* the sphere is grown: no need */
     double ends[2];
     const double disc = b * b - a * c_sphere;
     if (shape_solve_half_quadratic(a, b, c_sphere, disc, ends) != 2) return 0;
