@@ -6,6 +6,12 @@
  * is printed, not required (that is what they trade for speed; the numbers
  * are the module's parameter help).
  *
+ * Cases: the four crossings of the equatorial line, the axis through the
+ * hole, unusable rays, tangents on the inner and outer equators and on top
+ * (exact for tube 0.25, to within an ulp for 0.2, and moved off by 1e-12 and
+ * 1e-9), thin tubes (1e-3), random near, far (1e4, 1e6) and grazing rays
+ * for tubes 0.2, 1e-3 and 0.9 (and 1e-6 for the default), rays re-shot from
+ * hit points, and the parameters' checks and messages.
  * References: hand-worked values, and roots of the quartic computed in quad
  * precision with Sturm sequences (quad_reference.c, quad_poly.c). */
 #include <float.h>
