@@ -312,7 +312,7 @@ static void test_random_rays(double tube, int solver, uint64_t seed)
     for (int set = 0; set < RAY_SETS; set++) {
         stats st;
         memset(&st, 0, sizeof st);
-        const int rays = set == 0 ? 6000 : 2000;
+        const int rays = set == 0 ? 4000 : 1500;
         for (int i = 0; i < rays; i++) {
             const hr_ray ray = set == 0   ? random_ray_near(&rng, &b)
                                : set == 1 ? random_ray_far(&rng, &b, 1e4)
