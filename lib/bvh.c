@@ -183,34 +183,9 @@ void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray)
     double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     for (int a = 0; a < 3; a++) {
         r->o[a] = o[a];
-        r->inv_d[a] = 1.0 / d[a]; /* +-inf for a zero component: handled below */
-        r->neg[a] = signbit(d[a]) != 0;
+        r->inv_d[a] = 1.0 / d[a]; /* +-inf for a zero component: see hr_bvh_ray_box */
+        int neg = signbit(d[a]) != 0;
+        r->near_i[a] = neg ? a + 3 : a; /* a negative direction meets hi first */
+        r->far_i[a] = neg ? a : a + 3;
     }
-}
-
-/* Slab test. A zero direction component gives infinite slab distances; the
- * only NaN case (origin exactly on a slab plane, 0 * inf) must read as "the
- * ray runs inside that slab", and the comparisons below are written so a NaN
- * leaves the running bound as it was: exactly that. The far distance is
- * widened by 1 + 2*gamma(3) (pbrt) so rounding never loses a box the ray
- * touches. */
-#define WIDEN (1.0 + 2.0 * (3.0 * DBL_EPSILON * 0.5) / (1.0 - 3.0 * DBL_EPSILON * 0.5))
-#define SLAB(axis, lo_v, hi_v)                                                 \
-    do {                                                                       \
-        double near = ((r->neg[axis] ? (hi_v) : (lo_v)) - r->o[axis]) * r->inv_d[axis]; \
-        double far = ((r->neg[axis] ? (lo_v) : (hi_v)) - r->o[axis]) * r->inv_d[axis];  \
-        far += fabs(far) * (WIDEN - 1.0);                                      \
-        if (near > tmin) tmin = near;                                          \
-        if (far < tmax) tmax = far;                                            \
-    } while (0)
-
-int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double tmin, double tmax,
-                   double *t_enter)
-{
-    SLAB(0, b->lo.x, b->hi.x);
-    SLAB(1, b->lo.y, b->hi.y);
-    SLAB(2, b->lo.z, b->hi.z);
-    if (!(tmin <= tmax)) return 0;
-    *t_enter = tmin;
-    return 1;
 }

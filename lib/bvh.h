@@ -2,6 +2,10 @@
 #ifndef HITRAY_LIB_BVH_H
 #define HITRAY_LIB_BVH_H
 
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+
 #include <hitray/common.h>
 
 /* SAH splits down to this depth, halving below it; with at most 2^31 items
@@ -27,14 +31,50 @@ typedef struct hr_bvh {
 int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count);
 void hr_bvh_release(hr_bvh *bvh);
 
-/* Precomputed ray data for the slab test. */
+/* Precomputed ray data for the slab test: the origin, 1/d, and for each axis
+ * which of the box's six numbers (lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, in
+ * hr_bounds order) the ray meets first, so the test has no branch on the
+ * direction's sign. */
 typedef struct hr_bvh_ray {
     double o[3], inv_d[3];
-    int neg[3];
+    int near_i[3], far_i[3];
 } hr_bvh_ray;
 void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray);
+
+/* Slab test, inline: it is most of what tracing a big scene costs. A zero
+ * direction component gives infinite slab distances; the only NaN case
+ * (origin exactly on a slab plane, 0 * inf) must read as "the ray runs inside
+ * that slab", and the comparisons below are written so a NaN leaves the
+ * running bound as it was: exactly that. The far distance is widened by
+ * 1 + 2*gamma(3) (pbrt) so rounding never loses a box the ray touches. */
+#define HR_BVH_WIDEN ((1.0 + 2.0 * (3.0 * DBL_EPSILON * 0.5) / (1.0 - 3.0 * DBL_EPSILON * 0.5)) - 1.0)
+
 /* Entry distance of the ray into the box within [tmin, tmax], or 0 if missed. */
-int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double tmin, double tmax,
-                   double *t_enter);
+static inline int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double tmin,
+                                 double tmax, double *t_enter)
+{
+    const double *v = (const double *)(const void *)b; /* lo.x lo.y lo.z hi.x hi.y hi.z */
+#define HR_BVH_SLAB(a)                                                         \
+    do {                                                                       \
+        double near_ = (v[r->near_i[a]] - r->o[a]) * r->inv_d[a];              \
+        double far_ = (v[r->far_i[a]] - r->o[a]) * r->inv_d[a];                \
+        far_ += fabs(far_) * HR_BVH_WIDEN;                                     \
+        if (near_ > tmin) tmin = near_;                                        \
+        if (far_ < tmax) tmax = far_;                                          \
+    } while (0)
+    HR_BVH_SLAB(0);
+    HR_BVH_SLAB(1);
+    HR_BVH_SLAB(2);
+#undef HR_BVH_SLAB
+    if (!(tmin <= tmax)) return 0;
+    *t_enter = tmin;
+    return 1;
+}
+
+/* hr_bvh_ray_box reads a box as six doubles in a row. */
+_Static_assert(offsetof(hr_bounds, hi) == 3 * sizeof(double) &&
+                   offsetof(hr_vec3, z) == 2 * sizeof(double) &&
+                   sizeof(hr_bounds) == 6 * sizeof(double),
+               "hr_bounds is six doubles");
 
 #endif

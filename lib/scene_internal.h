@@ -56,6 +56,9 @@ typedef struct hr_trace_ctx {
     const hr_scene *scene;
     hr_intersection scratch[HR_SCRATCH_MAX];
     int32_t scratch_used;
+    int32_t scratch_ready;      /* scratch[0 .. scratch_ready) are initialised
+                                   (set up on first use, so a context costs
+                                   nothing for lists a query never needs) */
     hr_status status;           /* first failure inside a shape, if any */
     uint64_t rays_shadow, rays_reflected, rays_refracted;
     int32_t force_all_effects;

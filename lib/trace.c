@@ -4,6 +4,7 @@
  * BVH (getFirstHit, any hit for shadows, every hit for Intersection). */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,16 +28,25 @@ hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
     return HR_OK;
 }
 
+/* Everything but the scratch lists is zeroed; a list is set up when it is
+ * first acquired (scratch_ready), so a one-ray query (hr_scene_first_hit)
+ * neither clears nor frees 64 lists it never touches. */
 void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
 {
-    memset(tc, 0, sizeof *tc);
+    memset(tc, 0, offsetof(hr_trace_ctx, scratch));
+    memset((char *)tc + offsetof(hr_trace_ctx, scratch_used), 0,
+           sizeof *tc - offsetof(hr_trace_ctx, scratch_used));
     tc->scene = scene;
 }
 
 void hr_trace_ctx_release(hr_trace_ctx *tc)
 {
-    for (int i = 0; i < HR_SCRATCH_MAX; i++) free(tc->scratch[i].hits);
-    memset(tc->scratch, 0, sizeof tc->scratch);
+    for (int32_t i = 0; i < tc->scratch_ready; i++) {
+        free(tc->scratch[i].hits);
+        memset(&tc->scratch[i], 0, sizeof tc->scratch[i]);
+    }
+    tc->scratch_ready = 0;
+    tc->scratch_used = 0;
 }
 
 /* Order by t; equal t by object then surface, so sorting is deterministic. */
@@ -384,6 +394,10 @@ static hr_intersection *host_scratch_acquire(void *call)
     hr_trace_ctx *tc = call;
     if (tc->scratch_used >= HR_SCRATCH_MAX) return NULL;
     hr_intersection *list = &tc->scratch[tc->scratch_used];
+    if (tc->scratch_used == tc->scratch_ready) {
+        memset(list, 0, sizeof *list);
+        tc->scratch_ready++;
+    }
     if (hr_intersection_reserve(list, 4 * HR_MIN_HIT_CAPACITY) != HR_OK) return NULL;
     tc->scratch_used++;
     list->count = 0;
