@@ -176,16 +176,3 @@ void hr_bvh_release(hr_bvh *bvh)
     free(bvh->items);
     memset(bvh, 0, sizeof *bvh);
 }
-
-void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray)
-{
-    double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
-    double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
-    for (int a = 0; a < 3; a++) {
-        r->o[a] = o[a];
-        r->inv_d[a] = 1.0 / d[a]; /* +-inf for a zero component: see hr_bvh_ray_box */
-        int neg = signbit(d[a]) != 0;
-        r->near_i[a] = neg ? a + 3 : a; /* a negative direction meets hi first */
-        r->far_i[a] = neg ? a : a + 3;
-    }
-}

@@ -214,44 +214,58 @@ static int visit_object(first_state *fs, const hr_object *o)
     return 0;
 }
 
-/* Front-to-back traversal; boxes further than the best hit are skipped. */
+/* Front-to-back traversal; boxes further than the best hit are skipped.
+ * The walk goes straight down to the nearer child a ray meets and stacks
+ * only the farther one of two, so a node is pushed only when both children
+ * are hit; tmin and the best distance so far are kept in locals (a shape
+ * call is the only thing that can move the best). */
 static void traverse(first_state *fs)
 {
     const hr_scene *s = fs->tc->scene;
     for (int32_t i = 0; i < s->unbounded_count; i++)
         if (visit_object(fs, s->unbounded[i])) return;
     if (s->bvh.node_count == 0) return;
+    const hr_bvh_node *nodes = s->bvh.nodes;
+    const int32_t *items = s->bvh.items;
     hr_bvh_ray br;
     hr_bvh_ray_init(&br, fs->ray);
+    const double tmin = fs->tmin;
+    double best = fs->best;
     int32_t stack[BVH_STACK];
     double entry[BVH_STACK]; /* where the ray enters each stacked box */
     int32_t top = 0;
     double t;
-    if (!hr_bvh_ray_box(&br, &s->bvh.nodes[0].box, fs->tmin, fs->best, &t)) return;
-    stack[top] = 0, entry[top++] = t;
-    while (top > 0) {
-        --top;
-        /* The best hit may have come nearer since this box was pushed. */
-        if (entry[top] > fs->best) continue;
-        const hr_bvh_node *n = &s->bvh.nodes[stack[top]];
+    if (!hr_bvh_ray_box(&br, &nodes[0].box, tmin, best, &t)) return;
+    int32_t node = 0;
+    for (;;) {
+        const hr_bvh_node *n = &nodes[node];
         if (n->count > 0) {
             for (int32_t i = 0; i < n->count; i++)
-                if (visit_object(fs, s->objects[s->bvh.items[n->first + i]])) return;
-            continue;
+                if (visit_object(fs, s->objects[items[n->first + i]])) return;
+            best = fs->best;
+        } else {
+            double te[2];
+            int both = hr_bvh_ray_box2(&br, &nodes[n->first].box, &nodes[n->first + 1].box, tmin,
+                                       best, te);
+            if (both == 3) {
+                /* Visit the near one now, stack the far one. */
+                int near_left = te[0] <= te[1];
+                stack[top] = n->first + near_left, entry[top++] = te[near_left];
+                node = n->first + !near_left;
+                continue;
+            }
+            if (both) {
+                node = n->first + (both >> 1);
+                continue;
+            }
         }
-        double tl, tr;
-        int hl = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first].box, fs->tmin, fs->best, &tl);
-        int hr = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first + 1].box, fs->tmin, fs->best, &tr);
-        /* Push the far child first so the near one is visited first. */
-        if (hl && hr) {
-            int near_left = tl <= tr;
-            stack[top] = n->first + (near_left ? 1 : 0), entry[top++] = near_left ? tr : tl;
-            stack[top] = n->first + (near_left ? 0 : 1), entry[top++] = near_left ? tl : tr;
-        } else if (hl) {
-            stack[top] = n->first, entry[top++] = tl;
-        } else if (hr) {
-            stack[top] = n->first + 1, entry[top++] = tr;
-        }
+        /* Next stacked box that may still hold something nearer than the
+         * best hit, which may have come nearer since it was pushed. */
+        do {
+            if (top == 0) return;
+            --top;
+        } while (entry[top] > best);
+        node = stack[top];
     }
 }
 
