@@ -167,6 +167,20 @@ int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count)
     bvh->item_count = count;
     bvh->node_count = 1;
     build(&b, 0, 0, count, 0);
+    if (bvh->node_count > 1) {
+        size_t n_pairs = (size_t)(bvh->node_count - 1) / 2;
+        bvh->pairs = malloc(n_pairs * HR_BVH_PAIR * sizeof *bvh->pairs);
+        if (!bvh->pairs) {
+            hr_bvh_release(bvh);
+            return 0;
+        }
+        for (size_t k = 0; k < n_pairs; k++) {
+            const hr_bounds *l = &bvh->nodes[2 * k + 1].box, *r = &bvh->nodes[2 * k + 2].box;
+            const double v[HR_BVH_PAIR] = {l->lo.x, r->lo.x, l->lo.y, r->lo.y, l->lo.z, r->lo.z,
+                                           l->hi.x, r->hi.x, l->hi.y, r->hi.y, l->hi.z, r->hi.z};
+            memcpy(bvh->pairs + k * HR_BVH_PAIR, v, sizeof v);
+        }
+    }
     return 1;
 }
 
@@ -174,5 +188,6 @@ void hr_bvh_release(hr_bvh *bvh)
 {
     free(bvh->nodes);
     free(bvh->items);
+    free(bvh->pairs);
     memset(bvh, 0, sizeof *bvh);
 }

@@ -28,7 +28,15 @@ typedef struct hr_bvh {
     int32_t node_count;
     int32_t *items; /* item indices, leaf ranges point into this */
     int32_t item_count;
+    /* The boxes of each pair of children again, side by side per number, for
+     * the two-at-once test: the children of the inner node whose `first` is
+     * f (always odd: children are made in pairs after the root) are at
+     * pairs + HR_BVH_PAIR * (f - 1) / 2, as lo.x of left and right, lo.y of
+     * both, ..., hi.z of both. NULL when the tree is a single leaf. */
+    double *pairs;
 } hr_bvh;
+
+#define HR_BVH_PAIR 12
 
 /* Build over `count` boxes; returns 0 if out of memory. */
 int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count);
@@ -87,26 +95,25 @@ static inline int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double
     return 1;
 }
 
-/* The two children of an inner node at once: returns bit 0 if the ray meets
- * `left`, bit 1 if it meets `right`, with the entry distances in t[0], t[1].
+/* The two children of an inner node at once (the node's `first`): returns
+ * bit 0 if the ray meets the left child, bit 1 if it meets the right one, with the entry distances in t[0], t[1].
  * Lane by lane the same operations as hr_bvh_ray_box, in the same order, so
  * the same answers: SSE2's max(a, b) is a > b ? a : b and min(a, b) is
  * a < b ? a : b, which keep the running bound on a NaN exactly as the scalar
  * comparisons do; fabs is clearing the sign bit. Without SSE2: the scalar
  * test twice. */
-static inline int hr_bvh_ray_box2(const hr_bvh_ray *r, const hr_bounds *left,
-                                  const hr_bounds *right, double tmin, double tmax, double t[2])
+static inline int hr_bvh_ray_box2(const hr_bvh_ray *r, const hr_bvh *bvh, int32_t first,
+                                  double tmin, double tmax, double t[2])
 {
 #if defined(__SSE2__)
-    const double *a = (const double *)(const void *)left;
-    const double *b = (const double *)(const void *)right;
+    const double *p = bvh->pairs + (size_t)HR_BVH_PAIR * (size_t)((first - 1) / 2);
     const __m128d widen = _mm_set1_pd(HR_BVH_WIDEN), sign = _mm_set1_pd(-0.0);
     __m128d lo = _mm_set1_pd(tmin), hi = _mm_set1_pd(tmax);
 #define HR_BVH_SLAB2(k)                                                        \
     do {                                                                       \
         const __m128d o_ = _mm_set1_pd(r->o[k]), inv_ = _mm_set1_pd(r->inv_d[k]); \
-        __m128d near_ = _mm_set_pd(b[r->near_i[k]], a[r->near_i[k]]);          \
-        __m128d far_ = _mm_set_pd(b[r->far_i[k]], a[r->far_i[k]]);             \
+        __m128d near_ = _mm_loadu_pd(p + 2 * r->near_i[k]);                    \
+        __m128d far_ = _mm_loadu_pd(p + 2 * r->far_i[k]);                      \
         near_ = _mm_mul_pd(_mm_sub_pd(near_, o_), inv_);                       \
         far_ = _mm_mul_pd(_mm_sub_pd(far_, o_), inv_);                         \
         far_ = _mm_add_pd(far_, _mm_mul_pd(_mm_andnot_pd(sign, far_), widen)); \
@@ -120,8 +127,8 @@ static inline int hr_bvh_ray_box2(const hr_bvh_ray *r, const hr_bounds *left,
     _mm_storeu_pd(t, lo);
     return _mm_movemask_pd(_mm_cmple_pd(lo, hi));
 #else
-    return hr_bvh_ray_box(r, left, tmin, tmax, &t[0]) |
-           hr_bvh_ray_box(r, right, tmin, tmax, &t[1]) << 1;
+    return hr_bvh_ray_box(r, &bvh->nodes[first].box, tmin, tmax, &t[0]) |
+           hr_bvh_ray_box(r, &bvh->nodes[first + 1].box, tmin, tmax, &t[1]) << 1;
 #endif
 }
 

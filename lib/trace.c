@@ -245,8 +245,7 @@ static void traverse(first_state *fs)
             best = fs->best;
         } else {
             double te[2];
-            int both = hr_bvh_ray_box2(&br, &nodes[n->first].box, &nodes[n->first + 1].box, tmin,
-                                       best, te);
+            int both = hr_bvh_ray_box2(&br, &s->bvh, n->first, tmin, best, te);
             if (both == 3) {
                 /* Visit the near one now, stack the far one. */
                 int near_left = te[0] <= te[1];
