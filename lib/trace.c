@@ -11,6 +11,7 @@
 #include "context_internal.h"
 #include "errors.h"
 #include "scene_internal.h"
+#include "transform_inline.h"
 #include "vec.h"
 
 #define GAMMA3 (3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5))
@@ -103,8 +104,8 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
     if (obj->identity) {
         args.ray = *ray;
     } else {
-        args.ray.origin = hr_transform_point(obj->inv, ray->origin);
-        args.ray.dir = hr_transform_vector(obj->inv, ray->dir);
+        args.ray.origin = hr_xform_point(obj->inv, ray->origin);
+        args.ray.dir = hr_xform_vector(obj->inv, ray->dir);
     }
     /* A direction whose squared length would under- or overflow (a sphere
      * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
@@ -146,7 +147,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
          * answers carry only t. */
         if (!(h.t > tmin && h.t < tmax)) continue;
-        h.t = ldexp(h.t, -t_exp);
+        if (t_exp) h.t = ldexp(h.t, -t_exp); /* ldexp by 0 is the identity */
         if (mode == HR_TRACE_ANY) {
             out->hits[start] = h;
             out->count = start + 1;
@@ -163,8 +164,8 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
             h.error = transformed_error(obj->m, h.point, h.error);
-            h.point = hr_transform_point(obj->m, h.point);
-            h.normal = hr_transform_normal(obj->inv, h.normal);
+            h.point = hr_xform_point(obj->m, h.point);
+            h.normal = hr_xform_normal(obj->inv, h.normal);
             h.normal = v3_unit_exponent(h.normal);
             if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
         }
