@@ -59,6 +59,9 @@ typedef struct hr_trace_ctx {
     int32_t scratch_ready;      /* scratch[0 .. scratch_ready) are initialised
                                    (set up on first use, so a context costs
                                    nothing for lists a query never needs) */
+    const hr_hit *borrowed;     /* storage of a list on a caller's stack (one
+                                   public query's): growing that list copies
+                                   it to the heap instead of realloc'ing */
     hr_status status;           /* first failure inside a shape, if any */
     uint64_t rays_shadow, rays_reflected, rays_refracted;
     int32_t force_all_effects;

@@ -29,6 +29,22 @@ hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
     return HR_OK;
 }
 
+/* hr_intersection_reserve for a list tracing may be handed: the one list
+ * whose storage is borrowed from a caller's stack (tc->borrowed) moves to
+ * the heap when it must grow, every other list is realloc'd. */
+static hr_status list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity)
+{
+    if (capacity <= list->capacity) return HR_OK;
+    if (!tc->borrowed || list->hits != tc->borrowed) return hr_intersection_reserve(list, capacity);
+    hr_intersection heap = {NULL, 0, 0};
+    hr_status st = hr_intersection_reserve(&heap, capacity);
+    if (st) return st;
+    memcpy(heap.hits, list->hits, (size_t)list->count * sizeof *heap.hits);
+    list->hits = heap.hits;
+    list->capacity = heap.capacity;
+    return HR_OK;
+}
+
 /* Everything but the scratch lists is zeroed; a list is set up when it is
  * first acquired (scratch_ready), so a one-ray query (hr_scene_first_hit)
  * neither clears nor frees 64 lists it never touches. */
@@ -97,7 +113,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
     const hr_shape_class *cls = obj->cls;
     hr_status st;
     if (out->capacity - out->count < HR_MIN_HIT_CAPACITY &&
-        (st = hr_intersection_reserve(out, out->count + HR_MIN_HIT_CAPACITY)))
+        (st = list_reserve(tc, out, out->count + HR_MIN_HIT_CAPACITY)))
         return tc->status = st;
     hr_hit_args args;
     args.shape = obj->shape;
@@ -272,6 +288,15 @@ static void traverse(first_state *fs)
 static hr_intersection *host_scratch_acquire(void *call);
 static void host_scratch_release(void *call, hr_intersection *list);
 
+static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                              hr_hit *out, int any, hr_intersection *tmp)
+{
+    hr_hit dummy;
+    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any};
+    traverse(&fs);
+    return fs.found;
+}
+
 static int trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                          hr_hit *out, int any)
 {
@@ -280,11 +305,9 @@ static int trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
         tc->status = HR_ERROR_OUT_OF_MEMORY;
         return 0;
     }
-    hr_hit dummy;
-    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any};
-    traverse(&fs);
+    int found = trace_nearest_into(tc, ray, tmin, tmax, out, any, tmp);
     host_scratch_release(tc, tmp);
-    return fs.found;
+    return found;
 }
 
 int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
@@ -329,7 +352,13 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
-    *found = hr_scene_trace_first(&tc, ray, tmin, tmax, out);
+    /* One ray: the list of candidate hits lives on the stack, so the query
+     * allocates nothing unless a shape asks for more room (list_reserve). */
+    hr_hit room[4 * HR_MIN_HIT_CAPACITY];
+    hr_intersection tmp = {room, 0, 4 * HR_MIN_HIT_CAPACITY};
+    tc.borrowed = room;
+    *found = trace_nearest_into(&tc, ray, tmin, tmax, out, 0, &tmp);
+    if (tmp.hits != room) free(tmp.hits);
     return finish_query(&tc);
 }
 
@@ -398,9 +427,8 @@ static void host_free(void *p) { free(p); }
 
 static hr_status host_reserve(void *call, hr_intersection *list, int32_t capacity)
 {
-    (void)call;
     if (!list || capacity < 0) return HR_ERROR_INVALID_ARGUMENT;
-    return hr_intersection_reserve(list, capacity);
+    return call ? list_reserve(call, list, capacity) : hr_intersection_reserve(list, capacity);
 }
 
 static hr_intersection *host_scratch_acquire(void *call)
