@@ -60,7 +60,7 @@ install: build
 BENCH_FLAGS ?=
 bench: build
 	@scripts/bootstrap.sh --bench
-	cmake -S . -B $(BUILD) >/dev/null
+	cmake -S . -B $(BUILD) -DHITRAY_BUILD_BENCH=ON >/dev/null
 	cmake --build $(BUILD) -j $(JOBS)
 	python3 bench/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
