@@ -148,6 +148,28 @@ typedef struct mesh_triangle_hit {
     int entering;
 } mesh_triangle_hit;
 
+/* A bound on the rounding error of t = T / det (pbrt-v4's, Pharr, Jakob and
+ * Humphreys, "Physically Based Rendering", 4th ed., 6.8.7): from the errors
+ * of the sheared corners, of the edge functions and of T. A hit within this
+ * of tmin may really lie before it; it is refused, as pbrt refuses hits
+ * that may lie behind the origin, so a ray that starts on the mesh does not
+ * find the triangle it starts on. */
+static inline double mesh_t_error(const double A[3], const double B[3], const double C[3],
+                                  double U, double V, double W, double det)
+{
+    const double max_z = fmax(fabs(A[2]), fmax(fabs(B[2]), fabs(C[2])));
+    const double max_x = fmax(fabs(A[0]), fmax(fabs(B[0]), fabs(C[0])));
+    const double max_y = fmax(fabs(A[1]), fmax(fabs(B[1]), fabs(C[1])));
+    const double delta_z = MESH_GAMMA(3) * max_z;
+    const double delta_x = MESH_GAMMA(5) * (max_x + max_z);
+    const double delta_y = MESH_GAMMA(5) * (max_y + max_z);
+    const double delta_e =
+        2.0 * (MESH_GAMMA(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    const double max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));
+    return 3.0 * (MESH_GAMMA(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) /
+           fabs(det);
+}
+
 /* The watertight test of triangle (A, B, C) against the ray, for hits
  * with tmin < t < tmax. */
 static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,
@@ -171,6 +193,7 @@ static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const 
     const double T = U * A[2] + V * B[2] + W * C[2];
     const double t = T / det;
     if (!(t > tmin && t < tmax)) return 0;
+    if (t - tmin <= mesh_t_error(A, B, C, U, V, W, det)) return 0;
     out->t = t;
     out->b[0] = U / det;
     out->b[1] = V / det;
