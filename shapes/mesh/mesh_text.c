@@ -14,6 +14,7 @@ void mesh_text_init(mesh_text *t, const char *text, size_t length, const char *s
     t->p = text;
     t->end = text + length;
     t->line = 1;
+    t->last_line = 1;
     t->shown = shown;
     t->error = error;
     t->error_size = error_size;
@@ -43,7 +44,11 @@ mesh_token mesh_text_next(mesh_text *t, int cross_lines, int comments)
         break;
     }
     tok.line = t->line;
-    if (t->p >= t->end) return tok;
+    if (t->p >= t->end) {
+        tok.line = t->last_line;
+        return tok;
+    }
+    t->last_line = t->line;
     tok.start = t->p;
     while (t->p < t->end && !is_space(*t->p) && *t->p != '\n' && !(comments && *t->p == '#'))
         t->p++;

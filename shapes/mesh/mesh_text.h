@@ -18,6 +18,7 @@
 typedef struct mesh_text {
     const char *p, *end;
     long line;
+    long last_line; /* of the last token: where "end of file" is reported */
     const char *shown; /* the file's name in messages */
     char *error;
     size_t error_size;
