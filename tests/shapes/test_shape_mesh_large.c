@@ -125,7 +125,11 @@ static void trace_sphere(const harness_shape *s)
         const double closest = sqrt(fmax(0, oo - od * od / dd));
         hr_hit h[HARNESS_MAX_HITS];
         const int n = harness_hits(s, ray, h);
-        if (closest < 1 - 20 * tol) {
+        /* The origin is outside: a ray moving away from the centre
+         * (od >= 0) has the sphere behind it. */
+        if (od >= 0) {
+            CHECK_MSG(n == 0, "ray %d moving away: %d hits", i, n);
+        } else if (closest < 1 - 20 * tol) {
             inside++;
             CHECK_MSG(n == 2 && h[0].entering == 1 && h[1].entering == 0,
                       "ray %d (closest %.9g): %d hits", i, closest, n);
