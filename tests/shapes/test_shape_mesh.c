@@ -513,12 +513,37 @@ static void test_many_hits(void)
     harness_close(&stack);
 }
 
+/* The module's table: five classes, complete vtables, one surface each;
+ * the solids closed and without parameters; `mesh` takes one required
+ * string `file` (the name the SDL reader and the Python binding use). */
+static void test_classes(void)
+{
+    const hr_module_info *info = cube_mesh.module.info;
+    CHECK(info->abi_version == HR_SHAPE_ABI_VERSION && strcmp(info->name, "mesh") == 0);
+    CHECK(info->class_count == 5);
+    static const char *const names[5] = {"mesh", "tetrahedron", "octahedron", "dodecahedron",
+                                         "icosahedron"};
+    for (int i = 0; i < 5 && i < info->class_count; i++) {
+        const hr_shape_class *c = info->classes[i];
+        CHECK(strcmp(c->name, names[i]) == 0);
+        CHECK(c->struct_size == sizeof(hr_shape_class) && c->surface_count == 1);
+        CHECK(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit);
+        CHECK(c->help && c->help[0]);
+        CHECK(c->flags == (i == 0 ? 0 : HR_SHAPE_CLOSED));
+        CHECK(c->param_count == (i == 0 ? 1 : 0));
+    }
+    const hr_shape_class *m = info->classes[0];
+    CHECK(strcmp(m->params[0].name, "file") == 0 && m->params[0].type == HR_PARAM_STRING &&
+          m->params[0].required == 1);
+}
+
 int main(void)
 {
     char path[1024];
     if (!harness_open(&cube_module, "cube", "cube", NAN)) return hr_test_end() | 1;
     if (!mesh_open_file(&cube_mesh, mesh_data_path("cube.obj", path, sizeof path)))
         return hr_test_end() | 1;
+    test_classes();
     test_cube_agrees();
     test_edge_sweeps();
     test_vertices();
