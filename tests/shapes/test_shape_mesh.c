@@ -463,6 +463,21 @@ static void test_solids(void)
             compared++;
             CHECK_MSG(n == want, "%s ray %d: %d hits, expected %d", names[solid], i, n, want);
             if (n != want || n == 0) continue;
+            /* Each point is on the surface within its error bound (per
+             * coordinate, so sqrt(3) of it as a distance), plus 4e-16 for
+             * the module's vertices, which are the exact ones rounded to
+             * double (their planes move by a few 1e-17 to 1e-16). */
+            for (int k = 0; k < n; k++) {
+                long double nearest = INFINITY;
+                for (int p = 0; p < np; p++) {
+                    long double dist = fabsl(planes[p].n[0] * h[k].point.x + planes[p].n[1] * h[k].point.y +
+                                             planes[p].n[2] * h[k].point.z - planes[p].offset);
+                    if (dist < nearest) nearest = dist;
+                }
+                CHECK_MSG(nearest <= sqrtl(3.0L) * h[k].error + 4e-16L,
+                          "%s ray %d: point %.3Lg from the surface, error bound %g", names[solid], i,
+                          nearest, h[k].error);
+            }
             if (n == 2) {
                 CHECK_NEAR(h[0].t, (double)t_in, 1e-12 * (1 + fabsl(t_in)));
                 CHECK_NEAR(h[1].t, (double)t_out, 1e-12 * (1 + fabsl(t_out)));
