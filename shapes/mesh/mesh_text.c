@@ -13,6 +13,8 @@ void mesh_text_init(mesh_text *t, const char *text, size_t length, const char *s
 {
     t->p = text;
     t->end = text + length;
+    /* A UTF-8 byte order mark, as some editors write, is not a token. */
+    if (length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) t->p += 3;
     t->line = 1;
     t->last_line = 1;
     t->shown = shown;

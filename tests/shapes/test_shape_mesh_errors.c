@@ -169,6 +169,11 @@ static void test_hostile(void)
     };
     for (size_t i = 0; i < sizeof obj / sizeof obj[0]; i++)
         read_bytes(obj[i], strlen(obj[i]), ".obj");
+    /* Windows line ends and a byte order mark are fine. */
+    const char crlf[] = "\xEF\xBB\xBFv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n";
+    CHECK(read_bytes(crlf, sizeof crlf - 1, ".obj") == 1);
+    const char crlf_hill[] = "\xEF\xBB\xBF" "3 1 1\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n0 0 1\r\n3 0 1 2 0 0 0\r\n";
+    CHECK(read_bytes(crlf_hill, sizeof crlf_hill - 1, ".3vn") == 1);
     const char nul[] = "v 0 0 0\nv 1 0\0 0\nv 0 1 0\nf 1 2 3\n";
     read_bytes(nul, sizeof nul - 1, ".obj");
     /* The all-same-vertex polygon, and the near-duplicate negatives, give a
