@@ -2,6 +2,7 @@
  * line in it, what is wrong and the token found (tests/data/meshes/bad/),
  * and never crash: every prefix of every good and bad file is read too
  * (truncated files), and so are a few generated hostile inputs. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -181,6 +182,51 @@ static void test_hostile(void)
     CHECK(read_bytes(obj[4], strlen(obj[4]), ".obj") == 1);
 }
 
+/* Mutations of the good files with a fixed seed: bytes replaced by the
+ * characters that matter to the readers (digits, signs, points, slashes,
+ * line ends, keywords' letters, NUL), bytes deleted and duplicated. Each is
+ * read; none may crash or leak (the sanitizer build checks). */
+static void test_mutations(void)
+{
+    static const char *const files[] = {"cube.obj", "cube.3vn", "smooth_square.obj",
+                                        "tetra_hill.3vn"};
+    static const char alphabet[] = "0123456789-+.e/ \n\r#vnft9\0";
+    uint64_t state = 0x243f6a8885a308d3u;
+    int read_ok = 0, total = 0;
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char path[1024];
+        size_t length = 0;
+        char *text = slurp(mesh_data_path(files[i], path, sizeof path), &length);
+        if (!text) continue;
+        const char *ext = strstr(files[i], ".obj") ? ".obj" : ".3vn";
+        char *copy = malloc(2 * length + 16);
+        for (int round = 0; round < 400 && copy; round++) {
+            memcpy(copy, text, length);
+            size_t n = length;
+            for (int edits = 1 + round % 4; edits > 0 && n > 0; edits--) {
+                state = state * 6364136223846793005u + 1442695040888963407u;
+                size_t at = (size_t)(state >> 33) % n;
+                int kind = (int)((state >> 20) % 3);
+                if (kind == 0) {
+                    copy[at] = alphabet[(state >> 40) % (sizeof alphabet - 1)];
+                } else if (kind == 1) {
+                    memmove(copy + at, copy + at + 1, n - at - 1);
+                    n--;
+                } else {
+                    memmove(copy + at + 1, copy + at, n - at);
+                    n++;
+                }
+            }
+            read_ok += read_bytes(copy, n, ext) == 1;
+            total++;
+        }
+        free(copy);
+        free(text);
+    }
+    printf("mutations: %d of %d still read as meshes\n", read_ok, total);
+    CHECK(total == 1600);
+}
+
 int main(void)
 {
     if (!harness_load("mesh", &module)) return hr_test_end() | 1;
@@ -188,6 +234,7 @@ int main(void)
     test_unreadable();
     test_prefixes();
     test_hostile();
+    test_mutations();
     harness_unload(&module);
     return hr_test_end();
 }
