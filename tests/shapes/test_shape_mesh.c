@@ -9,9 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../shapes/mesh/mesh_triangle.h"
 #include "hr_test.h"
 #include "mesh_support.h"
 #include "module_harness.h"
+#include "quad_reference.h"
 #include "random_rays.h"
 
 static harness_shape cube_module;
@@ -528,6 +530,35 @@ static void test_many_hits(void)
     harness_close(&stack);
 }
 
+/* The edge functions' signs are exact: a b - c d against __float128, where
+ * both products are exact (106 bits < 113) and so is the sign of their
+ * difference, on inputs built to cancel (c d within a few ulps of a b, and
+ * exactly equal), where plain double arithmetic gets the sign wrong. */
+static void test_exact_signs(void)
+{
+    ray_rng rng;
+    rng_seed(&rng, 21);
+    int wrong_plain = 0;
+    for (int i = 0; i < 200000; i++) {
+        double a = rng_uniform(&rng, -2, 2), b = rng_uniform(&rng, -2, 2);
+        double c = rng_uniform(&rng, 0.5, 2) * (rng_chance(&rng, 0.5) ? -1 : 1);
+        double d = a * b / c; /* c d = a b within an ulp or two */
+        const int nudge = (int)(rng_next(&rng) % 7) - 3;
+        for (int k = 0; k < abs(nudge); k++) d = nextafter(d, nudge > 0 ? INFINITY : -INFINITY);
+        if (rng_chance(&rng, 0.1)) c = a, d = b; /* exactly zero */
+        const quad exact = (quad)a * b - (quad)c * d;
+        const int want = exact > 0 ? 1 : exact < 0 ? -1 : 0;
+        const double got = mesh_edge_function(a, b, c, d);
+        const int sign = got > 0 ? 1 : got < 0 ? -1 : 0;
+        CHECK_MSG(sign == want, "%.17g * %.17g - %.17g * %.17g: sign %d, exact %d", a, b, c, d,
+                  sign, want);
+        const double plain = a * b - c * d;
+        wrong_plain += (plain > 0 ? 1 : plain < 0 ? -1 : 0) != want;
+    }
+    /* The cases are hard ones: plain evaluation must get some wrong. */
+    CHECK_MSG(wrong_plain > 1000, "only %d plain signs wrong: the inputs do not cancel", wrong_plain);
+}
+
 /* The module's table: five classes, complete vtables, one surface each;
  * the solids closed and without parameters; `mesh` takes one required
  * string `file` (the name the SDL reader and the Python binding use). */
@@ -559,6 +590,7 @@ int main(void)
     if (!mesh_open_file(&cube_mesh, mesh_data_path("cube.obj", path, sizeof path)))
         return hr_test_end() | 1;
     test_classes();
+    test_exact_signs();
     test_cube_agrees();
     test_edge_sweeps();
     test_vertices();

@@ -6,8 +6,9 @@
  * any-hit paths agree; the render has finite pixels and shows the mesh.
  * Prints the memory the shape keeps per triangle.
  *
- * Under AddressSanitizer the sphere has 40,000 triangles instead: the
- * sanitizer makes every load and allocation several times slower, and the
+ * Under AddressSanitizer or ThreadSanitizer the sphere has 40,000
+ * triangles instead: a sanitizer makes every load and allocation several
+ * times slower, and the
  * million-triangle size is covered by the plain build; nothing here
  * depends on the size beyond the counts printed. */
 #include <math.h>
@@ -22,10 +23,10 @@
 #include "module_harness.h"
 #include "random_rays.h"
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define SANITIZED 1
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
 #define SANITIZED 1
 #endif
 #endif
