@@ -146,11 +146,14 @@ void mesh_destroy(mesh *m)
 }
 
 /* Copies `count` items into an exactly sized block, so a grown array's
- * slack is not kept for the life of the shape. */
+ * slack is not kept for the life of the shape. Frees `array` either way. */
 static void *shrink(const hr_host *host, void *array, size_t count, size_t size)
 {
     void *exact = host->alloc(count ? count * size : 1);
-    if (!exact) return NULL;
+    if (!exact) {
+        host->free(array);
+        return NULL;
+    }
     if (count) memcpy(exact, array, count * size);
     host->free(array);
     return exact;
@@ -231,53 +234,50 @@ static void sort_keys(uint64_t *a, size_t n)
     }
 }
 
-/* A key that orders vertices by position: the bits of x, y, z folded with a
- * multiplicative hash, then the index. Equal positions give equal hashes,
- * so after sorting, each run of equal hashes is checked by exact comparison. */
-static uint64_t position_hash(hr_vec3 v)
+/* Vertices ordered by position (x, then y, then z; -0 equals +0, as in
+ * same_point), then by index. */
+static int vertex_before(const hr_vec3 *v, uint32_t a, uint32_t b)
 {
-    uint64_t h = 0x9e3779b97f4a7c15u;
-    const double c[3] = {v.x == 0.0 ? 0.0 : v.x, v.y == 0.0 ? 0.0 : v.y, v.z == 0.0 ? 0.0 : v.z};
-    for (int i = 0; i < 3; i++) {
-        uint64_t bits;
-        memcpy(&bits, &c[i], sizeof bits);
-        h = (h ^ bits) * 0xbf58476d1ce4e5b9u;
-        h ^= h >> 31;
-    }
-    return h;
+    if (v[a].x != v[b].x) return v[a].x < v[b].x;
+    if (v[a].y != v[b].y) return v[a].y < v[b].y;
+    if (v[a].z != v[b].z) return v[a].z < v[b].z;
+    return a < b;
 }
 
-/* weld[i]: the smallest index of a vertex at the same position as vertex i.
- * Sorting (hash << 32 would lose bits, so a hash of 32 bits and the index)
- * brings equal positions together; collisions of different positions are
- * told apart by comparing coordinates within each run. */
+static void sift_vertices(const hr_vec3 *v, uint32_t *a, size_t root, size_t n)
+{
+    for (;;) {
+        size_t child = 2 * root + 1;
+        if (child >= n) return;
+        if (child + 1 < n && vertex_before(v, a[child], a[child + 1])) child++;
+        if (!vertex_before(v, a[root], a[child])) return;
+        uint32_t t = a[root];
+        a[root] = a[child], a[child] = t;
+        root = child;
+    }
+}
+
+/* weld_out[i]: the first vertex at the same position as vertex i. A
+ * heapsort by position (O(n log n) whatever the coordinates, no
+ * allocation beyond the index array) makes each position one run. */
 static int weld(const mesh *m, uint32_t *weld_out)
 {
     const size_t n = m->vertex_count;
-    uint64_t *keys = m->host->alloc((n ? n : 1) * sizeof *keys);
-    if (!keys) return -1;
-    for (size_t i = 0; i < n; i++)
-        keys[i] = (position_hash(m->vertices[i]) & 0xffffffff00000000u) | (uint64_t)i;
-    sort_keys(keys, n);
-    for (size_t start = 0; start < n;) {
-        size_t end = start + 1;
-        while (end < n && (keys[end] >> 32) == (keys[start] >> 32)) end++;
-        /* Within a run (indices ascending), each vertex welds to the first
-         * earlier one at its position. Runs are tiny unless positions repeat. */
-        for (size_t i = start; i < end; i++) {
-            uint32_t vi = (uint32_t)keys[i];
-            weld_out[vi] = vi;
-            for (size_t j = start; j < i; j++) {
-                uint32_t vj = (uint32_t)keys[j];
-                if (weld_out[vj] == vj && same_point(m->vertices[vi], m->vertices[vj])) {
-                    weld_out[vi] = vj;
-                    break;
-                }
-            }
-        }
-        start = end;
+    const hr_vec3 *v = m->vertices;
+    uint32_t *order = m->host->alloc((n ? n : 1) * sizeof *order);
+    if (!order) return -1;
+    for (size_t i = 0; i < n; i++) order[i] = (uint32_t)i;
+    for (size_t i = n / 2; i-- > 0;) sift_vertices(v, order, i, n);
+    for (size_t end = n; end-- > 1;) {
+        uint32_t t = order[0];
+        order[0] = order[end], order[end] = t;
+        sift_vertices(v, order, 0, end);
     }
-    m->host->free(keys);
+    for (size_t i = 0; i < n; i++)
+        weld_out[order[i]] = i > 0 && same_point(v[order[i]], v[order[i - 1]])
+                                 ? weld_out[order[i - 1]]
+                                 : order[i];
+    m->host->free(order);
     return 0;
 }
 
