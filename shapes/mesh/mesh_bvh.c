@@ -99,15 +99,43 @@ static void triangle_box(const mesh *m, uint32_t t, box *out)
     }
 }
 
-/* Rearranges order[begin, end) so that the items whose centroid on `axis`
- * is below the k-th smallest come first: iterative quickselect (Hoare
- * partition around the middle element), O(n) on average, no recursion. */
+static void sift_by_axis(const float *c, int axis, uint32_t *o, size_t root, size_t n)
+{
+    for (;;) {
+        size_t child = 2 * root + 1;
+        if (child >= n) return;
+        if (child + 1 < n && c[3 * (size_t)o[child] + axis] < c[3 * (size_t)o[child + 1] + axis])
+            child++;
+        if (!(c[3 * (size_t)o[root] + axis] < c[3 * (size_t)o[child] + axis])) return;
+        uint32_t t = o[root];
+        o[root] = o[child], o[child] = t;
+        root = child;
+    }
+}
+
+/* Rearranges order[begin, end) so that the k-th smallest centroid on
+ * `axis` is at k, smaller ones before it and larger ones after:
+ * quickselect (Hoare partition around the middle element), O(n) on
+ * average and without recursion; after 64 rounds (an input built against
+ * the pivot rule) the range is heapsorted instead, so the worst case is
+ * O(n log n). */
 static void select_median(builder *b, uint32_t begin, uint32_t end, int axis, uint32_t k)
 {
     uint32_t *o = b->order;
     const float *c = b->centroids;
     uint32_t lo = begin, hi = end - 1;
-    while (lo < hi) {
+    for (int round = 0; lo < hi; round++) {
+        if (round == 64) {
+            const size_t n = (size_t)hi - lo + 1;
+            uint32_t *r = o + lo;
+            for (size_t i = n / 2; i-- > 0;) sift_by_axis(c, axis, r, i, n);
+            for (size_t e = n; e-- > 1;) {
+                uint32_t t = r[0];
+                r[0] = r[e], r[e] = t;
+                sift_by_axis(c, axis, r, 0, e);
+            }
+            return;
+        }
         float pivot = c[3 * (size_t)o[lo + (hi - lo) / 2] + axis];
         uint32_t i = lo, j = hi;
         while (i <= j) {

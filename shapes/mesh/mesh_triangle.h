@@ -148,25 +148,33 @@ typedef struct mesh_triangle_hit {
     int entering;
 } mesh_triangle_hit;
 
-/* A bound on the rounding error of t = T / det (pbrt-v4's, Pharr, Jakob and
- * Humphreys, "Physically Based Rendering", 4th ed., 6.8.7): from the errors
- * of the sheared corners, of the edge functions and of T. A hit within this
- * of tmin may really lie before it; it is refused, as pbrt refuses hits
- * that may lie behind the origin, so a ray that starts on the mesh does not
- * find the triangle it starts on. */
-static inline double mesh_t_error(const double A[3], const double B[3], const double C[3],
-                                  double U, double V, double W, double det)
+/* A bound on the rounding error of t = T / det, after pbrt-v4's (Pharr,
+ * Jakob and Humphreys, "Physically Based Rendering", 4th ed., 6.8.7), with
+ * two refinements for far-away triangles:
+ * - a sheared x' = p[kx] - sx p[kz] is off by gamma(5) (|x'| + 2 |sx p[kz]|)
+ *   at most, and sx p[kz] = d[kx] z', so the bound uses |d[kx]| |z'|
+ *   where pbrt uses |z'| (for a ray along an axis the shear adds nothing);
+ * - t = sum b_i z_i with weights b_i = U_i / det that sum to one, so errors
+ *   in the edge functions move t by at most their relative size times the
+ *   spread of the z_i (the triangle's depth along the ray), not times
+ *   max |z_i|.
+ * A hit within this of tmin may really lie before it; it is refused, as pbrt
+ * refuses hits that may lie behind the origin, so a ray that starts on the
+ * mesh does not find the triangle it starts on. */
+static inline double mesh_t_error(const mesh_ray *r, const double A[3], const double B[3],
+                                  const double C[3], double U, double V, double W, double det)
 {
     const double max_z = fmax(fabs(A[2]), fmax(fabs(B[2]), fabs(C[2])));
+    const double spread_z = fmax(A[2], fmax(B[2], C[2])) - fmin(A[2], fmin(B[2], C[2]));
     const double max_x = fmax(fabs(A[0]), fmax(fabs(B[0]), fabs(C[0])));
     const double max_y = fmax(fabs(A[1]), fmax(fabs(B[1]), fabs(C[1])));
     const double delta_z = MESH_GAMMA(3) * max_z;
-    const double delta_x = MESH_GAMMA(5) * (max_x + max_z);
-    const double delta_y = MESH_GAMMA(5) * (max_y + max_z);
+    const double delta_x = MESH_GAMMA(5) * (max_x + 2.0 * fabs(r->d[r->kx]) * max_z);
+    const double delta_y = MESH_GAMMA(5) * (max_y + 2.0 * fabs(r->d[r->ky]) * max_z);
     const double delta_e =
         2.0 * (MESH_GAMMA(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     const double max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));
-    return 3.0 * (MESH_GAMMA(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) /
+    return 3.0 * (MESH_GAMMA(3) * max_e * max_z + 2.0 * delta_e * spread_z + delta_z * max_e) /
            fabs(det);
 }
 
@@ -193,7 +201,7 @@ static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const 
     const double T = U * A[2] + V * B[2] + W * C[2];
     const double t = T / det;
     if (!(t > tmin && t < tmax)) return 0;
-    if (t - tmin <= mesh_t_error(A, B, C, U, V, W, det)) return 0;
+    if (t - tmin <= mesh_t_error(r, A, B, C, U, V, W, det)) return 0;
     out->t = t;
     out->b[0] = U / det;
     out->b[1] = V / det;

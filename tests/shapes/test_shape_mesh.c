@@ -583,6 +583,73 @@ static void test_classes(void)
           m->params[0].required == 1);
 }
 
+/* Every hit of `ray` over (0, inf), through the class's hit function with a
+ * list the module must grow (the harness allows only 8). */
+static int all_hits(const harness_shape *s, hr_ray ray, int32_t mode, hr_intersection *list)
+{
+    list->count = 0;
+    hr_hit_args args;
+    memset(&args, 0, sizeof args);
+    args.shape = s->shape;
+    args.ray = ray;
+    args.tmin = 0;
+    args.tmax = INFINITY;
+    args.out = list;
+    hr_hit_fn fn = mode == HR_TRACE_ALL ? s->cls->hit : mode == HR_TRACE_FIRST ? s->cls->first_hit
+                                                                               : s->cls->any_hit;
+    CHECK_OK(fn(&args));
+    for (int i = 1; i < list->count; i++) CHECK(list->hits[i - 1].t <= list->hits[i].t);
+    return list->count;
+}
+
+/* Meshes that defeat the SAH: 2000 copies of one triangle (every centroid
+ * the same: median splits), and 201 squares at x = 1.5^i (the binned SAH
+ * peels them off one at a time, so past 48 levels the build switches to
+ * median splits). Both build, and rays find every copy and every square,
+ * nearest first. */
+static void test_degenerate_bvh(void)
+{
+    char path[1024];
+    mesh_build_path("mesh_copies.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (int i = 0; i < 2000; i++) fprintf(f, "f 1 2 3\n");
+    fclose(f);
+    hr_intersection list = {NULL, 0, 0};
+    CHECK_OK(harness_host()->reserve(NULL, &list, HR_MIN_HIT_CAPACITY));
+    harness_shape copies;
+    if (mesh_open_file(&copies, path)) {
+        CHECK(all_hits(&copies, harness_ray(0.25, 0.25, 1, 0.01, 0.02, -1), HR_TRACE_ALL, &list) == 2000);
+        CHECK(all_hits(&copies, harness_ray(0.25, 0.25, 1, 0.01, 0.02, -1), HR_TRACE_FIRST, &list) == 1);
+        CHECK(all_hits(&copies, harness_ray(0.25, 0.25, -1, 0, 0, -1), HR_TRACE_ALL, &list) == 0);
+        harness_close(&copies);
+    }
+    mesh_build_path("mesh_spread.obj", path, sizeof path);
+    f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    double x = 1;
+    for (int i = 0; i <= 200; i++, x *= 1.5)
+        fprintf(f, "v %.17g 0 0\nv %.17g 0 1\nv %.17g 1 1\nv %.17g 1 0\nf -4 -3 -2 -1\n", x, x, x, x);
+    fclose(f);
+    harness_shape spread;
+    if (mesh_open_file(&spread, path)) {
+        CHECK(all_hits(&spread, harness_ray(-1, 0.25, 0.5, 1, 0, 0), HR_TRACE_ALL, &list) == 201);
+        CHECK(all_hits(&spread, harness_ray(-1, 0.25, 0.5, 1, 0, 0), HR_TRACE_FIRST, &list) == 1 &&
+              list.hits[0].t == 2);
+        CHECK(all_hits(&spread, harness_ray(-1, 0.25, 0.5, 1, 0, 0), HR_TRACE_ANY, &list) == 1);
+        /* From beyond the 100th square, backwards: the 100th first. */
+        const double x100 = pow(1.5, 100);
+        CHECK(all_hits(&spread, harness_ray(x100 * 1.25, 0.75, 0.5, -1, 0, 0), HR_TRACE_FIRST, &list) == 1 &&
+              fabs(list.hits[0].t - x100 * 0.25) <= 1e-12 * x100);
+        CHECK(all_hits(&spread, harness_ray(x100 * 1.25, 0.75, 0.5, -1, 0, 0), HR_TRACE_ALL, &list) == 101);
+        harness_close(&spread);
+    }
+    free(list.hits);
+}
+
 int main(void)
 {
     char path[1024];
@@ -599,6 +666,7 @@ int main(void)
     test_obj_normals();
     test_solids();
     test_many_hits();
+    test_degenerate_bvh();
     harness_close(&cube_mesh);
     harness_close(&cube_module);
     return hr_test_end();
