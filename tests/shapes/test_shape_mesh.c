@@ -439,7 +439,7 @@ static void test_solids(void)
         CHECK(b.hi.x <= 1 && b.lo.x >= -1 && b.hi.x > 0.5);
         ray_rng rng;
         rng_seed(&rng, 100 + (uint64_t)solid);
-        int compared = 0;
+        int compared = 0, corner_spawns = 0;
         for (int i = 0; i < 5000; i++) {
             hr_ray ray = random_ray_near(&rng, &b);
             long double t_in = -INFINITY, t_out = INFINITY;
@@ -459,11 +459,11 @@ static void test_solids(void)
             hr_hit h[HARNESS_MAX_HITS];
             int n = harness_hits(&s, ray, h); /* the harness checks alternation */
             long double len = sqrtl(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            if (!(t_out - t_in > 1e-6L / len) && t_in <= t_out) continue; /* grazing */
+            if (fabsl(t_out - t_in) <= 1e-6L / len) continue; /* grazing, or missing by a hair */
             int want = 0;
             if (t_in < t_out) want = (t_in > 0) + (t_out > 0);
             compared++;
-            CHECK_MSG(n == want, "%s ray %d: %d hits, expected %d", names[solid], i, n, want);
+            CHECK_MSG(n == want, "%s ray %d: %d hits, expected %d (t_in %.17Lg t_out %.17Lg)", names[solid], i, n, want, t_in, t_out);
             if (n != want || n == 0) continue;
             /* Each point is on the surface within its error bound (per
              * coordinate, so sqrt(3) of it as a distance), plus 4e-16 for
@@ -480,6 +480,31 @@ static void test_solids(void)
                           "%s ray %d: point %.3Lg from the surface, error bound %g", names[solid], i,
                           nearest, h[k].error);
             }
+            /* Rays spawned from each hit the way the host does (the origin
+             * moved off the surface by the error bound, along the normal)
+             * and leaving a convex solid never hit it again; nor do rays
+             * spawned inward hit anything but the far side. */
+            for (int k = 0; k < n; k++) {
+                const hr_vec3 nn = unit(h[k].normal);
+                const double off = 2 * sqrt(3.0) * h[k].error;
+                for (int side = -1; side <= 1; side += 2) {
+                    hr_vec3 w = rng_unit_vector(&rng);
+                    if (dot(w, nn) * side < 0) w = harness_vec(-w.x, -w.y, -w.z);
+                    if (fabs(dot(w, nn)) < 1e-3) continue;
+                    hr_hit again[HARNESS_MAX_HITS];
+                    int m = harness_hits(&s, harness_ray(h[k].point.x + side * off * nn.x,
+                                                         h[k].point.y + side * off * nn.y,
+                                                         h[k].point.z + side * off * nn.z, w.x, w.y,
+                                                         w.z),
+                                         again);
+                    /* Inward, the ray leaves once; or, from within the offset of
+                     * an edge, it may already be outside the neighbour face. */
+                    if (side > 0) CHECK_MSG(m == 0, "%s ray %d: a spawned ray hit again", names[solid], i);
+                    else if (m == 0) corner_spawns++;
+                    else CHECK_MSG(m == 1 && again[0].entering == 0,
+                                   "%s ray %d: an inward spawned ray: %d hits", names[solid], i, m);
+                }
+            }
             if (n == 2) {
                 CHECK_NEAR(h[0].t, (double)t_in, 1e-12 * (1 + fabsl(t_in)));
                 CHECK_NEAR(h[1].t, (double)t_out, 1e-12 * (1 + fabsl(t_out)));
@@ -489,6 +514,8 @@ static void test_solids(void)
             }
         }
         CHECK_MSG(compared > 4000, "%s: %d rays compared", names[solid], compared);
+        CHECK_MSG(corner_spawns < 10, "%s: %d inward spawned rays found nothing", names[solid],
+                  corner_spawns);
         harness_close(&s);
     }
 }
