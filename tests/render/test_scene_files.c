@@ -1,5 +1,5 @@
-/* Every SDL scene the project ships or must read (the demo and the three
- * real Hill files) renders end to end: finite pixels, something besides the
+/* Every SDL scene the project ships or must read (the demo, the CSG scene
+ * and the three real Hill files) renders end to end: finite pixels, something besides the
  * background, and the same bits with 1, 2 and 4 threads and with
  * supersampling. */
 #include <string.h>
@@ -10,6 +10,7 @@
 
 static const char *const scenes[] = {
     HR_TEST_SOURCE_DIR "/scenes/demo.sdl",
+    HR_TEST_SOURCE_DIR "/scenes/csg.sdl",
     HR_TEST_SOURCE_DIR "/tests/scenes/hill/chair.dat",
     HR_TEST_SOURCE_DIR "/tests/scenes/hill/village.dat",
     HR_TEST_SOURCE_DIR "/tests/scenes/hill/room.dat",
