@@ -290,17 +290,21 @@ static hr_status csg_any_hit(const hr_hit_args *args)
 /* min > max: no range to check (object parameters have none). */
 static const hr_param_spec csg_params[] = {
     {"a", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the first solid"},
-    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0,
-     "the second solid (for difference: the one taken away from a)"},
+    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the second solid"},
 };
 
-#define CSG_CLASS(var, class_name, create_fn, help_text)                                     \
+static const hr_param_spec difference_params[] = {
+    {"a", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the solid to take from"},
+    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the solid taken away from a"},
+};
+
+#define CSG_CLASS(var, class_name, param_specs, create_fn, help_text)                        \
     static const hr_shape_class var = {                                                     \
         .struct_size = sizeof(hr_shape_class),                                              \
         .flags = HR_SHAPE_CLOSED | HR_SHAPE_COMPOSITE,                                      \
         .name = class_name,                                                                 \
         .help = help_text,                                                                  \
-        .params = csg_params,                                                               \
+        .params = param_specs,                                                              \
         .param_count = 2,                                                                   \
         .surface_count = 0,                                                                 \
         .create = create_fn,                                                                \
@@ -311,10 +315,10 @@ static const hr_param_spec csg_params[] = {
         .any_hit = csg_any_hit,                                                             \
     }
 
-CSG_CLASS(union_class, "union", union_create, "CSG: every point inside a or b");
-CSG_CLASS(intersection_class, "intersection", intersection_create,
+CSG_CLASS(union_class, "union", csg_params, union_create, "CSG: every point inside a or b");
+CSG_CLASS(intersection_class, "intersection", csg_params, intersection_create,
           "CSG: every point inside both a and b");
-CSG_CLASS(difference_class, "difference", difference_create,
+CSG_CLASS(difference_class, "difference", difference_params, difference_create,
           "CSG: every point inside a and not inside b");
 
 static const hr_shape_class *const csg_classes[] = {&union_class, &intersection_class,
