@@ -37,7 +37,9 @@
  * full. The any hit (shadow rays) first asks each operand for any hit in
  * (tmin, tmax): the result's hits are hits of its operands, so with none
  * from either the answer is no, at the cost of two any-hit calls; otherwise
- * it is the first hit.
+ * it is the first hit. In every mode, b is not traced at all when the ray
+ * is never inside a and the result lies within a (intersection,
+ * difference).
  *
  * No limit on the number of hits: the list grows through hr_host.reserve.
  *
@@ -247,6 +249,9 @@ static hr_status csg_trace(const hr_hit_args *args, int32_t mode)
     if ((st = trace_operand(shape, args, shape->a, &inside))) goto fail;
     a.inside = inside;
     a.count = out->count - start;
+    /* An intersection or a difference lies inside a: a ray that never is
+     * inside a has no hit, whatever b does. */
+    if (shape->op != CSG_UNION && a.count == 0 && !a.inside) return HR_OK;
     if ((st = trace_operand(shape, args, shape->b, &inside))) goto fail;
     b.inside = inside;
     b.count = out->count - start - a.count;
