@@ -237,7 +237,7 @@ static hr_status csg_trace(const hr_hit_args *args, int32_t mode)
     const int32_t start = out->count;
     hr_status st;
     if (mode == HR_TRACE_ANY) {
-        int found_a, found_b;
+        int found_a = 0, found_b = 0;
         if ((st = operand_any(shape, args, shape->a, &found_a))) return st;
         if (!found_a && (st = operand_any(shape, args, shape->b, &found_b))) return st;
         if (!found_a && !found_b) return HR_OK;

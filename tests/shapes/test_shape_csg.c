@@ -17,6 +17,7 @@
  *   bounds, an unbounded solid child. */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -541,6 +542,43 @@ static void test_refusals(void)
     CHECK_MSG(strstr(error, "parameter 'b'"), "message: %s", error);
 }
 
+/* A host from before hr_host.child_class (a smaller struct_size): the
+ * module must not read past it, and then takes its operands as solids. */
+static void test_older_host(void)
+{
+    hr_host old = *harness_host();
+    old.struct_size = (uint32_t)offsetof(hr_host, child_class);
+    old.child_class = NULL; /* reading it would crash */
+    harness_child s = place(&sphere, 0, 0, 0, 1, 0), c = place(&cube, 0, 0, 0, 0.5, 1);
+    hr_param params[2];
+    memset(params, 0, sizeof params);
+    params[0].name = "a", params[0].type = HR_PARAM_OBJECT, params[0].object = 0;
+    params[1].name = "b", params[1].type = HR_PARAM_OBJECT, params[1].object = 1;
+    const void *objects[2] = {&s, &c};
+    char error[128] = "";
+    hr_create_args args;
+    memset(&args, 0, sizeof args);
+    args.struct_size = sizeof args;
+    args.param_count = 2;
+    args.params = params;
+    args.objects = objects;
+    args.host = &old;
+    args.error = error;
+    args.error_size = sizeof error;
+    args.base_dir = "";
+    harness_shape d;
+    memset(&d, 0, sizeof d);
+    d.cls = difference_cls;
+    CHECK_MSG(difference_cls->create(&args, &d.shape) == HR_OK && d.shape, "create: %s", error);
+    if (!d.shape) return;
+    /* Sphere minus the cube of half-size 0.5, along z from -5. */
+    result r;
+    trace_all(&d, harness_ray(0, 0, -5, 0, 0, 1), 0, INFINITY, &r);
+    expect("older host", &r,
+           (expected[]){{4, 0, 1, -1}, {4.5, 1, 0, 1}, {5.5, 1, 1, -1}, {6, 0, 0, 1}}, 4);
+    destroy(&d);
+}
+
 static void check_box(const char *what, const harness_shape *s, double lx, double ly, double lz,
                       double hx, double hy, double hz)
 {
@@ -659,6 +697,7 @@ int main(void)
         test_refusals();
         test_bounds();
         test_unbounded_child();
+        test_older_host();
     }
     harness_close(&sphere);
     harness_close(&cube);
