@@ -4,7 +4,8 @@
  * shows with its normal turned to the viewer. Shadows go through the same
  * booleans: light falls through a hole drilled in a sphere and nowhere else
  * under it. Composites nested past HR_MAX_COMPOSITE_DEPTH are refused, and a
- * chain of exactly that depth traces on the render threads. */
+ * chain of exactly that depth traces on the render threads. An open surface
+ * as an operand is refused where the boolean is written. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -211,6 +212,18 @@ static void test_depth_limit(hr_context *ctx)
     hr_scene_destroy(s);
 }
 
+/* An open surface as an operand is refused at the boolean's keyword. */
+static void test_open_operand(hr_context *ctx)
+{
+    hr_sdl_result r = {0};
+    r.struct_size = sizeof r;
+    hr_status st = hr_sdl_load_string(ctx, "sphere\n  difference sphere plane", "open.sdl", NULL, &r);
+    CHECK(st == HR_ERROR_PARAMETER && r.scene == NULL);
+    const char *m = hr_context_last_error(ctx);
+    CHECK_MSG(strstr(m, "open.sdl:2:3") && strstr(m, "parameter 'b'") && strstr(m, "'plane'"),
+              "message: %s", m);
+}
+
 int main(void)
 {
     hr_context *ctx;
@@ -218,6 +231,7 @@ int main(void)
     test_nested(ctx);
     test_shadows(ctx);
     test_depth_limit(ctx);
+    test_open_operand(ctx);
     hr_context_destroy(ctx);
     return hr_test_end();
 }
