@@ -47,6 +47,7 @@
  * Bounds (in the boolean's object space, from hr_host.child_bounds): a union
  * the box around both boxes, an intersection their overlap, a difference the
  * box of a. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -60,9 +61,17 @@ typedef struct csg_shape {
     const void *a, *b;                /* child handles for trace_child */
     int32_t op;                       /* CSG_* */
     int32_t a_composite, b_composite; /* operand is itself a composite */
+    hr_bounds a_box, b_box;           /* operands' bounds, fixed once made */
+    int32_t a_box_finite, b_box_finite;
 } csg_shape;
 
 /* --- Create and destroy ------------------------------------------------------ */
+
+static int bounds_finite(const hr_bounds *b)
+{
+    return isfinite(b->lo.x) && isfinite(b->lo.y) && isfinite(b->lo.z) && isfinite(b->hi.x) &&
+           isfinite(b->hi.y) && isfinite(b->hi.z);
+}
 
 /* The child given as parameter `name`, checked to be a solid. */
 static hr_status find_operand(const hr_create_args *args, const char *name, const void **out,
@@ -109,6 +118,10 @@ static hr_status csg_create(const hr_create_args *args, int32_t op, void **out_s
     shape->op = op;
     shape->a_composite = a_composite;
     shape->b_composite = b_composite;
+    args->host->child_bounds(a, &shape->a_box);
+    args->host->child_bounds(b, &shape->b_box);
+    shape->a_box_finite = bounds_finite(&shape->a_box);
+    shape->b_box_finite = bounds_finite(&shape->b_box);
     *out_shape = shape;
     return HR_OK;
 }
@@ -140,13 +153,11 @@ static void csg_destroy(void *shape)
 static void csg_bounds(const void *shape_ptr, hr_bounds *out)
 {
     const csg_shape *shape = shape_ptr;
-    hr_bounds a, b;
-    shape->host->child_bounds(shape->a, &a);
+    const hr_bounds a = shape->a_box, b = shape->b_box;
     if (shape->op == CSG_DIFFERENCE) {
         *out = a;
         return;
     }
-    shape->host->child_bounds(shape->b, &b);
     double *lo = &out->lo.x, *hi = &out->hi.x;
     const double *alo = &a.lo.x, *ahi = &a.hi.x, *blo = &b.lo.x, *bhi = &b.hi.x;
     for (int i = 0; i < 3; i++) {
@@ -165,12 +176,6 @@ static void csg_bounds(const void *shape_ptr, hr_bounds *out)
 }
 
 /* --- Hits --------------------------------------------------------------------- */
-
-static int bounds_finite(const hr_bounds *b)
-{
-    return isfinite(b->lo.x) && isfinite(b->lo.y) && isfinite(b->lo.z) && isfinite(b->hi.x) &&
-           isfinite(b->hi.y) && isfinite(b->hi.z);
-}
 
 /* Whether `p` is inside an unbounded child that the ray never crosses: the
  * first hit along an axis direction from p tells (exiting: inside). None in
@@ -196,13 +201,63 @@ static hr_status probe_inside(const csg_shape *shape, void *call, const void *ch
     return HR_OK;
 }
 
+/* The ray with its direction's reciprocals, for box tests. */
+typedef struct box_ray {
+    double o[3], d[3], inv_d[3];
+    double tmin;
+} box_ray;
+
+static box_ray box_ray_make(const hr_ray *ray, double tmin)
+{
+    box_ray r = {{ray->origin.x, ray->origin.y, ray->origin.z},
+                 {ray->dir.x, ray->dir.y, ray->dir.z},
+                 {0, 0, 0},
+                 tmin};
+    for (int k = 0; k < 3; k++) r.inv_d[k] = r.d[k] != 0.0 ? 1.0 / r.d[k] : 0.0;
+    return r;
+}
+
+/* Whether the ray after tmin certainly misses the finite box `b`: the slab
+ * test, with the far distance widened by 1 + 2 gamma(3) (as pbrt does; the
+ * reciprocal adds one rounding to pbrt's two) so rounding never loses a box
+ * the ray touches. A zero direction component keeps the ray in the slab or
+ * out of it; nothing here divides by zero. */
+static int ray_misses_box(const box_ray *r, const hr_bounds *b)
+{
+    const double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z};
+    const double eps = DBL_EPSILON * 0.5, widen = 1.0 + 2.0 * (4.0 * eps / (1.0 - 4.0 * eps));
+    double t_near = r->tmin, t_far = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (r->d[k] == 0.0) {
+            if (r->o[k] < lo[k] || r->o[k] > hi[k]) return 1;
+            continue;
+        }
+        double t0 = (lo[k] - r->o[k]) * r->inv_d[k], t1 = (hi[k] - r->o[k]) * r->inv_d[k];
+        if (t0 > t1) {
+            const double swap = t0;
+            t0 = t1, t1 = swap;
+        }
+        t1 *= widen;
+        if (t0 > t_near) t_near = t0;
+        if (t1 < t_far) t_far = t1;
+        if (t_near > t_far) return 1;
+    }
+    return 0;
+}
+
 /* Appends every hit of `child` after tmin to `out` and says whether the ray
- * is inside it at tmin. */
-static hr_status trace_operand(const csg_shape *shape, const hr_hit_args *args, const void *child,
-                               int *inside)
+ * is inside it at tmin. A bounded child whose box the ray misses has no hit
+ * and is outside all along: it is not traced (so a tree of booleans prunes
+ * itself like a BVH). */
+static hr_status trace_operand(const csg_shape *shape, const hr_hit_args *args, const box_ray *br,
+                               int which_b, int *inside)
 {
     hr_intersection *out = args->out;
     const int32_t start = out->count;
+    const void *child = which_b ? shape->b : shape->a;
+    const int finite = which_b ? shape->b_box_finite : shape->a_box_finite;
+    *inside = 0;
+    if (finite && ray_misses_box(br, which_b ? &shape->b_box : &shape->a_box)) return HR_OK;
     hr_status st = shape->host->trace_child(args->call, child, &args->ray, args->tmin, INFINITY,
                                             HR_TRACE_ALL, out);
     if (st) return st;
@@ -210,10 +265,7 @@ static hr_status trace_operand(const csg_shape *shape, const hr_hit_args *args, 
         *inside = !out->hits[start].entering;
         return HR_OK;
     }
-    *inside = 0;
-    hr_bounds b;
-    shape->host->child_bounds(child, &b);
-    if (bounds_finite(&b)) return HR_OK;
+    if (finite) return HR_OK;
     /* Any point of the ray after tmin will do: none crosses the surface. */
     const hr_ray *r = &args->ray;
     hr_vec3 p = r->origin;
@@ -262,13 +314,14 @@ static hr_status csg_trace(const hr_hit_args *args, int32_t mode)
      * the result, which is finally moved down to `start`. */
     csg_operand a, b;
     int inside;
-    if ((st = trace_operand(shape, args, shape->a, &inside))) goto fail;
+    const box_ray br = box_ray_make(&args->ray, args->tmin);
+    if ((st = trace_operand(shape, args, &br, 0, &inside))) goto fail;
     a.inside = inside;
     a.count = out->count - start;
     /* An intersection or a difference lies inside a: a ray that never is
      * inside a has no hit, whatever b does. */
     if (shape->op != CSG_UNION && a.count == 0 && !a.inside) return HR_OK;
-    if ((st = trace_operand(shape, args, shape->b, &inside))) goto fail;
+    if ((st = trace_operand(shape, args, &br, 1, &inside))) goto fail;
     b.inside = inside;
     b.count = out->count - start - a.count;
     const int32_t n = a.count + b.count;
