@@ -40,7 +40,8 @@
  * calls; otherwise it is the first hit. (A composite operand is not asked:
  * see operand_any.) In every mode, b is not traced at all when the ray
  * is never inside a and the result lies within a (intersection,
- * difference).
+ * difference), and an operand whose box the ray misses is not traced (see
+ * trace_operand).
  *
  * No limit on the number of hits: the list grows through hr_host.reserve.
  *
