@@ -54,12 +54,17 @@ SCENES = {
     "village": ("tests/scenes/hill/village.dat", "9,7,24,0,0,2,0,1,0,40", []),
 }
 MASK_SIZE = "480x270"
+WORK = None  # build/bench-work: scenes, renders, logs
+README_BEGIN = "<!-- bench-results: written by bench/run_bench.py -->"
+README_END = "<!-- /bench-results -->"
 
 
 def run_measured(cmd, cwd):
-    """Run cmd; return (wall seconds, peak RSS KiB, stdout, stderr) using wait4."""
-    out_path = os.path.join(cwd, ".stdout")
-    err_path = os.path.join(cwd, ".stderr")
+    """Run cmd; return (wall seconds, peak RSS KiB, stdout, stderr) using wait4
+    (the child's own peak resident set, its children's included). Its output
+    goes through files in the work directory, so no pipe can stall it."""
+    out_path = os.path.join(WORK, ".stdout")
+    err_path = os.path.join(WORK, ".stderr")
     with open(out_path, "wb") as fo, open(err_path, "wb") as fe:
         t0 = time.perf_counter()
         proc = subprocess.Popen(cmd, cwd=cwd, stdout=fo, stderr=fe)
@@ -222,6 +227,8 @@ def main():
     ap.add_argument("--scaling", default="1000,10000,100000,1000000")
     ap.add_argument("--output", default=os.path.join(BENCH, "RESULTS.md"))
     ap.add_argument("--note", default="", help="a line to add under the machine (e.g. other load)")
+    ap.add_argument("--readme", default=os.path.join(ROOT, "README.md"),
+                    help="README whose results block is replaced ('' leaves it alone)")
     ARGS = ap.parse_args()
     ARGS.build = os.path.abspath(ARGS.build)
     ARGS.threads = [int(x) for x in ARGS.threads.split(",")]
@@ -232,7 +239,8 @@ def main():
             sys.exit(f"run_bench: {tool} is missing: build first (make build)")
     if not shutil.which("povray"):
         sys.exit("run_bench: povray is not installed (make bench installs it)")
-    work = os.path.join(ARGS.build, "bench-work")
+    global WORK
+    work = WORK = os.path.join(ARGS.build, "bench-work")
     os.makedirs(work, exist_ok=True)
     known = hitray_classes(hitray)
     load_before = os.getloadavg()
@@ -346,6 +354,38 @@ def main():
     with open(ARGS.output, "w") as f:
         f.write("\n".join(L))
     print("\n".join(L))
+    update_readme(L, cmdline)
+
+
+def update_readme(lines, cmdline):
+    """Put the machine line and the two main tables (scenes, raw intersection)
+    between the README's markers."""
+    if not ARGS.readme or not os.path.exists(ARGS.readme):
+        return
+    with open(ARGS.readme) as f:
+        text = f.read()
+    if README_BEGIN not in text or README_END not in text:
+        return
+    tables, current = [], []
+    for line in lines:  # consecutive table lines form one table
+        if line.startswith("|"):
+            current.append(line)
+        elif current:
+            tables.append(current)
+            current = []
+    if current:
+        tables.append(current)
+    machine = [x for x in lines if x.startswith("Machine:")]
+    notes = [x for x in lines if x == ARGS.note and x]
+    body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
+            "runs, is in [bench/RESULTS.md](bench/RESULTS.md).", ""] + machine + [""] + notes
+    for table in tables[:2]:
+        body += [""] + table
+    body += ["", README_END]
+    start = text.index(README_BEGIN)
+    end = text.index(README_END) + len(README_END)
+    with open(ARGS.readme, "w") as f:
+        f.write(text[:start] + "\n".join(body) + text[end:])
 
 
 if __name__ == "__main__":
