@@ -49,6 +49,9 @@ void hr_bvh_release(hr_bvh *bvh);
 typedef struct hr_bvh_ray {
     double o[3], inv_d[3];
     int near_i[3], far_i[3];
+#if defined(__SSE2__)
+    __m128d o2[3], inv_d2[3]; /* o and 1/d in both lanes, for the pair test */
+#endif
 } hr_bvh_ray;
 /* Inline, so the ray data stays in registers during traversal: a call
  * would let the ray's copy escape and be reloaded after every object test. */
@@ -62,6 +65,10 @@ static inline void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray)
         int neg = signbit(d[a]) != 0;
         r->near_i[a] = neg ? a + 3 : a; /* a negative direction meets hi first */
         r->far_i[a] = neg ? a : a + 3;
+#if defined(__SSE2__)
+        r->o2[a] = _mm_set1_pd(r->o[a]);
+        r->inv_d2[a] = _mm_set1_pd(r->inv_d[a]);
+#endif
     }
 }
 
@@ -106,12 +113,13 @@ static inline int hr_bvh_ray_box2(const hr_bvh_ray *r, const hr_bvh *bvh, int32_
                                   double tmin, double tmax, double t[2])
 {
 #if defined(__SSE2__)
-    const double *p = bvh->pairs + (size_t)HR_BVH_PAIR * (size_t)((first - 1) / 2);
+    /* first is odd: HR_BVH_PAIR * (first - 1) / 2 without the division */
+    const double *p = bvh->pairs + (size_t)(HR_BVH_PAIR / 2) * (size_t)(first - 1);
     const __m128d widen = _mm_set1_pd(HR_BVH_WIDEN), sign = _mm_set1_pd(-0.0);
     __m128d lo = _mm_set1_pd(tmin), hi = _mm_set1_pd(tmax);
 #define HR_BVH_SLAB2(k)                                                        \
     do {                                                                       \
-        const __m128d o_ = _mm_set1_pd(r->o[k]), inv_ = _mm_set1_pd(r->inv_d[k]); \
+        const __m128d o_ = r->o2[k], inv_ = r->inv_d2[k];                      \
         __m128d near_ = _mm_loadu_pd(p + 2 * r->near_i[k]);                    \
         __m128d far_ = _mm_loadu_pd(p + 2 * r->far_i[k]);                      \
         near_ = _mm_mul_pd(_mm_sub_pd(near_, o_), inv_);                       \
