@@ -19,12 +19,17 @@ static hr_bounds empty_box(void)
     return b;
 }
 
+/* fmin/fmax without the libm call (they are most of the build's time): a
+ * NaN in `o` leaves the running box as it was, as fmin/fmax would. */
+static inline double lower(double acc, double v) { return v < acc ? v : acc; }
+static inline double higher(double acc, double v) { return v > acc ? v : acc; }
+
 static void grow(hr_bounds *b, const hr_bounds *o)
 {
-    b->lo.x = fmin(b->lo.x, o->lo.x), b->lo.y = fmin(b->lo.y, o->lo.y);
-    b->lo.z = fmin(b->lo.z, o->lo.z);
-    b->hi.x = fmax(b->hi.x, o->hi.x), b->hi.y = fmax(b->hi.y, o->hi.y);
-    b->hi.z = fmax(b->hi.z, o->hi.z);
+    b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
+    b->lo.z = lower(b->lo.z, o->lo.z);
+    b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
+    b->hi.z = higher(b->hi.z, o->hi.z);
 }
 
 static double area(const hr_bounds *b)
