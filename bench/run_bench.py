@@ -227,6 +227,7 @@ def main():
     ap.add_argument("--scaling", default="1000,10000,100000,1000000")
     ap.add_argument("--output", default=os.path.join(BENCH, "RESULTS.md"))
     ap.add_argument("--note", default="", help="a line to add under the machine (e.g. other load)")
+    ap.add_argument("--no-profile", action="store_true", help="skip bench/profile.sh (callgrind)")
     ap.add_argument("--readme", default=os.path.join(ROOT, "README.md"),
                     help="README whose results block is replaced ('' leaves it alone)")
     ARGS = ap.parse_args()
@@ -274,6 +275,11 @@ def main():
         print(f"raycast scaling: {n} spheres", flush=True)
         scaling[n] = raycast_runs(raycast, n, ARGS.threads, ARGS.scaling_runs, engines)
     load_after = os.getloadavg()
+    profile = ""
+    if shutil.which("valgrind") and not ARGS.no_profile:
+        print("profile: callgrind", flush=True)
+        profile = subprocess.run([os.path.join(BENCH, "profile.sh")], capture_output=True, text=True,
+                                 env=dict(os.environ, BUILD=ARGS.build)).stdout
 
     pov_version, emb_version, commit = versions()
     cmdline = "bench/run_bench.py " + " ".join(sys.argv[1:]) if sys.argv[1:] else "make bench"
@@ -351,6 +357,11 @@ def main():
         cells.append(fmt_mem(max(x["peak_kb"] for x in h)))
         L.append(f"| {n:,} | " + " | ".join(cells) + " |")
     L.append("")
+    notes = os.path.join(BENCH, "profile_notes.md")
+    if profile and os.path.exists(notes):
+        with open(notes) as f:
+            L += f.read().rstrip("\n").split("\n")
+        L += ["", "```", "$ bench/profile.sh"] + profile.rstrip("\n").split("\n") + ["```", ""]
     with open(ARGS.output, "w") as f:
         f.write("\n".join(L))
     print("\n".join(L))
