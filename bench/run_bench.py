@@ -252,11 +252,17 @@ def main():
         d, camera, missing = prepare_scene(name, work, known)
         if missing:
             skipped.append((name, missing))
-            print(f"{name}: skipped, hitray has no shape class {', '.join(missing)}", flush=True)
+            missing = ["shape class " + c for c in missing]
+            print(f"{name}: skipped, hitray has no {', '.join(missing)}", flush=True)
             continue
         print(f"{name}: timing", flush=True)
-        res = bench_scene(name, d, camera, hitray)
-        agree = mask_agreement(name, d, camera, hitray)
+        try:
+            res = bench_scene(name, d, camera, hitray)
+            agree = mask_agreement(name, d, camera, hitray)
+        except RuntimeError as e:  # one scene failing does not lose the others
+            print(f"{name}: failed: {e}", flush=True)
+            skipped.append((name, ["a working render (" + str(e).split(chr(10))[0][:80] + ")"]))
+            continue
         scene_rows.append((name, res, agree))
 
     embree = "embree" in subprocess.run([raycast, "--engine", "embree", "--spheres", "10",
@@ -312,7 +318,7 @@ def main():
                      f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
                      f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem']))} | {agree:.2f}% |")
     for name, missing in skipped:
-        L.append(f"| {name} | - | not run: hitray has no {', '.join(missing)} | | | | | |")
+        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
     L.append("")
     L.append(f"## Raw intersection: 1M primary rays, 100,000 random spheres (median of {ARGS.runs})")
     L.append("")
