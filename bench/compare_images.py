@@ -8,7 +8,7 @@ object shows one colour of a 63-colour palette (4 levels per channel), the
 background black. Each pixel is classified to the nearest palette colour
 (after sRGB decoding of the 8-bit value, so either file's encoding works);
 the script prints the share of pixels whose object ids agree, and writes a
-preview PNG: the two shaded renders side by side, downscaled to 480 pixels
+preview PNG: the two shaded renders side by side, downscaled to 400 pixels
 wide each, and below them the two masks, hitray's with the pixels where the
 ids disagree in white. Only the Python standard library is used."""
 import struct
@@ -55,7 +55,7 @@ def ids(pixels):
 
 
 def downscale(width, height, pixels, out_width):
-    step = max(1, width // out_width)
+    step = max(1, -(-width // out_width))  # ceil: at most out_width wide
     rows = []
     for y in range(0, height - height % step, step):
         row = pixels[3 * y * width:3 * (y + 1) * width]
@@ -89,14 +89,14 @@ def main():
     print(f"{100.0 * same / len(a):.2f}")
 
     # Preview: shaded side by side, the disagreement map below.
-    sw, srows_h = downscale(*read_ppm(hs), 480)
-    _, srows_p = downscale(*read_ppm(ps), 480)
+    sw, srows_h = downscale(*read_ppm(hs), 400)
+    _, srows_p = downscale(*read_ppm(ps), 400)
     marked = bytearray(hmask)
     for i, (x, y) in enumerate(zip(a, b)):
         if x != y:
             marked[3 * i:3 * i + 3] = b"\xff\xff\xff"
-    mw, mrows = downscale(w, h, bytes(marked), 480)
-    _, prows = downscale(w, h, pmask, 480)
+    mw, mrows = downscale(w, h, bytes(marked), 400)
+    _, prows = downscale(w, h, pmask, 400)
     rows = [x + y for x, y in zip(srows_h, srows_p)]
     rows += [x + y + b"\x00" * 3 * (2 * sw - 2 * mw) for x, y in zip(mrows, prows)]
     write_png(preview, 2 * sw, rows)
