@@ -3,11 +3,11 @@
 # on a busy machine, unlike wall time): the raw first-hit query of
 # bench/raycast and a render of one benchmark scene, each with its top
 # functions (self cost).
-#   bench/profile.sh [SCENE]     (SCENE: a bench/scenes/*.sdl name, default spheres;
+#   bench/profile.sh [SCENE...]  (SCENE: a bench/scenes/*.sdl name, default spheres;
 #                                 needs `make build` and valgrind)
 set -eu
 cd "$(dirname "$0")/.."
-scene=${1:-spheres}
+[ $# -gt 0 ] || set -- spheres
 build=${BUILD:-build}
 command -v valgrind >/dev/null || { echo "profile: valgrind is not installed" >&2; exit 1; }
 [ -x "$build/bin/raycast" ] || { echo "profile: build first (make build)" >&2; exit 1; }
@@ -31,10 +31,12 @@ if "$build/bin/raycast" --engine embree --spheres 10 --rays-side 2 >/dev/null 2>
     top "$tmp/emb.out" | head -1
 fi
 
-echo "== hitray render bench/scenes/$scene.sdl at 480x270, 1 thread (whole process)"
-cp "bench/scenes/$scene.sdl" "$tmp/"
-[ "$scene" = terrain ] && python3 bench/make_terrain.py "$tmp/terrain.3vn"
-valgrind --tool=callgrind --callgrind-out-file="$tmp/render.out" \
-    "$build/bin/hitray" render "$tmp/$scene.sdl" -o "$tmp/out.ppm" --size 480x270 --threads 1 \
-    >/dev/null 2>&1
-top "$tmp/render.out"
+for scene in "$@"; do
+    echo "== hitray render bench/scenes/$scene.sdl at 480x270, 1 thread (whole process)"
+    cp "bench/scenes/$scene.sdl" "$tmp/"
+    if [ "$scene" = terrain ]; then python3 bench/make_terrain.py "$tmp/terrain.3vn"; fi
+    valgrind --tool=callgrind --callgrind-out-file="$tmp/render.out" \
+        "$build/bin/hitray" render "$tmp/$scene.sdl" -o "$tmp/out.ppm" --size 480x270 \
+        --threads 1 >/dev/null 2>&1
+    top "$tmp/render.out"
+done

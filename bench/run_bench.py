@@ -284,7 +284,8 @@ def main():
     profile = ""
     if shutil.which("valgrind") and not ARGS.no_profile:
         print("profile: callgrind", flush=True)
-        profile = subprocess.run([os.path.join(BENCH, "profile.sh")], capture_output=True, text=True,
+        profile = subprocess.run([os.path.join(BENCH, "profile.sh"), "spheres", "terrain"],
+                                 capture_output=True, text=True,
                                  env=dict(os.environ, BUILD=ARGS.build)).stdout
 
     pov_version, emb_version, commit = versions()
@@ -367,7 +368,7 @@ def main():
     if profile and os.path.exists(notes):
         with open(notes) as f:
             L += f.read().rstrip("\n").split("\n")
-        L += ["", "```", "$ bench/profile.sh"] + profile.rstrip("\n").split("\n") + ["```", ""]
+        L += ["", "```", "$ bench/profile.sh spheres terrain"] + profile.rstrip("\n").split("\n") + ["```", ""]
     with open(ARGS.output, "w") as f:
         f.write("\n".join(L))
     print("\n".join(L))
