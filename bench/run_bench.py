@@ -35,6 +35,7 @@ import datetime
 import os
 import platform
 import re
+import shlex
 import shutil
 import statistics
 import subprocess
@@ -289,7 +290,7 @@ def main():
                                  env=dict(os.environ, BUILD=ARGS.build)).stdout
 
     pov_version, emb_version, commit = versions()
-    cmdline = "bench/run_bench.py " + " ".join(sys.argv[1:]) if sys.argv[1:] else "make bench"
+    cmdline = "bench/run_bench.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "make bench"
     L = []
     L.append("# hitray benchmark results")
     L.append("")
