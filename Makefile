@@ -8,7 +8,7 @@ TSAN_BUILD ?= build-tsan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-c test-asan test-tsan test-python install clean
+.PHONY: all deps build demo test test-c test-asan test-tsan test-python install clean bench
 
 all: build
 
@@ -53,6 +53,16 @@ test-python: build
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# hitray against POV-Ray 3.7 and Embree 3 (bench/run_bench.py writes
+# bench/RESULTS.md); never part of `make test`. BENCH_FLAGS passes options
+# (--runs, --scenes, --note, ...).
+BENCH_FLAGS ?=
+bench: build
+	@scripts/bootstrap.sh --bench
+	cmake -S . -B $(BUILD) -DHITRAY_BUILD_BENCH=ON >/dev/null
+	cmake --build $(BUILD) -j $(JOBS)
+	python3 bench/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) out

@@ -19,12 +19,17 @@ static hr_bounds empty_box(void)
     return b;
 }
 
+/* fmin/fmax without the libm call (they are most of the build's time): a
+ * NaN in `o` leaves the running box as it was, as fmin/fmax would. */
+static inline double lower(double acc, double v) { return v < acc ? v : acc; }
+static inline double higher(double acc, double v) { return v > acc ? v : acc; }
+
 static void grow(hr_bounds *b, const hr_bounds *o)
 {
-    b->lo.x = fmin(b->lo.x, o->lo.x), b->lo.y = fmin(b->lo.y, o->lo.y);
-    b->lo.z = fmin(b->lo.z, o->lo.z);
-    b->hi.x = fmax(b->hi.x, o->hi.x), b->hi.y = fmax(b->hi.y, o->hi.y);
-    b->hi.z = fmax(b->hi.z, o->hi.z);
+    b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
+    b->lo.z = lower(b->lo.z, o->lo.z);
+    b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
+    b->hi.z = higher(b->hi.z, o->hi.z);
 }
 
 static double area(const hr_bounds *b)
@@ -167,6 +172,20 @@ int hr_bvh_build(hr_bvh *bvh, const hr_bounds *boxes, int32_t count)
     bvh->item_count = count;
     bvh->node_count = 1;
     build(&b, 0, 0, count, 0);
+    if (bvh->node_count > 1) {
+        size_t n_pairs = (size_t)(bvh->node_count - 1) / 2;
+        bvh->pairs = malloc(n_pairs * HR_BVH_PAIR * sizeof *bvh->pairs);
+        if (!bvh->pairs) {
+            hr_bvh_release(bvh);
+            return 0;
+        }
+        for (size_t k = 0; k < n_pairs; k++) {
+            const hr_bounds *l = &bvh->nodes[2 * k + 1].box, *r = &bvh->nodes[2 * k + 2].box;
+            const double v[HR_BVH_PAIR] = {l->lo.x, r->lo.x, l->lo.y, r->lo.y, l->lo.z, r->lo.z,
+                                           l->hi.x, r->hi.x, l->hi.y, r->hi.y, l->hi.z, r->hi.z};
+            memcpy(bvh->pairs + k * HR_BVH_PAIR, v, sizeof v);
+        }
+    }
     return 1;
 }
 
@@ -174,43 +193,6 @@ void hr_bvh_release(hr_bvh *bvh)
 {
     free(bvh->nodes);
     free(bvh->items);
+    free(bvh->pairs);
     memset(bvh, 0, sizeof *bvh);
-}
-
-void hr_bvh_ray_init(hr_bvh_ray *r, const hr_ray *ray)
-{
-    double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
-    double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
-    for (int a = 0; a < 3; a++) {
-        r->o[a] = o[a];
-        r->inv_d[a] = 1.0 / d[a]; /* +-inf for a zero component: handled below */
-        r->neg[a] = signbit(d[a]) != 0;
-    }
-}
-
-/* Slab test. A zero direction component gives infinite slab distances; the
- * only NaN case (origin exactly on a slab plane, 0 * inf) must read as "the
- * ray runs inside that slab", and the comparisons below are written so a NaN
- * leaves the running bound as it was: exactly that. The far distance is
- * widened by 1 + 2*gamma(3) (pbrt) so rounding never loses a box the ray
- * touches. */
-#define WIDEN (1.0 + 2.0 * (3.0 * DBL_EPSILON * 0.5) / (1.0 - 3.0 * DBL_EPSILON * 0.5))
-#define SLAB(axis, lo_v, hi_v)                                                 \
-    do {                                                                       \
-        double near = ((r->neg[axis] ? (hi_v) : (lo_v)) - r->o[axis]) * r->inv_d[axis]; \
-        double far = ((r->neg[axis] ? (lo_v) : (hi_v)) - r->o[axis]) * r->inv_d[axis];  \
-        far += fabs(far) * (WIDEN - 1.0);                                      \
-        if (near > tmin) tmin = near;                                          \
-        if (far < tmax) tmax = far;                                            \
-    } while (0)
-
-int hr_bvh_ray_box(const hr_bvh_ray *r, const hr_bounds *b, double tmin, double tmax,
-                   double *t_enter)
-{
-    SLAB(0, b->lo.x, b->hi.x);
-    SLAB(1, b->lo.y, b->hi.y);
-    SLAB(2, b->lo.z, b->hi.z);
-    if (!(tmin <= tmax)) return 0;
-    *t_enter = tmin;
-    return 1;
 }

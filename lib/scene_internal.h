@@ -26,6 +26,7 @@ typedef struct hr_object {
     double m[16], inv[16];    /* object -> world and back (for a child: -> parent) */
     int32_t identity;         /* m is the identity: skip the transforms */
     int32_t top_level;        /* 0 once consumed by a composite */
+    int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
     uint32_t mat_flags;       /* HR_MAT_* */
     hr_bounds local_bounds;   /* object space */
@@ -56,6 +57,12 @@ typedef struct hr_trace_ctx {
     const hr_scene *scene;
     hr_intersection scratch[HR_SCRATCH_MAX];
     int32_t scratch_used;
+    int32_t scratch_ready;      /* scratch[0 .. scratch_ready) are initialised
+                                   (set up on first use, so a context costs
+                                   nothing for lists a query never needs) */
+    const hr_hit *borrowed;     /* storage of a list on a caller's stack (one
+                                   public query's): growing that list copies
+                                   it to the heap instead of realloc'ing */
     hr_status status;           /* first failure inside a shape, if any */
     uint64_t rays_shadow, rays_reflected, rays_refracted;
     int32_t force_all_effects;

@@ -4,12 +4,14 @@
  * BVH (getFirstHit, any hit for shadows, every hit for Intersection). */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "context_internal.h"
 #include "errors.h"
 #include "scene_internal.h"
+#include "transform_inline.h"
 #include "vec.h"
 
 #define GAMMA3 (3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5))
@@ -27,16 +29,41 @@ hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
     return HR_OK;
 }
 
+/* hr_intersection_reserve for a list tracing may be handed: the one list
+ * whose storage is borrowed from a caller's stack (tc->borrowed) moves to
+ * the heap when it must grow, every other list is realloc'd. */
+static hr_status list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity)
+{
+    if (capacity <= list->capacity) return HR_OK;
+    if (!tc->borrowed || list->hits != tc->borrowed) return hr_intersection_reserve(list, capacity);
+    hr_intersection heap = {NULL, 0, 0};
+    hr_status st = hr_intersection_reserve(&heap, capacity);
+    if (st) return st;
+    memcpy(heap.hits, list->hits, (size_t)list->count * sizeof *heap.hits);
+    list->hits = heap.hits;
+    list->capacity = heap.capacity;
+    return HR_OK;
+}
+
+/* Everything but the scratch lists is zeroed; a list is set up when it is
+ * first acquired (scratch_ready), so a one-ray query (hr_scene_first_hit)
+ * neither clears nor frees 64 lists it never touches. */
 void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
 {
-    memset(tc, 0, sizeof *tc);
+    memset(tc, 0, offsetof(hr_trace_ctx, scratch));
+    memset((char *)tc + offsetof(hr_trace_ctx, scratch_used), 0,
+           sizeof *tc - offsetof(hr_trace_ctx, scratch_used));
     tc->scene = scene;
 }
 
 void hr_trace_ctx_release(hr_trace_ctx *tc)
 {
-    for (int i = 0; i < HR_SCRATCH_MAX; i++) free(tc->scratch[i].hits);
-    memset(tc->scratch, 0, sizeof tc->scratch);
+    for (int32_t i = 0; i < tc->scratch_ready; i++) {
+        free(tc->scratch[i].hits);
+        memset(&tc->scratch[i], 0, sizeof tc->scratch[i]);
+    }
+    tc->scratch_ready = 0;
+    tc->scratch_used = 0;
 }
 
 /* Order by t; equal t by object then surface, so sorting is deterministic. */
@@ -47,14 +74,18 @@ static int hit_before(const hr_hit *a, const hr_hit *b)
     return a->surface < b->surface;
 }
 
-/* Insertion sort from `start`: the new tail is short and already sorted, so
- * this is a merge in practice. */
-static void sort_from(hr_intersection *list, int32_t start)
+/* Sorts the hits from `start` on by t, leaving those before `start` alone:
+ * a composite traces its children one after the other into one list and
+ * tells their hits apart by position. Stable insertion sort on t alone: the
+ * tail is one shape's answer, already sorted by contract, and hits of equal
+ * t keep the shape's order (a tangent enters before it leaves, whatever the
+ * surface ids), so this costs one pass unless a shape broke the contract. */
+static void sort_tail_by_t(hr_intersection *list, int32_t start)
 {
-    for (int32_t i = start > 0 ? start : 1; i < list->count; i++) {
+    for (int32_t i = start + 1; i < list->count; i++) {
         hr_hit h = list->hits[i];
         int32_t j = i;
-        while (j > 0 && hit_before(&h, &list->hits[j - 1])) {
+        while (j > start && h.t < list->hits[j - 1].t) {
             list->hits[j] = list->hits[j - 1];
             j--;
         }
@@ -86,15 +117,15 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
     const hr_shape_class *cls = obj->cls;
     hr_status st;
     if (out->capacity - out->count < HR_MIN_HIT_CAPACITY &&
-        (st = hr_intersection_reserve(out, out->count + HR_MIN_HIT_CAPACITY)))
+        (st = list_reserve(tc, out, out->count + HR_MIN_HIT_CAPACITY)))
         return tc->status = st;
     hr_hit_args args;
     args.shape = obj->shape;
     if (obj->identity) {
         args.ray = *ray;
     } else {
-        args.ray.origin = hr_transform_point(obj->inv, ray->origin);
-        args.ray.dir = hr_transform_vector(obj->inv, ray->dir);
+        args.ray.origin = hr_xform_point(obj->inv, ray->origin);
+        args.ray.dir = hr_xform_vector(obj->inv, ray->dir);
     }
     /* A direction whose squared length would under- or overflow (a sphere
      * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
@@ -136,7 +167,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
          * answers carry only t. */
         if (!(h.t > tmin && h.t < tmax)) continue;
-        h.t = ldexp(h.t, -t_exp);
+        if (t_exp) h.t = ldexp(h.t, -t_exp); /* ldexp by 0 is the identity */
         if (mode == HR_TRACE_ANY) {
             out->hits[start] = h;
             out->count = start + 1;
@@ -153,8 +184,8 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
             h.error = transformed_error(obj->m, h.point, h.error);
-            h.point = hr_transform_point(obj->m, h.point);
-            h.normal = hr_transform_normal(obj->inv, h.normal);
+            h.point = hr_xform_point(obj->m, h.point);
+            h.normal = hr_xform_normal(obj->inv, h.normal);
             h.normal = v3_unit_exponent(h.normal);
             if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
         }
@@ -204,49 +235,71 @@ static int visit_object(first_state *fs, const hr_object *o)
     return 0;
 }
 
-/* Front-to-back traversal; boxes further than the best hit are skipped. */
+/* Front-to-back traversal; boxes further than the best hit are skipped.
+ * The walk goes straight down to the nearer child a ray meets and stacks
+ * only the farther one of two, so a node is pushed only when both children
+ * are hit; tmin and the best distance so far are kept in locals (a shape
+ * call is the only thing that can move the best). */
 static void traverse(first_state *fs)
 {
     const hr_scene *s = fs->tc->scene;
     for (int32_t i = 0; i < s->unbounded_count; i++)
         if (visit_object(fs, s->unbounded[i])) return;
     if (s->bvh.node_count == 0) return;
+    const hr_bvh_node *nodes = s->bvh.nodes;
+    const int32_t *items = s->bvh.items;
     hr_bvh_ray br;
     hr_bvh_ray_init(&br, fs->ray);
+    const double tmin = fs->tmin;
+    double best = fs->best;
     int32_t stack[BVH_STACK];
     double entry[BVH_STACK]; /* where the ray enters each stacked box */
     int32_t top = 0;
     double t;
-    if (!hr_bvh_ray_box(&br, &s->bvh.nodes[0].box, fs->tmin, fs->best, &t)) return;
-    stack[top] = 0, entry[top++] = t;
-    while (top > 0) {
-        --top;
-        /* The best hit may have come nearer since this box was pushed. */
-        if (entry[top] > fs->best) continue;
-        const hr_bvh_node *n = &s->bvh.nodes[stack[top]];
+    if (!hr_bvh_ray_box(&br, &nodes[0].box, tmin, best, &t)) return;
+    int32_t node = 0;
+    for (;;) {
+        const hr_bvh_node *n = &nodes[node];
         if (n->count > 0) {
             for (int32_t i = 0; i < n->count; i++)
-                if (visit_object(fs, s->objects[s->bvh.items[n->first + i]])) return;
-            continue;
+                if (visit_object(fs, s->objects[items[n->first + i]])) return;
+            best = fs->best;
+        } else {
+            double te[2];
+            int both = hr_bvh_ray_box2(&br, &s->bvh, n->first, tmin, best, te);
+            if (both == 3) {
+                /* Visit the near one now, stack the far one. */
+                int near_left = te[0] <= te[1];
+                stack[top] = n->first + near_left, entry[top++] = te[near_left];
+                node = n->first + !near_left;
+                continue;
+            }
+            if (both) {
+                node = n->first + (both >> 1);
+                continue;
+            }
         }
-        double tl, tr;
-        int hl = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first].box, fs->tmin, fs->best, &tl);
-        int hr = hr_bvh_ray_box(&br, &s->bvh.nodes[n->first + 1].box, fs->tmin, fs->best, &tr);
-        /* Push the far child first so the near one is visited first. */
-        if (hl && hr) {
-            int near_left = tl <= tr;
-            stack[top] = n->first + (near_left ? 1 : 0), entry[top++] = near_left ? tr : tl;
-            stack[top] = n->first + (near_left ? 0 : 1), entry[top++] = near_left ? tl : tr;
-        } else if (hl) {
-            stack[top] = n->first, entry[top++] = tl;
-        } else if (hr) {
-            stack[top] = n->first + 1, entry[top++] = tr;
-        }
+        /* Next stacked box that may still hold something nearer than the
+         * best hit, which may have come nearer since it was pushed. */
+        do {
+            if (top == 0) return;
+            --top;
+        } while (entry[top] > best);
+        node = stack[top];
     }
 }
 
 static hr_intersection *host_scratch_acquire(void *call);
 static void host_scratch_release(void *call, hr_intersection *list);
+
+static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                              hr_hit *out, int any, hr_intersection *tmp)
+{
+    hr_hit dummy;
+    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any};
+    traverse(&fs);
+    return fs.found;
+}
 
 static int trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                          hr_hit *out, int any)
@@ -256,11 +309,9 @@ static int trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
         tc->status = HR_ERROR_OUT_OF_MEMORY;
         return 0;
     }
-    hr_hit dummy;
-    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any};
-    traverse(&fs);
+    int found = trace_nearest_into(tc, ray, tmin, tmax, out, any, tmp);
     host_scratch_release(tc, tmp);
-    return fs.found;
+    return found;
 }
 
 int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
@@ -305,7 +356,13 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
-    *found = hr_scene_trace_first(&tc, ray, tmin, tmax, out);
+    /* One ray: the list of candidate hits lives on the stack, so the query
+     * allocates nothing unless a shape asks for more room (list_reserve). */
+    hr_hit room[4 * HR_MIN_HIT_CAPACITY];
+    hr_intersection tmp = {room, 0, 4 * HR_MIN_HIT_CAPACITY};
+    tc.borrowed = room;
+    *found = trace_nearest_into(&tc, ray, tmin, tmax, out, 0, &tmp);
+    if (tmp.hits != room) free(tmp.hits);
     return finish_query(&tc);
 }
 
@@ -374,9 +431,8 @@ static void host_free(void *p) { free(p); }
 
 static hr_status host_reserve(void *call, hr_intersection *list, int32_t capacity)
 {
-    (void)call;
     if (!list || capacity < 0) return HR_ERROR_INVALID_ARGUMENT;
-    return hr_intersection_reserve(list, capacity);
+    return call ? list_reserve(call, list, capacity) : hr_intersection_reserve(list, capacity);
 }
 
 static hr_intersection *host_scratch_acquire(void *call)
@@ -384,6 +440,10 @@ static hr_intersection *host_scratch_acquire(void *call)
     hr_trace_ctx *tc = call;
     if (tc->scratch_used >= HR_SCRATCH_MAX) return NULL;
     hr_intersection *list = &tc->scratch[tc->scratch_used];
+    if (tc->scratch_used == tc->scratch_ready) {
+        memset(list, 0, sizeof *list);
+        tc->scratch_ready++;
+    }
     if (hr_intersection_reserve(list, 4 * HR_MIN_HIT_CAPACITY) != HR_OK) return NULL;
     tc->scratch_used++;
     list->count = 0;
@@ -404,7 +464,7 @@ static hr_status host_trace_child(void *call, const void *child, const hr_ray *r
     if (!call || !child || !ray || !out) return HR_ERROR_INVALID_ARGUMENT;
     int32_t start = out->count;
     hr_status st = hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
-    if (st == HR_OK) sort_from(out, start);
+    if (st == HR_OK) sort_tail_by_t(out, start);
     return st;
 }
 
@@ -412,6 +472,12 @@ static void host_child_bounds(const void *child, hr_bounds *out)
 {
     const hr_object *o = child;
     *out = o->world_bounds;
+}
+
+static const hr_shape_class *host_child_class(const void *child)
+{
+    const hr_object *o = child;
+    return o->cls;
 }
 
 void hr_host_services_init(hr_host *host)
@@ -426,4 +492,5 @@ void hr_host_services_init(hr_host *host)
     host->scratch_release = host_scratch_release;
     host->trace_child = host_trace_child;
     host->child_bounds = host_child_bounds;
+    host->child_class = host_child_class;
 }

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "errors.h"
+#include "transform_inline.h"
 
 static void mat_identity(double m[16])
 {
@@ -177,25 +178,8 @@ HR_API hr_status hr_transform_from_matrix(hr_transform *t, const double m[16])
     return HR_OK;
 }
 
-HR_API hr_vec3 hr_transform_point(const double m[16], hr_vec3 p)
-{
-    hr_vec3 r = {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
-                 m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-                 m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
-    return r;
-}
+HR_API hr_vec3 hr_transform_point(const double m[16], hr_vec3 p) { return hr_xform_point(m, p); }
 
-HR_API hr_vec3 hr_transform_vector(const double m[16], hr_vec3 v)
-{
-    hr_vec3 r = {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
-                 m[8] * v.x + m[9] * v.y + m[10] * v.z};
-    return r;
-}
+HR_API hr_vec3 hr_transform_vector(const double m[16], hr_vec3 v) { return hr_xform_vector(m, v); }
 
-HR_API hr_vec3 hr_transform_normal(const double inv[16], hr_vec3 n)
-{
-    hr_vec3 r = {inv[0] * n.x + inv[4] * n.y + inv[8] * n.z,
-                 inv[1] * n.x + inv[5] * n.y + inv[9] * n.z,
-                 inv[2] * n.x + inv[6] * n.y + inv[10] * n.z};
-    return r;
-}
+HR_API hr_vec3 hr_transform_normal(const double inv[16], hr_vec3 n) { return hr_xform_normal(inv, n); }

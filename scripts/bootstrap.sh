@@ -5,9 +5,12 @@
 set -eu
 cd "$(dirname "$0")/.."
 
+# `bootstrap.sh --bench` adds what `make bench` compares against.
+bench_pkgs=""
+[ "${1:-}" = "--bench" ] && bench_pkgs="povray libembree-dev"
 need_pkgs=""
 for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev libopenexr-dev \
-           python3 python3-venv python3-dev; do
+           python3 python3-venv python3-dev $bench_pkgs; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
         need_pkgs="$need_pkgs $pkg"
 done

@@ -97,6 +97,25 @@ static inline double shape_ray_point_error(const hr_ray *ray, double t, int t_ro
                           fabs(o.z) + fabs(t * d.z));
 }
 
+/* --- Hardware FMA where the CPU has one --------------------------------------- */
+
+/* The error-free transforms below need fma(). Built for baseline x86-64 it is
+ * a call into libm (which picks the FMA instruction at run time), a dozen
+ * calls per sphere test. SHAPE_FMA_CLONES on a shape's hot function makes
+ * GCC build it twice, once for CPUs with FMA (fma() becomes one instruction)
+ * and once for the rest, and pick one when the module loads. fma() is
+ * correctly rounded either way and the build is ISO C (no contraction of
+ * a * b + c), so both copies give the same bits. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    defined(__has_attribute)
+#if __has_attribute(target_clones)
+#define SHAPE_FMA_CLONES __attribute__((target_clones("fma", "default")))
+#endif
+#endif
+#ifndef SHAPE_FMA_CLONES
+#define SHAPE_FMA_CLONES
+#endif
+
 /* --- Error-free transforms and compensated sums ---------------------------- */
 
 /* a * b == product + *error exactly (barring underflow). */

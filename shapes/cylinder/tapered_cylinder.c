@@ -79,7 +79,7 @@ typedef struct tapered_cylinder {
 } tapered_cylinder;
 
 /* The span of the ray inside the quadric Q <= 0, in our nappe. */
-static shape_span wall_span(const tapered_cylinder *shape, const hr_ray *ray)
+SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, const hr_ray *ray)
 {
     const hr_vec3 o = ray->origin, d = ray->dir;
     const double k = shape->slope;
@@ -143,7 +143,7 @@ static int tapered_crossings(const tapered_cylinder *shape, const hr_ray *ray,
     return count;
 }
 
-static void wall_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
+SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
 {
     const double k = shape->slope;
     const hr_vec3 p = shape_ray_at(ray, hit->t);

@@ -35,7 +35,7 @@
 #include "../common/shape_instance.h"
 #include "../common/shape_math.h"
 
-static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
+SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
 {
     const hr_vec3 o = ray->origin, d = ray->dir;
     shape_sum a = shape_sum_start(0.0), b = shape_sum_start(0.0), c = shape_sum_start(-1.0);

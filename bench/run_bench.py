@@ -1,0 +1,411 @@
+#!/usr/bin/env python3
+"""hitray against POV-Ray 3.7 (whole renders) and Embree 3 (raw first hits).
+
+    bench/run_bench.py [--runs 5] [--scaling-runs 3] [--build build]
+                       [--scenes spheres,torus_csg,sphere_grid,terrain,village]
+                       [--size 1920x1080] [--output bench/RESULTS.md]
+
+Run by `make bench` (which builds hitray and bench/raycast and installs
+povray and libembree-dev first). Writes bench/RESULTS.md and
+bench/previews/<scene>.png (the two renders side by side, and the object masks
+with the disagreeing pixels in white).
+
+Scenes: each is an SDL file in bench/scenes/ (village: Hill's village.dat from
+tests/scenes/hill/, with a camera given on the command line, since Hill's
+file has none); its POV-Ray twin is made by bench/sdl2pov.py, which documents
+how materials, camera and depth map. Both renderers get the same image size,
+one sample per pixel, the same recursion depth and 1 or 2 threads, and write
+a binary PPM; the time is the whole process (parse + render + write), taken
+around the child, with the render-only time each reports beside it (hitray:
+--stats-json seconds; POV-Ray: its Trace Time). Peak memory is the child's
+maximum resident set (wait4). Each figure is the median of --runs runs; the
+runs alternate hitray / POV-Ray, and which one goes first alternates every
+round, so drift in the machine's speed hits both alike.
+
+Matching content: every scene is also rendered by both at 480x270 as a flat
+id-colour mask (sdl2pov.py --mask); the table gives the share of pixels whose
+object agrees (bench/compare_images.py).
+
+Raw intersection: bench/raycast (see its header) with 100,000 random spheres
+and 1M primary rays, hitray's hr_scene_first_hit against Embree's native
+spheres, 1 and 2 threads, alternating; then the scaling runs (1k, 10k, 100k,
+1M spheres) with --scaling-runs runs each."""
+import argparse
+import datetime
+import os
+import platform
+import re
+import shlex
+import shutil
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BENCH = os.path.join(ROOT, "bench")
+
+# scene name -> (SDL file relative to the repository, camera for both or None,
+#                shape classes hitray needs beyond the core ones)
+SCENES = {
+    "spheres": ("bench/scenes/spheres.sdl", None, []),
+    "torus_csg": ("bench/scenes/torus_csg.sdl", None, ["torus", "union", "intersection", "difference"]),
+    "sphere_grid": ("bench/scenes/sphere_grid.sdl", None, []),
+    "terrain": ("bench/scenes/terrain.sdl", None, ["mesh"]),
+    "village": ("tests/scenes/hill/village.dat", "9,7,24,0,0,2,0,1,0,40", []),
+}
+MASK_SIZE = "480x270"
+WORK = None  # build/bench-work: scenes, renders, logs
+README_BEGIN = "<!-- bench-results: written by bench/run_bench.py -->"
+README_END = "<!-- /bench-results -->"
+
+
+def run_measured(cmd, cwd):
+    """Run cmd; return (wall seconds, peak RSS KiB, stdout, stderr) using wait4
+    (the child's own peak resident set, its children's included). Its output
+    goes through files in the work directory, so no pipe can stall it."""
+    out_path = os.path.join(WORK, ".stdout")
+    err_path = os.path.join(WORK, ".stderr")
+    with open(out_path, "wb") as fo, open(err_path, "wb") as fe:
+        t0 = time.perf_counter()
+        proc = subprocess.Popen(cmd, cwd=cwd, stdout=fo, stderr=fe)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t0
+        proc.returncode = os.waitstatus_to_exitcode(status)
+    with open(out_path, errors="replace") as f:
+        out = f.read()
+    with open(err_path, errors="replace") as f:
+        err = f.read()
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}):\n{err[-2000:]}")
+    return wall, usage.ru_maxrss, out, err
+
+
+def pov_seconds(text, label):
+    m = re.search(label + r" Time:.*?\(([0-9.]+) seconds\)", text)
+    return float(m.group(1)) if m else 0.0
+
+
+def hitray_classes(hitray):
+    out = subprocess.run([hitray, "shapes"], capture_output=True, text=True).stdout
+    return set(re.findall(r"^\s+(\w+) - ", out, re.M))
+
+
+def prepare_scene(name, work, hitray_known):
+    sdl_rel, camera, needs = SCENES[name]
+    d = os.path.join(work, name)
+    os.makedirs(d, exist_ok=True)
+    sdl = os.path.join(d, name + ".sdl")
+    shutil.copyfile(os.path.join(ROOT, sdl_rel), sdl)
+    if name == "terrain":
+        subprocess.run([sys.executable, os.path.join(BENCH, "make_terrain.py"),
+                        os.path.join(d, "terrain.3vn")], check=True)
+    conv = [sys.executable, os.path.join(BENCH, "sdl2pov.py"), sdl]
+    cam = ["--camera", camera] if camera else []
+    subprocess.run(conv + ["-o", os.path.join(d, name + ".pov"), "--size", ARGS.size] + cam, check=True)
+    subprocess.run(conv + ["-o", os.path.join(d, name + ".mask.pov"), "--size", MASK_SIZE,
+                           "--mask", os.path.join(d, name + ".mask.sdl")] + cam, check=True)
+    missing = [c for c in needs if c not in hitray_known]
+    return d, camera, missing
+
+
+def hitray_cmd(hitray, scene, out, size, threads, camera, stats=None):
+    cmd = [hitray, "render", scene, "-o", out, "--size", size, "--threads", str(threads)]
+    if camera:
+        cmd += ["--camera", camera]
+    if stats:
+        cmd += ["--stats-json", stats]
+    return cmd
+
+
+def pov_cmd(pov, out, size, threads):
+    w, h = size.split("x")
+    return ["povray", "+I" + pov, "+O" + out, f"+W{w}", f"+H{h}", "-A", f"+WT{threads}", "-D",
+            "+FP", "-V", "-P"]
+
+
+def median(xs):
+    return statistics.median(xs) if xs else float("nan")
+
+
+def bench_scene(name, d, camera, hitray):
+    """Alternating timed runs; returns rows per thread count."""
+    res = {t: {"hr": [], "hr_render": [], "hr_mem": [], "pov": [], "pov_render": [], "pov_mem": []}
+           for t in ARGS.threads}
+    for rnd in range(ARGS.runs):
+        for t in ARGS.threads:
+            order = ("hr", "pov") if rnd % 2 == 0 else ("pov", "hr")
+            for who in order:
+                if who == "hr":
+                    stats = os.path.join(d, "stats.json")
+                    wall, mem, _, _ = run_measured(
+                        hitray_cmd(hitray, name + ".sdl", "hitray.ppm", ARGS.size, t, camera, stats), d)
+                    with open(stats) as f:
+                        m = re.search(r'"seconds":\s*([0-9.eE+-]+)', f.read())
+                    res[t]["hr"].append(wall)
+                    res[t]["hr_render"].append(float(m.group(1)) if m else float("nan"))
+                    res[t]["hr_mem"].append(mem)
+                else:
+                    wall, mem, out, err = run_measured(pov_cmd(name + ".pov", "pov.ppm", ARGS.size, t), d)
+                    res[t]["pov"].append(wall)
+                    res[t]["pov_render"].append(pov_seconds(out + err, "Trace"))
+                    res[t]["pov_mem"].append(mem)
+            print(f"  {name} round {rnd + 1}/{ARGS.runs} threads {t}: hitray {res[t]['hr'][-1]:.2f} s, "
+                  f"POV-Ray {res[t]['pov'][-1]:.2f} s", flush=True)
+    return res
+
+
+def mask_agreement(name, d, camera, hitray):
+    run_measured(hitray_cmd(hitray, name + ".mask.sdl", "hitray.mask.ppm", MASK_SIZE, 2, None), d)
+    run_measured(pov_cmd(name + ".mask.pov", "pov.mask.ppm", MASK_SIZE, 2), d)
+    os.makedirs(os.path.join(BENCH, "previews"), exist_ok=True)
+    out = subprocess.run([sys.executable, os.path.join(BENCH, "compare_images.py"),
+                          "hitray.mask.ppm", "pov.mask.ppm", "hitray.ppm", "pov.ppm",
+                          os.path.join(BENCH, "previews", name + ".png")],
+                         cwd=d, capture_output=True, text=True, check=True).stdout
+    return float(out.strip())
+
+
+def raycast_runs(raycast, spheres, threads, runs, engines):
+    """Alternating raycast runs; returns {engine: {threads: [parsed dicts]}}."""
+    res = {e: {t: [] for t in threads} for e in engines}
+    for rnd in range(runs):
+        for t in threads:
+            order = engines if rnd % 2 == 0 else list(reversed(engines))
+            for e in order:
+                wall, mem, out, _ = run_measured(
+                    [raycast, "--engine", e, "--spheres", str(spheres), "--threads", str(t)], ROOT)
+                kv = dict(x.split("=", 1) for x in out.split())
+                kv["peak_kb"] = mem
+                res[e][t].append(kv)
+    return res
+
+
+def fmt_mem(kb):
+    return f"{kb / 1024:.0f} MiB"
+
+
+def machine_line():
+    cpu = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            m = re.search(r"model name\s*:\s*(.*)", f.read())
+            cpu = m.group(1).strip() if m else cpu
+    except OSError:
+        pass
+    mem = ""
+    try:
+        with open("/proc/meminfo") as f:
+            kb = int(re.search(r"MemTotal:\s*(\d+)", f.read()).group(1))
+            mem = f", {kb / 1024 / 1024:.0f} GiB memory"
+    except (OSError, AttributeError):
+        pass
+    return f"{cpu}, {os.cpu_count()} logical cores{mem}, {platform.system()} {platform.release()}"
+
+
+def versions():
+    pov = subprocess.run(["povray", "--version"], capture_output=True, text=True)
+    m = re.search(r"POV-Ray (\S+)", pov.stdout + pov.stderr)
+    commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                            capture_output=True, text=True).stdout.strip() or "unknown"
+    emb = "not found"
+    for line in open(os.path.join(ARGS.build, "CMakeCache.txt"), errors="replace"):
+        if line.startswith("embree_DIR:"):
+            m2 = re.search(r"embree-([0-9.]+)", line)
+            emb = m2.group(1) if m2 else "found"
+    return (m.group(1) if m else "unknown"), emb, commit
+
+
+def main():
+    global ARGS
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--scaling-runs", type=int, default=3)
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--size", default="1920x1080")
+    ap.add_argument("--scaling", default="1000,10000,100000,1000000")
+    ap.add_argument("--output", default=os.path.join(BENCH, "RESULTS.md"))
+    ap.add_argument("--note", default="", help="a line to add under the machine (e.g. other load)")
+    ap.add_argument("--no-profile", action="store_true", help="skip bench/profile.sh (callgrind)")
+    ap.add_argument("--readme", default=os.path.join(ROOT, "README.md"),
+                    help="README whose results block is replaced ('' leaves it alone)")
+    ARGS = ap.parse_args()
+    ARGS.build = os.path.abspath(ARGS.build)
+    ARGS.threads = [int(x) for x in ARGS.threads.split(",")]
+    hitray = os.path.join(ARGS.build, "bin", "hitray")
+    raycast = os.path.join(ARGS.build, "bin", "raycast")
+    for tool in (hitray, raycast):
+        if not os.access(tool, os.X_OK):
+            sys.exit(f"run_bench: {tool} is missing: build first (make build)")
+    if not shutil.which("povray"):
+        sys.exit("run_bench: povray is not installed (make bench installs it)")
+    global WORK
+    work = WORK = os.path.join(ARGS.build, "bench-work")
+    os.makedirs(work, exist_ok=True)
+    known = hitray_classes(hitray)
+    load_before = os.getloadavg()
+    started = datetime.datetime.now(datetime.timezone.utc)
+
+    scene_rows, skipped = [], []
+    for name in ARGS.scenes.split(","):
+        d, camera, missing = prepare_scene(name, work, known)
+        if missing:
+            skipped.append((name, missing))
+            missing = ["shape class " + c for c in missing]
+            print(f"{name}: skipped, hitray has no {', '.join(missing)}", flush=True)
+            continue
+        print(f"{name}: timing", flush=True)
+        try:
+            res = bench_scene(name, d, camera, hitray)
+            agree = mask_agreement(name, d, camera, hitray)
+        except RuntimeError as e:  # one scene failing does not lose the others
+            print(f"{name}: failed: {e}", flush=True)
+            skipped.append((name, ["a working render (" + str(e).split(chr(10))[0][:80] + ")"]))
+            continue
+        scene_rows.append((name, res, agree))
+
+    embree = "embree" in subprocess.run([raycast, "--engine", "embree", "--spheres", "10",
+                                         "--rays-side", "4"], capture_output=True,
+                                        text=True).stdout
+    engines = ["hitray", "embree"] if embree else ["hitray"]
+    print("raycast: 100,000 spheres", flush=True)
+    ray = raycast_runs(raycast, 100000, ARGS.threads, ARGS.runs, engines)
+    check = None
+    if embree:
+        out = subprocess.run([raycast, "--engine", "both", "--spheres", "100000"],
+                             capture_output=True, text=True, check=True).stdout
+        check = dict(x.split("=", 1) for x in out.split())
+    scaling = {}
+    for n in [int(x) for x in ARGS.scaling.split(",")]:
+        print(f"raycast scaling: {n} spheres", flush=True)
+        scaling[n] = raycast_runs(raycast, n, ARGS.threads, ARGS.scaling_runs, engines)
+    load_after = os.getloadavg()
+    profile = ""
+    if shutil.which("valgrind") and not ARGS.no_profile:
+        print("profile: callgrind", flush=True)
+        profile = subprocess.run([os.path.join(BENCH, "profile.sh"), "spheres", "terrain"],
+                                 capture_output=True, text=True,
+                                 env=dict(os.environ, BUILD=ARGS.build)).stdout
+
+    pov_version, emb_version, commit = versions()
+    cmdline = "bench/run_bench.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "make bench"
+    L = []
+    L.append("# hitray benchmark results")
+    L.append("")
+    L.append(f"Made by `{cmdline}` on {started:%Y-%m-%d %H:%M} UTC, hitray commit {commit}, "
+             f"POV-Ray {pov_version}, Embree {emb_version}.")
+    L.append("")
+    L.append(f"Machine: {machine_line()}. Load average before / after: "
+             f"{load_before[0]:.1f} / {load_after[0]:.1f}.")
+    if ARGS.note:
+        L.append("")
+        L.append(ARGS.note)
+    L.append("")
+    L.append(f"## Scenes ({ARGS.size}, 1 sample per pixel, median of {ARGS.runs} alternating runs)")
+    L.append("")
+    L.append("Time is the whole process (parse + render + write a PPM); render-only in brackets "
+             "(hitray: its render statistics; POV-Ray: its Trace Time). Ratio = hitray / POV-Ray "
+             "(target: at most 0.5). Memory is peak resident. Mask = pixels whose object agrees "
+             "in the flat id-colour renders (see bench/previews/).")
+    L.append("")
+    L.append("| scene | threads | hitray time | POV-Ray time | ratio | hitray memory | POV-Ray memory | mask |")
+    L.append("|---|---|---|---|---|---|---|---|")
+    for name, res, agree in scene_rows:
+        for t in ARGS.threads:
+            r = res[t]
+            hr, pv = median(r["hr"]), median(r["pov"])
+            L.append(f"| {name} | {t} | {hr:.2f} s ({median(r['hr_render']):.2f}) | "
+                     f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
+                     f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem']))} | {agree:.2f}% |")
+    for name, missing in skipped:
+        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
+    L.append("")
+    L.append(f"## Raw intersection: 1M primary rays, 100,000 random spheres (median of {ARGS.runs})")
+    L.append("")
+    L.append("bench/raycast: hitray's `hr_scene_first_hit` (double precision) against Embree's "
+             "native spheres (`rtcIntersect1`, float); trace time only, the build apart. "
+             "Ratio = hitray rays/s / Embree rays/s (target: at least 0.5).")
+    L.append("")
+    L.append("| threads | hitray rays/s | Embree rays/s | ratio | hitray build | Embree build | hitray memory | Embree memory |")
+    L.append("|---|---|---|---|---|---|---|---|")
+    for t in ARGS.threads:
+        h = ray["hitray"][t]
+        hr_rate = median([float(x["rays_per_s"]) for x in h])
+        hb = median([float(x["build_s"]) for x in h])
+        if embree:
+            e = ray["embree"][t]
+            em_rate = median([float(x["rays_per_s"]) for x in e])
+            eb = median([float(x["build_s"]) for x in e])
+            L.append(f"| {t} | {hr_rate / 1e6:.2f} M | {em_rate / 1e6:.2f} M | {hr_rate / em_rate:.2f} | "
+                     f"{hb:.2f} s | {eb:.2f} s | {fmt_mem(max(x['peak_kb'] for x in h))} | "
+                     f"{fmt_mem(max(x['peak_kb'] for x in e))} |")
+        else:
+            L.append(f"| {t} | {hr_rate / 1e6:.2f} M | (no Embree) | | {hb:.2f} s | | "
+                     f"{fmt_mem(max(x['peak_kb'] for x in h))} | |")
+    if check:
+        L.append("")
+        L.append(f"Same answers: {int(check['same_first_object']):,} of {int(check['rays']):,} rays "
+                 f"name the same first sphere in both (the rest graze a silhouette, where float "
+                 f"and double differ); hitray hits {int(check['hits']):,}.")
+    L.append("")
+    L.append(f"## Scaling (median of {ARGS.scaling_runs}; trace time of 1M rays, build apart)")
+    L.append("")
+    L.append("| spheres | " + " | ".join(f"hitray {t} thr" for t in ARGS.threads) +
+             (" | " + " | ".join(f"Embree {t} thr" for t in ARGS.threads) if embree else "") +
+             " | hitray build | hitray memory |")
+    L.append("|---" * (1 + len(ARGS.threads) * (2 if embree else 1) + 2) + "|")
+    for n, res in scaling.items():
+        cells = [f"{median([float(x['trace_s']) for x in res['hitray'][t]]):.3f} s" for t in ARGS.threads]
+        if embree:
+            cells += [f"{median([float(x['trace_s']) for x in res['embree'][t]]):.3f} s" for t in ARGS.threads]
+        h = [x for t in ARGS.threads for x in res["hitray"][t]]
+        cells.append(f"{median([float(x['build_s']) for x in h]):.2f} s")
+        cells.append(fmt_mem(max(x["peak_kb"] for x in h)))
+        L.append(f"| {n:,} | " + " | ".join(cells) + " |")
+    L.append("")
+    notes = os.path.join(BENCH, "profile_notes.md")
+    if profile and os.path.exists(notes):
+        with open(notes) as f:
+            L += f.read().rstrip("\n").split("\n")
+        L += ["", "```", "$ bench/profile.sh spheres terrain"] + profile.rstrip("\n").split("\n") + ["```", ""]
+    with open(ARGS.output, "w") as f:
+        f.write("\n".join(L))
+    print("\n".join(L))
+    update_readme(L, cmdline)
+
+
+def update_readme(lines, cmdline):
+    """Put the machine line and the two main tables (scenes, raw intersection)
+    between the README's markers."""
+    if not ARGS.readme or not os.path.exists(ARGS.readme):
+        return
+    with open(ARGS.readme) as f:
+        text = f.read()
+    if README_BEGIN not in text or README_END not in text:
+        return
+    tables, current = [], []
+    for line in lines:  # consecutive table lines form one table
+        if line.startswith("|"):
+            current.append(line)
+        elif current:
+            tables.append(current)
+            current = []
+    if current:
+        tables.append(current)
+    machine = [x for x in lines if x.startswith("Machine:")]
+    notes = [x for x in lines if x == ARGS.note and x]
+    body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
+            "runs, is in [bench/RESULTS.md](bench/RESULTS.md).", ""] + machine + [""] + notes
+    for table in tables[:2]:
+        body += [""] + table
+    body += ["", README_END]
+    start = text.index(README_BEGIN)
+    end = text.index(README_END) + len(README_END)
+    with open(ARGS.readme, "w") as f:
+        f.write(text[:start] + "\n".join(body) + text[end:])
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,150 @@
+/* hr_scene_first_hit against the slow truth, through the paths tracing takes
+ * for speed: the BVH walk (straight down to the nearer child, both children
+ * tested at once) must find exactly the nearest of every hit along the ray
+ * (hr_scene_all_hits, which visits every object without the BVH); and a
+ * shape that asks for more room than the query's on-stack list has (through
+ * host->reserve) must get it, with no hit lost. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hr_test.h"
+#include "scene_builder.h"
+
+static hr_context *ctx;
+
+/* xorshift64*: the same scene on every run. */
+static double uniform(uint64_t *s)
+{
+    *s ^= *s >> 12, *s ^= *s << 25, *s ^= *s >> 27;
+    return (double)((*s * 2685821657736338717ull) >> 11) * 0x1p-53;
+}
+
+/* 2,000 spheres of random sizes in a box (overlapping, some nested), and
+ * rays from random points outside and inside it in random directions: the
+ * first hit is the nearest of all hits, the same t and the same object
+ * (ties go to the lower object index in both, hit_before's order). */
+static void bvh_walk_matches_every_hit(void)
+{
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    uint64_t seed = 99;
+    for (int i = 0; i < 2000; i++) {
+        hr_transform t = tb_place(20 * uniform(&seed) - 10, 20 * uniform(&seed) - 10,
+                                  20 * uniform(&seed) - 10, 0.05 + 0.6 * uniform(&seed));
+        CHECK(tb_add(s, i % 3 ? "sphere" : "cube", NULL, &t) >= 0);
+    }
+    CHECK_OK(hr_scene_commit(s));
+    hr_intersection all;
+    hr_intersection_init(&all);
+    int compared = 0, hits = 0;
+    for (int k = 0; k < 3000; k++) {
+        double spread = k % 2 ? 30 : 8;
+        hr_ray r = {{spread * (2 * uniform(&seed) - 1), spread * (2 * uniform(&seed) - 1),
+                     spread * (2 * uniform(&seed) - 1)},
+                    {2 * uniform(&seed) - 1, 2 * uniform(&seed) - 1, 2 * uniform(&seed) - 1}};
+        if (k % 7 == 0) r.dir.y = 0; /* axis-parallel slabs: 1/d is infinite */
+        if (r.dir.x == 0 && r.dir.y == 0 && r.dir.z == 0) continue;
+        hr_hit first;
+        int32_t found = 0;
+        CHECK_OK(hr_scene_first_hit(s, &r, 0, INFINITY, &first, &found));
+        CHECK_OK(hr_scene_all_hits(s, &r, 0, INFINITY, &all));
+        compared++;
+        CHECK_MSG(found == (all.count > 0), "ray %d: first hit found %d, all hits %d", k,
+                  (int)found, (int)all.count);
+        if (!found || all.count == 0) continue;
+        hits++;
+        CHECK_MSG(first.t == all.hits[0].t && first.object == all.hits[0].object,
+                  "ray %d: first hit t = %.17g object %lld, nearest of all t = %.17g object %lld",
+                  k, first.t, (long long)first.object, all.hits[0].t,
+                  (long long)all.hits[0].object);
+    }
+    /* Enough rays hit something for the comparison to mean much (about 40%). */
+    CHECK_MSG(compared > 2900 && hits > compared / 4, "compared %d rays, %d hit", compared, hits);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
+/* A shape that reports 1,000 crossings of the plane-like slab z = 1000 - i,
+ * listed far to near, after asking host->reserve for the room. */
+typedef struct many {
+    const hr_host *host;
+} many;
+
+static hr_status many_create(const hr_create_args *a, void **out)
+{
+    many *m = a->host->alloc(sizeof *m);
+    if (!m) return HR_ERROR_OUT_OF_MEMORY;
+    m->host = a->host;
+    *out = m;
+    return HR_OK;
+}
+
+static void many_destroy(void *shape)
+{
+    many *m = shape;
+    m->host->free(m);
+}
+
+static void many_bounds(const void *shape, hr_bounds *b)
+{
+    (void)shape;
+    b->lo = (hr_vec3){-1, -1, 0};
+    b->hi = (hr_vec3){1, 1, 1001};
+}
+
+static hr_status many_hit(const hr_hit_args *a)
+{
+    const many *m = a->shape;
+    hr_status st = m->host->reserve(a->call, a->out, a->out->count + 1000);
+    if (st) return st;
+    for (int i = 0; i < 1000; i++) {
+        double z = 1000 - i;
+        if (a->ray.dir.z == 0) break;
+        double t = (z - a->ray.origin.z) / a->ray.dir.z;
+        if (!(t > a->tmin && t < a->tmax)) continue;
+        hr_hit *h = &a->out->hits[a->out->count++];
+        memset(h, 0, sizeof *h);
+        h->t = t;
+        h->point = (hr_vec3){a->ray.origin.x + t * a->ray.dir.x, a->ray.origin.y + t * a->ray.dir.y, z};
+        h->normal = (hr_vec3){0, 0, 1};
+        h->entering = 1;
+    }
+    return HR_OK;
+}
+
+static const hr_shape_class many_class = {
+    sizeof(hr_shape_class), 0, "manyHits", "1000 hits, far to near, after host->reserve",
+    NULL, 0, 1, many_create, many_destroy, many_bounds, many_hit, many_hit, many_hit,
+};
+
+static void growing_list_keeps_every_hit(void)
+{
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    CHECK(tb_add(s, "manyHits", NULL, NULL) >= 0);
+    CHECK_OK(hr_scene_commit(s));
+    const hr_ray down = {{0, 0, 2000}, {0, 0, -1}};
+    hr_hit h;
+    int32_t found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    /* The nearest of the 1000 is z = 1000, at t = 1000, listed first; the
+     * farthest (z = 1) is listed last: all of them must have been kept. */
+    CHECK_MSG(found && h.t == 1000.0, "found %d at t = %g, expected t = 1000", (int)found, h.t);
+    const hr_ray up = {{0, 0, -5}, {0, 0, 1}};
+    CHECK_OK(hr_scene_first_hit(s, &up, 0, INFINITY, &h, &found));
+    CHECK_MSG(found && h.t == 6.0, "found %d at t = %g, expected t = 6 (z = 1, listed last)",
+              (int)found, h.t);
+    hr_scene_destroy(s);
+}
+
+int main(void)
+{
+    CHECK_OK(hr_context_create(&ctx));
+    CHECK_OK(hr_context_register_shape_class(ctx, &many_class, "test_first_hit_paths.c"));
+    bvh_walk_matches_every_hit();
+    growing_list_keeps_every_hit();
+    hr_context_destroy(ctx);
+    return hr_test_end();
+}
