@@ -677,6 +677,44 @@ static void test_degenerate_bvh(void)
     free(list.hits);
 }
 
+/* Closed meshes thinner than rounding can resolve (flat tetrahedra 1e-17
+ * to 1e-15 thick, tilted): their two crossings are a few ulps apart, yet
+ * every ray through one enters before it leaves (the list of a closed mesh
+ * is made to alternate). The faces are wound outward and every edge is
+ * shared, so the module takes the file as closed. */
+static void test_thin_closed(double thickness)
+{
+    char path[1024];
+    mesh_build_path("mesh_thin.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f, "v 0 0 0.3\nv 1 0 0.1\nv 0 1 0.5\nv 0.25 0.25 %.17g\n"
+               "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0.3 + thickness);
+    fclose(f);
+    harness_shape thin;
+    if (!mesh_open_file(&thin, path)) return;
+    ray_rng rng;
+    rng_seed(&rng, 9);
+    int two = 0;
+    for (int i = 0; i < 2000; i++) {
+        double x = rng_uniform(&rng, 0.05, 0.4), y = rng_uniform(&rng, 0.05, 0.4);
+        hr_ray ray = harness_ray(x + rng_uniform(&rng, -0.5, 0.5), y + rng_uniform(&rng, -0.5, 0.5),
+                                 1, 0, 0, -1);
+        ray.dir = harness_vec(x - ray.origin.x, y - ray.origin.y, -1);
+        hr_hit h[HARNESS_MAX_HITS];
+        int n = harness_hits(&thin, ray, h);
+        CHECK_MSG(n == 0 || n == 2, "%d hits", n);
+        if (n == 2) {
+            two++;
+            CHECK_MSG(h[0].entering == 1 && h[1].entering == 0 && h[0].t <= h[1].t,
+                      "ray %d: entering %d then %d", i, (int)h[0].entering, (int)h[1].entering);
+        }
+    }
+    CHECK(two > 1500);
+    harness_close(&thin);
+}
+
 int main(void)
 {
     char path[1024];
@@ -694,6 +732,9 @@ int main(void)
     test_solids();
     test_many_hits();
     test_degenerate_bvh();
+    test_thin_closed(1e-17);
+    test_thin_closed(1e-16);
+    test_thin_closed(1e-15);
     harness_close(&cube_mesh);
     harness_close(&cube_module);
     return hr_test_end();
