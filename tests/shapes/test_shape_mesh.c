@@ -1,8 +1,11 @@
 /* The mesh module on small meshes: a cube of 12 triangles (OBJ) agrees with
  * the cube module on thousands of random rays; the same cube in Hill's
  * .3vn format; rays swept across shared edges in 1e-7 steps and aimed
- * through vertices hit exactly once per crossing; interpolated normals from
- * an OBJ file; a ray with more hits than the host's free space. */
+ * through vertices hit exactly once per crossing; exact edge-function
+ * signs; interpolated normals from OBJ and .3vn files; the regular solids
+ * against long-double clipping (t, points within their error bounds, no
+ * self-hits from spawned rays); more hits than the host's free space;
+ * meshes that defeat the SAH; closed meshes thinner than rounding. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -505,6 +508,10 @@ static void test_solids(void)
                                    "%s ray %d: an inward spawned ray: %d hits", names[solid], i, m);
                 }
             }
+            hr_hit first[HARNESS_MAX_HITS], any[HARNESS_MAX_HITS];
+            CHECK(harness_trace(&s, ray, 0, INFINITY, HARNESS_FIRST, first) == 1 &&
+                  first[0].t == h[0].t && first[0].entering == h[0].entering);
+            CHECK(harness_trace(&s, ray, 0, INFINITY, HARNESS_ANY, any) == 1);
             if (n == 2) {
                 CHECK_NEAR(h[0].t, (double)t_in, 1e-12 * (1 + fabsl(t_in)));
                 CHECK_NEAR(h[1].t, (double)t_out, 1e-12 * (1 + fabsl(t_out)));
