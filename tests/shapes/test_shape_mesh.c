@@ -722,6 +722,84 @@ static void test_thin_closed(double thickness)
     harness_close(&thin);
 }
 
+static int compare_doubles(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The BVH finds exactly what testing every triangle finds: a soup of 3000
+ * random triangles of all sizes (an open surface, so no reordering), 3000
+ * random rays with random intervals; the sorted lists of t agree bit for
+ * bit with the same watertight test run on each triangle in turn, and the
+ * first hit is the smallest of them. */
+static void test_bvh_matches_brute_force(void)
+{
+    enum { TRIS = 3000 };
+    static hr_vec3 v[3 * TRIS];
+    char path[1024];
+    mesh_build_path("mesh_soup.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    ray_rng rng;
+    rng_seed(&rng, 31);
+    for (int t = 0; t < TRIS; t++) {
+        hr_vec3 c = harness_vec(rng_uniform(&rng, -10, 10), rng_uniform(&rng, -10, 10),
+                                rng_uniform(&rng, -10, 10));
+        const double size = exp2(rng_uniform(&rng, -8, 3));
+        for (int k = 0; k < 3; k++) {
+            hr_vec3 w = rng_unit_vector(&rng);
+            v[3 * t + k] = harness_vec(c.x + size * w.x, c.y + size * w.y, c.z + size * w.z);
+            fprintf(f, "v %.17g %.17g %.17g\n", v[3 * t + k].x, v[3 * t + k].y, v[3 * t + k].z);
+        }
+        fprintf(f, "f -3 -2 -1\n");
+    }
+    fclose(f);
+    harness_shape soup;
+    if (!mesh_open_file(&soup, path)) return;
+    hr_intersection list = {NULL, 0, 0};
+    CHECK_OK(harness_host()->reserve(NULL, &list, HR_MIN_HIT_CAPACITY));
+    hr_bounds b = {{-10, -10, -10}, {10, 10, 10}};
+    static double want[TRIS];
+    int hits = 0;
+    for (int i = 0; i < 3000; i++) {
+        hr_ray ray = random_ray_near(&rng, &b);
+        double tmin, tmax;
+        random_interval(&rng, &tmin, &tmax);
+        mesh_ray r;
+        int n = 0;
+        if (mesh_ray_init(&r, &ray))
+            for (int t = 0; t < TRIS; t++) {
+                mesh_triangle_hit th;
+                if (mesh_triangle_test(&r, &v[3 * t], &v[3 * t + 1], &v[3 * t + 2], tmin, tmax, &th))
+                    want[n++] = th.t;
+            }
+        qsort(want, (size_t)n, sizeof *want, compare_doubles);
+        hr_hit_args args;
+        memset(&args, 0, sizeof args);
+        args.shape = soup.shape;
+        args.ray = ray;
+        args.tmin = tmin;
+        args.tmax = tmax;
+        args.out = &list;
+        list.count = 0;
+        CHECK_OK(soup.cls->hit(&args));
+        CHECK_MSG(list.count == n, "ray %d: BVH %d hits, every triangle %d", i, (int)list.count, n);
+        for (int k = 0; k < n && k < list.count; k++) CHECK(list.hits[k].t == want[k]);
+        list.count = 0;
+        CHECK_OK(soup.cls->first_hit(&args));
+        CHECK(list.count == (n > 0) && (n == 0 || list.hits[0].t == want[0]));
+        list.count = 0;
+        CHECK_OK(soup.cls->any_hit(&args));
+        CHECK(list.count == (n > 0));
+        hits += n;
+    }
+    CHECK_MSG(hits > 1000, "only %d hits in all", hits);
+    free(list.hits);
+    harness_close(&soup);
+}
+
 int main(void)
 {
     char path[1024];
@@ -739,6 +817,7 @@ int main(void)
     test_solids();
     test_many_hits();
     test_degenerate_bvh();
+    test_bvh_matches_brute_force();
     test_thin_closed(1e-17);
     test_thin_closed(1e-16);
     test_thin_closed(1e-15);
