@@ -19,6 +19,7 @@
  * - surface 0: a mesh is one surface.
  * For a closed mesh, all-hits lists are made to alternate (see
  * alternate_closed): rounding can swap two crossings a few ulps apart. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -146,29 +147,37 @@ static void sort_hits(hr_hit *h, size_t n)
     }
 }
 
-/* A closed mesh's crossings alternate along the exact line (the entering
- * flags are exact); only the computed t can put two crossings a rounding
- * apart in the wrong order. Where two neighbours have the same flag and the
- * next crossing of the other kind is within the hits' error bounds (as
- * distances along the ray), that crossing is moved up and given the t of
- * the place it moves to, which keeps the list sorted. Farther apart, the
- * list is left as computed: the surface really crosses itself there. */
+/* A closed mesh's crossings alternate along the exact line, entering
+ * first (the line starts outside), and the entering flags are exact; only
+ * the computed t can put two crossings a rounding apart in the wrong order.
+ * So a closed mesh's all-hits query collects the whole line, and where the
+ * sorted list breaks the alternation, the next crossing of the expected kind
+ * within the two hits' error bounds (as distances along the ray) is moved
+ * up and given the t of the place it takes, which keeps the list sorted.
+ * Where none is that close, the list is left as computed (the surface
+ * crosses itself there) and the expectation follows what was found.
+ * `surface` holds each hit's "outside the caller's interval" mark, which a
+ * moved hit takes over from the place it takes. */
 static void alternate_closed(const hr_ray *ray, hr_hit *h, size_t n)
 {
     const double speed = fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
-    for (size_t i = 1; i < n; i++) {
-        if (h[i].entering != h[i - 1].entering) continue;
-        for (size_t j = i + 1; j < n; j++) {
-            const double slack = (h[i].error + h[j].error) / speed * 4.0 +
-                                 8.0 * DBL_EPSILON * fmax(fabs(h[i].t), fabs(h[j].t));
-            if (!(h[j].t - h[i - 1].t <= slack)) break;
-            if (h[j].entering == h[i - 1].entering) continue;
-            hr_hit moved = h[j];
-            moved.t = h[i].t;
-            memmove(&h[i + 1], &h[i], (j - i) * sizeof *h);
-            h[i] = moved;
-            break;
+    int expected = 1;
+    for (size_t i = 0; i < n; i++) {
+        if (h[i].entering != expected) {
+            for (size_t j = i + 1; j < n; j++) {
+                const double slack = (h[i].error + h[j].error) / speed * 4.0 +
+                                     8.0 * DBL_EPSILON * fmax(fabs(h[i].t), fabs(h[j].t));
+                if (!(h[j].t - h[i].t <= slack)) break;
+                if (h[j].entering != expected) continue;
+                hr_hit moved = h[j];
+                moved.t = h[i].t;
+                moved.surface = h[i].surface;
+                memmove(&h[i + 1], &h[i], (j - i) * sizeof *h);
+                h[i] = moved;
+                break;
+            }
         }
+        expected = !h[i].entering;
     }
 }
 
@@ -188,8 +197,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
     mesh_ray r;
     if (!mesh_ray_init(&r, &args->ray)) return HR_OK;
-    const double tmin = args->tmin;
-    double tmax = args->tmax;
+    /* A closed mesh's list is put in order over the whole line (see
+     * alternate_closed); hits outside (tmin, tmax) are dropped after. */
+    const int whole_line = mode == HR_TRACE_ALL && m->closed;
+    const double tmin = whole_line ? -INFINITY : args->tmin;
+    double tmax = whole_line ? INFINITY : args->tmax;
     const int32_t start = args->out->count;
     uint32_t stack[MESH_BVH_MAX_DEPTH + 2];
     int top = 0;
@@ -213,7 +225,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                         args->out->count = start;
                         return st;
                     }
-                    fill_hit(m, &args->ray, i, &th, &args->out->hits[args->out->count++]);
+                    hr_hit *hit = &args->out->hits[args->out->count++];
+                    fill_hit(m, &args->ray, i, &th, hit);
+                    if (whole_line)
+                        hit->surface = !(th.t > args->tmin && th.t < args->tmax &&
+                                         th.t - args->tmin > th.t_error);
                     continue;
                 }
                 found = 1;
@@ -254,6 +270,15 @@ done:
     hr_hit *hits = args->out->hits + start;
     const size_t count = (size_t)(args->out->count - start);
     sort_hits(hits, count);
-    if (m->closed) alternate_closed(&args->ray, hits, count);
+    if (whole_line) {
+        alternate_closed(&args->ray, hits, count);
+        int32_t kept = start;
+        for (size_t i = 0; i < count; i++) {
+            if (hits[i].surface) continue;
+            args->out->hits[kept] = hits[i];
+            args->out->hits[kept++].surface = 0;
+        }
+        args->out->count = kept;
+    }
     return HR_OK;
 }

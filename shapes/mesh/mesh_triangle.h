@@ -144,6 +144,7 @@ static inline int mesh_sign_of(double f, const double x[3], const double y[3])
  * (b[0] for A) and whether the ray enters (normal against the ray). */
 typedef struct mesh_triangle_hit {
     double t;
+    double t_error; /* bound on the rounding error of t (mesh_t_error) */
     double b[3];
     int entering;
 } mesh_triangle_hit;
@@ -201,8 +202,10 @@ static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const 
     const double T = U * A[2] + V * B[2] + W * C[2];
     const double t = T / det;
     if (!(t > tmin && t < tmax)) return 0;
-    if (t - tmin <= mesh_t_error(r, A, B, C, U, V, W, det)) return 0;
+    const double t_error = mesh_t_error(r, A, B, C, U, V, W, det);
+    if (t - tmin <= t_error) return 0;
     out->t = t;
+    out->t_error = t_error;
     out->b[0] = U / det;
     out->b[1] = V / det;
     out->b[2] = W / det;

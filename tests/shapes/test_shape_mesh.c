@@ -1,8 +1,11 @@
 /* The mesh module on small meshes: a cube of 12 triangles (OBJ) agrees with
  * the cube module on thousands of random rays; the same cube in Hill's
  * .3vn format; rays swept across shared edges in 1e-7 steps and aimed
- * through vertices hit exactly once per crossing; interpolated normals from
- * an OBJ file; a ray with more hits than the host's free space. */
+ * through vertices hit exactly once per crossing; exact edge-function
+ * signs; interpolated normals from OBJ and .3vn files; the regular solids
+ * against long-double clipping (t, points within their error bounds, no
+ * self-hits from spawned rays); more hits than the host's free space;
+ * meshes that defeat the SAH; closed meshes thinner than rounding. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -505,6 +508,10 @@ static void test_solids(void)
                                    "%s ray %d: an inward spawned ray: %d hits", names[solid], i, m);
                 }
             }
+            hr_hit first[HARNESS_MAX_HITS], any[HARNESS_MAX_HITS];
+            CHECK(harness_trace(&s, ray, 0, INFINITY, HARNESS_FIRST, first) == 1 &&
+                  first[0].t == h[0].t && first[0].entering == h[0].entering);
+            CHECK(harness_trace(&s, ray, 0, INFINITY, HARNESS_ANY, any) == 1);
             if (n == 2) {
                 CHECK_NEAR(h[0].t, (double)t_in, 1e-12 * (1 + fabsl(t_in)));
                 CHECK_NEAR(h[1].t, (double)t_out, 1e-12 * (1 + fabsl(t_out)));
@@ -677,6 +684,122 @@ static void test_degenerate_bvh(void)
     free(list.hits);
 }
 
+/* Closed meshes thinner than rounding can resolve (flat tetrahedra 1e-17
+ * to 1e-15 thick, tilted): their two crossings are a few ulps apart, yet
+ * every ray through one enters before it leaves (the list of a closed mesh
+ * is made to alternate). The faces are wound outward and every edge is
+ * shared, so the module takes the file as closed. */
+static void test_thin_closed(double thickness)
+{
+    char path[1024];
+    mesh_build_path("mesh_thin.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    fprintf(f, "v 0 0 0.3\nv 1 0 0.1\nv 0 1 0.5\nv 0.25 0.25 %.17g\n"
+               "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n", 0.3 + thickness);
+    fclose(f);
+    harness_shape thin;
+    if (!mesh_open_file(&thin, path)) return;
+    ray_rng rng;
+    rng_seed(&rng, 9);
+    int two = 0;
+    for (int i = 0; i < 2000; i++) {
+        double x = rng_uniform(&rng, 0.05, 0.4), y = rng_uniform(&rng, 0.05, 0.4);
+        hr_ray ray = harness_ray(x + rng_uniform(&rng, -0.5, 0.5), y + rng_uniform(&rng, -0.5, 0.5),
+                                 1, 0, 0, -1);
+        ray.dir = harness_vec(x - ray.origin.x, y - ray.origin.y, -1);
+        hr_hit h[HARNESS_MAX_HITS];
+        int n = harness_hits(&thin, ray, h);
+        CHECK_MSG(n == 0 || n == 2, "%d hits", n);
+        if (n == 2) {
+            two++;
+            CHECK_MSG(h[0].entering == 1 && h[1].entering == 0 && h[0].t <= h[1].t,
+                      "ray %d: entering %d then %d", i, (int)h[0].entering, (int)h[1].entering);
+        }
+    }
+    CHECK(two > 1500);
+    harness_close(&thin);
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The BVH finds exactly what testing every triangle finds: a soup of 3000
+ * random triangles of all sizes (an open surface, so no reordering), 3000
+ * random rays with random intervals; the sorted lists of t agree bit for
+ * bit with the same watertight test run on each triangle in turn, and the
+ * first hit is the smallest of them. */
+static void test_bvh_matches_brute_force(void)
+{
+    enum { TRIS = 3000 };
+    static hr_vec3 v[3 * TRIS];
+    char path[1024];
+    mesh_build_path("mesh_soup.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    ray_rng rng;
+    rng_seed(&rng, 31);
+    for (int t = 0; t < TRIS; t++) {
+        hr_vec3 c = harness_vec(rng_uniform(&rng, -10, 10), rng_uniform(&rng, -10, 10),
+                                rng_uniform(&rng, -10, 10));
+        const double size = exp2(rng_uniform(&rng, -8, 3));
+        for (int k = 0; k < 3; k++) {
+            hr_vec3 w = rng_unit_vector(&rng);
+            v[3 * t + k] = harness_vec(c.x + size * w.x, c.y + size * w.y, c.z + size * w.z);
+            fprintf(f, "v %.17g %.17g %.17g\n", v[3 * t + k].x, v[3 * t + k].y, v[3 * t + k].z);
+        }
+        fprintf(f, "f -3 -2 -1\n");
+    }
+    fclose(f);
+    harness_shape soup;
+    if (!mesh_open_file(&soup, path)) return;
+    hr_intersection list = {NULL, 0, 0};
+    CHECK_OK(harness_host()->reserve(NULL, &list, HR_MIN_HIT_CAPACITY));
+    hr_bounds b = {{-10, -10, -10}, {10, 10, 10}};
+    static double want[TRIS];
+    int hits = 0;
+    for (int i = 0; i < 3000; i++) {
+        hr_ray ray = random_ray_near(&rng, &b);
+        double tmin, tmax;
+        random_interval(&rng, &tmin, &tmax);
+        mesh_ray r;
+        int n = 0;
+        if (mesh_ray_init(&r, &ray))
+            for (int t = 0; t < TRIS; t++) {
+                mesh_triangle_hit th;
+                if (mesh_triangle_test(&r, &v[3 * t], &v[3 * t + 1], &v[3 * t + 2], tmin, tmax, &th))
+                    want[n++] = th.t;
+            }
+        qsort(want, (size_t)n, sizeof *want, compare_doubles);
+        hr_hit_args args;
+        memset(&args, 0, sizeof args);
+        args.shape = soup.shape;
+        args.ray = ray;
+        args.tmin = tmin;
+        args.tmax = tmax;
+        args.out = &list;
+        list.count = 0;
+        CHECK_OK(soup.cls->hit(&args));
+        CHECK_MSG(list.count == n, "ray %d: BVH %d hits, every triangle %d", i, (int)list.count, n);
+        for (int k = 0; k < n && k < list.count; k++) CHECK(list.hits[k].t == want[k]);
+        list.count = 0;
+        CHECK_OK(soup.cls->first_hit(&args));
+        CHECK(list.count == (n > 0) && (n == 0 || list.hits[0].t == want[0]));
+        list.count = 0;
+        CHECK_OK(soup.cls->any_hit(&args));
+        CHECK(list.count == (n > 0));
+        hits += n;
+    }
+    CHECK_MSG(hits > 1000, "only %d hits in all", hits);
+    free(list.hits);
+    harness_close(&soup);
+}
+
 int main(void)
 {
     char path[1024];
@@ -694,6 +817,10 @@ int main(void)
     test_solids();
     test_many_hits();
     test_degenerate_bvh();
+    test_bvh_matches_brute_force();
+    test_thin_closed(1e-17);
+    test_thin_closed(1e-16);
+    test_thin_closed(1e-15);
     harness_close(&cube_mesh);
     harness_close(&cube_module);
     return hr_test_end();
