@@ -93,7 +93,7 @@ def _add_tree(core: Any, shape: Shape, inherited: Dict[str, Any], base_dir: byte
         if isinstance(value, Shape):
             params.append((key, "object", _add_tree(core, value, material, base_dir)))
         elif _convert.is_number(value):
-            params.append((key, "number", float(value)))  # type: ignore[arg-type]
+            params.append((key, "number", value))
         else:
             params.append((key, "string", os.fsencode(value)))  # type: ignore[type-var]
     return int(core.add_object(shape.name, params, material, shape._transform, base_dir))

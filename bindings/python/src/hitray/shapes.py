@@ -55,8 +55,10 @@ class Shape:
         for key, value in params.items():
             if value is None:
                 continue  # None: the class's default
-            if isinstance(value, Shape) or _convert.is_number(value):
+            if isinstance(value, Shape):
                 checked[key] = value
+            elif _convert.is_number(value):
+                checked[key] = _convert.as_float(value, f"shape '{name}': parameter '{key}'")
             elif isinstance(value, (str, bytes, os.PathLike)):
                 checked[key] = value
             else:
