@@ -146,10 +146,12 @@ int harness_open(harness_shape *out, const char *file_stem, const char *class_na
     out->cls = harness_find_class(&out->module, class_name);
     CHECK_MSG(out->cls != NULL, "%s has no class '%s'", out->module.path, class_name);
     if (!out->cls) return 0;
-    const char *names[] = {"s"};
-    const double values[] = {s_or_nan};
+    /* The one number parameter of the catalog's classes: `s` of the
+     * tapered cylinder, `tube` of the torus (a class ignores the other). */
+    const char *names[] = {"s", "tube"};
+    const double values[] = {s_or_nan, s_or_nan};
     char error[256];
-    hr_status st = harness_create(out->cls, names, values, isnan(s_or_nan) ? 0 : 1, &out->shape,
+    hr_status st = harness_create(out->cls, names, values, isnan(s_or_nan) ? 0 : 2, &out->shape,
                                   error, sizeof error);
     CHECK_MSG(st == HR_OK && out->shape, "create %s: status %d: %s", class_name, (int)st, error);
     return st == HR_OK && out->shape;
@@ -312,5 +314,6 @@ const harness_class_ref harness_catalog[] = {
     {"cylinder", "taperedCylinder", 0.0},
     {"cylinder", "taperedCylinder", 3.0},
     {"cylinder", "taperedCylinder", 1000.0},
+    {"torus", "torus", NAN},
 };
 const int harness_catalog_count = (int)(sizeof harness_catalog / sizeof harness_catalog[0]);

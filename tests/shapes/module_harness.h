@@ -45,7 +45,8 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
                          size_t error_size);
 
 /* Loads the module, finds the class and creates a shape with default
- * parameters (and `s` when s_or_nan is not NaN). Returns 1 on success. */
+ * parameters (and `s`, or the torus's `tube`, when s_or_nan is not NaN).
+ * Returns 1 on success. */
 int harness_open(harness_shape *out, const char *file_stem, const char *class_name,
                  double s_or_nan);
 void harness_close(harness_shape *shape);
@@ -65,7 +66,8 @@ int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tm
 int harness_hits(const harness_shape *shape, hr_ray ray, hr_hit hits[HARNESS_MAX_HITS]);
 
 /* Every class of the built-in modules, with a few tapers of taperedCylinder
- * (s is NaN for classes without parameters). */
+ * (s is NaN for classes without parameters, and for the torus's default
+ * tube). */
 typedef struct harness_class_ref {
     const char *module;
     const char *name;
