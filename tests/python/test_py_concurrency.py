@@ -83,8 +83,10 @@ except KeyboardInterrupt:
 timer[0].join()
 # Cleanly: no thread left behind, and the next render works.
 after = hitray.render(scene, camera, size=(8, 8), progress=False)
+# tqdm keeps a monitor thread of its own for the life of the process.
+ours = [t for t in threading.enumerate() if type(t).__name__ != "TMonitor"]
 print(json.dumps({"outcome": outcome, "last": seen[-1] if seen else None,
-                  "threads_before": threads_before, "threads_after": threading.active_count(),
+                  "threads_before": threads_before, "threads_after": len(ours),
                   "next_render_rays": after.stats.primary}))
 """
 

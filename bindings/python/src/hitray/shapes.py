@@ -49,7 +49,7 @@ class Shape:
 
     __slots__ = ("_name", "_params", "_transform", "_material", "_steps")
 
-    def __init__(self, name: str, **params: ParamValue) -> None:
+    def __init__(self, name: str, **params: Optional[ParamValue]) -> None:
         if not isinstance(name, str) or not name:
             raise TypeError(f"shape name: expected a non-empty string, got {name!r}")
         checked: Dict[str, ParamValue] = {}
