@@ -66,10 +66,15 @@ bool poll_python(const py::object &progress, double fraction, double &reported)
     if (PyErr_CheckSignals() != 0) return false;
     if (!progress.is_none() && fraction != reported) {
         reported = fraction;
+        // Nothing may escape from here: the render thread is still running
+        // and must be joined, so every failure becomes a pending exception.
         try {
             progress(fraction);
         } catch (py::error_already_set &e) {
             e.restore();
+            return false;
+        } catch (const std::exception &e) {
+            PyErr_SetString(PyExc_RuntimeError, e.what());
             return false;
         }
     }
