@@ -201,3 +201,23 @@ def test_the_regular_solids():
         # Vertices on the unit sphere: the surface is within it and, for these
         # solids, beyond their inscribed radius (>= 1/3 for the tetrahedron).
         assert 4.0 <= hit.t <= 5.0 - 1 / 3
+
+
+def test_one_shape_in_two_booleans_is_two_copies():
+    require_classes("union", "intersection")
+    scene = hitray.Scene()
+    ball = A
+    scene.add(ball | B)
+    scene.add((ball & B).translate(0, 5, 0))
+    scene.add(ball | ball)  # even twice in one boolean
+    shapes = [o.shape for o in scene.objects]
+    assert shapes == ["sphere", "sphere", "union", "sphere", "sphere", "intersection",
+                      "sphere", "sphere", "union"]
+    # Each boolean consumed operands of its own.
+    assert [o.top_level for o in scene.objects].count(True) == 3
+    # Along +x from x = -5: A | B spans x in [-1.5, 1.5], the ball united
+    # with itself is the ball, [-1.5, 0.5]; the intersection is 5 above.
+    hits = scene.hits((-5, 0, 0), (1, 0, 0))
+    assert [pytest.approx(h.t, abs=T_ABS) for h in hits] == [3.5, 3.5, 5.5, 6.5]
+    leaving = sorted(h.object for h in hits if not h.entering)
+    assert leaving[0] == 1 and leaving[1] in (6, 7)  # either copy's surface, they coincide
