@@ -5,10 +5,12 @@ PREFIX ?= /usr/local
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
+PYTHON_BUILD ?= build-python
+PYTHON_ASAN_BUILD ?= build-python-asan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-c test-asan test-tsan test-python install clean bench
+.PHONY: all deps build demo test test-c test-asan test-tsan test-python test-python-asan install clean bench
 
 all: build
 
@@ -27,7 +29,7 @@ demo: build
 
 # Every test: the C suite (ctest), the same suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer and again under ThreadSanitizer, and the Python
-# tests of the command line.
+# tests (the command line, and the package installed into .venv).
 test: test-c test-asan test-tsan test-python
 
 test-c: build
@@ -48,8 +50,29 @@ test-tsan: deps $(TSAN_BUILD)/build.ninja
 	cmake --build $(TSAN_BUILD) -j $(JOBS)
 	TSAN_OPTIONS=halt_on_error=1 ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
+# The package is (re)installed into .venv as a user installs it, from
+# bindings/python; its CMake build directory is kept in $(PYTHON_BUILD), so
+# an install with nothing changed compiles nothing.
 test-python: build
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
+	.venv/bin/python -m pip install -q --no-build-isolation \
+	    -C build-dir=$(abspath $(PYTHON_BUILD)) ./bindings/python
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs tests/python
+
+# The package built with ASan+UBSan (library, modules and extension) into
+# $(PYTHON_ASAN_BUILD)/site, its tests run by the venv's interpreter with the
+# sanitizer runtimes preloaded (Python itself is not instrumented, so leak
+# detection is off; the tests that start a bare interpreter or run mypy are
+# left out). Not part of `make test`: it builds everything again.
+test-python-asan: build
+	.venv/bin/python -m pip install -q --no-build-isolation --no-deps --upgrade \
+	    --target $(abspath $(PYTHON_ASAN_BUILD))/site -C build-dir=$(abspath $(PYTHON_ASAN_BUILD))/cmake \
+	    -C cmake.build-type=Debug -C cmake.define.HITRAY_SANITIZE=ON ./bindings/python
+	PYTHONPATH=$(abspath $(PYTHON_ASAN_BUILD))/site \
+	    LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)" \
+	    ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	    HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -p no:cacheprovider \
+	    tests/python --ignore=tests/python/test_cli.py \
+	    -k "not stubs and not no_environment"
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
@@ -65,4 +88,4 @@ bench: build
 	python3 bench/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) out

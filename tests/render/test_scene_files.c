@@ -1,6 +1,6 @@
-/* Every SDL scene the project ships or must read (the demo, the CSG
- * scene, the three real Hill files, and a scene per shape Hill names but the real files do
- * not use: tests/scenes/shapes/) renders end to end: finite pixels, something besides the
+/* Every SDL scene the project ships or must read (the demo, the CSG scene,
+ * the three real Hill files, and a scene per shape Hill names but the real
+ * files do not use: tests/scenes/shapes/) renders end to end: finite pixels, something besides the
  * background, and the same bits with 1, 2 and 4 threads and with
  * supersampling. */
 #include <string.h>
