@@ -1,0 +1,93 @@
+"""Contexts as hitray.abi sees them: the package's default one, one made
+here with hr_context_create, or any hr_context* cdata.
+
+A registered class table must outlive its context (context.h), and the
+Python objects behind it (callbacks, strings, the class) must live as long
+as the table. Each context therefore has a keep-alive list: a `Context`
+made here drops its list after hr_context_destroy; the package's default
+context and raw cdata contexts, whose end this module cannot see, keep
+theirs until the process exits.
+"""
+
+import threading
+import weakref
+
+from ._errors import check
+from ._library import load
+
+_forever_lock = threading.Lock()
+_forever = []  # keep-alive of the default context and of raw cdata contexts
+
+
+class Context:
+    """A context of its own: hr_context_create now, hr_context_destroy at
+    close() (or when collected). Destroy every scene made on it first."""
+
+    def __init__(self):
+        ffi, lib = load()
+        out = ffi.new("hr_context **")
+        check(None, lib.hr_context_create(out))
+        self.ptr = out[0]
+        self._keep = []
+        self._finalizer = weakref.finalize(self, _destroy, lib, self.ptr, self._keep)
+
+    def close(self):
+        """hr_context_destroy, then release the Python shape classes
+        registered on it."""
+        if self._finalizer.alive:
+            self._finalizer()
+        self.ptr = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def check(self, status):
+        """Raise HitrayError for a failed status, with this context's message."""
+        check(self.ptr, status)
+
+    def last_error(self):
+        ffi, lib = load()
+        return ffi.string(lib.hr_context_last_error(self.ptr)).decode("utf-8", "replace")
+
+
+def _destroy(lib, ptr, keep):
+    lib.hr_context_destroy(ptr)
+    keep.clear()
+
+
+def default_context():
+    """The package's one default hr_context* (the one hitray.Shape,
+    hitray.parse_sdl and rendering use), from the extension module."""
+    ffi, _ = load()
+    try:
+        from .. import _core
+    except ImportError as e:
+        raise RuntimeError("hitray.abi: the hitray extension module is not available, so "
+                           "there is no default context; pass context= (a hitray.abi.Context "
+                           "or an hr_context* cdata)") from e
+    return ffi.cast("hr_context *", _core._context_address())
+
+
+def resolve(context):
+    """(hr_context* cdata, keep-alive list) for a register_shape context."""
+    ffi, _ = load()
+    if context is None:
+        return default_context(), _forever
+    if isinstance(context, Context):
+        if context.ptr is None:
+            raise ValueError("hitray.abi: this Context is closed")
+        return context.ptr, context._keep
+    if isinstance(context, ffi.CData) and ffi.typeof(context) == ffi.typeof("hr_context *"):
+        if context == ffi.NULL:
+            raise ValueError("hitray.abi: context is NULL")
+        return context, _forever
+    raise TypeError("hitray.abi: context must be None (the package's default context), a "
+                    f"hitray.abi.Context or an hr_context* cdata, not {type(context).__name__}")
+
+
+def keep_alive(keep, *objects):
+    with _forever_lock:
+        keep.extend(objects)
