@@ -66,7 +66,7 @@ def check(context, status):
     if not message:
         message = ffi.string(lib.hr_status_name(status)).decode("utf-8", "replace")
     cause = take_shape_error()
-    if cause is not None:
+    if cause is not None and str(cause) not in message:
         message = f"{message}: {cause}"
     error = HitrayError(status, message)
     if cause is not None:

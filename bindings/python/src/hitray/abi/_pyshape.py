@@ -33,6 +33,7 @@ host sees them (finite, strictly inside (tmin, tmax), sorted, non-zero
 normal); a violation is a ShapeError the same way.
 """
 
+import inspect
 import math
 import re
 import struct
@@ -73,7 +74,8 @@ class _Registration:
     def __init__(self, name, cls):
         self.name = name
         self.cls = cls
-        self.label = f"{getattr(cls, '__module__', '?')}.{getattr(cls, '__qualname__', cls)}"
+        self.label = cls.__name__
+        self.origin = f"python:{getattr(cls, '__module__', '?')}.{cls.__qualname__}"
         self.specs = class_params(cls)
         self.closed = bool(getattr(cls, "closed", False))
         self.surface_count = _positive_int(cls, "surface_count", 1)
@@ -107,7 +109,7 @@ def _relative_error(cls):
 def _help_line(cls):
     text = getattr(cls, "help", None)
     if text is None:
-        doc = (cls.__doc__ or "").strip()
+        doc = inspect.getdoc(cls) or ""
         text = doc.splitlines()[0] if doc else f"a shape written in Python ({cls.__qualname__})"
     if not isinstance(text, str):
         raise ValueError(f"shape class {cls.__qualname__}: help must be a string")
@@ -180,7 +182,8 @@ def _make_callbacks(reg, ffi, lib):
                 if spec.kind != NUMBER and p.string != NULL:
                     text = string(p.string).decode("utf-8", "surrogateescape")
                 kwargs[spec.name] = spec.to_python(p.number, text)
-            label = f"{reg.name} ({reg.label})"
+            # The host's message names the shape and its origin already.
+            label = reg.label
             try:
                 obj = cls(**kwargs)
             except BaseException as e:
@@ -194,7 +197,7 @@ def _make_callbacks(reg, ffi, lib):
             hit = getattr(obj, "hit", None)
             if not callable(hit):
                 raise ShapeError(f"{label} has no hit(origin, direction, tmin, tmax) method")
-            handle = new_handle(_Instance(obj, hit, box, label))
+            handle = new_handle(_Instance(obj, hit, box, f"shape '{reg.name}': {reg.label}"))
             with reg.live_lock:
                 reg.live[int(cast("uintptr_t", handle))] = handle
             out_shape[0] = handle
@@ -340,7 +343,7 @@ def register_shape(name, cls, context=None):
     ctx, keep = resolve(context)
     reg = _Registration(name, cls)
     _build_class(reg, ffi, lib)
-    origin = ffi.new("char[]", f"python:{reg.label}".encode("utf-8"))
+    origin = ffi.new("char[]", reg.origin.encode("utf-8"))
     status = lib.hr_context_register_shape_class(ctx, reg.c_class, origin)
     if status != 0:
         from ._errors import check
