@@ -81,6 +81,9 @@ def main():
     ap.add_argument("--size", type=int, default=200, help="image side in pixels (default 200)")
     ap.add_argument("--rays", type=int, default=20000, help="rays for the query path")
     ap.add_argument("--repeat", type=int, default=5, help="runs per timing; the best is kept")
+    ap.add_argument("--render-once", choices=("sphere", "pysphere"),
+                    help="only render once with this shape on 1 thread (for counting "
+                         "instructions, see bench/python_shape_instructions.sh)")
     args = ap.parse_args()
     abi = import_abi(args.build_dir)
     ffi, lib = abi.ffi, abi.lib
@@ -116,7 +119,7 @@ def main():
 
         # One render to count the hit calls a render makes (deterministic).
         PySphere.calls = 0
-        scene, cam = scenes["pysphere"]
+        scene, cam = scenes[args.render_once or "pysphere"]
         opts = ffi.new("hr_render_options *")
         lib.hr_render_options_default(opts)
         opts.width = opts.height = args.size
@@ -126,6 +129,11 @@ def main():
         lib.hr_image_destroy(image[0])
         calls = PySphere.calls
         rays = args.size * args.size
+        if args.render_once:
+            for scene, _ in scenes.values():
+                lib.hr_scene_destroy(scene)
+            print(f"{args.render_once}: {rays} rays, {calls} Python hit calls")
+            return
 
         rows = []
         for threads in (1, 2):

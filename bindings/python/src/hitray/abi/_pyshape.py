@@ -53,12 +53,16 @@ DEFAULT_HIT_RELATIVE_ERROR = 1e-9
 _HIT = struct.Struct("=8d2iq")
 _HIT_FIELDS = ("t", "point", "normal", "error", "surface", "entering", "object")
 _HIT_OFFSETS = (0, 8, 32, 56, 64, 68, 72)
+# hr_hit_args as read: shape, ray (origin, dir), tmin, tmax, out, call.
+_ARGS = struct.Struct("=Q8dQQ")
+_ARGS_FIELDS = ("shape", "ray", "tmin", "tmax", "out", "call")
+_ARGS_OFFSETS = (0, 8, 56, 64, 72, 80)
 
 
 class _Instance:
     """One object's shape: the Python instance, its bound hit and bounds."""
 
-    __slots__ = ("obj", "hit", "bounds", "label")
+    __slots__ = ("obj", "hit", "bounds", "label", "handle")
 
     def __init__(self, obj, hit, bounds, label):
         self.obj = obj
@@ -81,7 +85,7 @@ class _Registration:
         self.surface_count = _positive_int(cls, "surface_count", 1)
         self.relative_error = _relative_error(cls)
         self.host = None          # the context's hr_host, seen at the first create
-        self.live = {}            # handle address -> handle (keeps the _Instance alive)
+        self.live = {}            # handle address -> _Instance (which keeps its handle)
         self.live_lock = threading.Lock()
         self.c_strings = []
         self.c_params = None
@@ -117,10 +121,12 @@ def _help_line(cls):
 
 
 def _check_layout(ffi):
-    got = tuple(ffi.offsetof("hr_hit", f) for f in _HIT_FIELDS)
-    if got != _HIT_OFFSETS or ffi.sizeof("hr_hit") != _HIT.size:
-        raise RuntimeError(f"hitray.abi: hr_hit's layout {got} (size {ffi.sizeof('hr_hit')}) "
-                           f"is not the one this module writes {_HIT_OFFSETS}")
+    for name, fields, offsets, packed in (("hr_hit", _HIT_FIELDS, _HIT_OFFSETS, _HIT),
+                                          ("hr_hit_args", _ARGS_FIELDS, _ARGS_OFFSETS, _ARGS)):
+        got = tuple(ffi.offsetof(name, f) for f in fields)
+        if got != offsets or ffi.sizeof(name) != packed.size or ffi.sizeof("void *") != 8:
+            raise RuntimeError(f"hitray.abi: {name}'s layout {got} (size {ffi.sizeof(name)}) "
+                               f"is not the one this module reads and writes {offsets}")
 
 
 def _check_bounds(value, label):
@@ -157,6 +163,9 @@ def _make_callbacks(reg, ffi, lib):
     rel = reg.relative_error
     surfaces = reg.surface_count
     pack_into = _HIT.pack_into
+    unpack_args = _ARGS.unpack_from
+    memmove = ffi.memmove
+    instances = reg.live
     hit_size = _HIT.size
     isfinite = math.isfinite
     cls = reg.cls
@@ -197,10 +206,13 @@ def _make_callbacks(reg, ffi, lib):
             hit = getattr(obj, "hit", None)
             if not callable(hit):
                 raise ShapeError(f"{label} has no hit(origin, direction, tmin, tmax) method")
-            handle = new_handle(_Instance(obj, hit, box, f"shape '{reg.name}': {reg.label}"))
+            inst = _Instance(obj, hit, box, f"shape '{reg.name}': {reg.label}")
+            # A handle is a unique address the host keeps for us; the hit
+            # callback finds the instance by it.
+            inst.handle = new_handle(inst)
             with reg.live_lock:
-                reg.live[int(cast("uintptr_t", handle))] = handle
-            out_shape[0] = handle
+                reg.live[int(cast("uintptr_t", inst.handle))] = inst
+            out_shape[0] = inst.handle
             return hr_ok
         except BaseException as e:
             error = fail(f"{reg.label}(**params)", e)
@@ -216,7 +228,7 @@ def _make_callbacks(reg, ffi, lib):
 
     def bounds(shape, out):
         try:
-            box = from_handle(shape).bounds
+            box = instances[int(cast("uintptr_t", shape))].bounds
         except BaseException as e:  # not ours: a host bug; say unbounded, never crash
             fail(f"{reg.name}.bounds", e)
             box = (-math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf)
@@ -224,26 +236,18 @@ def _make_callbacks(reg, ffi, lib):
 
     def hit(args):
         try:
-            inst = from_handle(args.shape)
-            ray = args.ray
-            o, d = ray.origin, ray.dir
-            ox, oy, oz, dx, dy, dz = o.x, o.y, o.z, d.x, d.y, d.z
-            tmin, tmax = args.tmin, args.tmax
+            shape, ox, oy, oz, dx, dy, dz, tmin, tmax, _, _ = unpack_args(buffer(args))
+            inst = instances[shape]
             try:
                 hits = inst.hit((ox, oy, oz), (dx, dy, dz), tmin, tmax)
             except BaseException as e:
                 raise ShapeError(f"{inst.label}.hit raised {_describe(e)}") from e
             if not hits:
                 return hr_ok
-            out = args.out
-            base = out.count
             n = len(hits)
-            if out.capacity - base < n:
-                if reg.host.reserve(args.call, out, base + n) != hr_ok:
-                    raise ShapeError(f"{inst.label}: out of memory for {n} hits")
             scale = rel * (max(abs(ox), abs(oy), abs(oz)))
             dmax = max(abs(dx), abs(dy), abs(dz))
-            view = buffer(out.hits + base, n * hit_size)
+            packed = bytearray(n * hit_size)
             previous = tmin
             for i, h in enumerate(hits):
                 try:
@@ -275,9 +279,15 @@ def _make_callbacks(reg, ffi, lib):
                 if not (isfinite(px) and isfinite(py) and isfinite(pz) and isfinite(error)):
                     raise ShapeError(f"{inst.label}.hit: hit {i} at t={t!r} is beyond "
                                      "double's range")
-                pack_into(view, i * hit_size, t, px, py, pz, nx, ny, nz, error,
+                pack_into(packed, i * hit_size, t, px, py, pz, nx, ny, nz, error,
                           surface, 1 if entering else 0, 0)
                 previous = t
+            out = args.out
+            base = out.count
+            if out.capacity - base < n:
+                if reg.host.reserve(args.call, out, base + n) != hr_ok:
+                    raise ShapeError(f"{inst.label}: out of memory for {n} hits")
+            memmove(out.hits + base, packed, n * hit_size)
             out.count = base + n
             return hr_ok
         except BaseException as e:
