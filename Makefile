@@ -5,6 +5,7 @@ PREFIX ?= /usr/local
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
+PYTHON_BUILD ?= build-python
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
@@ -27,7 +28,7 @@ demo: build
 
 # Every test: the C suite (ctest), the same suite under AddressSanitizer and
 # UndefinedBehaviorSanitizer and again under ThreadSanitizer, and the Python
-# tests of the command line.
+# tests (the command line, and the package installed into .venv).
 test: test-c test-asan test-tsan test-python
 
 test-c: build
@@ -48,11 +49,16 @@ test-tsan: deps $(TSAN_BUILD)/build.ninja
 	cmake --build $(TSAN_BUILD) -j $(JOBS)
 	TSAN_OPTIONS=halt_on_error=1 ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
 
+# The package is (re)installed into .venv as a user installs it, from
+# bindings/python; its CMake build directory is kept in $(PYTHON_BUILD), so
+# an install with nothing changed compiles nothing.
 test-python: build
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q tests/python
+	.venv/bin/python -m pip install -q --no-build-isolation \
+	    -C build-dir=$(abspath $(PYTHON_BUILD)) ./bindings/python
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs tests/python
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(PYTHON_BUILD) out

@@ -25,8 +25,16 @@ if [ ! -x "$venv/bin/python" ]; then
     echo "bootstrap: creating the Python virtual environment in $venv"
     python3 -m venv "$venv"
 fi
-if [ ! -f "$stamp" ] || [ scripts/requirements-test.txt -nt "$stamp" ]; then
+# Every scripts/requirements-*.txt is installed; a newer file than the stamp
+# triggers the top-up.
+stale=""
+for req in scripts/requirements-*.txt; do
+    if [ ! -f "$stamp" ] || [ "$req" -nt "$stamp" ]; then stale=1; fi
+done
+if [ -n "$stale" ]; then
     "$venv/bin/python" -m pip install -q --upgrade pip
-    "$venv/bin/python" -m pip install -q -r scripts/requirements-test.txt
+    for req in scripts/requirements-*.txt; do
+        "$venv/bin/python" -m pip install -q -r "$req"
+    done
     touch "$stamp"
 fi

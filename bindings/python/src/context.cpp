@@ -1,0 +1,117 @@
+// The package's one hr_context, and what Python asks of it: the library's
+// version and path, modules and shape directories, and the shape classes
+// known now (looked up through the context on every call, so a class
+// registered later, from hitray.abi say, is seen at once).
+#include "core.h"
+
+#include <dlfcn.h>
+
+#include <climits>
+#include <cstdlib>
+
+namespace hitray_py {
+
+hr_context *context()
+{
+    // A function-local static is created once, thread-safely. Never
+    // destroyed: see core.h.
+    static hr_context *const ctx = [] {
+        hr_context *c = nullptr;
+        return hr_context_create(&c) == HR_OK ? c : nullptr;
+    }();
+    return ctx;
+}
+
+namespace {
+
+std::string library_path()
+{
+    Dl_info info{};
+    if (!dladdr(reinterpret_cast<void *>(&hr_context_create), &info) || !info.dli_fname) return "";
+    char *real = realpath(info.dli_fname, nullptr);
+    std::string path = real ? real : info.dli_fname;
+    std::free(real);
+    return path;
+}
+
+py::dict param_spec_dict(const hr_param_spec &p)
+{
+    py::dict d;
+    d["name"] = text(p.name);
+    d["type"] = p.type == HR_PARAM_NUMBER ? "number" : p.type == HR_PARAM_STRING ? "string" : "object";
+    d["required"] = p.required != 0;
+    d["default"] = p.default_number;
+    d["min"] = p.min;
+    d["max"] = p.max;
+    d["help"] = text(p.help ? p.help : "");
+    return d;
+}
+
+py::dict class_dict(const hr_shape_class &cls, const char *module_path)
+{
+    py::dict d;
+    d["name"] = text(cls.name);
+    d["help"] = text(cls.help ? cls.help : "");
+    d["module"] = path_text(module_path ? module_path : "");
+    d["closed"] = (cls.flags & HR_SHAPE_CLOSED) != 0;
+    d["composite"] = (cls.flags & HR_SHAPE_COMPOSITE) != 0;
+    d["surface_count"] = cls.surface_count;
+    py::list params;
+    for (int32_t i = 0; i < cls.param_count; i++) params.append(param_spec_dict(cls.params[i]));
+    d["params"] = params;
+    return d;
+}
+
+// Every module on the search path (scanned now), loaded or refused.
+py::list modules()
+{
+    py::list out;
+    int32_t count = hr_context_module_count(context());
+    for (int32_t i = 0; i < count; i++) {
+        hr_module_entry e{};
+        e.struct_size = sizeof e;
+        check(hr_context_module(context(), i, &e));
+        py::dict d;
+        d["path"] = path_text(e.path);
+        d["loaded"] = e.loaded != 0;
+        d["name"] = text(e.name);
+        d["description"] = text(e.description);
+        d["error"] = text(e.error);
+        py::list classes;
+        for (int32_t j = 0; j < e.class_count; j++) classes.append(text(e.classes[j]->name));
+        d["classes"] = classes;
+        out.append(d);
+    }
+    return out;
+}
+
+py::dict find_shape_class(const std::string &name)
+{
+    const hr_shape_class *cls = nullptr;
+    const char *module_path = nullptr;
+    check(hr_context_find_shape_class(context(), name.c_str(), &cls, &module_path));
+    return class_dict(*cls, module_path);
+}
+
+}  // namespace
+
+void bind_context(py::module_ &m)
+{
+    m.def("_context_address", [] { return reinterpret_cast<std::uintptr_t>(context()); },
+          "The package's hr_context* as an integer (for hitray.abi).");
+    m.def("_library_path", &library_path, "Path of the libhitray this process loaded.");
+    m.def("version", [] {
+        int32_t major = 0, minor = 0, patch = 0;
+        hr_version(&major, &minor, &patch);
+        return py::make_tuple(major, minor, patch);
+    }, "(major, minor, patch) of the libhitray loaded.");
+    m.def("load_module", [](const py::bytes &path) { check(hr_context_load_module(context(), std::string(path).c_str())); },
+          py::arg("path"), "Load one shape module file now (its classes win over searched ones).");
+    m.def("add_shape_dir", [](const py::bytes &dir) { check(hr_context_add_shape_dir(context(), std::string(dir).c_str())); },
+          py::arg("directory"), "Search a directory for shape modules before the default places.");
+    m.def("modules", &modules, "Every module on the search path, loaded or refused.");
+    m.def("find_shape_class", &find_shape_class, py::arg("name"),
+          "The shape class that provides `name`, loading modules if needed.");
+}
+
+}  // namespace hitray_py

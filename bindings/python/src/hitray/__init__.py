@@ -1,0 +1,50 @@
+"""hitray: a ray tracer after F.S. Hill's *Computer Graphics Using OpenGL*,
+chapter 12, from Python.
+
+    import hitray
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere().translate(0, 1, 0), diffuse=(1, 0, 0), specular=(0.5, 0.5, 0.5),
+              specularExponent=20)
+    scene.add(hitray.Plane().rotate(-90, 1, 0, 0), diffuse=(0.6, 0.6, 0.6))
+    scene.light((5, 8, 6), (1, 1, 1))
+    image = hitray.render(scene, hitray.Camera((0, 2, 8), (0, 1, 0), (0, 1, 0), 40),
+                          size=(320, 240))
+    image.save("out.png")
+
+Scenes come from code (Scene, the shape classes, Camera) or from Hill's SDL
+(load_sdl, parse_sdl). Hill's queries are Scene.first_hit (getFirstHit),
+Scene.hits (the Intersection of every hit) and Scene.trace (many rays as
+numpy arrays). Every failure of the library raises a hitray.Error subclass.
+The library, its shape modules and the extension all live inside this
+package; libhitray finds the modules next to itself.
+"""
+
+from __future__ import annotations
+
+from . import _core
+from .camera import Camera
+from .errors import (ArgumentError, Error, FileError, ModuleError, NumericError, ParameterError,
+                     SDLError, StateError, UnsupportedError)
+from .image import Image, RenderStats
+from .modules import (ModuleInfo, ShapeClass, ShapeParam, add_shape_dir, load_module, modules,
+                      shape_classes)
+from .queries import HitInfo, Light, TraceResult
+from .render import render
+from .scene import Scene, SceneObject
+from .sdl import load_sdl, parse_sdl
+from .shapes import (Cone, Cube, Cylinder, Difference, Intersection, Mesh, Plane, Shape, Sphere,
+                     Square, TaperedCylinder, Torus, Union)
+
+__version__ = "%d.%d.%d" % _core.version()
+
+__all__ = [
+    "Scene", "SceneObject", "Camera", "render", "Image", "RenderStats",
+    "load_sdl", "parse_sdl",
+    "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
+    "Mesh", "Union", "Intersection", "Difference",
+    "HitInfo", "TraceResult", "Light",
+    "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
+    "ModuleInfo",
+    "Error", "ArgumentError", "FileError", "ModuleError", "ParameterError", "SDLError",
+    "StateError", "UnsupportedError", "NumericError",
+]

@@ -1,0 +1,69 @@
+"""Argument checks shared by the package: three numbers, a path, a size.
+
+They turn what a user may pass (a tuple, a list, a numpy array) into plain
+Python values and name the argument in the message when they cannot.
+"""
+
+from __future__ import annotations
+
+import numbers
+import os
+from typing import Any, Tuple, Union
+
+Vec3 = Tuple[float, float, float]
+PathLike = Union[str, "os.PathLike[str]", bytes]
+
+
+def vec3(value: Any, what: str) -> Vec3:
+    """Three numbers as a tuple of floats, or TypeError naming `what`."""
+    try:
+        items = list(value)
+    except TypeError:
+        raise TypeError(f"{what}: expected three numbers, got {type(value).__name__}") from None
+    if len(items) != 3 or not all(is_number(v) for v in items):
+        raise TypeError(f"{what}: expected three numbers, got {value!r}")
+    return (float(items[0]), float(items[1]), float(items[2]))
+
+
+def is_number(value: Any) -> bool:
+    """A real number that is not a bool (True is not a colour component)."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def number(value: Any, what: str) -> float:
+    if not is_number(value):
+        raise TypeError(f"{what}: expected a number, got {value!r}")
+    return float(value)
+
+
+def integer(value: Any, what: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{what}: expected an integer, got {value!r}")
+    return int(value)
+
+
+def path_bytes(path: PathLike, what: str = "path") -> bytes:
+    """A path for the C library: bytes as the file system spells them."""
+    try:
+        raw = os.fsencode(path)
+    except TypeError:
+        raise TypeError(f"{what}: expected a path (str, bytes or os.PathLike), got {path!r}") from None
+    if b"\0" in raw:
+        raise ValueError(f"{what}: embedded null byte")
+    if not raw:
+        raise ValueError(f"{what}: empty path")
+    return raw
+
+
+def size(value: Any, what: str = "size") -> Tuple[int, int]:
+    """(width, height), both whole and at least 1."""
+    try:
+        w, h = value
+    except (TypeError, ValueError):
+        raise TypeError(f"{what}: expected (width, height), got {value!r}") from None
+    w, h = integer(w, f"{what} width"), integer(h, f"{what} height")
+    if w < 1 or h < 1:
+        raise ValueError(f"{what}: width and height must be at least 1, got {w}x{h}")
+    if w > 2**31 - 1 or h > 2**31 - 1:
+        raise ValueError(f"{what}: {w}x{h} is too large")
+    return (w, h)

@@ -1,0 +1,134 @@
+"""The exceptions hitray raises.
+
+Every failure of the library raises a subclass of :class:`Error` that carries
+the library's own message (which names what was wrong: the file, line and
+column of a scene file, the path of a shape module, the name of a shape
+parameter). Errors in Python arguments (a wrong type, a colour that is not
+three numbers) raise the usual ``TypeError`` or ``ValueError``.
+"""
+
+from __future__ import annotations
+
+from typing import Optional
+
+__all__ = [
+    "Error",
+    "ArgumentError",
+    "FileError",
+    "ModuleError",
+    "ParameterError",
+    "SDLError",
+    "StateError",
+    "UnsupportedError",
+    "NumericError",
+]
+
+
+class Error(Exception):
+    """A failure reported by libhitray.
+
+    Attributes:
+        message: the library's message.
+        status: the library's status code (``HR_ERROR_*`` in the C headers).
+    """
+
+    def __init__(self, message: str, status: int = 0) -> None:
+        super().__init__(message)
+        self.message = message
+        self.status = status
+
+
+class ArgumentError(Error, ValueError):
+    """A value the library refused: a material or light colour out of range,
+    a degenerate camera, a ray with a zero direction, an image size of 0."""
+
+
+class FileError(Error, OSError):
+    """A file could not be read or written (a scene file, an image)."""
+
+    def __init__(self, message: str, status: int = 3, filename: Optional[str] = None) -> None:
+        Error.__init__(self, message, status)
+        self.filename = filename
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class ModuleError(Error):
+    """No shape module provides a class, or a module was refused (the message
+    names the module's path and why)."""
+
+
+class ParameterError(Error, ValueError):
+    """A shape refused its parameters (the message names the parameter)."""
+
+
+class SDLError(Error):
+    """An error in a scene file.
+
+    Attributes:
+        filename: the file (or the name given to :func:`hitray.parse_sdl`).
+        line: 1-based line, 0 if unknown.
+        column: 1-based column, 0 if unknown.
+    """
+
+    def __init__(self, message: str, status: int = 6, filename: Optional[str] = None,
+                 line: int = 0, column: int = 0) -> None:
+        super().__init__(message, status)
+        self.filename = filename
+        self.line = line
+        self.column = column
+
+
+class StateError(Error):
+    """A call in the wrong state (for instance querying an uncommitted scene
+    through the low-level core)."""
+
+
+class UnsupportedError(Error):
+    """A feature this build does not have (SDL's ``buckyball``, ``diamond`` and
+    ``teapot`` need data files the original loaded)."""
+
+
+class NumericError(Error, ValueError):
+    """A degenerate transform (a zero scale factor, a zero rotation axis, a
+    singular matrix) or non-finite input."""
+
+
+# Status codes of include/hitray/common.h.
+_INVALID_ARGUMENT = 1
+_OUT_OF_MEMORY = 2
+_IO = 3
+_MODULE = 4
+_PARAMETER = 5
+_SDL = 6
+_STATE = 7
+_CANCELLED = 8
+_UNSUPPORTED = 9
+_NUMERIC = 10
+
+_BY_STATUS = {
+    _INVALID_ARGUMENT: ArgumentError,
+    _MODULE: ModuleError,
+    _PARAMETER: ParameterError,
+    _STATE: StateError,
+    _UNSUPPORTED: UnsupportedError,
+    _NUMERIC: NumericError,
+}
+
+
+def _from_status(status: int, message: str, filename: Optional[str], line: int,
+                 column: int) -> Error:
+    """The exception for a status of the library (called by hitray._core).
+
+    An error located in a scene file (a line is known) is an SDLError whatever
+    its status, so that every error of a scene file can be caught as one and
+    carries its place; the status tells what kind it was.
+    """
+    if status == _OUT_OF_MEMORY:
+        return Error(message, status)  # not MemoryError: Python's own is for its heap
+    if status == _SDL or (line > 0 and filename is not None):
+        return SDLError(message, status, filename, line, column)
+    if status == _IO:
+        return FileError(message, status, filename)
+    return _BY_STATUS.get(status, Error)(message, status)

@@ -1,0 +1,99 @@
+"""hitray.render: a scene through a camera into an Image."""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Optional, Tuple, Union
+
+from . import _convert, _core
+from .camera import Camera
+from .image import Image
+from .scene import Scene
+
+__all__ = ["render"]
+
+Progress = Union[bool, Callable[[float], Any]]
+
+
+class _Bar:
+    """A tqdm bar that follows the fraction of tiles done."""
+
+    def __init__(self) -> None:
+        from tqdm.auto import tqdm
+
+        self._bar = tqdm(total=100, unit="%", desc="hitray", leave=False,
+                         bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}")
+        self._shown = 0.0
+
+    def __call__(self, fraction: float) -> None:
+        target = 100.0 * fraction
+        if target > self._shown:
+            self._bar.update(target - self._shown)
+            self._shown = target
+
+    def close(self) -> None:
+        self._bar.close()
+
+
+def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480),
+           spp: int = 1, threads: Optional[int] = None, depth: Optional[int] = None,
+           progress: Progress = True, *, block_size: int = 1, all_effects: bool = False) -> Image:
+    """Render `scene` through `camera` into a new :class:`Image` of `size`
+    (width, height).
+
+    Args:
+        camera: None frames every bounded object (``scene.frame_camera(size)``).
+        spp: samples per pixel; 1 is the pixel centre, more a fixed
+            stratified pattern.
+        threads: render threads (None: every core). The image is the same
+            bit for bit whatever the count.
+        depth: bounces (None: the scene's max_recursion_depth).
+        progress: True shows a tqdm bar; a callable is called with the
+            fraction done (0..1) from the calling thread; False shows nothing.
+        block_size: Hill's blocksize: one ray per block of block_size² pixels.
+        all_effects: run every effect's code path even where the scene needs
+            none (the same image, slower; for measuring what the analysis saves).
+
+    The GIL is released while the render runs, so other Python threads run
+    and several renders can run at once. Ctrl-C (KeyboardInterrupt), or an
+    exception from a progress callable, cancels the render cleanly and is
+    raised. The render statistics are in ``image.stats``.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"render: expected a hitray.Scene, got {type(scene).__name__}")
+    w, h = _convert.size(size)
+    spp = _convert.integer(spp, "spp")
+    if spp < 1:
+        raise ValueError(f"render: spp must be at least 1, not {spp}")
+    nthreads = 0 if threads is None else _convert.integer(threads, "threads")
+    if threads is not None and nthreads < 1:
+        raise ValueError(f"render: threads must be at least 1 (None: every core), not {nthreads}")
+    d = -1 if depth is None else _convert.integer(depth, "depth")
+    if depth is not None and d < 0:
+        raise ValueError(f"render: depth must be at least 0, not {d}")
+    block = _convert.integer(block_size, "block_size")
+    if block < 1:
+        raise ValueError(f"render: block_size must be at least 1, not {block}")
+    if camera is None:
+        camera = scene.frame_camera((w, h))
+    elif not isinstance(camera, Camera):
+        raise TypeError(f"render: camera must be a hitray.Camera or None, not {type(camera).__name__}")
+
+    core_scene = scene._committed()
+    bar: Optional[_Bar] = None
+    callback: Optional[Callable[[float], Any]]
+    if progress is True:
+        bar = _Bar()
+        callback = bar
+    elif progress is False or progress is None:
+        callback = None
+    elif callable(progress):
+        callback = progress
+    else:
+        raise TypeError("render: progress must be True, False or a callable taking the fraction done")
+    try:
+        core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, block,
+                                  bool(all_effects), callback)
+    finally:
+        if bar is not None:
+            bar.close()
+    return Image._wrap(core_image)

@@ -1,0 +1,64 @@
+"""Reading Hill's SDL: hitray.load_sdl(path) and hitray.parse_sdl(text)."""
+
+from __future__ import annotations
+
+import os
+from typing import Optional, Tuple
+
+from . import _convert, _core
+from .camera import Camera
+from .errors import SDLError
+from .scene import Scene, _SDLSource
+
+__all__ = ["load_sdl", "parse_sdl"]
+
+
+def _result(source: _SDLSource) -> Tuple[Scene, Optional[Camera]]:
+    core, cam = source.load()
+    return Scene._from_sdl(source, core), None if cam is None else Camera._from_core(cam)
+
+
+def load_sdl(path: _convert.PathLike) -> Tuple[Scene, Optional[Camera]]:
+    """Read a scene file: returns (scene, camera), camera None if the file
+    sets none (render then frames the scene). Relative file names in it (a
+    mesh's) are read from the file's directory. Shape classes a module adds,
+    or hitray.abi registers, are SDL keywords too.
+
+    Raises SDLError with ``filename``, ``line`` and ``column`` for an error
+    in the file (its status says what kind), FileError if it cannot be read.
+    The scene can be changed and rendered again: it is rebuilt from the text
+    read now, so later changes to the file do not reach it.
+    """
+    raw = _convert.path_bytes(path)
+    try:
+        with open(raw, "rb") as f:
+            text: Optional[bytes] = f.read()
+    except OSError:
+        text = None  # the library reads it and says why it cannot
+    if text is not None and b"\0" in text:
+        text = None  # the library's reader names the NUL byte's place
+    base_dir = os.path.abspath(os.path.dirname(raw) or b".")
+    return _result(_SDLSource(text, raw, base_dir, raw))
+
+
+def parse_sdl(text: str, name: str = "<string>",
+              base_dir: Optional[_convert.PathLike] = None) -> Tuple[Scene, Optional[Camera]]:
+    """Read a scene from SDL text, as :func:`load_sdl` does a file. `name`
+    stands for the file in messages; `base_dir` resolves relative file names
+    (default: the current directory)."""
+    if isinstance(text, bytes):
+        data = text
+    elif isinstance(text, str):
+        data = text.encode("utf-8", "surrogateescape")
+    else:
+        raise TypeError(f"parse_sdl: expected str, got {type(text).__name__}")
+    name_bytes = os.fsencode(name)
+    if b"\0" in data:
+        at = data.index(b"\0")
+        line = data.count(b"\n", 0, at) + 1
+        column = at - (data.rfind(b"\n", 0, at) + 1) + 1
+        raise SDLError(f"{name}:{line}:{column}: unexpected NUL byte (is this a text file?)",
+                       6, name, line, column)
+    base = os.path.abspath(_convert.path_bytes(base_dir, "base_dir") if base_dir is not None
+                           else os.fsencode(os.getcwd()))
+    return _result(_SDLSource(data, name_bytes, base, None))

@@ -1,0 +1,325 @@
+"""Shapes: a class name, its parameters, a transform and optional material.
+
+A :class:`Shape` is a value: every method returns a new shape and leaves the
+one it was called on alone, so one shape may be added many times or used in
+several booleans. :meth:`Scene.add` makes new objects in the scene from the
+shape each time it is called (a boolean's operands too), so nothing is shared
+between two additions: using a shape twice is adding a copy twice.
+
+Transforms chain in Hill's (and OpenGL's) order: each call post-multiplies,
+so ``Sphere().translate(2, 4, 9).scale(1, 4, 4)`` has M = T·S, exactly as the
+SDL ``translate 2 4 9 scale 1 4 4 sphere`` does (the step written last acts on
+the object first), and the matrices come from the same library calls, bit
+for bit.
+"""
+
+from __future__ import annotations
+
+import os
+import typing
+from typing import Any, Dict, Mapping, Optional, Tuple
+
+import numpy as np
+
+from . import _convert, _core, material as _material
+
+ParamValue = typing.Union[float, int, str, "os.PathLike[str]", bytes, "Shape"]
+
+__all__ = [
+    "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone",
+    "Torus", "Mesh", "Union", "Intersection", "Difference",
+]
+
+
+def _format_number(x: float) -> str:
+    return repr(int(x)) if float(x).is_integer() and abs(x) < 1e15 else repr(float(x))
+
+
+class Shape:
+    """Any shape class a module provides, by name: ``Shape("disk", radius=2)``.
+
+    Parameters are the class's own (see :func:`hitray.shape_classes`): a
+    number for a number parameter, a string or path for a string parameter
+    (a mesh's ``file``), a Shape for an object parameter (a boolean's ``a``
+    and ``b``). The class and parameters are checked when the shape is added
+    to a scene, by the module itself, through the package's context (so a
+    class registered later with :mod:`hitray.abi` works here too).
+    """
+
+    __slots__ = ("_name", "_params", "_transform", "_material", "_steps")
+
+    def __init__(self, name: str, **params: ParamValue) -> None:
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"shape name: expected a non-empty string, got {name!r}")
+        checked: Dict[str, ParamValue] = {}
+        for key, value in params.items():
+            if value is None:
+                continue  # None: the class's default
+            if isinstance(value, Shape) or _convert.is_number(value):
+                checked[key] = value
+            elif isinstance(value, (str, bytes, os.PathLike)):
+                checked[key] = value
+            else:
+                raise TypeError(f"shape '{name}': parameter '{key}' must be a number, a string or "
+                                f"a Shape, not {type(value).__name__}")
+        self._name = name
+        self._params = checked
+        self._transform = _core.Transform()
+        self._material: Dict[str, Any] = {}
+        self._steps: Tuple[str, ...] = ()
+
+    # --- what the shape is --------------------------------------------------
+    @property
+    def name(self) -> str:
+        """The shape class name (as in SDL and the C API)."""
+        return self._name
+
+    @property
+    def params(self) -> Mapping[str, ParamValue]:
+        """The parameters given (a copy); omitted ones take the class's defaults."""
+        return dict(self._params)
+
+    @property
+    def material(self) -> Mapping[str, Any]:
+        """Material set on this shape with :meth:`with_material` (snake_case names)."""
+        return dict(self._material)
+
+    @property
+    def matrix(self) -> np.ndarray:
+        """The object-to-world matrix M (4x4, acting on column vectors)."""
+        return np.array(self._transform.matrix, dtype=np.float64).reshape(4, 4)
+
+    @property
+    def inverse(self) -> np.ndarray:
+        """M⁻¹, built from the exact inverse of each step (never by inverting M)."""
+        return np.array(self._transform.inverse, dtype=np.float64).reshape(4, 4)
+
+    # --- new shapes from this one -------------------------------------------
+    def _derive(self, step: str) -> "Shape":
+        out = object.__new__(type(self))
+        out._name = self._name
+        out._params = self._params
+        out._transform = self._transform.copy()
+        out._material = self._material
+        out._steps = self._steps + (step,)
+        return out
+
+    def translate(self, dx: float, dy: float, dz: float) -> "Shape":
+        """This shape moved by (dx, dy, dz): M ← M·T."""
+        d = _convert.vec3((dx, dy, dz), "translate")
+        out = self._derive("translate(%s)" % ", ".join(map(_format_number, d)))
+        out._transform.translate(*d)
+        return out
+
+    def scale(self, sx: float, sy: Optional[float] = None, sz: Optional[float] = None) -> "Shape":
+        """This shape scaled: M ← M·S. One factor scales uniformly. A zero
+        factor raises NumericError (the object would have no inverse)."""
+        if sy is None and sz is None:
+            sy = sz = sx
+        if sy is None or sz is None:
+            raise TypeError("scale: give one factor or three")
+        s = _convert.vec3((sx, sy, sz), "scale")
+        out = self._derive("scale(%s)" % ", ".join(map(_format_number, s)))
+        out._transform.scale(*s)
+        return out
+
+    def rotate(self, angle: float, ux: float, uy: float, uz: float) -> "Shape":
+        """This shape rotated by `angle` degrees, right-handed, about the axis
+        (ux, uy, uz): M ← M·R. A zero axis raises NumericError."""
+        a = _convert.number(angle, "rotate angle")
+        u = _convert.vec3((ux, uy, uz), "rotate axis")
+        out = self._derive("rotate(%s)" % ", ".join(map(_format_number, (a, *u))))
+        out._transform.rotate(a, *u)
+        return out
+
+    def transform(self, matrix: Any) -> "Shape":
+        """This shape under an arbitrary affine 4x4 matrix: M ← M·A (A's
+        inverse is computed; a singular or non-affine A raises NumericError)."""
+        a = np.asarray(matrix, dtype=np.float64)
+        if a.shape != (4, 4):
+            raise ValueError(f"transform: expected a 4x4 matrix, got shape {a.shape}")
+        step = _core.Transform.from_matrix([float(v) for v in a.reshape(16)])
+        out = self._derive("transform(...)")
+        out._transform.compose(step)
+        return out
+
+    def with_material(self, **material: Any) -> "Shape":
+        """This shape with its own material (SDL's keywords, as for
+        :meth:`Scene.add`). It wins over the material given to ``add``; the
+        leaves of a boolean keep their own, as in SDL."""
+        fields = _material.normalize(material)
+        out = self._derive("with_material(%s)" % ", ".join(f"{k}={v!r}" for k, v in material.items()))
+        out._material = {**self._material, **fields}
+        return out
+
+    # --- booleans (the csg module's classes) ---------------------------------
+    def __or__(self, other: "Shape") -> "Shape":
+        """``a | b``: the union of a and b."""
+        return Union(self, other) if isinstance(other, Shape) else NotImplemented
+
+    def __and__(self, other: "Shape") -> "Shape":
+        """``a & b``: the intersection of a and b."""
+        return Intersection(self, other) if isinstance(other, Shape) else NotImplemented
+
+    def __sub__(self, other: "Shape") -> "Shape":
+        """``a - b``: a with b taken away."""
+        return Difference(self, other) if isinstance(other, Shape) else NotImplemented
+
+    def _repr_head(self) -> str:
+        args = [repr(self._name)] + [f"{k}={v!r}" for k, v in self._params.items()]
+        return f"Shape({', '.join(args)})"
+
+    def __repr__(self) -> str:
+        return ".".join((self._repr_head(),) + self._steps)
+
+
+class Sphere(Shape):
+    """Hill's generic sphere: radius 1 at the origin."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("sphere")
+
+    def _repr_head(self) -> str:
+        return "Sphere()"
+
+
+class Cube(Shape):
+    """Hill's generic cube: corners at (±1, ±1, ±1)."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("cube")
+
+    def _repr_head(self) -> str:
+        return "Cube()"
+
+
+class Square(Shape):
+    """The square z = 0, |x| ≤ 1, |y| ≤ 1."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("square")
+
+    def _repr_head(self) -> str:
+        return "Square()"
+
+
+class Plane(Shape):
+    """The whole plane z = 0."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("plane")
+
+    def _repr_head(self) -> str:
+        return "Plane()"
+
+
+class TaperedCylinder(Shape):
+    """Axis +z from z = 0 to 1, radius 1 at the base and `s` at the cap
+    (base and cap disks belong to the solid)."""
+
+    __slots__ = ()
+
+    def __init__(self, s: Optional[float] = None) -> None:
+        super().__init__("taperedCylinder", s=s)
+
+    def _repr_head(self) -> str:
+        s = self._params.get("s")
+        return "TaperedCylinder()" if s is None else f"TaperedCylinder(s={s!r})"
+
+
+class Cylinder(Shape):
+    """taperedCylinder with s = 1."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("cylinder")
+
+    def _repr_head(self) -> str:
+        return "Cylinder()"
+
+
+class Cone(Shape):
+    """taperedCylinder with s = 0 (apex at (0, 0, 1))."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("cone")
+
+    def _repr_head(self) -> str:
+        return "Cone()"
+
+
+class Torus(Shape):
+    """A ring of radius 1 about the z axis with tube radius `tube` (the
+    module's default, Hill's 0.2, if omitted); `solver` picks the module's
+    quartic root solver (see ``hitray.shape_classes()["torus"]``)."""
+
+    __slots__ = ()
+
+    def __init__(self, tube: Optional[float] = None,
+                 solver: Optional[typing.Union[float, str]] = None) -> None:
+        super().__init__("torus", tube=tube, solver=solver)
+
+    def _repr_head(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self._params.items())
+        return f"Torus({args})"
+
+
+class Mesh(Shape):
+    """A mesh in Hill's chapter-6 format, read from `file` when added."""
+
+    __slots__ = ()
+
+    def __init__(self, file: typing.Union[str, "os.PathLike[str]", bytes]) -> None:
+        super().__init__("mesh", file=file)
+
+    def _repr_head(self) -> str:
+        return f"Mesh({self._params['file']!r})"
+
+
+class _Boolean(Shape):
+    __slots__ = ()
+    _class = ""
+    _symbol = ""
+
+    def __init__(self, a: Shape, b: Shape) -> None:
+        if not isinstance(a, Shape) or not isinstance(b, Shape):
+            raise TypeError(f"{type(self).__name__}: both operands must be Shapes")
+        super().__init__(self._class, a=a, b=b)
+
+    def _repr_head(self) -> str:
+        return f"({self._params['a']!r} {self._symbol} {self._params['b']!r})"
+
+
+class Union(_Boolean):
+    """``a | b``: points in a or in b (the csg module's ``union``)."""
+
+    __slots__ = ()
+    _class = "union"
+    _symbol = "|"
+
+
+class Intersection(_Boolean):
+    """``a & b``: points in both a and b (the csg module's ``intersection``)."""
+
+    __slots__ = ()
+    _class = "intersection"
+    _symbol = "&"
+
+
+class Difference(_Boolean):
+    """``a - b``: points in a and not in b (the csg module's ``difference``)."""
+
+    __slots__ = ()
+    _class = "difference"
+    _symbol = "-"
