@@ -72,6 +72,14 @@ class PySphere:
         return hits
 
 
+class PyNothing(PySphere):
+    """the sphere's bounds, but hit returns [] at once: what the layer alone costs"""
+
+    def hit(self, origin, direction, tmin, tmax):
+        PySphere.calls += 1
+        return []
+
+
 SCENE = "camera 0 0 4  0 0 0  0 1 0  30\n{shape}\n"
 
 
@@ -81,7 +89,7 @@ def main():
     ap.add_argument("--size", type=int, default=200, help="image side in pixels (default 200)")
     ap.add_argument("--rays", type=int, default=20000, help="rays for the query path")
     ap.add_argument("--repeat", type=int, default=5, help="runs per timing; the best is kept")
-    ap.add_argument("--render-once", choices=("sphere", "pysphere"),
+    ap.add_argument("--render-once", choices=("sphere", "pysphere", "pynothing"),
                     help="only render once with this shape on 1 thread (for counting "
                          "instructions, see bench/python_shape_instructions.sh)")
     args = ap.parse_args()
@@ -90,8 +98,9 @@ def main():
 
     with abi.Context() as ctx:
         abi.register_shape("pysphere", PySphere, context=ctx)
+        abi.register_shape("pynothing", PyNothing, context=ctx)
         scenes = {}
-        for name in ("sphere", "pysphere"):
+        for name in ("sphere", "pysphere", "pynothing"):
             r = ffi.new("hr_sdl_result *")
             r.struct_size = ffi.sizeof("hr_sdl_result")
             ctx.check(lib.hr_sdl_load_string(ctx.ptr, SCENE.format(shape=name).encode(),

@@ -20,7 +20,9 @@ small=100 large=200
 rays=$((large * large - small * small))
 c=$(( $(count sphere $large) - $(count sphere $small) ))
 py=$(( $(count pysphere $large) - $(count pysphere $small) ))
+none=$(( $(count pynothing $large) - $(count pynothing $small) ))
 echo "rays: $rays (every one a hit call: the sphere's box fills the view)"
 echo "C sphere:      $((c / rays)) instructions per ray"
 echo "Python sphere: $((py / rays)) instructions per ray"
 echo "Python extra:  $(((py - c) / rays)) instructions per hit call, $((py / c))x the C sphere's ray"
+echo "a Python hit that returns [] at once: $(((none - c) / rays)) extra instructions per hit call"
