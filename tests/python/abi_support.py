@@ -8,6 +8,9 @@ Two modes, chosen once:
 - build tree: no package, so hitray.abi is imported from
   bindings/python/src and loads lib/libhitray.so.0 of the build tree named by
   HITRAY_BUILD_DIR (default ./build), the way test_cli.py finds the binary.
+  HITRAY_ABI_MODE=build chooses this mode even with the package installed
+  (to test the source, or a sanitizer build of the library); run only the
+  test_abi_* files then, as the stand-in package hides the installed one.
 """
 
 import importlib
@@ -23,12 +26,13 @@ BUILD = pathlib.Path(os.environ.get("HITRAY_BUILD_DIR", ROOT / "build"))
 
 
 def _import_abi():
-    try:
-        importlib.import_module("hitray._core")
-    except ImportError:
-        pass
-    else:
-        return importlib.import_module("hitray.abi"), "installed"
+    if os.environ.get("HITRAY_ABI_MODE") != "build":
+        try:
+            importlib.import_module("hitray._core")
+        except ImportError:
+            pass
+        else:
+            return importlib.import_module("hitray.abi"), "installed"
     # The source tree's hitray/__init__.py (if any) needs the extension:
     # stand in for the package with its directory only.
     for name in [n for n in sys.modules if n == "hitray" or n.startswith("hitray.")]:

@@ -155,9 +155,8 @@ def _make_callbacks(reg, ffi, lib):
     hr_ok = 0
     error_module = lib.HR_ERROR_MODULE
     error_parameter = lib.HR_ERROR_PARAMETER
-    error_memory = lib.HR_ERROR_OUT_OF_MEMORY
     NULL = ffi.NULL
-    new_handle, from_handle = ffi.new_handle, ffi.from_handle
+    new_handle = ffi.new_handle
     buffer, cast, string = ffi.buffer, ffi.cast, ffi.string
     specs = reg.specs
     rel = reg.relative_error
@@ -285,8 +284,10 @@ def _make_callbacks(reg, ffi, lib):
             out = args.out
             base = out.count
             if out.capacity - base < n:
-                if reg.host.reserve(args.call, out, base + n) != hr_ok:
-                    raise ShapeError(f"{inst.label}: out of memory for {n} hits")
+                status = reg.host.reserve(args.call, out, base + n)
+                if status != hr_ok:
+                    fail(f"{reg.name}.hit", ShapeError(f"{inst.label}: no room for {n} hits"))
+                    return status
             memmove(out.hits + base, packed, n * hit_size)
             out.count = base + n
             return hr_ok
