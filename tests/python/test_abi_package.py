@@ -5,6 +5,9 @@ hitray.Error with the Python message. Skipped without the package (the
 build-tree mode of abi_support)."""
 
 import os
+import pathlib
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -74,3 +77,22 @@ def test_a_refused_create_names_the_parameter(hitray):
     with pytest.raises(hitray.Error) as e:
         hitray.parse_sdl("pyball -1\n")
     assert "radius must be positive, not -1.0" in str(e.value)
+
+
+def test_objects_left_to_interpreter_exit_are_released_cleanly(tmp_path):
+    # Their destroy callbacks run while the interpreter shuts down.
+    script = tmp_path / "left.py"
+    script.write_text(
+        "import sys\n"
+        f"sys.path.insert(0, {str(pathlib.Path(__file__).parent)!r})\n"
+        "import hitray, hitray.abi\n"
+        "from abi_shapes import Ball\n"
+        "hitray.abi.register_shape('leftball', Ball)\n"
+        "scene, camera = hitray.parse_sdl('camera 0 0 6 0 0 0 0 1 0 40 leftball 1 leftball 2')\n"
+        "hitray.render(scene, camera, size=(8, 6), progress=False)\n"
+        "cycle = [scene]\n"
+        "cycle.append(cycle)\n"
+        "print('rendered')\n")
+    run = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                         timeout=120)
+    assert (run.returncode, run.stdout, run.stderr) == (0, "rendered\n", "")

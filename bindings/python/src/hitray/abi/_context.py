@@ -91,3 +91,20 @@ def resolve(context):
 def keep_alive(keep, *objects):
     with _forever_lock:
         keep.extend(objects)
+    if keep is _forever:
+        for obj in objects:
+            _hold_for_c(obj)
+
+
+def _hold_for_c(obj):
+    """The library keeps pointers into `obj` (its callbacks, its strings) for
+    the rest of the process, references Python's collector cannot see. Give
+    it one it can: otherwise the collection at interpreter exit, which frees
+    unreachable module contents in any order, could free a callback that a
+    scene being freed in the same collection then calls."""
+    try:
+        import ctypes
+
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(obj))
+    except (ImportError, AttributeError):  # not CPython: the list above holds it
+        pass

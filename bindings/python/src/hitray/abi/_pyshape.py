@@ -165,6 +165,9 @@ def _make_callbacks(reg, ffi, lib):
     unpack_args = _ARGS.unpack_from
     memmove = ffi.memmove
     instances = reg.live
+    live_lock = reg.live_lock
+    uintptr = ffi.typeof("uintptr_t")
+    as_int = int
     hit_size = _HIT.size
     isfinite = math.isfinite
     cls = reg.cls
@@ -221,9 +224,13 @@ def _make_callbacks(reg, ffi, lib):
             return error_parameter
 
     def destroy(shape):
-        # No exception can leave: the handle is a key we made.
-        with reg.live_lock:
-            reg.live.pop(int(cast("uintptr_t", shape)), None)
+        # May run while the interpreter exits (a scene freed by the last
+        # collection): only names bound here, and nothing may escape.
+        try:
+            with live_lock:
+                instances.pop(as_int(cast(uintptr, shape)), None)
+        except BaseException:
+            pass
 
     def bounds(shape, out):
         try:
