@@ -4,8 +4,10 @@
 The capped paraboloid below is a solid of revolution about z: inside it
 x^2 + y^2 < z < height, so its surfaces are the paraboloid wall and a flat
 cap of radius sqrt(height). It is registered with hitray.abi.register_shape
-and then named in SDL like any module's class (`paraboloid 1.5`: its one
-parameter, positionally), beside a C sphere, cube and plane.
+and then named in SDL like any module's class (`paraboloid 1.6`: its one
+parameter, positionally), beside a C sphere, cube and plane. With the hitray
+package it goes through hitray.parse_sdl and hitray.render; with --build-dir,
+through the C API itself (hitray.abi.lib), with no package at all.
 
   python examples/python/python_shape.py out/paraboloid.png        # installed package
   python examples/python/python_shape.py out/p.png --build-dir build  # a build tree
@@ -18,19 +20,6 @@ import sys
 import types
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-
-
-def import_abi(build_dir):
-    if build_dir is None:
-        import hitray.abi as abi
-        return abi
-    package = types.ModuleType("hitray")
-    package.__path__ = [str(ROOT / "bindings" / "python" / "src" / "hitray")]
-    sys.modules["hitray"] = package
-    import hitray.abi as abi
-    abi.use_library(pathlib.Path(build_dir) / "lib" / "libhitray.so.0",
-                    include_dir=ROOT / "include")
-    return abi
 
 
 WALL, CAP = 0, 1
@@ -127,45 +116,70 @@ pop
 """
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("output", help="image to write (.png, .exr, .ppm or .pfm)")
-    ap.add_argument("--size", default="640x480", help="WIDTHxHEIGHT (default 640x480)")
-    ap.add_argument("--spp", type=int, default=1, help="samples per pixel")
-    ap.add_argument("--threads", type=int, default=0, help="render threads (0: every core)")
-    ap.add_argument("--build-dir", help="use this build tree's libhitray, not the package's")
-    args = ap.parse_args()
-    width, height = (int(v) for v in args.size.lower().split("x"))
-    abi = import_abi(args.build_dir)
-    ffi, lib = abi.ffi, abi.lib
+def render_with_package(width, height, args):
+    """The usual way: the hitray package, its default context."""
+    import hitray
+    import hitray.abi
 
+    hitray.abi.register_shape("paraboloid", Paraboloid)
+    scene, camera = hitray.parse_sdl(SCENE, "python_shape.sdl")
+    image = hitray.render(scene, camera, size=(width, height), spp=args.spp,
+                          threads=args.threads or None, progress=False)
+    image.save(args.output)
+    return image.stats.seconds, image.stats.threads
+
+
+def render_with_abi(width, height, args):
+    """The C API itself through hitray.abi, on a build tree's libhitray (no
+    package needed): the calls a C program makes."""
+    package = types.ModuleType("hitray")  # hitray.abi alone, from the source tree
+    package.__path__ = [str(ROOT / "bindings" / "python" / "src" / "hitray")]
+    sys.modules["hitray"] = package
+    import hitray.abi as abi
+
+    abi.use_library(pathlib.Path(args.build_dir) / "lib" / "libhitray.so.0",
+                    include_dir=ROOT / "include")
+    ffi, lib = abi.ffi, abi.lib
     with abi.Context() as ctx:
         abi.register_shape("paraboloid", Paraboloid, context=ctx)
         result = ffi.new("hr_sdl_result *")
         result.struct_size = ffi.sizeof("hr_sdl_result")
         ctx.check(lib.hr_sdl_load_string(ctx.ptr, SCENE.encode(), b"python_shape.sdl",
                                          ffi.NULL, result))
-        scene = result.scene
         image = ffi.new("hr_image **")
         stats = ffi.new("hr_render_stats *")
         stats.struct_size = ffi.sizeof("hr_render_stats")
         try:
-            ctx.check(lib.hr_scene_commit(scene))
-            camera = ffi.new("hr_camera *", result.camera)
+            ctx.check(lib.hr_scene_commit(result.scene))
             options = ffi.new("hr_render_options *")
             lib.hr_render_options_default(options)
             options.width, options.height = width, height
             options.samples_per_pixel = args.spp
             options.threads = args.threads
-            ctx.check(lib.hr_render(scene, camera, options, image, stats))
-            pathlib.Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+            camera = ffi.new("hr_camera *", result.camera)
+            ctx.check(lib.hr_render(result.scene, camera, options, image, stats))
             ctx.check(lib.hr_image_write(ctx.ptr, image[0], str(args.output).encode(),
                                          ffi.NULL))
         finally:
             lib.hr_image_destroy(image[0])
-            lib.hr_scene_destroy(scene)
-    print(f"{args.output}: {width}x{height}, {stats.primary + stats.shadow + stats.reflected} "
-          f"rays in {stats.seconds:.2f} s on {stats.threads} threads")
+            lib.hr_scene_destroy(result.scene)
+        return stats.seconds, stats.threads
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("output", help="image to write (.png, .exr, .ppm or .pfm)")
+    ap.add_argument("--size", default="640x480", help="WIDTHxHEIGHT (default 640x480)")
+    ap.add_argument("--spp", type=int, default=1, help="samples per pixel")
+    ap.add_argument("--threads", type=int, default=0, help="render threads (0: every core)")
+    ap.add_argument("--build-dir", help="no package: the C API through hitray.abi, on this "
+                                        "build tree's libhitray")
+    args = ap.parse_args()
+    width, height = (int(v) for v in args.size.lower().split("x"))
+    pathlib.Path(args.output).parent.mkdir(parents=True, exist_ok=True)
+    render = render_with_abi if args.build_dir else render_with_package
+    seconds, threads = render(width, height, args)
+    print(f"{args.output}: {width}x{height} in {seconds:.2f} s on {threads} threads")
 
 
 if __name__ == "__main__":

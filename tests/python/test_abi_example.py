@@ -80,18 +80,30 @@ def test_the_paraboloid_refuses_a_bad_height():
         load_example().Paraboloid(height=0.0)
 
 
-def test_the_example_renders(tmp_path):
-    out = tmp_path / "paraboloid.ppm"
-    command = [sys.executable, str(EXAMPLE), str(out), "--size", "64x48", "--threads", "2"]
-    if MODE != "installed":
-        command += ["--build-dir", str(BUILD)]
+def run_example(out, *extra):
+    command = [sys.executable, str(EXAMPLE), str(out), "--size", "64x48", "--threads", "2",
+               *extra]
     run = subprocess.run(command, capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr
-    assert "64x48" in run.stdout
-    data = out.read_bytes()
+    assert run.stdout.startswith(f"{out}: 64x48 in ")
+    return out.read_bytes()
+
+
+def check_image(data):
     header = b"P6\n64 48\n255\n"
     assert data.startswith(header) and len(data) == len(header) + 64 * 48 * 3
     # The paraboloid (orange: more red than blue) fills the middle of the frame.
     x, y = 32, 20
     r, g, b = data[len(header) + 3 * (y * 64 + x):][:3]
     assert r > b + 40, (r, g, b)
+
+
+def test_the_example_renders_through_the_c_api(tmp_path):
+    check_image(run_example(tmp_path / "abi.ppm", "--build-dir", str(BUILD)))
+
+
+@pytest.mark.skipif(MODE != "installed", reason="the hitray package is not installed")
+def test_the_example_renders_through_the_package_the_same_image(tmp_path):
+    package = run_example(tmp_path / "package.ppm")
+    check_image(package)
+    assert package == run_example(tmp_path / "abi.ppm", "--build-dir", str(BUILD))
