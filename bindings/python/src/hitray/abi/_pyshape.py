@@ -62,7 +62,7 @@ _ARGS_OFFSETS = (0, 8, 56, 64, 72, 80)
 class _Instance:
     """One object's shape: the Python instance, its bound hit and bounds."""
 
-    __slots__ = ("obj", "hit", "bounds", "label", "handle")
+    __slots__ = ("obj", "hit", "bounds", "label", "handle")  # handle: see create
 
     def __init__(self, obj, hit, bounds, label):
         self.obj = obj
@@ -85,7 +85,7 @@ class _Registration:
         self.surface_count = _positive_int(cls, "surface_count", 1)
         self.relative_error = _relative_error(cls)
         self.host = None          # the context's hr_host, seen at the first create
-        self.live = {}            # handle address -> _Instance (which keeps its handle)
+        self.live = {}            # shape pointer -> _Instance (which owns the pointed-at byte)
         self.live_lock = threading.Lock()
         self.c_strings = []
         self.c_params = None
@@ -156,7 +156,9 @@ def _make_callbacks(reg, ffi, lib):
     error_module = lib.HR_ERROR_MODULE
     error_parameter = lib.HR_ERROR_PARAMETER
     NULL = ffi.NULL
-    new_handle = ffi.new_handle
+    def new_token():
+        return ffi.new("char[1]")
+
     buffer, cast, string = ffi.buffer, ffi.cast, ffi.string
     specs = reg.specs
     rel = reg.relative_error
@@ -209,9 +211,9 @@ def _make_callbacks(reg, ffi, lib):
             if not callable(hit):
                 raise ShapeError(f"{label} has no hit(origin, direction, tmin, tmax) method")
             inst = _Instance(obj, hit, box, f"shape '{reg.name}': {reg.label}")
-            # A handle is a unique address the host keeps for us; the hit
-            # callback finds the instance by it.
-            inst.handle = new_handle(inst)
+            # The shape pointer the host keeps is a byte of our own, unique
+            # while the instance lives; the callbacks find the instance by it.
+            inst.handle = new_token()
             with reg.live_lock:
                 reg.live[int(cast("uintptr_t", inst.handle))] = inst
             out_shape[0] = inst.handle
