@@ -96,3 +96,11 @@ def test_objects_left_to_interpreter_exit_are_released_cleanly(tmp_path):
     run = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
                          timeout=120)
     assert (run.returncode, run.stdout, run.stderr) == (0, "rendered\n", "")
+
+
+def test_the_example_of_the_docs_runs(hitray, tmp_path, monkeypatch):
+    text = (pathlib.Path(__file__).parents[2] / "docs" / "python-shapes.md").read_text()
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "docs/python-shapes.md", "exec"), {"__name__": "docs_example"})
+    assert (tmp_path / "ball.png").stat().st_size > 1000
