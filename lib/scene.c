@@ -232,6 +232,27 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     return HR_OK;
 }
 
+/* A composite's depth is one more than its deepest child's: tracing it
+ * recurses that deep (see HR_MAX_COMPOSITE_DEPTH). */
+static hr_status set_composite_depth(hr_scene *s, hr_object *o, const void *const *children)
+{
+    const hr_shape_class *cls = o->cls;
+    int32_t deepest = -1;
+    for (int32_t i = 0; i < cls->param_count; i++)
+        if (children[i] && (deepest < 0 || ((const hr_object *)children[i])->composite_depth >
+                                               ((const hr_object *)children[deepest])->composite_depth))
+            deepest = i;
+    if (deepest < 0) return HR_OK;
+    const int32_t depth = ((const hr_object *)children[deepest])->composite_depth + 1;
+    if (depth > HR_MAX_COMPOSITE_DEPTH)
+        return hr_error(s->ctx, HR_ERROR_PARAMETER,
+                        "shape '%s': parameter '%s' would nest composites %d deep, beyond the "
+                        "limit of %d; nest long chains as balanced trees ((a b) (c d))",
+                        cls->name, cls->params[deepest].name, (int)depth, HR_MAX_COMPOSITE_DEPTH);
+    o->composite_depth = depth;
+    return HR_OK;
+}
+
 HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64_t *out_index)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
@@ -274,6 +295,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     }
     st = hr_params_resolve(s, cls, module_path, desc.params, desc.param_count, full, children);
+    if (st == HR_OK) st = set_composite_depth(s, o, children);
     if (st == HR_OK) {
         char message[512] = "";
         hr_create_args args = {0};

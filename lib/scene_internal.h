@@ -26,6 +26,7 @@ typedef struct hr_object {
     double m[16], inv[16];    /* object -> world and back (for a child: -> parent) */
     int32_t identity;         /* m is the identity: skip the transforms */
     int32_t top_level;        /* 0 once consumed by a composite */
+    int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
     uint32_t mat_flags;       /* HR_MAT_* */
     hr_bounds local_bounds;   /* object space */

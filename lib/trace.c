@@ -47,14 +47,18 @@ static int hit_before(const hr_hit *a, const hr_hit *b)
     return a->surface < b->surface;
 }
 
-/* Insertion sort from `start`: the new tail is short and already sorted, so
- * this is a merge in practice. */
-static void sort_from(hr_intersection *list, int32_t start)
+/* Sorts the hits from `start` on by t, leaving those before `start` alone:
+ * a composite traces its children one after the other into one list and
+ * tells their hits apart by position. Stable insertion sort on t alone: the
+ * tail is one shape's answer, already sorted by contract, and hits of equal
+ * t keep the shape's order (a tangent enters before it leaves, whatever the
+ * surface ids), so this costs one pass unless a shape broke the contract. */
+static void sort_tail_by_t(hr_intersection *list, int32_t start)
 {
-    for (int32_t i = start > 0 ? start : 1; i < list->count; i++) {
+    for (int32_t i = start + 1; i < list->count; i++) {
         hr_hit h = list->hits[i];
         int32_t j = i;
-        while (j > 0 && hit_before(&h, &list->hits[j - 1])) {
+        while (j > start && h.t < list->hits[j - 1].t) {
             list->hits[j] = list->hits[j - 1];
             j--;
         }
@@ -404,7 +408,7 @@ static hr_status host_trace_child(void *call, const void *child, const hr_ray *r
     if (!call || !child || !ray || !out) return HR_ERROR_INVALID_ARGUMENT;
     int32_t start = out->count;
     hr_status st = hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
-    if (st == HR_OK) sort_from(out, start);
+    if (st == HR_OK) sort_tail_by_t(out, start);
     return st;
 }
 
@@ -412,6 +416,12 @@ static void host_child_bounds(const void *child, hr_bounds *out)
 {
     const hr_object *o = child;
     *out = o->world_bounds;
+}
+
+static const hr_shape_class *host_child_class(const void *child)
+{
+    const hr_object *o = child;
+    return o->cls;
 }
 
 void hr_host_services_init(hr_host *host)
@@ -426,4 +436,5 @@ void hr_host_services_init(hr_host *host)
     host->scratch_release = host_scratch_release;
     host->trace_child = host_trace_child;
     host->child_bounds = host_child_bounds;
+    host->child_class = host_child_class;
 }

@@ -53,6 +53,13 @@ typedef struct hr_light {
 /* Bounces are recursive calls: bound them so no scene can exhaust the stack. */
 #define HR_MAX_RECURSION_DEPTH 1000
 
+/* Tracing a composite (a CSG boolean) calls its children's hit functions,
+ * which may be composites in turn: a chain of nested composites is as deep
+ * a recursion. hr_scene_add_object refuses a composite nested deeper than
+ * this (a leaf is depth 0, a boolean of leaves 1); nest long chains as
+ * balanced trees, ((a | b) | (c | d)), which are log2(leaves) deep. */
+#define HR_MAX_COMPOSITE_DEPTH 1000
+
 /* Scene-wide settings, with SDL's defaults from hr_scene_globals_default. */
 typedef struct hr_scene_globals {
     uint32_t struct_size;
@@ -89,7 +96,8 @@ HR_API hr_context *hr_scene_context(const hr_scene *scene);
  * the `object` field of its hits. Objects used as HR_PARAM_OBJECT children
  * of a composite are consumed by it and not traced on their own. Fails with
  * HR_ERROR_MODULE (no module provides the class), HR_ERROR_PARAMETER (the
- * class refused a parameter, named in the message), HR_ERROR_NUMERIC (a
+ * class refused a parameter, named in the message, or a composite would nest
+ * deeper than HR_MAX_COMPOSITE_DEPTH), HR_ERROR_NUMERIC (a
  * singular transform) or HR_ERROR_STATE (the scene is committed). */
 HR_API hr_status hr_scene_add_object(hr_scene *scene, const hr_object_desc *desc,
                                      int64_t *out_index);

@@ -46,6 +46,8 @@ extern "C" {
 #define HR_TRACE_FIRST 1 /* the nearest hit only */
 #define HR_TRACE_ANY 2   /* any hit (count 0 or 1; only t is meaningful) */
 
+typedef struct hr_shape_class hr_shape_class;
+
 /* Host services. The host passes one table that lives as long as the module
  * is loaded. `call` is the host's per-thread context of the current hit call
  * (hr_hit_args.call): pass it back unchanged. */
@@ -65,13 +67,28 @@ typedef struct hr_host {
      * The ray is in the composite's object space; the host moves it through
      * the child's own transform and returns the child's hits in the
      * composite's object space, each hit's `object` naming the leaf whose
-     * surface it is. Appends to `out` (sorted) and keeps it sorted. */
+     * surface it is. Appends the child's hits to `out`, sorted by t among
+     * themselves in the order the child gave hits of equal t (a tangent's
+     * entering hit stays before its exiting one); the hits `out` held before
+     * are left where and as they were, so a composite can trace several
+     * children into one list and tell their hits apart by position. */
     hr_status (*trace_child)(void *call, const void *child, const hr_ray *ray,
                              double tmin, double tmax, int32_t mode,
                              hr_intersection *out);
     /* Bounds of a child object in the composite's object space. */
     void (*child_bounds)(const void *child, hr_bounds *out);
+    /* --- Added within ABI 1; present when struct_size covers it
+     * (HR_HOST_HAS). A module built against an older header never reads it,
+     * and a module that finds it missing must work without it. --- */
+    /* The class of a child object (the host's copy: name, flags, ...), so a
+     * composite can refuse a child that is no solid (no HR_SHAPE_CLOSED). */
+    const hr_shape_class *(*child_class)(const void *child);
 } hr_host;
+
+/* Whether the host table `host` has `field` (it may come from an older
+ * host, built before the field was added). */
+#define HR_HOST_HAS(host, field)                                               \
+    ((host)->struct_size >= offsetof(hr_host, field) + sizeof((host)->field))
 
 /* Arguments of a shape's create. */
 typedef struct hr_create_args {
@@ -123,14 +140,16 @@ typedef struct hr_param_spec {
 #define HR_SHAPE_COMPOSITE 2 /* takes HR_PARAM_OBJECT children (CSG) */
 
 /* The vtable of one shape class. */
-typedef struct hr_shape_class {
+struct hr_shape_class {
     uint32_t struct_size; /* sizeof(hr_shape_class) the module was built with */
     int32_t flags;        /* HR_SHAPE_* */
     const char *name;     /* as used by SDL and hr_object_desc.shape */
     const char *help;     /* one line */
     const hr_param_spec *params;
     int32_t param_count;
-    int32_t surface_count; /* surfaces ids are 0 .. surface_count-1 */
+    int32_t surface_count; /* surfaces ids are 0 .. surface_count-1; a
+                              composite passes on its leaves' ids and
+                              declares 0 */
     hr_status (*create)(const hr_create_args *args, void **out_shape);
     void (*destroy)(void *shape);
     /* Object-space bounds; infinities for an unbounded shape. */
@@ -138,7 +157,7 @@ typedef struct hr_shape_class {
     hr_hit_fn hit;       /* required: every hit in (tmin, tmax), sorted */
     hr_hit_fn first_hit; /* optional: at most the nearest hit */
     hr_hit_fn any_hit;   /* optional: count 0 or 1; for shadow rays */
-} hr_shape_class;
+};
 
 /* What a module's entry point returns. */
 typedef struct hr_module_info {

@@ -35,10 +35,12 @@ PIN_OFF(hr_param, object, 32);
 PIN_SIZE(hr_param_spec, 48);
 PIN_OFF(hr_param_spec, default_number, 16);
 PIN_OFF(hr_param_spec, help, 40);
-PIN_SIZE(hr_host, 64);
+PIN_SIZE(hr_host, 72);
 PIN_OFF(hr_host, alloc, 8);
 PIN_OFF(hr_host, trace_child, 48);
 PIN_OFF(hr_host, child_bounds, 56);
+/* child_class was added within ABI 1, after the first layout: at the end. */
+PIN_OFF(hr_host, child_class, 64);
 PIN_SIZE(hr_create_args, 56);
 PIN_OFF(hr_create_args, params, 8);
 PIN_OFF(hr_create_args, objects, 16);

@@ -338,6 +338,24 @@ def test_hits_numbers_round_trip(tmp_path):
     assert hit["point"][2] == pytest.approx(5 - hit["t"], abs=1e-15)
 
 
+def test_hits_torus_equatorial_line_and_axis(tmp_path):
+    # The generic torus (ring radius 1 about z, tube 0.2): the line along a
+    # diameter crosses the tube four times, in and out alternately; the axis,
+    # through the hole, misses. Moved and scaled by the SDL transform, t stays
+    # the object-space t (Hill): x scaled by 2 doubles the crossings' x.
+    path = write_sdl(tmp_path, "torus.sdl", "torus\n")
+    every = hits(path, "--origin", "-10,0,0", "--dir", "1,0,0", "--all")
+    assert [h["t"] for h in every] == pytest.approx([8.8, 9.2, 10.8, 11.2], rel=1e-15)
+    assert [h["entering"] for h in every] == [True, False, True, False]
+    assert [h["normal"][0] for h in every] == pytest.approx([-1.0, 1.0, -1.0, 1.0])
+    assert all(h["shape"] == "torus" for h in every)
+    assert hits(path, "--origin", "0,0,-10", "--dir", "0,0,1", "--all") == []
+    scaled = write_sdl(tmp_path, "scaled.sdl", "scale 2 1 1 torus\n")
+    (first,) = hits(scaled, "--origin", "-10,0,0", "--dir", "1,0,0")
+    assert first["t"] == pytest.approx(10 - 2.4, rel=1e-15)
+    assert first["point"] == pytest.approx([-2.4, 0.0, 0.0], abs=1e-14)
+
+
 # --- shapes ------------------------------------------------------------------
 
 def test_shapes_lists_modules_classes_and_parameters():
@@ -351,6 +369,11 @@ def test_shapes_lists_modules_classes_and_parameters():
     if "taperedCylinder" in out:  # a class with a parameter: name, default, range, help
         line = next(l for l in out.splitlines() if l.strip().startswith("s "))
         assert "default" in line and "range" in line
+    if "torus" in out:  # a number and a string parameter, each with its help
+        tube = next(l for l in out.splitlines() if l.strip().startswith("tube "))
+        assert "default 0.2" in tube and "range [1e-06, 0.999]" in tube
+        solver = next(l for l in out.splitlines() if l.strip().startswith("solver "))
+        assert all(name in solver for name in ("ferrari", "ferrari-newton", "bracketing"))
 
 
 def test_shapes_reports_modules_that_failed(tmp_path):

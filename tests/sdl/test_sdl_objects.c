@@ -127,9 +127,10 @@ static void csg(hr_context *ctx)
         hr_scene_destroy(r.scene);
     }
 
-    /* Deep nesting is read without recursion: 5000 unions in a row. */
-    int depth = 5000;
-    char *deep = malloc((size_t)depth * 14 + 16);
+    /* Deep nesting is read without recursion: HR_MAX_COMPOSITE_DEPTH unions
+     * in a row, the deepest chain a scene may hold. */
+    int depth = HR_MAX_COMPOSITE_DEPTH;
+    char *deep = malloc((size_t)5000 * 14 + 16);
     size_t len = 0;
     for (int i = 0; i < depth; i++) len += (size_t)sprintf(deep + len, "union ");
     for (int i = 0; i <= depth; i++) len += (size_t)sprintf(deep + len, "sphere ");
@@ -139,6 +140,18 @@ static void csg(hr_context *ctx)
         CHECK(strcmp(o.shape, "union") == 0 && o.top_level == 1);
         hr_scene_destroy(r.scene);
     }
+    /* 5000 in a row: read without recursion up to the limit, then refused
+     * with the place and the reason, not a crash. */
+    depth = 5000;
+    len = 0;
+    for (int i = 0; i < depth; i++) len += (size_t)sprintf(deep + len, "union ");
+    for (int i = 0; i <= depth; i++) len += (size_t)sprintf(deep + len, "sphere ");
+    memset(&r, 0, sizeof r);
+    r.struct_size = sizeof r;
+    CHECK(hr_sdl_load_string(ctx, deep, SDL_TEST_NAME, NULL, &r) == HR_ERROR_PARAMETER);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), "t.dat:1:") &&
+                  strstr(hr_context_last_error(ctx), "1001 deep"),
+              "message: %s", hr_context_last_error(ctx));
     free(deep);
 }
 

@@ -47,24 +47,85 @@ static void host_scratch_release(void *call, hr_intersection *list)
     free(list);
 }
 
-/* The built-in shapes take no child objects. */
-static hr_status host_trace_child(void *call, const void *child, const hr_ray *ray, double tmin,
-                                  double tmax, int32_t mode, hr_intersection *out)
+static hr_vec3 child_to_parent(const harness_child *c, hr_vec3 p)
 {
-    (void)call, (void)child, (void)ray, (void)tmin, (void)tmax, (void)mode, (void)out;
-    return HR_ERROR_UNSUPPORTED;
+    return harness_vec(c->offset.x + c->scale * p.x, c->offset.y + c->scale * p.y,
+                       c->offset.z + c->scale * p.z);
 }
 
-static void host_child_bounds(const void *child, hr_bounds *out)
+/* A child (harness_child) traced as libhitray's host does: the ray into the
+ * child's space, the child's hit function for the mode, its hits back in the
+ * parent's space after what `out` held, sorted by t among themselves (ties
+ * in the child's order), `object` naming the leaf. The error bound is
+ * carried through the scale and grown by the rounding of the product and
+ * sum (an ulp each, counted as 4 ulps of the largest coordinate). */
+static hr_status host_trace_child(void *call, const void *child_ptr, const hr_ray *ray,
+                                  double tmin, double tmax, int32_t mode, hr_intersection *out)
 {
-    (void)child;
-    out->lo.x = out->lo.y = out->lo.z = -INFINITY;
-    out->hi.x = out->hi.y = out->hi.z = INFINITY;
+    const harness_child *c = child_ptr;
+    if (!c || !c->shape || !ray || !out) return HR_ERROR_INVALID_ARGUMENT;
+    const hr_shape_class *cls = c->shape->cls;
+    const int32_t start = out->count;
+    hr_status st = host_reserve(call, out, start + HR_MIN_HIT_CAPACITY);
+    if (st) return st;
+    hr_hit_args args;
+    memset(&args, 0, sizeof args);
+    args.shape = c->shape->shape;
+    args.ray.origin = harness_vec((ray->origin.x - c->offset.x) / c->scale,
+                                  (ray->origin.y - c->offset.y) / c->scale,
+                                  (ray->origin.z - c->offset.z) / c->scale);
+    args.ray.dir = harness_vec(ray->dir.x / c->scale, ray->dir.y / c->scale, ray->dir.z / c->scale);
+    args.tmin = tmin;
+    args.tmax = tmax;
+    args.out = out;
+    args.call = call;
+    hr_hit_fn fn = mode == HARNESS_FIRST && cls->first_hit ? cls->first_hit
+                   : mode == HARNESS_ANY && cls->any_hit   ? cls->any_hit
+                                                           : cls->hit;
+    if ((st = fn(&args))) {
+        out->count = start;
+        return st;
+    }
+    const int composite = (cls->flags & HR_SHAPE_COMPOSITE) != 0;
+    for (int32_t i = start; i < out->count; i++) {
+        hr_hit *h = &out->hits[i];
+        h->point = child_to_parent(c, h->point);
+        const double size = fmax(fabs(h->point.x), fmax(fabs(h->point.y), fabs(h->point.z)));
+        h->error = h->error * c->scale + 4 * DBL_EPSILON * size;
+        if (!composite) h->object = c->object;
+    }
+    if (mode != HARNESS_ALL && out->count > start + 1) out->count = start + 1;
+    for (int32_t i = start + 1; i < out->count; i++) {
+        hr_hit h = out->hits[i];
+        int32_t j = i;
+        while (j > start && h.t < out->hits[j - 1].t) {
+            out->hits[j] = out->hits[j - 1];
+            j--;
+        }
+        out->hits[j] = h;
+    }
+    return HR_OK;
+}
+
+static void host_child_bounds(const void *child_ptr, hr_bounds *out)
+{
+    const harness_child *c = child_ptr;
+    hr_bounds b;
+    c->shape->cls->bounds(c->shape->shape, &b);
+    out->lo = child_to_parent(c, b.lo);
+    out->hi = child_to_parent(c, b.hi);
+}
+
+static const hr_shape_class *host_child_class(const void *child_ptr)
+{
+    const harness_child *c = child_ptr;
+    return c->shape->cls;
 }
 
 static const hr_host test_host = {
-    sizeof(hr_host), HR_SHAPE_ABI_VERSION, host_alloc, host_free, host_reserve,
-    host_scratch_acquire, host_scratch_release, host_trace_child, host_child_bounds,
+    sizeof(hr_host),      HR_SHAPE_ABI_VERSION, host_alloc,       host_free,
+    host_reserve,         host_scratch_acquire, host_scratch_release, host_trace_child,
+    host_child_bounds,    host_child_class,
 };
 
 const hr_host *harness_host(void)
@@ -138,6 +199,41 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
     return cls->create(&args, out_shape);
 }
 
+hr_status harness_create_composite(const hr_shape_class *cls, const char *const *names,
+                                   const harness_child *const *children, int count,
+                                   void **out_shape, char *error, size_t error_size)
+{
+    hr_param params[16];
+    const void *objects[16] = {NULL};
+    memset(params, 0, sizeof params);
+    if (cls->param_count > 16) return HR_ERROR_INVALID_ARGUMENT;
+    for (int32_t i = 0; i < cls->param_count; i++) {
+        params[i].name = cls->params[i].name;
+        params[i].type = cls->params[i].type;
+        params[i].number = cls->params[i].default_number;
+        params[i].string = "";
+        params[i].object = -1;
+        for (int g = 0; g < count; g++)
+            if (strcmp(cls->params[i].name, names[g]) == 0) {
+                objects[i] = children[g];
+                params[i].object = children[g] ? children[g]->object : -1;
+            }
+    }
+    hr_create_args args;
+    memset(&args, 0, sizeof args);
+    args.struct_size = sizeof args;
+    args.param_count = cls->param_count;
+    args.params = params;
+    args.objects = objects;
+    args.host = &test_host;
+    args.error = error;
+    args.error_size = error_size;
+    args.base_dir = "";
+    if (error && error_size) error[0] = '\0';
+    *out_shape = NULL;
+    return cls->create(&args, out_shape);
+}
+
 int harness_open(harness_shape *out, const char *file_stem, const char *class_name,
                  double s_or_nan)
 {
@@ -146,10 +242,12 @@ int harness_open(harness_shape *out, const char *file_stem, const char *class_na
     out->cls = harness_find_class(&out->module, class_name);
     CHECK_MSG(out->cls != NULL, "%s has no class '%s'", out->module.path, class_name);
     if (!out->cls) return 0;
-    const char *names[] = {"s"};
-    const double values[] = {s_or_nan};
+    /* The one number parameter of the catalog's classes: `s` of the
+     * tapered cylinder, `tube` of the torus (a class ignores the other). */
+    const char *names[] = {"s", "tube"};
+    const double values[] = {s_or_nan, s_or_nan};
     char error[256];
-    hr_status st = harness_create(out->cls, names, values, isnan(s_or_nan) ? 0 : 1, &out->shape,
+    hr_status st = harness_create(out->cls, names, values, isnan(s_or_nan) ? 0 : 2, &out->shape,
                                   error, sizeof error);
     CHECK_MSG(st == HR_OK && out->shape, "create %s: status %d: %s", class_name, (int)st, error);
     return st == HR_OK && out->shape;
@@ -312,5 +410,6 @@ const harness_class_ref harness_catalog[] = {
     {"cylinder", "taperedCylinder", 0.0},
     {"cylinder", "taperedCylinder", 3.0},
     {"cylinder", "taperedCylinder", 1000.0},
+    {"torus", "torus", NAN},
 };
 const int harness_catalog_count = (int)(sizeof harness_catalog / sizeof harness_catalog[0]);

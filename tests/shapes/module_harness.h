@@ -44,8 +44,28 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
                          const double *values, int count, void **out_shape, char *error,
                          size_t error_size);
 
+/* A child object for a composite under test (what the host's trace_child
+ * and child_bounds receive): `shape` placed in the parent's space by
+ * p = offset + scale * q, standing for object number `object` of a scene
+ * (the index the host writes into its leaf hits). The harness's trace_child
+ * works as libhitray's does: see module_harness.c. */
+typedef struct harness_child {
+    const harness_shape *shape;
+    hr_vec3 offset;
+    double scale;
+    int64_t object;
+} harness_child;
+
+/* Calls cls->create with the object parameters in `names` given the
+ * children in `children` (count of them), every other parameter at its
+ * default. Returns create's status; `error` receives create's message. */
+hr_status harness_create_composite(const hr_shape_class *cls, const char *const *names,
+                                   const harness_child *const *children, int count,
+                                   void **out_shape, char *error, size_t error_size);
+
 /* Loads the module, finds the class and creates a shape with default
- * parameters (and `s` when s_or_nan is not NaN). Returns 1 on success. */
+ * parameters (and `s`, or the torus's `tube`, when s_or_nan is not NaN).
+ * Returns 1 on success. */
 int harness_open(harness_shape *out, const char *file_stem, const char *class_name,
                  double s_or_nan);
 void harness_close(harness_shape *shape);
@@ -65,7 +85,8 @@ int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tm
 int harness_hits(const harness_shape *shape, hr_ray ray, hr_hit hits[HARNESS_MAX_HITS]);
 
 /* Every class of the built-in modules, with a few tapers of taperedCylinder
- * (s is NaN for classes without parameters). */
+ * (s is NaN for classes without parameters, and for the torus's default
+ * tube). */
 typedef struct harness_class_ref {
     const char *module;
     const char *name;

@@ -4,6 +4,8 @@
 #include <quadmath.h>
 #include <string.h>
 
+#include "quad_poly.h"
+
 ref_shape ref_shape_of(const char *class_name, double s)
 {
     ref_shape r = {REF_SPHERE, 0.0};
@@ -13,6 +15,7 @@ ref_shape ref_shape_of(const char *class_name, double s)
     else if (strcmp(class_name, "cylinder") == 0) r.kind = REF_TAPERED, r.s = 1.0;
     else if (strcmp(class_name, "cone") == 0) r.kind = REF_TAPERED, r.s = 0.0;
     else if (strcmp(class_name, "taperedCylinder") == 0) r.kind = REF_TAPERED, r.s = s;
+    else if (strcmp(class_name, "torus") == 0) r.kind = REF_TORUS, r.s = isnan(s) ? 0.2 : s;
     return r;
 }
 
@@ -226,6 +229,74 @@ static void trace_tapered(collector *col, double s)
     if (s > 0) trace_flat_z(col, 1, 2, 1, -1, s); /* the cone has no cap: only the apex */
 }
 
+/* The torus (ring radius 1 about z, tube radius `tube`): the textbook quartic
+ * (|p|^2 + 1 - r^2)^2 - 4 (x^2 + y^2) along the line, formed in quad around
+ * the point of the line nearest the centre and solved by quad_poly_roots
+ * (Sturm sequences). Roots of even multiplicity (tangents) come back as a
+ * pair with a zero margin. Near-tangent misses have no root to show it, so
+ * the margin also learns, at each critical point of the quartic, the
+ * distance-like |f| / |grad f| (near the tube f ~ 8 r delta and
+ * |grad f| ~ 8 r, delta the distance to the surface). */
+static quad torus_gradient(qvec p, quad r, qvec *n)
+{
+    const quad G = qdot(p, p) - 1 - r * r;
+    n->x = 4 * G * p.x;
+    n->y = 4 * G * p.y;
+    n->z = 4 * G * p.z + 8 * p.z;
+    return G;
+}
+
+static void trace_torus(collector *col, double tube)
+{
+    const quad r = tube;
+    const qvec d = col->d;
+    const quad a = qdot(d, d);
+    const quad tc = -qdot(col->o, d) / a;
+    const qvec o = qat(col->o, d, tc);
+    const quad b = qdot(o, d), c = qdot(o, o) + 1 - r * r;
+    const quad ax = d.x * d.x + d.y * d.y, bx = o.x * d.x + o.y * d.y, cx = o.x * o.x + o.y * o.y;
+    const quad poly[5] = {c * c - 4 * cx, 4 * b * c - 8 * bx, 4 * b * b + 2 * a * c - 4 * ax,
+                          4 * a * b, a * a};
+    const quad reach = (1 + r) * 1.01Q / sqrtq(a) + qabs(b) / a;
+    quad roots[4];
+    int even[4];
+    const int n = quad_poly_roots(poly, 4, -reach, reach, roots, even);
+    for (int i = 0; i < n; i++) {
+        const quad t = tc + roots[i];
+        const qvec p = qat(col->o, d, t);
+        qvec grad;
+        const quad G = torus_gradient(p, r, &grad);
+        const quad slope = qabs(qdot(grad, d));
+        const quad spread = qabs(grad.x) * (qabs(col->o.x) + qabs(t * d.x)) +
+                            qabs(grad.y) * (qabs(col->o.y) + qabs(t * d.y)) +
+                            qabs(grad.z) * (qabs(col->o.z) + qabs(t * d.z)) +
+                            qabs(4 * r * (G + 2)) * r;
+        const quad condition = qabs(t) + (slope > 0 ? spread / slope : (quad)INFINITY);
+        if (even[i]) {
+            note_margin(col, 0);
+            if (col->out->count + 2 > 8) continue;
+            ref_hit *h = &col->out->hits[col->out->count];
+            h[0].t = h[1].t = t;
+            h[0].surface = h[1].surface = 0;
+            h[0].entering = 1, h[1].entering = 0;
+            h[0].condition = h[1].condition = condition;
+            col->out->count += 2;
+            continue;
+        }
+        add_crossing(col, t, 0, grad, 1, 1, condition);
+    }
+    const quad dpoly[4] = {poly[1], 2 * poly[2], 3 * poly[3], 4 * poly[4]};
+    quad crit[3];
+    const int nc = quad_poly_roots(dpoly, 3, -reach, reach, crit, NULL);
+    for (int i = 0; i < nc; i++) {
+        const qvec p = qat(o, d, crit[i]);
+        qvec grad;
+        torus_gradient(p, r, &grad);
+        const quad length = sqrtq(qdot(grad, grad));
+        if (length > 0) note_margin(col, quad_poly_eval(poly, 4, crit[i]) / length);
+    }
+}
+
 static void sort_hits(ref_trace *out)
 {
     for (int i = 1; i < out->count; i++) {
@@ -239,15 +310,29 @@ static void sort_hits(ref_trace *out)
     }
 }
 
+static void trace_line(ref_shape shape, qvec origin, qvec dir, ref_trace *out);
+
 void ref_trace_ray(ref_shape shape, hr_ray ray, ref_trace *out)
 {
+    trace_line(shape, qv(ray.origin), qv(ray.dir), out);
+}
+
+void ref_trace_quad_ray(ref_shape shape, const quad origin[3], const quad dir[3], ref_trace *out)
+{
+    const qvec o = {origin[0], origin[1], origin[2]}, d = {dir[0], dir[1], dir[2]};
+    trace_line(shape, o, d, out);
+}
+
+static void trace_line(ref_shape shape, qvec origin, qvec dir, ref_trace *out)
+{
     memset(out, 0, sizeof *out);
-    collector col = {out, qv(ray.origin), qv(ray.dir), (quad)INFINITY};
+    collector col = {out, origin, dir, (quad)INFINITY};
     switch (shape.kind) {
     case REF_SPHERE: trace_sphere(&col); break;
     case REF_PLANE: trace_flat_z(&col, 0, 0, 1, -1, -1); break;
     case REF_SQUARE: trace_flat_z(&col, 0, 0, 1, 1, -1); break;
     case REF_CUBE: trace_cube(&col); break;
+    case REF_TORUS: trace_torus(&col, shape.s); break;
     default: trace_tapered(&col, shape.s); break;
     }
     sort_hits(out);
@@ -293,6 +378,10 @@ double ref_surface_distance(ref_shape shape, int surface, hr_vec3 point)
             sum += e * e;
         }
         return (double)sqrtq(sum);
+    }
+    case REF_TORUS: {
+        const quad rho = sqrtq(p.x * p.x + p.y * p.y);
+        return (double)qabs(sqrtq((rho - 1) * (rho - 1) + p.z * p.z) - (quad)shape.s);
     }
     default: {
         const quad rho = sqrtq(p.x * p.x + p.y * p.y);

@@ -1,6 +1,7 @@
 /* Reference answers for the built-in shapes, computed in quad precision
  * (__float128, 113-bit significand, libquadmath) from the same double
- * inputs the modules get. Independent of the modules' code on purpose: each
+ * inputs the modules get (the torus's quartic is solved by Sturm sequences in
+ * quad, see quad_poly.h). Independent of the modules' code on purpose: each
  * surface patch is intersected on its own with the textbook formulas (which
  * quad precision makes accurate enough here; see quad_reference.c), where the
  * modules intersect spans.
@@ -21,6 +22,7 @@ typedef __float128 quad;
 #define REF_SQUARE 2
 #define REF_CUBE 3
 #define REF_TAPERED 4 /* cylinder (s = 1), cone (s = 0), taperedCylinder */
+#define REF_TORUS 5   /* s is the tube radius (0.2 for NaN) */
 
 typedef struct ref_shape {
     int kind;
@@ -59,6 +61,10 @@ typedef struct ref_trace {
  * surfaces, sorted by t, with entering flags from the direction against
  * the outward normal. */
 void ref_trace_ray(ref_shape shape, hr_ray ray, ref_trace *out);
+
+/* The same for a line given in quad precision (an object-space ray a test
+ * carried through a transform itself, without rounding it to double). */
+void ref_trace_quad_ray(ref_shape shape, const quad origin[3], const quad dir[3], ref_trace *out);
 
 /* Euclidean distance from p to the given surface patch of the shape. */
 double ref_surface_distance(ref_shape shape, int surface, hr_vec3 p);

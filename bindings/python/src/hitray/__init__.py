@@ -32,8 +32,9 @@ from .queries import HitInfo, Light, TraceResult
 from .render import render
 from .scene import Scene, SceneObject
 from .sdl import load_sdl, parse_sdl
-from .shapes import (Cone, Cube, Cylinder, Difference, Intersection, Mesh, Plane, Shape, Sphere,
-                     Square, TaperedCylinder, Torus, Union)
+from .shapes import (Cone, Cube, Cylinder, Difference, Dodecahedron, Icosahedron, Intersection,
+                     Mesh, Octahedron, Plane, Shape, Sphere, Square, TaperedCylinder, Tetrahedron,
+                     Torus, Union)
 
 __version__ = "%d.%d.%d" % _core.version()
 
@@ -41,7 +42,8 @@ __all__ = [
     "Scene", "SceneObject", "Camera", "render", "Image", "RenderStats",
     "load_sdl", "parse_sdl",
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
-    "Mesh", "Union", "Intersection", "Difference",
+    "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Union", "Intersection",
+    "Difference",
     "HitInfo", "TraceResult", "Light",
     "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
     "ModuleInfo",

@@ -22,7 +22,7 @@ def vec3(value: Any, what: str) -> Vec3:
         raise TypeError(f"{what}: expected three numbers, got {type(value).__name__}") from None
     if len(items) != 3 or not all(is_number(v) for v in items):
         raise TypeError(f"{what}: expected three numbers, got {value!r}")
-    return (float(items[0]), float(items[1]), float(items[2]))
+    return (as_float(items[0], what), as_float(items[1], what), as_float(items[2], what))
 
 
 def is_number(value: Any) -> bool:
@@ -30,16 +30,32 @@ def is_number(value: Any) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
+def as_float(value: Any, what: str) -> float:
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(f"{what}: {value!r} is beyond double's range") from None
+
+
 def number(value: Any, what: str) -> float:
+    """A real number as a float (NaN and infinities pass: the library says
+    where they are not allowed)."""
     if not is_number(value):
         raise TypeError(f"{what}: expected a number, got {value!r}")
-    return float(value)
+    return as_float(value, what)
+
+
+INT32_MAX = 2**31 - 1
 
 
 def integer(value: Any, what: str) -> int:
+    """A whole number that fits the library's int32 fields."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{what}: expected an integer, got {value!r}")
-    return int(value)
+    out = int(value)
+    if not -INT32_MAX - 1 <= out <= INT32_MAX:
+        raise ValueError(f"{what}: {out} is out of range")
+    return out
 
 
 def path_bytes(path: PathLike, what: str = "path") -> bytes:
@@ -64,6 +80,4 @@ def size(value: Any, what: str = "size") -> Tuple[int, int]:
     w, h = integer(w, f"{what} width"), integer(h, f"{what} height")
     if w < 1 or h < 1:
         raise ValueError(f"{what}: width and height must be at least 1, got {w}x{h}")
-    if w > 2**31 - 1 or h > 2**31 - 1:
-        raise ValueError(f"{what}: {w}x{h} is too large")
     return (w, h)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import tempfile
 from dataclasses import dataclass
-from typing import Any, FrozenSet, Optional
+from typing import Any, FrozenSet, Optional, Tuple
 
 import numpy as np
 
@@ -73,18 +73,21 @@ class Image:
 
     @property
     def width(self) -> int:
+        """Pixels per row."""
         return int(self._core.width)
 
     @property
     def height(self) -> int:
+        """Rows."""
         return int(self._core.height)
 
     @property
     def channels(self) -> int:
+        """3 (RGB) for a render; 3 or 4 for an image made from an array."""
         return int(self._core.channels)
 
     @property
-    def shape(self) -> tuple:
+    def shape(self) -> Tuple[int, int, int]:
         """(height, width, channels), as numpy.asarray(image).shape."""
         return (self.height, self.width, self.channels)
 
@@ -94,7 +97,7 @@ class Image:
         return self._stats
 
     def __array__(self, dtype: Any = None, copy: Optional[bool] = None) -> np.ndarray:
-        view = np.asarray(memoryview(self._core))
+        view = np.asarray(self._core)  # the buffer protocol: no copy
         if dtype is not None and np.dtype(dtype) != view.dtype:
             if copy is False:
                 raise ValueError("Image: pixels are float32; a different dtype needs a copy")

@@ -18,7 +18,7 @@ class _Bar:
     """A tqdm bar that follows the fraction of tiles done."""
 
     def __init__(self) -> None:
-        from tqdm.auto import tqdm
+        from tqdm.auto import tqdm  # type: ignore[import-untyped, unused-ignore]
 
         self._bar = tqdm(total=100, unit="%", desc="hitray", leave=False,
                          bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}")

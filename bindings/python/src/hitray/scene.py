@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import os
 import threading
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, FrozenSet, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -92,10 +92,10 @@ def _add_tree(core: Any, shape: Shape, inherited: Dict[str, Any], base_dir: byte
     for key, value in shape._params.items():
         if isinstance(value, Shape):
             params.append((key, "object", _add_tree(core, value, material, base_dir)))
-        elif _convert.is_number(value):
-            params.append((key, "number", float(value)))  # type: ignore[arg-type]
-        else:
-            params.append((key, "string", os.fsencode(value)))  # type: ignore[type-var]
+        elif isinstance(value, (str, bytes, os.PathLike)):
+            params.append((key, "string", os.fsencode(value)))
+        else:  # a number, made a float by Shape
+            params.append((key, "number", value))
     return int(core.add_object(shape.name, params, material, shape._transform, base_dir))
 
 
@@ -270,6 +270,7 @@ class Scene:
 
     @property
     def lights(self) -> List[Light]:
+        """Every light, in the order added (an SDL file's first)."""
         core = self._current()
         return [Light(*core.light(i)) for i in range(int(core.light_count))]
 
@@ -279,7 +280,7 @@ class Scene:
         return self._current().bounds()  # type: ignore[no-any-return]
 
     @property
-    def effects(self) -> frozenset:
+    def effects(self) -> FrozenSet[str]:
         """The effects this scene calls for ("shadows", "reflection", ...):
         the renderer simulates these and nothing else."""
         return frozenset(self._committed().effects())
@@ -362,6 +363,7 @@ class SceneObject:
 
     @property
     def scene(self) -> Scene:
+        """The scene this object is in."""
         return self._scene
 
     @property

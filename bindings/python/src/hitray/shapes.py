@@ -27,7 +27,8 @@ ParamValue = typing.Union[float, int, str, "os.PathLike[str]", bytes, "Shape"]
 
 __all__ = [
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone",
-    "Torus", "Mesh", "Union", "Intersection", "Difference",
+    "Torus", "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Union",
+    "Intersection", "Difference",
 ]
 
 
@@ -48,15 +49,17 @@ class Shape:
 
     __slots__ = ("_name", "_params", "_transform", "_material", "_steps")
 
-    def __init__(self, name: str, **params: ParamValue) -> None:
+    def __init__(self, name: str, **params: Optional[ParamValue]) -> None:
         if not isinstance(name, str) or not name:
             raise TypeError(f"shape name: expected a non-empty string, got {name!r}")
         checked: Dict[str, ParamValue] = {}
         for key, value in params.items():
             if value is None:
                 continue  # None: the class's default
-            if isinstance(value, Shape) or _convert.is_number(value):
+            if isinstance(value, Shape):
                 checked[key] = value
+            elif _convert.is_number(value):
+                checked[key] = _convert.as_float(value, f"shape '{name}': parameter '{key}'")
             elif isinstance(value, (str, bytes, os.PathLike)):
                 checked[key] = value
             else:
@@ -260,14 +263,15 @@ class Cone(Shape):
 
 
 class Torus(Shape):
-    """A ring of radius 1 about the z axis with tube radius `tube` (the
-    module's default, Hill's 0.2, if omitted); `solver` picks the module's
-    quartic root solver (see ``hitray.shape_classes()["torus"]``)."""
+    """A ring of radius 1 in the xy-plane about the z axis with tube radius
+    `tube` (Hill's 0.2 if omitted). `solver` picks the quartic root solver:
+    "bracketing" (the default: never misses a root or a tangent),
+    "ferrari-newton" or "ferrari" (faster, less robust near tangents); see
+    ``hitray.shape_classes()["torus"]`` for what each costs."""
 
     __slots__ = ()
 
-    def __init__(self, tube: Optional[float] = None,
-                 solver: Optional[typing.Union[float, str]] = None) -> None:
+    def __init__(self, tube: Optional[float] = None, solver: Optional[str] = None) -> None:
         super().__init__("torus", tube=tube, solver=solver)
 
     def _repr_head(self) -> str:
@@ -276,7 +280,9 @@ class Torus(Shape):
 
 
 class Mesh(Shape):
-    """A mesh in Hill's chapter-6 format, read from `file` when added."""
+    """A mesh read from `file` when added: Wavefront OBJ if the name ends in
+    .obj, Hill's chapter-6 format otherwise. A relative name is taken from the
+    current directory at the time of ``Scene.add``."""
 
     __slots__ = ()
 
@@ -285,6 +291,54 @@ class Mesh(Shape):
 
     def _repr_head(self) -> str:
         return f"Mesh({self._params['file']!r})"
+
+
+class Tetrahedron(Shape):
+    """The regular tetrahedron, vertices on the unit sphere."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("tetrahedron")
+
+    def _repr_head(self) -> str:
+        return "Tetrahedron()"
+
+
+class Octahedron(Shape):
+    """The regular octahedron, vertices at (±1, 0, 0), (0, ±1, 0), (0, 0, ±1)."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("octahedron")
+
+    def _repr_head(self) -> str:
+        return "Octahedron()"
+
+
+class Dodecahedron(Shape):
+    """The regular dodecahedron, vertices on the unit sphere."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("dodecahedron")
+
+    def _repr_head(self) -> str:
+        return "Dodecahedron()"
+
+
+class Icosahedron(Shape):
+    """The regular icosahedron, vertices on the unit sphere."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("icosahedron")
+
+    def _repr_head(self) -> str:
+        return "Icosahedron()"
 
 
 class _Boolean(Shape):

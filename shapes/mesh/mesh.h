@@ -1,0 +1,128 @@
+/* The mesh module's shared types: a triangle mesh as the module keeps it
+ * (vertices stored once, triangles as three 32-bit indices, optional
+ * per-corner normal indices), the builder the file readers and the regular
+ * solids fill, and the BVH over the triangles.
+ *
+ * Storage per triangle: 12 bytes of vertex indices, 12 more when the mesh
+ * has normals, the vertices themselves (24 bytes each, shared: a closed
+ * mesh has about half as many vertices as triangles) and the BVH nodes
+ * (32 bytes each, about 2 n / 3 of them for leaves of up to 8). The BVH
+ * orders the triangles themselves, so no index array sits between them. */
+#ifndef HITRAY_MESH_H
+#define HITRAY_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <hitray/shape_module.h>
+
+/* A corner with no normal (OBJ faces may omit them). */
+#define MESH_NO_NORMAL UINT32_MAX
+/* Indices are 32-bit; the largest count of vertices, normals or triangles. */
+#define MESH_MAX_COUNT ((size_t)UINT32_MAX - 1u)
+
+/* One BVH node, 32 bytes. The box is in float, rounded outward and grown by
+ * one float ulp, so it contains every point the double-precision triangle
+ * test can accept inside it. An interior node's left child is the next
+ * node; `index` is its right child. A leaf (count > 0) holds triangles
+ * index .. index + count - 1. `axis` is the split axis, which orders the
+ * traversal front to back. */
+typedef struct mesh_bvh_node {
+    float lo[3], hi[3];
+    uint32_t index;
+    uint16_t count;
+    uint16_t axis;
+} mesh_bvh_node;
+
+/* The deepest a BVH is built: SAH splits up to MESH_BVH_SAH_DEPTH levels,
+ * then median splits, which halve the count, so 32 more levels suffice for
+ * 2^32 triangles. The traversal stack is sized from this. */
+#define MESH_BVH_SAH_DEPTH 48
+#define MESH_BVH_MAX_DEPTH (MESH_BVH_SAH_DEPTH + 33)
+#define MESH_BVH_MAX_LEAF 8
+
+typedef struct mesh {
+    const hr_host *host;
+    hr_vec3 *vertices;
+    hr_vec3 *normals;      /* NULL when the mesh has none */
+    uint32_t *corners;     /* 3 vertex indices per triangle, in BVH order */
+    uint32_t *corner_normals; /* 3 normal indices per triangle or NULL */
+    uint32_t vertex_count, normal_count, triangle_count;
+    uint32_t node_count;
+    mesh_bvh_node *nodes;
+    hr_bounds bounds;
+    /* Every edge (vertices welded by position) is used once in each
+     * direction: a closed, consistently wound surface. */
+    int closed;
+} mesh;
+
+/* --- Building ------------------------------------------------------------ */
+
+/* What a reader or a solid fills; mesh_builder_finish turns it into a mesh.
+ * Arrays grow by doubling through the host's allocator, or are reserved
+ * exactly when a file states its counts. */
+typedef struct mesh_builder {
+    const hr_host *host;
+    hr_vec3 *vertices;
+    size_t vertex_count, vertex_capacity;
+    hr_vec3 *normals;
+    size_t normal_count, normal_capacity;
+    uint32_t *corners; /* 3 per triangle */
+    uint32_t *corner_normals; /* 3 per triangle, MESH_NO_NORMAL where none */
+    size_t triangle_count, triangle_capacity;
+    size_t degenerate_count; /* triangles skipped: two corners at one point */
+} mesh_builder;
+
+void mesh_builder_init(mesh_builder *b, const hr_host *host);
+void mesh_builder_release(mesh_builder *b);
+/* 0 on success, -1 when out of memory. */
+int mesh_builder_reserve(mesh_builder *b, size_t vertices, size_t normals, size_t triangles);
+int mesh_builder_add_vertex(mesh_builder *b, hr_vec3 v);
+int mesh_builder_add_normal(mesh_builder *b, hr_vec3 n);
+/* A polygon of `count` >= 3 corners (indices already checked), fanned from
+ * its first corner: (0, i, i+1). Triangles with two corners at the same
+ * point have no area and are skipped (and counted). `normals` may be NULL.
+ * Returns 0, or -1 when out of memory or past MESH_MAX_COUNT triangles. */
+int mesh_builder_add_polygon(mesh_builder *b, const uint32_t *vertices, const uint32_t *normals,
+                             size_t count);
+
+/* Builds the BVH and hands the arrays over to a new mesh (the builder is
+ * left empty). On failure writes a message to error and returns a status. */
+hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t error_size);
+void mesh_destroy(mesh *m);
+
+/* Whether every edge is used once in each direction (vertices welded by
+ * exact position). -1: out of memory. */
+int mesh_is_closed(const mesh *m);
+
+/* --- Reading files ------------------------------------------------------- */
+
+/* Hill's chapter-6 format (.3vn) and Wavefront OBJ (v, vn, f). `path` is the
+ * file to open, `shown` the name used in messages. On failure they write
+ * "shown:line: what (found 'token')" to error and return a status. */
+hr_status mesh_read_3vn(mesh_builder *b, const char *text, size_t length, const char *shown,
+                        char *error, size_t error_size);
+hr_status mesh_read_obj(mesh_builder *b, const char *text, size_t length, const char *shown,
+                        char *error, size_t error_size);
+
+/* --- The regular solids ---------------------------------------------------- */
+
+#define MESH_TETRAHEDRON 0
+#define MESH_OCTAHEDRON 1
+#define MESH_DODECAHEDRON 2
+#define MESH_ICOSAHEDRON 3
+
+/* Fills the builder with the solid, vertices on the unit sphere, faces wound
+ * counter-clockwise seen from outside. 0, or -1 when out of memory. */
+int mesh_solid_build(mesh_builder *b, int solid);
+
+/* --- The BVH --------------------------------------------------------------- */
+
+/* The hits of the ray in args (HR_TRACE_ALL, _FIRST or _ANY), appended to
+ * args->out (mesh_trace.c). */
+hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode);
+
+/* Orders m->corners (and m->corner_normals) and builds m->nodes. */
+hr_status mesh_bvh_build(mesh *m);
+
+#endif

@@ -1,0 +1,145 @@
+/* The mesh module: triangle and polygon meshes read from files (class
+ * `mesh`, parameter `file`) and Hill's regular solids built in code
+ * (`tetrahedron`, `octahedron`, `dodecahedron`, `icosahedron`).
+ *
+ * Files: Hill's chapter-6 format (.3vn) or Wavefront OBJ (.obj), see
+ * mesh_read_3vn.c and mesh_read_obj.c; a relative name is taken from the
+ * scene file's directory (hr_create_args.base_dir). Errors name the file and
+ * line. Triangles with two corners at one point have no area and are
+ * skipped; a file left with no triangle is refused.
+ *
+ * Hits: the watertight test of mesh_triangle.h over the module's own BVH
+ * (mesh_bvh.c, mesh_trace.c). Surface ids: a mesh is one surface, 0.
+ * Entering flags come from the geometric normal (B - A) x (C - A) of each
+ * triangle, so a consistently wound closed mesh (counter-clockwise seen
+ * from outside, as Hill's files are) is entered and left in turn.
+ *
+ * Flags: the regular solids are closed (HR_SHAPE_CLOSED). The `mesh` class
+ * is not: a file may hold an open surface, whose hits are all reported but
+ * need not alternate. A file mesh whose every edge is used once in each
+ * direction is closed all the same, and its all-hits lists alternate (the
+ * same repair as the solids'); a CSG operand should be such a mesh. */
+#include <stdio.h>
+#include <string.h>
+
+#include "mesh.h"
+#include "mesh_file.h"
+
+static hr_status mesh_hit(const hr_hit_args *args)
+{
+    return mesh_trace(args->shape, args, HR_TRACE_ALL);
+}
+
+static hr_status mesh_first_hit(const hr_hit_args *args)
+{
+    return mesh_trace(args->shape, args, HR_TRACE_FIRST);
+}
+
+static hr_status mesh_any_hit(const hr_hit_args *args)
+{
+    return mesh_trace(args->shape, args, HR_TRACE_ANY);
+}
+
+static void mesh_bounds(const void *shape, hr_bounds *out)
+{
+    *out = ((const mesh *)shape)->bounds;
+}
+
+static void mesh_destroy_shape(void *shape)
+{
+    mesh_destroy(shape);
+}
+
+static hr_status mesh_create(const hr_create_args *args, void **out_shape)
+{
+    *out_shape = NULL;
+    const char *file = NULL;
+    for (int32_t i = 0; i < args->param_count; i++)
+        if (args->params[i].name && strcmp(args->params[i].name, "file") == 0 &&
+            args->params[i].type == HR_PARAM_STRING)
+            file = args->params[i].string;
+    mesh *m = NULL;
+    hr_status st = mesh_load_file(args->host, file, args->base_dir, &m, args->error,
+                                  args->error_size);
+    if (st) return st;
+    *out_shape = m;
+    return HR_OK;
+}
+
+static hr_status solid_create(const hr_create_args *args, void **out_shape, int solid)
+{
+    *out_shape = NULL;
+    mesh_builder b;
+    mesh_builder_init(&b, args->host);
+    mesh *m = NULL;
+    hr_status st = mesh_solid_build(&b, solid) ? HR_ERROR_OUT_OF_MEMORY
+                                               : mesh_builder_finish(&b, &m, args->error,
+                                                                     args->error_size);
+    mesh_builder_release(&b);
+    if (st) return st;
+    *out_shape = m;
+    return HR_OK;
+}
+
+#define DEFINE_SOLID_CREATE(name, solid)                                       \
+    static hr_status name##_create(const hr_create_args *args, void **out)     \
+    {                                                                          \
+        return solid_create(args, out, solid);                                 \
+    }
+DEFINE_SOLID_CREATE(tetrahedron, MESH_TETRAHEDRON)
+DEFINE_SOLID_CREATE(octahedron, MESH_OCTAHEDRON)
+DEFINE_SOLID_CREATE(dodecahedron, MESH_DODECAHEDRON)
+DEFINE_SOLID_CREATE(icosahedron, MESH_ICOSAHEDRON)
+
+static const hr_param_spec mesh_params[] = {
+    {"file", HR_PARAM_STRING, 1, 0.0, 0.0, 0.0,
+     "mesh file: Wavefront OBJ if the name ends in .obj, else Hill's chapter-6 format (.3vn); "
+     "relative to the scene file"},
+};
+
+#define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
+    {                                                                          \
+        .struct_size = sizeof(hr_shape_class), .flags = flags_, .name = name_, \
+        .help = help_, .params = params_, .param_count = count_,               \
+        .surface_count = 1, .create = create_, .destroy = mesh_destroy_shape,  \
+        .bounds = mesh_bounds, .hit = mesh_hit, .first_hit = mesh_first_hit,   \
+        .any_hit = mesh_any_hit,                                               \
+    }
+
+static const hr_shape_class mesh_class =
+    MESH_CLASS("mesh", 0,
+               "triangle or polygon mesh from a file (Hill's .3vn, or OBJ); one surface",
+               mesh_params, 1, mesh_create);
+static const hr_shape_class tetrahedron_class =
+    MESH_CLASS("tetrahedron", HR_SHAPE_CLOSED, "regular tetrahedron, vertices on the unit sphere",
+               NULL, 0, tetrahedron_create);
+static const hr_shape_class octahedron_class =
+    MESH_CLASS("octahedron", HR_SHAPE_CLOSED, "regular octahedron, vertices (+-1, 0, 0) and so on",
+               NULL, 0, octahedron_create);
+static const hr_shape_class dodecahedron_class =
+    MESH_CLASS("dodecahedron", HR_SHAPE_CLOSED,
+               "regular dodecahedron, vertices on the unit sphere", NULL, 0, dodecahedron_create);
+static const hr_shape_class icosahedron_class =
+    MESH_CLASS("icosahedron", HR_SHAPE_CLOSED,
+               "regular icosahedron, vertices on the unit sphere", NULL, 0, icosahedron_create);
+
+static const hr_shape_class *const mesh_classes[] = {
+    &mesh_class, &tetrahedron_class, &octahedron_class, &dodecahedron_class, &icosahedron_class,
+};
+
+static const hr_module_info mesh_module = {
+    .struct_size = sizeof(hr_module_info),
+    .abi_version = HR_SHAPE_ABI_VERSION,
+    .name = "mesh",
+    .description = "triangle meshes from Hill's .3vn and OBJ files, and the regular solids",
+    .classes = mesh_classes,
+    .class_count = (int32_t)(sizeof mesh_classes / sizeof mesh_classes[0]),
+};
+
+/* The host checks abi_version and explains a mismatch. */
+HR_DEFINE_SHAPE_MODULE(host_version, host)
+{
+    (void)host_version;
+    (void)host;
+    return &mesh_module;
+}

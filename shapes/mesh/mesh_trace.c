@@ -1,0 +1,259 @@
+/* Tracing a mesh: iterative BVH traversal with a fixed stack, front to back
+ * (the child on the ray's near side of the split axis first), with the
+ * three modes of the shape ABI:
+ * - first hit: the best t so far prunes every box beyond it;
+ * - any hit: stops at the first triangle hit (shadow rays);
+ * - all hits: every triangle hit, sorted by t (CSG).
+ *
+ * What a hit reports:
+ * - t from the watertight test (mesh_triangle.h);
+ * - point: the barycentric combination b0 A + b1 B + b2 C, which lies in the
+ *   triangle; error gamma(7) (|b0 A| + |b1 B| + |b2 C|) per coordinate, the
+ *   bound pbrt derives for this interpolation (Pharr, Jakob, Humphreys,
+ *   "Physically Based Rendering", 3rd ed., 3.9.4);
+ * - normal: the interpolated vertex normals where the triangle has them,
+ *   flipped to the side of the geometric normal (B - A) x (C - A); otherwise
+ *   the geometric normal;
+ * - entering: the geometric normal points against the ray (exact: it is the
+ *   sign of the test's determinant);
+ * - surface 0: a mesh is one surface.
+ * For a closed mesh, all-hits lists are made to alternate (see
+ * alternate_closed): rounding can swap two crossings a few ulps apart. */
+#include <math.h>
+#include <string.h>
+
+#include "mesh.h"
+#include "mesh_triangle.h"
+
+/* The slab test of a node's box over [tmin, tmax]. The box is conservative
+ * (outward-rounded float, one ulp more), and each slab time is widened by
+ * 2 gamma(3) of itself to cover its own rounding (pbrt's argument). A NaN
+ * time ((lo - o) * inf with lo == o, for a ray in a slab's plane) leaves the
+ * interval as it was: conservative. */
+static int box_hit(const mesh_bvh_node *n, const mesh_ray *r, double tmin, double tmax)
+{
+    const double pad = 2.0 * MESH_GAMMA(3);
+    double t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; a++) {
+        double near = ((r->neg[a] ? n->hi[a] : n->lo[a]) - r->o[a]) * r->inv_d[a];
+        double far = ((r->neg[a] ? n->lo[a] : n->hi[a]) - r->o[a]) * r->inv_d[a];
+        near -= pad * fabs(near);
+        far += pad * fabs(far);
+        if (near > t0) t0 = near;
+        if (far < t1) t1 = far;
+    }
+    return t0 <= t1;
+}
+
+/* (B - A) x (C - A) with the edges scaled by a power of two first, so tiny
+ * or huge triangles neither underflow nor overflow. */
+static hr_vec3 geometric_normal(const hr_vec3 *a, const hr_vec3 *b, const hr_vec3 *c)
+{
+    double e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
+    double e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+    double big = 0.0;
+    for (int i = 0; i < 3; i++) big = fmax(big, fmax(fabs(e1[i]), fabs(e2[i])));
+    if (big > 0.0 && isfinite(big)) {
+        int e = ilogb(big);
+        for (int i = 0; i < 3; i++) e1[i] = ldexp(e1[i], -e), e2[i] = ldexp(e2[i], -e);
+    }
+    hr_vec3 n = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                 e1[0] * e2[1] - e1[1] * e2[0]};
+    return n;
+}
+
+static double dot3(hr_vec3 a, hr_vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/* Writes every field of the hit but `object`, which is the host's. */
+static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_triangle_hit *th,
+                     hr_hit *hit)
+{
+    const uint32_t *c = m->corners + 3 * (size_t)tri;
+    const hr_vec3 *v[3] = {&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]]};
+    const double *b = th->b;
+    hit->t = th->t;
+    hit->point.x = b[0] * v[0]->x + b[1] * v[1]->x + b[2] * v[2]->x;
+    hit->point.y = b[0] * v[0]->y + b[1] * v[1]->y + b[2] * v[2]->y;
+    hit->point.z = b[0] * v[0]->z + b[1] * v[1]->z + b[2] * v[2]->z;
+    double ex = fabs(b[0] * v[0]->x) + fabs(b[1] * v[1]->x) + fabs(b[2] * v[2]->x);
+    double ey = fabs(b[0] * v[0]->y) + fabs(b[1] * v[1]->y) + fabs(b[2] * v[2]->y);
+    double ez = fabs(b[0] * v[0]->z) + fabs(b[1] * v[1]->z) + fabs(b[2] * v[2]->z);
+    hit->error = MESH_GAMMA(7) * fmax(ex, fmax(ey, ez));
+    hit->surface = 0;
+    hit->entering = th->entering;
+    hr_vec3 ng = geometric_normal(v[0], v[1], v[2]);
+    if (ng.x == 0.0 && ng.y == 0.0 && ng.z == 0.0) {
+        /* Collinear corners the test still saw with area (rounding): face
+         * the ray the way the entering flag says. */
+        const double s = th->entering ? -1.0 : 1.0;
+        ng.x = s * ray->dir.x, ng.y = s * ray->dir.y, ng.z = s * ray->dir.z;
+    }
+    hit->normal = ng;
+    if (!m->corner_normals) return;
+    const uint32_t *cn = m->corner_normals + 3 * (size_t)tri;
+    if (cn[0] == MESH_NO_NORMAL || cn[1] == MESH_NO_NORMAL || cn[2] == MESH_NO_NORMAL) return;
+    const hr_vec3 *n[3] = {&m->normals[cn[0]], &m->normals[cn[1]], &m->normals[cn[2]]};
+    hr_vec3 ns = {b[0] * n[0]->x + b[1] * n[1]->x + b[2] * n[2]->x,
+                  b[0] * n[0]->y + b[1] * n[1]->y + b[2] * n[2]->y,
+                  b[0] * n[0]->z + b[1] * n[1]->z + b[2] * n[2]->z};
+    if (!isfinite(ns.x) || !isfinite(ns.y) || !isfinite(ns.z)) return;
+    const double side = dot3(ns, ng);
+    if (side == 0.0 || !isfinite(side)) return; /* zero, or in the surface's plane */
+    if (side < 0.0) ns.x = -ns.x, ns.y = -ns.y, ns.z = -ns.z;
+    hit->normal = ns;
+}
+
+static int hit_before(const hr_hit *a, const hr_hit *b)
+{
+    if (a->t != b->t) return a->t < b->t;
+    return a->entering > b->entering; /* a zero-length visit: enter first */
+}
+
+/* Sorts hits[0, n): insertion sort for the short lists rays usually make,
+ * heapsort (no allocation, no recursion) beyond. */
+static void sift(hr_hit *h, size_t root, size_t n)
+{
+    for (;;) {
+        size_t child = 2 * root + 1;
+        if (child >= n) return;
+        if (child + 1 < n && hit_before(&h[child], &h[child + 1])) child++;
+        if (!hit_before(&h[root], &h[child])) return;
+        hr_hit t = h[root];
+        h[root] = h[child], h[child] = t;
+        root = child;
+    }
+}
+
+static void sort_hits(hr_hit *h, size_t n)
+{
+    if (n <= 32) {
+        for (size_t i = 1; i < n; i++) {
+            hr_hit x = h[i];
+            size_t j = i;
+            while (j > 0 && hit_before(&x, &h[j - 1])) h[j] = h[j - 1], j--;
+            h[j] = x;
+        }
+        return;
+    }
+    for (size_t i = n / 2; i-- > 0;) sift(h, i, n);
+    for (size_t end = n; end-- > 1;) {
+        hr_hit t = h[0];
+        h[0] = h[end], h[end] = t;
+        sift(h, 0, end);
+    }
+}
+
+/* A closed mesh's crossings alternate along the exact line (the entering
+ * flags are exact); only the computed t can put two crossings a rounding
+ * apart in the wrong order. Where two neighbours have the same flag and the
+ * next crossing of the other kind is within the hits' error bounds (as
+ * distances along the ray), that crossing is moved up and given the t of
+ * the place it moves to, which keeps the list sorted. Farther apart, the
+ * list is left as computed: the surface really crosses itself there. */
+static void alternate_closed(const hr_ray *ray, hr_hit *h, size_t n)
+{
+    const double speed = fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
+    for (size_t i = 1; i < n; i++) {
+        if (h[i].entering != h[i - 1].entering) continue;
+        for (size_t j = i + 1; j < n; j++) {
+            const double slack = (h[i].error + h[j].error) / speed * 4.0 +
+                                 8.0 * DBL_EPSILON * fmax(fabs(h[i].t), fabs(h[j].t));
+            if (!(h[j].t - h[i - 1].t <= slack)) break;
+            if (h[j].entering == h[i - 1].entering) continue;
+            hr_hit moved = h[j];
+            moved.t = h[i].t;
+            memmove(&h[i + 1], &h[i], (j - i) * sizeof *h);
+            h[i] = moved;
+            break;
+        }
+    }
+}
+
+/* Room for one more hit in the host's list, grown through the host. */
+static hr_status make_room(const hr_hit_args *args, const hr_host *host)
+{
+    hr_intersection *out = args->out;
+    if (out->count < out->capacity) return HR_OK;
+    if (out->capacity > INT32_MAX / 2) return HR_ERROR_OUT_OF_MEMORY;
+    int32_t wanted = out->capacity * 2 > out->count + 8 ? out->capacity * 2 : out->count + 8;
+    hr_status st = host->reserve(args->call, out, wanted);
+    if (st) return st;
+    return out->count < out->capacity ? HR_OK : HR_ERROR_OUT_OF_MEMORY;
+}
+
+hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
+{
+    mesh_ray r;
+    if (!mesh_ray_init(&r, &args->ray)) return HR_OK;
+    const double tmin = args->tmin;
+    double tmax = args->tmax;
+    const int32_t start = args->out->count;
+    uint32_t stack[MESH_BVH_MAX_DEPTH + 2];
+    int top = 0;
+    uint32_t node = 0;
+    int found = 0;
+    mesh_triangle_hit best;
+    uint32_t best_tri = 0;
+    if (!box_hit(&m->nodes[0], &r, tmin, tmax)) return HR_OK;
+    for (;;) {
+        const mesh_bvh_node *n = &m->nodes[node];
+        if (n->count > 0) {
+            for (uint32_t i = n->index; i < n->index + n->count; i++) {
+                const uint32_t *c = m->corners + 3 * (size_t)i;
+                mesh_triangle_hit th;
+                if (!mesh_triangle_test(&r, &m->vertices[c[0]], &m->vertices[c[1]],
+                                        &m->vertices[c[2]], tmin, tmax, &th))
+                    continue;
+                if (mode == HR_TRACE_ALL) {
+                    hr_status st = make_room(args, m->host);
+                    if (st) {
+                        args->out->count = start;
+                        return st;
+                    }
+                    fill_hit(m, &args->ray, i, &th, &args->out->hits[args->out->count++]);
+                    continue;
+                }
+                found = 1;
+                best = th;
+                best_tri = i;
+                if (mode == HR_TRACE_ANY) goto done;
+                tmax = th.t; /* nearer hits only from here on */
+            }
+        } else {
+            /* Near child first: the right one when the ray runs down the axis. */
+            uint32_t first = node + 1, second = n->index;
+            if (r.neg[n->axis]) first = n->index, second = node + 1;
+            int hit_first = box_hit(&m->nodes[first], &r, tmin, tmax);
+            int hit_second = box_hit(&m->nodes[second], &r, tmin, tmax);
+            if (hit_first && hit_second) {
+                stack[top++] = second;
+                node = first;
+                continue;
+            }
+            if (hit_first || hit_second) {
+                node = hit_first ? first : second;
+                continue;
+            }
+        }
+        /* Next pushed box; in first-hit mode skip those now beyond the
+         * nearest hit found since they were pushed. */
+        do {
+            if (top == 0) goto done;
+            node = stack[--top];
+        } while (mode == HR_TRACE_FIRST && found && !box_hit(&m->nodes[node], &r, tmin, tmax));
+    }
+done:
+    if (mode != HR_TRACE_ALL) {
+        if (!found) return HR_OK;
+        fill_hit(m, &args->ray, best_tri, &best, &args->out->hits[args->out->count++]);
+        return HR_OK;
+    }
+    hr_hit *hits = args->out->hits + start;
+    const size_t count = (size_t)(args->out->count - start);
+    sort_hits(hits, count);
+    if (m->closed) alternate_closed(&args->ray, hits, count);
+    return HR_OK;
+}

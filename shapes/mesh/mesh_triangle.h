@@ -1,0 +1,205 @@
+/* A watertight ray/triangle test in the style of Woop, Benthin and Wald,
+ * "Watertight Ray/Triangle Intersection" (JCGT 2013), in double precision.
+ *
+ * The ray is moved to the origin, its axes permuted so that its largest
+ * direction component is z, and the scene sheared so that the ray becomes
+ * the +z axis (mesh_ray_init). Each vertex is transformed by the same
+ * arithmetic whichever triangle it belongs to, so two triangles sharing an
+ * edge see bit-identical 2D corners; the three 2D edge functions
+ * U = cross(C, B), V = cross(A, C), W = cross(B, A) of a shared edge are
+ * then exact negatives of each other in the two triangles.
+ *
+ * Two steps go beyond the paper's test:
+ * - Exact signs. Each edge function is computed in double with a bound on
+ *   its rounding error; when the value is within that bound (the paper's
+ *   "exactly 0" case, widened to every case rounding could get wrong) it is
+ *   recomputed exactly with error-free products and a four-term expansion
+ *   (Shewchuk's), so its sign is the sign of the exact 2D determinant of
+ *   the rounded corners (barring underflow: corners within about 1e-150 of
+ *   the ray). Exact signs make the edges of a vertex fan agree with each
+ *   other, not only pairwise.
+ * - Ties broken by symbolic perturbation. An edge function that is exactly
+ *   zero (the ray runs through the edge's line) takes the sign it would have
+ *   if the ray were moved by (eps, eps^2) in the sheared plane: sign(X.y -
+ *   Y.y), or sign(Y.x - X.x) when those are equal, for F = cross(X, Y). The
+ *   same perturbation applies to every triangle, so a ray through an edge
+ *   hits exactly one of two triangles that face the same way, and a ray
+ *   through a vertex hits exactly one triangle of a fan around it.
+ * The triangle is hit when the three (perturbed) signs agree; the hit is
+ * entering when they are positive (the geometric normal (B-A) x (C-A)
+ * points against the ray). */
+#ifndef HITRAY_MESH_TRIANGLE_H
+#define HITRAY_MESH_TRIANGLE_H
+
+#include <float.h>
+#include <math.h>
+
+#include <hitray/common.h>
+
+#define MESH_UNIT_ROUNDOFF (DBL_EPSILON * 0.5)
+#define MESH_GAMMA(n) (((n) * MESH_UNIT_ROUNDOFF) / (1.0 - (n) * MESH_UNIT_ROUNDOFF))
+
+/* The ray as the test and the BVH need it. */
+typedef struct mesh_ray {
+    double o[3], d[3];
+    double inv_d[3];
+    int neg[3];
+    int kx, ky, kz;
+    double sx, sy, sz;
+} mesh_ray;
+
+/* 0 when the direction is the zero vector (no hit possible). */
+static inline int mesh_ray_init(mesh_ray *r, const hr_ray *ray)
+{
+    r->o[0] = ray->origin.x, r->o[1] = ray->origin.y, r->o[2] = ray->origin.z;
+    r->d[0] = ray->dir.x, r->d[1] = ray->dir.y, r->d[2] = ray->dir.z;
+    int kz = 0;
+    for (int a = 0; a < 3; a++) {
+        r->inv_d[a] = 1.0 / r->d[a];
+        r->neg[a] = signbit(r->d[a]) != 0;
+        if (fabs(r->d[a]) > fabs(r->d[kz])) kz = a;
+    }
+    if (r->d[kz] == 0.0) return 0;
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    /* Keep the permutation's handedness once z is flipped by sz < 0. */
+    if (r->d[kz] < 0.0) {
+        int t = kx;
+        kx = ky, ky = t;
+    }
+    r->kx = kx, r->ky = ky, r->kz = kz;
+    r->sx = r->d[kx] / r->d[kz];
+    r->sy = r->d[ky] / r->d[kz];
+    r->sz = 1.0 / r->d[kz];
+    return 1;
+}
+
+/* A vertex in the ray's sheared space. */
+static inline void mesh_shear(const mesh_ray *r, const hr_vec3 *v, double out[3])
+{
+    const double p[3] = {v->x - r->o[0], v->y - r->o[1], v->z - r->o[2]};
+    out[0] = p[r->kx] - r->sx * p[r->kz];
+    out[1] = p[r->ky] - r->sy * p[r->kz];
+    out[2] = r->sz * p[r->kz];
+}
+
+static inline double mesh_two_sum(double a, double b, double *error)
+{
+    double s = a + b;
+    double bv = s - a, av = s - bv;
+    *error = (a - av) + (b - bv);
+    return s;
+}
+
+/* a b - c d, exactly rounded in sign: a b = p1 + e1 and c d = p2 + e2
+ * exactly (FMA), and the four terms are summed into a non-overlapping
+ * expansion h0..h3 of increasing magnitude (Shewchuk's Grow-Expansion).
+ * The value returned has the sign of the largest non-zero component, which
+ * is the sign of the exact sum, and is zero only when that sum is. */
+static inline double mesh_exact_difference(double a, double b, double c, double d)
+{
+    const double p1 = a * b, e1 = fma(a, b, -p1);
+    const double p2 = c * d, e2 = fma(c, d, -p2);
+    double h0, h1, h2, q;
+    q = mesh_two_sum(-p2, p1, &h0);                 /* [h0, q] */
+    double r0, r1;
+    double q2 = mesh_two_sum(e1, h0, &r0);
+    q2 = mesh_two_sum(q2, q, &r1);                  /* [r0, r1, q2] */
+    double s0, s1, s2;
+    double q3 = mesh_two_sum(-e2, r0, &s0);
+    q3 = mesh_two_sum(q3, r1, &s1);
+    q3 = mesh_two_sum(q3, q2, &s2);                 /* [s0, s1, s2, q3] */
+    h0 = s0, h1 = s1, h2 = s2;
+    double top = q3 != 0.0 ? q3 : h2 != 0.0 ? h2 : h1 != 0.0 ? h1 : h0;
+    double value = ((h0 + h1) + h2) + q3;
+    return (value > 0.0) == (top > 0.0) && value != 0.0 ? value : top;
+}
+
+/* a b - c d with the sign of the exact value: the double result when it
+ * exceeds its rounding error bound (fl(fl(ab) - fl(cd)) is within
+ * gamma(2) (|ab| + |cd|) of the exact value; gamma(3) also covers
+ * rounding the bound), otherwise the exact evaluation. */
+static inline double mesh_edge_function(double a, double b, double c, double d)
+{
+    const double ab = a * b, cd = c * d;
+    const double e = ab - cd;
+    if (fabs(e) > MESH_GAMMA(3) * (fabs(ab) + fabs(cd))) return e;
+    return mesh_exact_difference(a, b, c, d);
+}
+
+/* Sign of F = cross(X, Y) at the perturbed ray (eps, eps^2) when F is
+ * exactly zero at the ray: F(p) = F(0) + cross(p, X - Y). */
+static inline int mesh_tie_sign(const double x[3], const double y[3])
+{
+    if (x[1] != y[1]) return x[1] > y[1] ? 1 : -1;
+    if (x[0] != y[0]) return y[0] > x[0] ? 1 : -1;
+    return 0;
+}
+
+static inline int mesh_sign_of(double f, const double x[3], const double y[3])
+{
+    return f > 0.0 ? 1 : f < 0.0 ? -1 : mesh_tie_sign(x, y);
+}
+
+/* What the test returns on a hit: t, the barycentric weights of A, B, C
+ * (b[0] for A) and whether the ray enters (normal against the ray). */
+typedef struct mesh_triangle_hit {
+    double t;
+    double b[3];
+    int entering;
+} mesh_triangle_hit;
+
+/* A bound on the rounding error of t = T / det (pbrt-v4's, Pharr, Jakob and
+ * Humphreys, "Physically Based Rendering", 4th ed., 6.8.7): from the errors
+ * of the sheared corners, of the edge functions and of T. A hit within this
+ * of tmin may really lie before it; it is refused, as pbrt refuses hits
+ * that may lie behind the origin, so a ray that starts on the mesh does not
+ * find the triangle it starts on. */
+static inline double mesh_t_error(const double A[3], const double B[3], const double C[3],
+                                  double U, double V, double W, double det)
+{
+    const double max_z = fmax(fabs(A[2]), fmax(fabs(B[2]), fabs(C[2])));
+    const double max_x = fmax(fabs(A[0]), fmax(fabs(B[0]), fabs(C[0])));
+    const double max_y = fmax(fabs(A[1]), fmax(fabs(B[1]), fabs(C[1])));
+    const double delta_z = MESH_GAMMA(3) * max_z;
+    const double delta_x = MESH_GAMMA(5) * (max_x + max_z);
+    const double delta_y = MESH_GAMMA(5) * (max_y + max_z);
+    const double delta_e =
+        2.0 * (MESH_GAMMA(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    const double max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));
+    return 3.0 * (MESH_GAMMA(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) /
+           fabs(det);
+}
+
+/* The watertight test of triangle (A, B, C) against the ray, for hits
+ * with tmin < t < tmax. */
+static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,
+                                     const hr_vec3 *c, double tmin, double tmax,
+                                     mesh_triangle_hit *out)
+{
+    double A[3], B[3], C[3];
+    mesh_shear(r, a, A);
+    mesh_shear(r, b, B);
+    mesh_shear(r, c, C);
+    const double U = mesh_edge_function(C[0], B[1], C[1], B[0]);
+    const double V = mesh_edge_function(A[0], C[1], A[1], C[0]);
+    const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
+    const int su = mesh_sign_of(U, C, B);
+    if (su == 0) return 0;
+    if (mesh_sign_of(V, A, C) != su || mesh_sign_of(W, B, A) != su) return 0;
+    /* Same signs (zeros count as either): the sum is zero only when all
+     * three are, a triangle seen edge on. */
+    const double det = U + V + W;
+    if (det == 0.0) return 0;
+    const double T = U * A[2] + V * B[2] + W * C[2];
+    const double t = T / det;
+    if (!(t > tmin && t < tmax)) return 0;
+    if (t - tmin <= mesh_t_error(A, B, C, U, V, W, det)) return 0;
+    out->t = t;
+    out->b[0] = U / det;
+    out->b[1] = V / det;
+    out->b[2] = W / det;
+    out->entering = det > 0.0;
+    return 1;
+}
+
+#endif

@@ -1,0 +1,55 @@
+#include "mesh_support.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "hr_test.h"
+
+const char *mesh_data_path(const char *name, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/tests/data/meshes/%s", HR_TEST_SOURCE_DIR, name);
+    return buf;
+}
+
+const char *mesh_build_path(const char *name, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s/tests/%s", HR_TEST_BINARY_DIR, name);
+    return buf;
+}
+
+hr_status mesh_create_file(const harness_module *module, const char *file, void **shape,
+                           char *error, size_t error_size)
+{
+    const hr_shape_class *cls = harness_find_class(module, "mesh");
+    *shape = NULL;
+    if (!cls) return HR_ERROR_MODULE;
+    hr_param param;
+    memset(&param, 0, sizeof param);
+    param.name = "file";
+    param.type = HR_PARAM_STRING;
+    param.string = file;
+    const void *objects[1] = {NULL};
+    hr_create_args args;
+    memset(&args, 0, sizeof args);
+    args.struct_size = sizeof args;
+    args.param_count = 1;
+    args.params = &param;
+    args.objects = objects;
+    args.host = harness_host();
+    args.error = error;
+    args.error_size = error_size;
+    args.base_dir = "";
+    error[0] = '\0';
+    return cls->create(&args, shape);
+}
+
+int mesh_open_file(harness_shape *out, const char *file)
+{
+    memset(out, 0, sizeof *out);
+    if (!harness_load("mesh", &out->module)) return 0;
+    out->cls = harness_find_class(&out->module, "mesh");
+    char error[512];
+    hr_status st = mesh_create_file(&out->module, file, &out->shape, error, sizeof error);
+    CHECK_MSG(st == HR_OK && out->shape, "mesh %s: status %d: %s", file, (int)st, error);
+    return st == HR_OK && out->shape != NULL;
+}

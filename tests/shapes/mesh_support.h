@@ -1,0 +1,24 @@
+/* Helpers of the mesh module's tests: opening a `mesh` shape on a file (the
+ * harness only sets number parameters), paths of the test data, and writing
+ * generated OBJ files into the build tree. */
+#ifndef HR_TEST_MESH_SUPPORT_H
+#define HR_TEST_MESH_SUPPORT_H
+
+#include <stddef.h>
+
+#include "module_harness.h"
+
+/* HR_TEST_SOURCE_DIR "/tests/data/meshes/" name */
+const char *mesh_data_path(const char *name, char *buf, size_t size);
+/* HR_TEST_BINARY_DIR "/tests/" name, for generated files */
+const char *mesh_build_path(const char *name, char *buf, size_t size);
+
+/* Creates class `mesh` of the loaded module on `file` (base_dir ""), with
+ * the harness's host. Returns create's status; the message in error. */
+hr_status mesh_create_file(const harness_module *module, const char *file, void **shape,
+                           char *error, size_t error_size);
+
+/* harness_open for a `mesh` on `file`. 1 on success. */
+int mesh_open_file(harness_shape *out, const char *file);
+
+#endif

@@ -1,0 +1,558 @@
+/* The mesh module on small meshes: a cube of 12 triangles (OBJ) agrees with
+ * the cube module on thousands of random rays; the same cube in Hill's
+ * .3vn format; rays swept across shared edges in 1e-7 steps and aimed
+ * through vertices hit exactly once per crossing; interpolated normals from
+ * an OBJ file; a ray with more hits than the host's free space. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hr_test.h"
+#include "mesh_support.h"
+#include "module_harness.h"
+#include "random_rays.h"
+
+static harness_shape cube_module;
+static harness_shape cube_mesh;
+
+static hr_vec3 unit(hr_vec3 v)
+{
+    double n = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    return harness_vec(v.x / n, v.y / n, v.z / n);
+}
+
+static double dot(hr_vec3 a, hr_vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/* Whether the cube module's hit lies within `margin` of an edge of the cube
+ * (two coordinates at +-1): there the cube's spans and the mesh's
+ * perturbation may rightly disagree (a zero-length visit, or which face). */
+static int near_cube_edge(const hr_hit *h, double margin)
+{
+    int at_face = (fabs(fabs(h->point.x) - 1) <= margin) + (fabs(fabs(h->point.y) - 1) <= margin) +
+                  (fabs(fabs(h->point.z) - 1) <= margin);
+    return at_face >= 2;
+}
+
+/* Thousands of random rays (random_rays.h: zero and negative-zero
+ * direction components, origins snapped to face planes, random intervals):
+ * the same hits from the 12-triangle cube as from the cube module, away
+ * from edges. Tolerances: t within 1e-12 (|t| + 1), since both compute t
+ * with a handful of roundings from the same doubles (a few 1e-16 relative),
+ * and the rays are at least 1e-9 from any edge, so no grazing amplifies
+ * them; points within both hits' error bounds plus 4 ulps; unit normals
+ * equal within 1e-12 (both are exact axis vectors up to rounding). */
+static void test_cube_agrees(void)
+{
+    ray_rng rng;
+    rng_seed(&rng, 12);
+    hr_bounds b = {{-1, -1, -1}, {1, 1, 1}};
+    int compared = 0, hit_rays = 0;
+    for (int i = 0; i < 20000; i++) {
+        hr_ray ray = random_ray_near(&rng, &b);
+        double tmin, tmax;
+        random_interval(&rng, &tmin, &tmax);
+        hr_hit want[HARNESS_MAX_HITS], got[HARNESS_MAX_HITS];
+        /* The whole line first: a ray that passes near an edge anywhere
+         * is skipped, in any interval. */
+        int all = harness_trace(&cube_module, ray, -INFINITY, INFINITY, HARNESS_ALL, want);
+        int skip = 0;
+        for (int k = 0; k < all; k++) skip |= near_cube_edge(&want[k], 1e-9);
+        if (all == 2 && fabs(want[1].t - want[0].t) < 1e-9) skip = 1;
+        if (skip) continue;
+        int n = harness_trace(&cube_module, ray, tmin, tmax, HARNESS_ALL, want);
+        int m = harness_trace(&cube_mesh, ray, tmin, tmax, HARNESS_ALL, got);
+        compared++;
+        hit_rays += n > 0;
+        CHECK_MSG(n == m, "ray %d: cube %d hits, mesh %d (o %.17g %.17g %.17g d %g %g %g, t in (%g, %g), mesh t %.17g)", i, n, m,
+                  ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, tmin, tmax, m ? got[0].t : 0.0);
+        if (n != m) continue;
+        for (int k = 0; k < n; k++) {
+            CHECK_MSG(fabs(got[k].t - want[k].t) <= 1e-12 * (fabs(want[k].t) + 1),
+                      "ray %d hit %d: t %.17g, cube %.17g", i, k, got[k].t, want[k].t);
+            CHECK(got[k].entering == want[k].entering);
+            CHECK(got[k].surface == 0);
+            hr_vec3 a = unit(got[k].normal), c = unit(want[k].normal);
+            CHECK_MSG(fabs(a.x - c.x) <= 1e-12 && fabs(a.y - c.y) <= 1e-12 &&
+                          fabs(a.z - c.z) <= 1e-12,
+                      "ray %d hit %d: normal (%g %g %g), cube (%g %g %g)", i, k, a.x, a.y, a.z, c.x,
+                      c.y, c.z);
+            const double tol = got[k].error + want[k].error + 4 * DBL_EPSILON * 2;
+            CHECK_MSG(fabs(got[k].point.x - want[k].point.x) <= tol &&
+                          fabs(got[k].point.y - want[k].point.y) <= tol &&
+                          fabs(got[k].point.z - want[k].point.z) <= tol,
+                      "ray %d hit %d: point off by more than %g", i, k, tol);
+        }
+        /* The fast paths agree with the full list. */
+        hr_hit first[HARNESS_MAX_HITS], any[HARNESS_MAX_HITS];
+        int f = harness_trace(&cube_mesh, ray, tmin, tmax, HARNESS_FIRST, first);
+        int a = harness_trace(&cube_mesh, ray, tmin, tmax, HARNESS_ANY, any);
+        CHECK(f == (m > 0) && a == (m > 0));
+        if (f && m) CHECK(first[0].t == got[0].t && first[0].entering == got[0].entering);
+        if (a && m) CHECK(any[0].t == got[0].t || (m > 1 && any[0].t == got[1].t));
+    }
+    CHECK_MSG(compared > 15000 && hit_rays > 5000, "only %d rays compared, %d hitting", compared,
+              hit_rays);
+}
+
+/* Rays stepped across a shared edge in 1e-7 steps, from -5e-6 to 5e-6 of
+ * it (and exactly at it): every ray enters the solid once and leaves once,
+ * never missing the seam, never hitting both triangles. Edges: the
+ * diagonal of the cube's +z face (x = y on z = 1), and every edge of the
+ * icosahedron (irrational coordinates, no axis alignment). */
+static void sweep_edge(const harness_shape *s, hr_vec3 p, hr_vec3 q, hr_vec3 across, hr_vec3 dir,
+                       const char *what)
+{
+    int bad = 0;
+    for (int along = 1; along <= 3; along++) {
+        const double f = along / 4.0;
+        hr_vec3 on = harness_vec(p.x + f * (q.x - p.x), p.y + f * (q.y - p.y), p.z + f * (q.z - p.z));
+        for (int k = -50; k <= 50; k++) {
+            const double delta = k * 1e-7;
+            hr_vec3 target = harness_vec(on.x + delta * across.x, on.y + delta * across.y,
+                                         on.z + delta * across.z);
+            hr_ray ray = harness_ray(target.x - 3 * dir.x, target.y - 3 * dir.y,
+                                     target.z - 3 * dir.z, dir.x, dir.y, dir.z);
+            hr_hit h[HARNESS_MAX_HITS];
+            int n = harness_hits(s, ray, h);
+            int ok = n == 2 && h[0].entering == 1 && h[1].entering == 0 &&
+                     fabs(h[0].t - 3) <= 1e-5;
+            if (!ok && bad++ < 5)
+                CHECK_MSG(0, "%s: f %g step %d: %d hits (t %g, entering %d)", what, f, k, n,
+                          n ? h[0].t : 0.0, n ? (int)h[0].entering : -1);
+            hr_test_checks++;
+        }
+    }
+    CHECK_MSG(bad == 0, "%s: %d rays of the sweep missed or hit twice", what, bad);
+}
+
+static void test_edge_sweeps(void)
+{
+    /* The cube's +z face is split along (-1,-1,1)-(1,1,1). */
+    sweep_edge(&cube_mesh, harness_vec(-1, -1, 1), harness_vec(1, 1, 1), unit(harness_vec(1, -1, 0)),
+               harness_vec(0.1, -0.2, -1), "cube diagonal");
+    sweep_edge(&cube_mesh, harness_vec(-1, -1, 1), harness_vec(1, 1, 1), unit(harness_vec(1, -1, 0)),
+               harness_vec(0, 0, -1), "cube diagonal, straight down");
+    harness_shape ico;
+    if (!harness_open(&ico, "mesh", "icosahedron", NAN)) return;
+    const double phi = (1 + sqrt(5.0)) / 2, r = sqrt(1 + phi * phi);
+    /* Edges of the icosahedron: pairs of vertices at distance 2 / r. */
+    hr_vec3 v[12];
+    int n = 0;
+    for (int shift = 0; shift < 3; shift++)
+        for (int s = 0; s < 4; s++) {
+            double c[3] = {0, (s & 1 ? -1 : 1) / r, (s & 2 ? -phi : phi) / r};
+            v[n++] = harness_vec(c[(3 - shift) % 3], c[(4 - shift) % 3], c[(5 - shift) % 3]);
+        }
+    int edges = 0;
+    for (int i = 0; i < 12; i++)
+        for (int j = i + 1; j < 12; j++) {
+            hr_vec3 d = harness_vec(v[j].x - v[i].x, v[j].y - v[i].y, v[j].z - v[i].z);
+            if (fabs(sqrt(dot(d, d)) - 2 / r) > 1e-9) continue;
+            edges++;
+            hr_vec3 mid = unit(harness_vec(v[i].x + v[j].x, v[i].y + v[j].y, v[i].z + v[j].z));
+            hr_vec3 e = unit(d);
+            hr_vec3 across = harness_vec(mid.y * e.z - mid.z * e.y, mid.z * e.x - mid.x * e.z,
+                                         mid.x * e.y - mid.y * e.x);
+            /* Toward the centre, tilted so the ray is not symmetric. */
+            hr_vec3 dir = harness_vec(-mid.x + 0.1 * e.x, -mid.y + 0.1 * e.y, -mid.z + 0.1 * e.z);
+            char what[64];
+            snprintf(what, sizeof what, "icosahedron edge %d-%d", i, j);
+            sweep_edge(&ico, v[i], v[j], across, dir, what);
+        }
+    CHECK_MSG(edges == 30, "%d icosahedron edges", edges);
+    harness_close(&ico);
+}
+
+/* Rays through vertices: the octahedron's (+-1, 0, 0), ... are exact, and
+ * a ray from (3, 0.5, 0.25) + t (-2, -0.5, -0.25) runs exactly through
+ * (1, 0, 0) at t = 1 into the solid: four faces meet there, and the ray
+ * enters once, then leaves once. A ray touching only that vertex (from
+ * (1, 1, 0.5) along (0, -1, -0.5): |x| + |y| + |z| > 1 elsewhere) is
+ * either missed or entered and left at the vertex. The icosahedron's
+ * vertices, aimed at from several sides, likewise give one entry each. */
+static void test_vertices(void)
+{
+    harness_shape octa;
+    if (!harness_open(&octa, "mesh", "octahedron", NAN)) return;
+    hr_hit h[HARNESS_MAX_HITS];
+    int n = harness_hits(&octa, harness_ray(3, 0.5, 0.25, -2, -0.5, -0.25), h);
+    CHECK_MSG(n == 2, "through the vertex: %d hits", n);
+    if (n == 2) {
+        CHECK(h[0].t == 1 && h[0].entering == 1 && h[1].entering == 0);
+        CHECK_NEAR(h[0].point.x, 1, h[0].error + 1e-15);
+    }
+    /* All six vertices, each from 8 directions, rays through them exactly. */
+    const double vx[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int i = 0; i < 6; i++)
+        for (int s = 0; s < 8; s++) {
+            const double off[3] = {s & 1 ? 0.5 : -0.25, s & 2 ? 0.375 : -0.125, s & 4 ? 0.75 : -0.5};
+            hr_vec3 o = harness_vec(3 * vx[i][0] + off[0], 3 * vx[i][1] + off[1], 3 * vx[i][2] + off[2]);
+            hr_ray ray = harness_ray(o.x, o.y, o.z, vx[i][0] - o.x, vx[i][1] - o.y, vx[i][2] - o.z);
+            n = harness_hits(&octa, ray, h);
+            CHECK_MSG(n == 2 && h[0].entering == 1 && h[0].t == 1,
+                      "octahedron vertex %d side %d: %d hits", i, s, n);
+        }
+    n = harness_hits(&octa, harness_ray(1, 1, 0.5, 0, -1, -0.5), h);
+    CHECK_MSG(n == 0 || (n == 2 && h[0].entering == 1 && h[1].entering == 0 &&
+                         fabs(h[0].t - 1) < 1e-12 && fabs(h[1].t - 1) < 1e-12),
+              "touching the vertex: %d hits", n);
+    harness_close(&octa);
+
+    harness_shape ico;
+    if (!harness_open(&ico, "mesh", "icosahedron", NAN)) return;
+    const double phi = (1 + sqrt(5.0)) / 2, r = sqrt(1 + phi * phi);
+    ray_rng rng;
+    rng_seed(&rng, 5);
+    for (int shift = 0; shift < 3; shift++)
+        for (int s = 0; s < 4; s++) {
+            double c[3] = {0, (s & 1 ? -1 : 1) / r, (s & 2 ? -phi : phi) / r};
+            hr_vec3 v = harness_vec(c[(3 - shift) % 3], c[(4 - shift) % 3], c[(5 - shift) % 3]);
+            for (int k = 0; k < 20; k++) {
+                hr_vec3 wobble = rng_unit_vector(&rng);
+                hr_vec3 o = harness_vec(3 * v.x + wobble.x, 3 * v.y + wobble.y, 3 * v.z + wobble.z);
+                hr_ray ray = harness_ray(o.x, o.y, o.z, -o.x + 0.1 * v.x, -o.y + 0.1 * v.y,
+                                         -o.z + 0.1 * v.z);
+                /* Aim through the vertex itself: direction v - o. */
+                ray.dir = harness_vec(v.x - o.x, v.y - o.y, v.z - o.z);
+                n = harness_hits(&ico, ray, h);
+                /* Into the solid (the angle to the vertex's outward direction
+                 * is wide enough for every wobble) unless it only touches. */
+                CHECK_MSG(n == 0 || (n == 2 && h[0].entering == 1 && h[1].entering == 0),
+                          "icosahedron vertex: %d hits", n);
+                if (dot(unit(ray.dir), unit(v)) < -0.95)
+                    CHECK_MSG(n == 2 && fabs(h[0].t - 1) < 1e-12, "straight through a vertex: %d", n);
+            }
+        }
+    harness_close(&ico);
+}
+
+/* The same cube in Hill's format: four-corner faces fanned, normals from
+ * the file (here equal to the geometric ones). */
+static void test_hill_cube(void)
+{
+    char path[1024];
+    harness_shape hill;
+    if (!mesh_open_file(&hill, mesh_data_path("cube.3vn", path, sizeof path))) return;
+    hr_bounds b;
+    hill.cls->bounds(hill.shape, &b);
+    CHECK(b.lo.x == -1 && b.lo.y == -1 && b.lo.z == -1 && b.hi.x == 1 && b.hi.y == 1 && b.hi.z == 1);
+    ray_rng rng;
+    rng_seed(&rng, 3);
+    hr_bounds cb = {{-1, -1, -1}, {1, 1, 1}};
+    for (int i = 0; i < 2000; i++) {
+        hr_ray ray = random_ray_near(&rng, &cb);
+        hr_hit a[HARNESS_MAX_HITS], c[HARNESS_MAX_HITS];
+        int n = harness_hits(&hill, ray, a);
+        int m = harness_hits(&cube_mesh, ray, c);
+        /* Both fan the faces along the same diagonals, so the answers agree
+         * bit for bit except for the normals' length. */
+        CHECK_MSG(n == m, "ray %d: .3vn %d hits, .obj %d", i, n, m);
+        for (int k = 0; k < n && n == m; k++) {
+            CHECK(a[k].t == c[k].t && a[k].entering == c[k].entering);
+            hr_vec3 x = unit(a[k].normal), y = unit(c[k].normal);
+            CHECK(fabs(x.x - y.x) < 1e-15 && fabs(x.y - y.y) < 1e-15 && fabs(x.z - y.z) < 1e-15);
+        }
+    }
+    harness_close(&hill);
+}
+
+/* Hill's tetrahedron file: vertices (+-1, +-1, +-1), the built-in
+ * tetrahedron scaled by sqrt(3); per-vertex normals interpolated. */
+static void test_hill_tetrahedron(void)
+{
+    char path[1024];
+    harness_shape file, built;
+    if (!mesh_open_file(&file, mesh_data_path("tetra_hill.3vn", path, sizeof path))) return;
+    if (!harness_open(&built, "mesh", "tetrahedron", NAN)) return;
+    ray_rng rng;
+    rng_seed(&rng, 4);
+    hr_bounds fb;
+    file.cls->bounds(file.shape, &fb);
+    const double s = sqrt(3.0);
+    int smooth = 0, mismatched = 0;
+    for (int i = 0; i < 3000; i++) {
+        hr_ray ray = random_ray_near(&rng, &fb);
+        hr_ray scaled = harness_ray(ray.origin.x / s, ray.origin.y / s, ray.origin.z / s,
+                                    ray.dir.x / s, ray.dir.y / s, ray.dir.z / s);
+        hr_hit a[HARNESS_MAX_HITS], c[HARNESS_MAX_HITS];
+        int n = harness_hits(&file, ray, a);
+        int m = harness_hits(&built, scaled, c);
+        /* Scaling rounds the inputs, so a ray within rounding of an edge
+         * may be owned differently: allow a handful of such rays. */
+        if (n != m) {
+            mismatched++;
+            continue;
+        }
+        for (int k = 0; k < n; k++) {
+            /* Same t: the rays are the same line with directions scaled alike. */
+            CHECK_MSG(fabs(a[k].t - c[k].t) <= 1e-12 * (1 + fabs(c[k].t)), "t %.17g vs %.17g",
+                      a[k].t, c[k].t);
+            CHECK(a[k].entering == c[k].entering);
+            /* The shading normal leans toward the corners' normals, on the
+             * outer side of the face. */
+            CHECK(dot(a[k].normal, c[k].normal) > 0);
+            smooth += fabs(dot(unit(a[k].normal), unit(c[k].normal))) < 1 - 1e-6;
+        }
+    }
+    CHECK_MSG(smooth > 100, "only %d hits with an interpolated normal", smooth);
+    CHECK_MSG(mismatched <= 3, "%d rays hit the file's tetrahedron differently", mismatched);
+    harness_close(&file);
+    harness_close(&built);
+}
+
+/* smooth_square.obj: normals (x/2, y/2, 1) at the corners interpolate to
+ * exactly that at every point, from above (entering) and below (leaving,
+ * the normal still on the geometric +z side). Within 1e-12: barycentric
+ * weights carry a few roundings. */
+static void test_obj_normals(void)
+{
+    char path[1024];
+    harness_shape sq;
+    if (!mesh_open_file(&sq, mesh_data_path("smooth_square.obj", path, sizeof path))) return;
+    ray_rng rng;
+    rng_seed(&rng, 8);
+    for (int i = 0; i < 500; i++) {
+        double x = rng_uniform(&rng, -0.99, 0.99), y = rng_uniform(&rng, -0.99, 0.99);
+        for (int side = 0; side < 2; side++) {
+            double z = side ? -2 : 2;
+            hr_hit h[HARNESS_MAX_HITS];
+            int n = harness_hits(&sq, harness_ray(x + 0.1, y - 0.2, z, -0.05, 0.1, -z / 2), h);
+            CHECK(n == 1);
+            if (n != 1) continue;
+            CHECK(h[0].entering == !side);
+            hr_vec3 p = h[0].point;
+            hr_vec3 want = unit(harness_vec(p.x / 2, p.y / 2, 1)), got = unit(h[0].normal);
+            CHECK_MSG(fabs(want.x - got.x) < 1e-12 && fabs(want.y - got.y) < 1e-12 &&
+                          fabs(want.z - got.z) < 1e-12,
+                      "normal (%g %g %g) at (%g %g)", got.x, got.y, got.z, p.x, p.y);
+            CHECK(p.z == 0 || fabs(p.z) <= h[0].error);
+        }
+    }
+    harness_close(&sq);
+}
+
+/* The regular solids: closed, vertices on the unit sphere, and random rays
+ * give the span a long-double clip against the face planes gives (the
+ * planes are the supporting planes in the directions of the dual solid's
+ * vertices). Compared where the span is longer than 1e-6 (no grazing):
+ * t within 1e-12 (|t| + 1). */
+typedef struct plane {
+    long double n[3], offset;
+} plane;
+
+static int dual_planes(int solid, const hr_vec3 *verts, int nv, plane *out)
+{
+    const long double phi = (1 + sqrtl(5.0L)) / 2;
+    long double dirs[20][3];
+    int nd = 0;
+    if (solid == 0) { /* tetrahedron: opposite its own vertices */
+        const int t[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+        for (int i = 0; i < 4; i++)
+            for (int a = 0; a < 3; a++) dirs[nd + i][a] = -t[i][a];
+        nd = 4;
+    } else if (solid == 1) { /* octahedron: the cube's corners */
+        for (int s = 0; s < 8; s++) {
+            dirs[nd][0] = s & 1 ? -1 : 1, dirs[nd][1] = s & 2 ? -1 : 1, dirs[nd][2] = s & 4 ? -1 : 1;
+            nd++;
+        }
+    } else { /* dodecahedron <-> icosahedron */
+        const int ico_dual = solid == 3;
+        if (ico_dual)
+            for (int s = 0; s < 8; s++) {
+                dirs[nd][0] = s & 1 ? -1 : 1, dirs[nd][1] = s & 2 ? -1 : 1, dirs[nd][2] = s & 4 ? -1 : 1;
+                nd++;
+            }
+        for (int shift = 0; shift < 3; shift++)
+            for (int s = 0; s < 4; s++) {
+                /* The dual in the matching orientation has (0, phi, 1), not
+                 * (0, 1, phi): the face of the dodecahedron on the edge
+                 * (0, +-1/phi, phi) has its centre along (1, 0, phi). */
+                long double c[3] = {0, s & 1 ? -phi : phi,
+                                    ico_dual ? (s & 2 ? -1 : 1) / phi : (s & 2 ? -1 : 1)};
+                dirs[nd][0] = c[(3 - shift) % 3], dirs[nd][1] = c[(4 - shift) % 3];
+                dirs[nd][2] = c[(5 - shift) % 3];
+                nd++;
+            }
+    }
+    for (int i = 0; i < nd; i++) {
+        long double len = sqrtl(dirs[i][0] * dirs[i][0] + dirs[i][1] * dirs[i][1] + dirs[i][2] * dirs[i][2]);
+        long double best = -1;
+        for (int a = 0; a < 3; a++) out[i].n[a] = dirs[i][a] / len;
+        for (int k = 0; k < nv; k++) {
+            long double d = out[i].n[0] * verts[k].x + out[i].n[1] * verts[k].y + out[i].n[2] * verts[k].z;
+            if (d > best) best = d;
+        }
+        out[i].offset = best;
+    }
+    return nd;
+}
+
+static void test_solids(void)
+{
+    static const char *const names[4] = {"tetrahedron", "octahedron", "dodecahedron", "icosahedron"};
+    static const int vertex_counts[4] = {4, 6, 20, 12};
+    const double phi = (1 + sqrt(5.0)) / 2;
+    for (int solid = 0; solid < 4; solid++) {
+        harness_shape s;
+        if (!harness_open(&s, "mesh", names[solid], NAN)) continue;
+        CHECK(s.cls->flags == HR_SHAPE_CLOSED && s.cls->param_count == 0);
+        /* The vertices, as the module writes them down (for the planes). */
+        hr_vec3 v[20];
+        int nv = 0;
+        if (solid == 0) {
+            const double t[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+            for (int i = 0; i < 4; i++) v[nv++] = unit(harness_vec(t[i][0], t[i][1], t[i][2]));
+        } else if (solid == 1) {
+            for (int a = 0; a < 3; a++)
+                for (int sg = -1; sg <= 1; sg += 2) {
+                    double c[3] = {0, 0, 0};
+                    c[a] = sg;
+                    v[nv++] = harness_vec(c[0], c[1], c[2]);
+                }
+        } else if (solid == 2) {
+            for (int sg = 0; sg < 8; sg++)
+                v[nv++] = unit(harness_vec(sg & 1 ? -1 : 1, sg & 2 ? -1 : 1, sg & 4 ? -1 : 1));
+            for (int shift = 0; shift < 3; shift++)
+                for (int sg = 0; sg < 4; sg++) {
+                    double c[3] = {0, (sg & 1 ? -1 : 1) / phi, sg & 2 ? -phi : phi};
+                    v[nv++] = unit(harness_vec(c[(3 - shift) % 3], c[(4 - shift) % 3], c[(5 - shift) % 3]));
+                }
+        } else {
+            for (int shift = 0; shift < 3; shift++)
+                for (int sg = 0; sg < 4; sg++) {
+                    double c[3] = {0, sg & 1 ? -1 : 1, sg & 2 ? -phi : phi};
+                    v[nv++] = unit(harness_vec(c[(3 - shift) % 3], c[(4 - shift) % 3], c[(5 - shift) % 3]));
+                }
+        }
+        CHECK(nv == vertex_counts[solid]);
+        plane planes[20];
+        int np = dual_planes(solid, v, nv, planes);
+        hr_bounds b;
+        s.cls->bounds(s.shape, &b);
+        CHECK(b.hi.x <= 1 && b.lo.x >= -1 && b.hi.x > 0.5);
+        ray_rng rng;
+        rng_seed(&rng, 100 + (uint64_t)solid);
+        int compared = 0;
+        for (int i = 0; i < 5000; i++) {
+            hr_ray ray = random_ray_near(&rng, &b);
+            long double t_in = -INFINITY, t_out = INFINITY;
+            const long double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+            const long double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+            for (int p = 0; p < np; p++) {
+                long double nd = planes[p].n[0] * d[0] + planes[p].n[1] * d[1] + planes[p].n[2] * d[2];
+                long double no = planes[p].n[0] * o[0] + planes[p].n[1] * o[1] + planes[p].n[2] * o[2];
+                if (nd == 0) {
+                    if (no > planes[p].offset) t_in = INFINITY;
+                    continue;
+                }
+                long double t = (planes[p].offset - no) / nd;
+                if (nd < 0 && t > t_in) t_in = t;
+                if (nd > 0 && t < t_out) t_out = t;
+            }
+            hr_hit h[HARNESS_MAX_HITS];
+            int n = harness_hits(&s, ray, h); /* the harness checks alternation */
+            long double len = sqrtl(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (!(t_out - t_in > 1e-6L / len) && t_in <= t_out) continue; /* grazing */
+            int want = 0;
+            if (t_in < t_out) want = (t_in > 0) + (t_out > 0);
+            compared++;
+            CHECK_MSG(n == want, "%s ray %d: %d hits, expected %d", names[solid], i, n, want);
+            if (n != want || n == 0) continue;
+            if (n == 2) {
+                CHECK_NEAR(h[0].t, (double)t_in, 1e-12 * (1 + fabsl(t_in)));
+                CHECK_NEAR(h[1].t, (double)t_out, 1e-12 * (1 + fabsl(t_out)));
+            } else {
+                CHECK(h[0].entering == 0);
+                CHECK_NEAR(h[0].t, (double)t_out, 1e-12 * (1 + fabsl(t_out)));
+            }
+        }
+        CHECK_MSG(compared > 4000, "%s: %d rays compared", names[solid], compared);
+        harness_close(&s);
+    }
+}
+
+/* 40 parallel squares, one ray through all: 80 triangles tested, 40 hits,
+ * more than the host's promised free space, so the module asks the host to
+ * grow the list; sorted, all entering (the squares face the ray). */
+static void test_many_hits(void)
+{
+    char path[1024];
+    mesh_build_path("mesh_stack.obj", path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f) return;
+    for (int i = 0; i < 40; i++) {
+        fprintf(f, "v -1 -1 %d\nv 1 -1 %d\nv 1 1 %d\nv -1 1 %d\n", i, i, i, i);
+        fprintf(f, "f %d %d %d %d\n", 4 * i + 1, 4 * i + 2, 4 * i + 3, 4 * i + 4);
+    }
+    fclose(f);
+    harness_shape stack;
+    if (!mesh_open_file(&stack, path)) return;
+    hr_intersection list = {NULL, 0, 0};
+    CHECK_OK(harness_host()->reserve(NULL, &list, HR_MIN_HIT_CAPACITY));
+    hr_hit_args args;
+    memset(&args, 0, sizeof args);
+    args.shape = stack.shape;
+    args.ray = harness_ray(0.25, 0.125, 100, 0.001, 0.002, -1);
+    args.tmin = 0;
+    args.tmax = INFINITY;
+    args.out = &list;
+    CHECK_OK(stack.cls->hit(&args));
+    CHECK_MSG(list.count == 40, "%d hits", (int)list.count);
+    for (int i = 0; i < list.count; i++) {
+        CHECK(list.hits[i].entering == 1); /* normals +z, the ray goes down */
+        if (i) CHECK(list.hits[i - 1].t <= list.hits[i].t);
+        CHECK_NEAR(list.hits[i].t, 100 - (39 - i), 1e-12 * 100);
+    }
+    free(list.hits);
+    harness_close(&stack);
+}
+
+/* The module's table: five classes, complete vtables, one surface each;
+ * the solids closed and without parameters; `mesh` takes one required
+ * string `file` (the name the SDL reader and the Python binding use). */
+static void test_classes(void)
+{
+    const hr_module_info *info = cube_mesh.module.info;
+    CHECK(info->abi_version == HR_SHAPE_ABI_VERSION && strcmp(info->name, "mesh") == 0);
+    CHECK(info->class_count == 5);
+    static const char *const names[5] = {"mesh", "tetrahedron", "octahedron", "dodecahedron",
+                                         "icosahedron"};
+    for (int i = 0; i < 5 && i < info->class_count; i++) {
+        const hr_shape_class *c = info->classes[i];
+        CHECK(strcmp(c->name, names[i]) == 0);
+        CHECK(c->struct_size == sizeof(hr_shape_class) && c->surface_count == 1);
+        CHECK(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit);
+        CHECK(c->help && c->help[0]);
+        CHECK(c->flags == (i == 0 ? 0 : HR_SHAPE_CLOSED));
+        CHECK(c->param_count == (i == 0 ? 1 : 0));
+    }
+    const hr_shape_class *m = info->classes[0];
+    CHECK(strcmp(m->params[0].name, "file") == 0 && m->params[0].type == HR_PARAM_STRING &&
+          m->params[0].required == 1);
+}
+
+int main(void)
+{
+    char path[1024];
+    if (!harness_open(&cube_module, "cube", "cube", NAN)) return hr_test_end() | 1;
+    if (!mesh_open_file(&cube_mesh, mesh_data_path("cube.obj", path, sizeof path)))
+        return hr_test_end() | 1;
+    test_classes();
+    test_cube_agrees();
+    test_edge_sweeps();
+    test_vertices();
+    test_hill_cube();
+    test_hill_tetrahedron();
+    test_obj_normals();
+    test_solids();
+    test_many_hits();
+    harness_close(&cube_mesh);
+    harness_close(&cube_module);
+    return hr_test_end();
+}

@@ -1,0 +1,188 @@
+/* The mesh readers refuse bad files with one line naming the file, the
+ * line in it, what is wrong and the token found (tests/data/meshes/bad/),
+ * and never crash: every prefix of every good and bad file is read too
+ * (truncated files), and so are a few generated hostile inputs. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hr_test.h"
+#include "mesh_support.h"
+
+static harness_module module;
+
+typedef struct bad_file {
+    const char *name;
+    hr_status status;
+    int line;              /* 0: no line (not a parse error) */
+    const char *fragment;  /* must appear in the message */
+} bad_file;
+
+static const bad_file bad_files[] = {
+    {"count_too_big.3vn", HR_ERROR_PARAMETER, 1, "expected the number of vertices (a whole number up to 4294967294) (found '1000000000000000000')"},
+    {"count_past_file.3vn", HR_ERROR_PARAMETER, 1, "the counts (4000000 vertices, 0 normals, 1 faces) need more numbers than the rest of the file holds (found '1')"},
+    {"vertex_index.3vn", HR_ERROR_PARAMETER, 6, "face 0: vertex index 9 out of range (the file has 3) (found '9')"},
+    {"normal_index.3vn", HR_ERROR_PARAMETER, 6, "face 0: normal index 1 out of range (the file has 1) (found '1')"},
+    {"nan.3vn", HR_ERROR_PARAMETER, 3, "vertex 1: expected a number (found 'nan')"},
+    {"huge.3vn", HR_ERROR_PARAMETER, 3, "vertex 1: coordinate out of range (at most 1e+100) (found '1e999')"},
+    {"short_face.3vn", HR_ERROR_PARAMETER, 6, "face 0: 4 corners need more numbers than the rest of the file holds (found '4')"},
+    {"truncated.3vn", HR_ERROR_PARAMETER, 6, "face 0: expected a normal index (found end of file)"},
+    {"two_corners.3vn", HR_ERROR_PARAMETER, 6, "face 0: a face needs at least 3 corners (found '2')"},
+    {"no_area.3vn", HR_ERROR_PARAMETER, 0, "the mesh has no triangle with area (1 skipped)"},
+    {"trailing.3vn", HR_ERROR_PARAMETER, 7, "unexpected text after the last of 1 faces (found 'extra')"},
+    {"junk_index.3vn", HR_ERROR_PARAMETER, 6, "face 0: expected a normal index (found '0x')"},
+    {"unknown.obj", HR_ERROR_PARAMETER, 4, "unknown OBJ statement (expected v, vn, f, or one of vt vp o g s usemtl mtllib l p) (found 'what')"},
+    {"face_index.obj", HR_ERROR_PARAMETER, 4, "face corner 3: vertex index missing or out of range (3 vertices so far) (found '4')"},
+    {"normal_index.obj", HR_ERROR_PARAMETER, 5, "face corner 2: normal index missing or out of range (1 normals so far) (found '2//2')"},
+    {"short_face.obj", HR_ERROR_PARAMETER, 4, "a face needs at least 3 corners, this one has 2 (found 'f')"},
+    {"vertex_text.obj", HR_ERROR_PARAMETER, 2, "'v': expected a number (found 'x')"},
+    {"normal_extra.obj", HR_ERROR_PARAMETER, 2, "'vn': unexpected text after the coordinates (found '2')"},
+    {"zero_index.obj", HR_ERROR_PARAMETER, 4, "face corner 1: vertex index missing or out of range (3 vertices so far) (found '0')"},
+    {"bad_corner.obj", HR_ERROR_PARAMETER, 4, "face corner 1: nothing after '/' (found '1/')"},
+    {"empty.obj", HR_ERROR_PARAMETER, 0, "the mesh has no triangle with area (0 skipped)"},
+};
+
+static void test_bad_files(void)
+{
+    for (size_t i = 0; i < sizeof bad_files / sizeof bad_files[0]; i++) {
+        const bad_file *b = &bad_files[i];
+        char path[1024], error[512], expected[1200];
+        mesh_data_path("bad/", path, sizeof path);
+        strncat(path, b->name, sizeof path - strlen(path) - 1);
+        void *shape = NULL;
+        hr_status st = mesh_create_file(&module, path, &shape, error, sizeof error);
+        CHECK_MSG(st == b->status && shape == NULL, "%s: status %d, expected %d", b->name, (int)st,
+                  (int)b->status);
+        if (b->line) snprintf(expected, sizeof expected, "%s:%d: %s", path, b->line, b->fragment);
+        else snprintf(expected, sizeof expected, "%s: %s", path, b->fragment);
+        CHECK_MSG(strcmp(error, expected) == 0, "%s:\n  got      %s\n  expected %s", b->name, error,
+                  expected);
+        if (shape) harness_find_class(&module, "mesh")->destroy(shape);
+    }
+}
+
+/* Files that cannot be read: missing, a directory, no name. */
+static void test_unreadable(void)
+{
+    char path[1024], error[512];
+    void *shape = NULL;
+    mesh_data_path("no_such_mesh.3vn", path, sizeof path);
+    CHECK(mesh_create_file(&module, path, &shape, error, sizeof error) == HR_ERROR_IO);
+    CHECK_MSG(strstr(error, "cannot read mesh file") && strstr(error, "no_such_mesh.3vn") &&
+                  strstr(error, "no such file"),
+              "%s", error);
+    mesh_data_path("bad", path, sizeof path);
+    CHECK(mesh_create_file(&module, path, &shape, error, sizeof error) == HR_ERROR_IO);
+    CHECK_MSG(strstr(error, "not a regular file"), "%s", error);
+    CHECK(mesh_create_file(&module, "", &shape, error, sizeof error) == HR_ERROR_PARAMETER);
+    CHECK_MSG(strstr(error, "'file'"), "%s", error);
+    CHECK(shape == NULL);
+}
+
+/* Writes `length` bytes to a scratch file and reads it as `ext`: whatever
+ * the bytes, the reader returns a status, and on success a usable mesh. */
+static int read_bytes(const char *bytes, size_t length, const char *ext)
+{
+    char path[1024], error[512];
+    char name[64];
+    snprintf(name, sizeof name, "mesh_fuzz%s", ext);
+    mesh_build_path(name, path, sizeof path);
+    FILE *f = fopen(path, "wb");
+    if (!f) return -1;
+    fwrite(bytes, 1, length, f);
+    fclose(f);
+    void *shape = NULL;
+    hr_status st = mesh_create_file(&module, path, &shape, error, sizeof error);
+    if (st == HR_OK) {
+        const hr_shape_class *cls = harness_find_class(&module, "mesh");
+        hr_bounds b;
+        cls->bounds(shape, &b);
+        CHECK(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z);
+        cls->destroy(shape);
+    } else {
+        CHECK_MSG(error[0] != '\0', "status %d without a message", (int)st);
+        CHECK_MSG(strncmp(error, path, strlen(path)) == 0 || st == HR_ERROR_IO,
+                  "message does not name the file: %s", error);
+    }
+    return st == HR_OK;
+}
+
+static char *slurp(const char *path, size_t *length)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *buffer = malloc(1 << 16);
+    *length = buffer ? fread(buffer, 1, 1 << 16, f) : 0;
+    fclose(f);
+    return buffer;
+}
+
+/* Every prefix of the good files: each is either a valid mesh or an error
+ * naming the file; none crashes (the sanitizer build checks reads past the
+ * end). */
+static void test_prefixes(void)
+{
+    static const char *const files[] = {"cube.obj", "cube.3vn", "smooth_square.obj",
+                                        "tetra_hill.3vn"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char path[1024];
+        size_t length = 0;
+        char *text = slurp(mesh_data_path(files[i], path, sizeof path), &length);
+        CHECK(text != NULL);
+        if (!text) continue;
+        const char *ext = strstr(files[i], ".obj") ? ".obj" : ".3vn";
+        int ok = 0;
+        for (size_t n = 0; n <= length; n++) ok += read_bytes(text, n, ext) == 1;
+        CHECK(read_bytes(text, length, ext) == 1);
+        CHECK_MSG(ok >= 1, "%s: no prefix read", files[i]);
+        free(text);
+    }
+}
+
+/* Hostile inputs: enormous counts in a tiny file, a face of a billion
+ * corners, deep runs of slashes, NUL bytes, a polygon whose every corner
+ * is the same vertex. */
+static void test_hostile(void)
+{
+    static const char *const hill[] = {
+        "4294967294 4294967294 4294967294\n",
+        "3 0 1\n0 0 0 1 0 0 0 1 0\n1000000000 0 1 2\n",
+        "3 1 1\n0 0 0 1 0 0 0 1 0 0 0 1\n3 0 0 0 0 0 0\n",
+        "3 1 1\n0 0 0 1 0 0 0 1 0 0 0 1\n3 0 1 2 0 0 0\n   \n\n",
+        "-3 1 1\n",
+        "3.0 1 1\n",
+        "",
+    };
+    for (size_t i = 0; i < sizeof hill / sizeof hill[0]; i++)
+        read_bytes(hill[i], strlen(hill[i]), ".3vn");
+    static const char *const obj[] = {
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1////// 2 3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 1 2 3 1 2 3\n",
+        "v 1e-300 0 0\nv 1e100 0 0\nv 0 -1e100 0\nf 1 2 3\n",
+        "v\n",
+        "f\n",
+        "#\n#\n",
+        "v 0 0 0 1 1 1 1 1\n",
+    };
+    for (size_t i = 0; i < sizeof obj / sizeof obj[0]; i++)
+        read_bytes(obj[i], strlen(obj[i]), ".obj");
+    const char nul[] = "v 0 0 0\nv 1 0\0 0\nv 0 1 0\nf 1 2 3\n";
+    read_bytes(nul, sizeof nul - 1, ".obj");
+    /* The all-same-vertex polygon, and the near-duplicate negatives, give a
+     * status, not a mesh of nothing. */
+    CHECK(read_bytes(obj[4], strlen(obj[4]), ".obj") == 1);
+}
+
+int main(void)
+{
+    if (!harness_load("mesh", &module)) return hr_test_end() | 1;
+    test_bad_files();
+    test_unreadable();
+    test_prefixes();
+    test_hostile();
+    harness_unload(&module);
+    return hr_test_end();
+}
