@@ -17,6 +17,8 @@ shape classes written in Python.
   the package's; call it before anything else here.
 """
 
+from typing import Any
+
 from ._context import Context, default_context
 from ._errors import HitrayError, ShapeError, check, take_shape_error
 from ._library import LibraryError, declarations, load, loaded_library_path, use_library
@@ -30,7 +32,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     # ffi, lib and the string constants load the library on first use, so
     # use_library can still choose which.
     if name == "ffi":

@@ -21,8 +21,11 @@ declaration:
   in a declaration is an error.
 """
 
+from __future__ import annotations
+
 import os
 import re
+from typing import Dict, Iterator, List, NoReturn, Set, Tuple
 
 # System headers whose types cffi knows without a declaration.
 _KNOWN_SYSTEM_HEADERS = {"stddef.h", "stdint.h", "stdbool.h"}
@@ -33,7 +36,7 @@ _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _ATTRIBUTE = re.compile(r"(__attribute__|__declspec)\s*\(")
 
 
-def _c_integer(literal):
+def _c_integer(literal: str) -> int:
     """The value of a C integer literal (decimal, 0x hexadecimal, 0 octal)."""
     digits = literal.rstrip("uUlL")
     sign = -1 if digits.startswith("-") else 1
@@ -52,15 +55,15 @@ class HeaderError(Exception):
 class Declarations:
     """What the headers declare, ready for ``ffi.cdef``."""
 
-    def __init__(self):
-        self.cdef = ""               # declarations and integer #defines
-        self.integers = {}           # NAME -> int, the #define integer constants
-        self.strings = {}            # NAME -> str, the #define string constants
-        self.dropped = {}            # NAME -> why, macros with no cffi form
-        self.headers = []            # every header read, in order
+    def __init__(self) -> None:
+        self.cdef = ""                         # declarations and integer #defines
+        self.integers: Dict[str, int] = {}     # the #define integer constants
+        self.strings: Dict[str, str] = {}      # the #define string constants
+        self.dropped: Dict[str, str] = {}      # NAME -> why, macros with no cffi form
+        self.headers: List[str] = []           # every header read, in order
 
 
-def strip_comments(text):
+def strip_comments(text: str) -> str:
     """Remove /* */ and // comments, keeping string literals and newlines
     (so line numbers stay right)."""
     out = []
@@ -88,7 +91,7 @@ def strip_comments(text):
     return "".join(out)
 
 
-def _logical_lines(text):
+def _logical_lines(text: str) -> Iterator[Tuple[int, str]]:
     """(line number, line) with backslash-continued lines joined."""
     lines = text.split("\n")
     i = 0
@@ -103,35 +106,35 @@ def _logical_lines(text):
 
 
 class _Reader:
-    def __init__(self, include_dir):
+    def __init__(self, include_dir: str) -> None:
         self.include_dir = include_dir
         self.decls = Declarations()
-        self.macros = {}             # object-like: NAME -> body
-        self.function_macros = set()
-        self.seen = set()
-        self.code = []
+        self.macros: Dict[str, str] = {}       # object-like: NAME -> body
+        self.function_macros: Set[str] = set()
+        self.seen: Set[str] = set()
+        self.code: List[str] = []
 
-    def error(self, where, message):
+    def error(self, where: str, message: str) -> NoReturn:
         raise HeaderError(f"{where}: {message} (hitray.abi reads the public headers "
                           "with cffi, which needs them plain)")
 
     # --- conditionals -------------------------------------------------------
-    def _condition(self, where, keyword, rest):
+    def _condition(self, where: str, keyword: str, rest: str) -> bool:
         if keyword == "ifdef":
             return rest.strip() in self.macros or rest.strip() in self.function_macros
         if keyword == "ifndef":
             return not (rest.strip() in self.macros or rest.strip() in self.function_macros)
         m = re.fullmatch(r"\s*(!?)\s*defined\s*(?:\(\s*(\w+)\s*\)|\s+(\w+))\s*", rest)
-        if not m:
+        if m is None:
             self.error(where, f"cannot evaluate '#{keyword} {rest.strip()}'")
         name = m.group(2) or m.group(3)
         value = name in self.macros or name in self.function_macros
         return not value if m.group(1) else value
 
     # --- macros -------------------------------------------------------------
-    def _define(self, where, rest, active_code):
+    def _define(self, where: str, rest: str, active_code: List[str]) -> None:
         m = re.match(r"\s*([A-Za-z_]\w*)(\()?", rest)
-        if not m:
+        if m is None:
             self.error(where, f"malformed '#define {rest.strip()}'")
         name = m.group(1)
         if m.group(2):
@@ -153,8 +156,8 @@ class _Reader:
         else:
             self.decls.dropped[name] = f"body '{body}' is not an integer literal"
 
-    def _expand(self, where, line, depth=0):
-        def replace(m):
+    def _expand(self, where: str, line: str, depth: int = 0) -> str:
+        def replace(m: re.Match[str]) -> str:
             word = m.group(0)
             if word in self.function_macros:
                 self.error(where, f"a declaration uses the function-like macro {word}")
@@ -171,13 +174,12 @@ class _Reader:
                 return self._expand(where, body, depth + 1)
             self.error(where, f"a declaration uses the macro {word}, whose body '{body}' "
                        "has no cffi form")
-            return word
 
         # String literals (extern "C") never reach here: C++ blocks are skipped.
         return _IDENT.sub(replace, line)
 
     # --- files --------------------------------------------------------------
-    def read(self, name):
+    def read(self, name: str) -> None:
         path = os.path.join(self.include_dir, name)
         if path in self.seen:
             return
@@ -192,7 +194,7 @@ class _Reader:
             text = strip_comments(text)
         except HeaderError as e:
             self.error(path, str(e))
-        stack = []  # (active, taken) per open conditional
+        stack: List[Tuple[bool, bool]] = []  # (active, taken) per open conditional
         for number, line in _logical_lines(text):
             where = f"{path}:{number}"
             active = all(a for a, _ in stack)
@@ -234,9 +236,9 @@ class _Reader:
         if stack:
             self.error(path, "an #if is not closed")
 
-    def _include(self, where, target):
+    def _include(self, where: str, target: str) -> None:
         m = re.fullmatch(r'"([^"]+)"|<([^>]+)>', target)
-        if not m:
+        if m is None:
             self.error(where, f"malformed #include {target}")
         if m.group(1):
             self.read(m.group(1))
@@ -245,7 +247,7 @@ class _Reader:
                        "may be included")
 
 
-def read_headers(include_dir, top="hitray.h"):
+def read_headers(include_dir: str, top: str = "hitray.h") -> Declarations:
     """Declarations of `include_dir`/hitray/`top` and everything it includes.
     `include_dir` is the directory that holds the `hitray` header folder."""
     reader = _Reader(os.path.join(include_dir, "hitray"))

@@ -9,56 +9,61 @@ context and raw cdata contexts, whose end this module cannot see, keep
 theirs until the process exits.
 """
 
+from __future__ import annotations
+
 import threading
 import weakref
+from typing import Any, List, Tuple
 
 from ._errors import check
 from ._library import load
 
 _forever_lock = threading.Lock()
-_forever = []  # keep-alive of the default context and of raw cdata contexts
+_forever: List[Any] = []  # keep-alive of the default context and of raw cdata contexts
 
 
 class Context:
     """A context of its own: hr_context_create now, hr_context_destroy at
     close() (or when collected). Destroy every scene made on it first."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         ffi, lib = load()
         out = ffi.new("hr_context **")
         check(None, lib.hr_context_create(out))
-        self.ptr = out[0]
-        self._keep = []
+        self.ptr: Any = out[0]
+        self._keep: List[Any] = []
         self._finalizer = weakref.finalize(self, _destroy, lib, self.ptr, self._keep)
 
-    def close(self):
+    def close(self) -> None:
         """hr_context_destroy, then release the Python shape classes
         registered on it."""
         if self._finalizer.alive:
             self._finalizer()
         self.ptr = None
 
-    def __enter__(self):
+    def __enter__(self) -> "Context":
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def check(self, status):
+    def check(self, status: int) -> None:
         """Raise HitrayError for a failed status, with this context's message."""
         check(self.ptr, status)
 
-    def last_error(self):
+    def last_error(self) -> str:
+        """This thread's last error message on this context."""
         ffi, lib = load()
-        return ffi.string(lib.hr_context_last_error(self.ptr)).decode("utf-8", "replace")
+        text: str = ffi.string(lib.hr_context_last_error(self.ptr)).decode("utf-8", "replace")
+        return text
 
 
-def _destroy(lib, ptr, keep):
+def _destroy(lib: Any, ptr: Any, keep: List[Any]) -> None:
     lib.hr_context_destroy(ptr)
     keep.clear()
 
 
-def default_context():
+def default_context() -> Any:
     """The package's one default hr_context* (the one hitray.Shape,
     hitray.parse_sdl and rendering use), from the extension module."""
     ffi, _ = load()
@@ -71,7 +76,7 @@ def default_context():
     return ffi.cast("hr_context *", _core._context_address())
 
 
-def resolve(context):
+def resolve(context: Any) -> Tuple[Any, List[Any]]:
     """(hr_context* cdata, keep-alive list) for a register_shape context."""
     ffi, _ = load()
     if context is None:
@@ -88,7 +93,7 @@ def resolve(context):
                     f"hitray.abi.Context or an hr_context* cdata, not {type(context).__name__}")
 
 
-def keep_alive(keep, *objects):
+def keep_alive(keep: List[Any], *objects: Any) -> None:
     with _forever_lock:
         keep.extend(objects)
     if keep is _forever:
@@ -96,7 +101,7 @@ def keep_alive(keep, *objects):
             _hold_for_c(obj)
 
 
-def _hold_for_c(obj):
+def _hold_for_c(obj: Any) -> None:
     """The library keeps pointers into `obj` (its callbacks, its strings) for
     the rest of the process, references Python's collector cannot see. Give
     it one it can: otherwise the collection at interpreter exit, which frees

@@ -9,7 +9,10 @@ HitrayError it raises: the message says what the Python code raised, and the
 original exception is the __cause__.
 """
 
+from __future__ import annotations
+
 import threading
+from typing import Any, List, Optional
 
 from ._library import load
 
@@ -18,11 +21,12 @@ class HitrayError(RuntimeError):
     """A libhitray call failed. `status` is the hr_status code, `status_name`
     its name, and the message is the context's last error."""
 
-    def __init__(self, status, message):
+    def __init__(self, status: int, message: str) -> None:
         super().__init__(message)
         self.status = int(status)
         ffi, lib = load()
-        self.status_name = ffi.string(lib.hr_status_name(self.status)).decode("utf-8", "replace")
+        self.status_name: str = ffi.string(lib.hr_status_name(self.status)).decode("utf-8",
+                                                                               "replace")
 
 
 class ShapeError(RuntimeError):
@@ -33,17 +37,17 @@ class ShapeError(RuntimeError):
 # Only the first failure is kept: in a render every thread stops at its own
 # failure and the first one is the one that stopped the rest.
 _pending_lock = threading.Lock()
-_pending = []
+_pending: List[ShapeError] = []
 _MAX_PENDING = 1
 
 
-def record_shape_error(error):
+def record_shape_error(error: ShapeError) -> None:
     with _pending_lock:
         if len(_pending) < _MAX_PENDING:
             _pending.append(error)
 
 
-def take_shape_error():
+def take_shape_error() -> Optional[ShapeError]:
     """The first ShapeError raised in a Python shape callback since the last
     call (None if none), and forget it. hitray calls that fail check this
     to explain "a shape failed while tracing"."""
@@ -53,7 +57,7 @@ def take_shape_error():
         return error
 
 
-def check(context, status):
+def check(context: Any, status: int) -> None:
     """Raise HitrayError if `status` is not HR_OK, with the context's last
     error (context may be an hr_context* cdata or None) and the Python shape
     error behind it, if there is one."""

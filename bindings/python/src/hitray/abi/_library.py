@@ -13,8 +13,12 @@ else from the source tree this file sits in, else from `use_library`'s
 `include_dir`.
 """
 
+from __future__ import annotations
+
+import importlib
 import os
 import threading
+from typing import Any, Dict, Optional, Tuple, Union
 
 from . import _cdefs
 
@@ -23,15 +27,18 @@ _PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 _SOURCE_INCLUDE = os.path.normpath(os.path.join(_PACKAGE_DIR, "..", "..", "..", "..", "include"))
 
 _lock = threading.RLock()
-_chosen = {"library": None, "include_dir": None}
-_loaded = None  # (ffi, lib, library path, declarations)
+_chosen: Dict[str, Optional[str]] = {"library": None, "include_dir": None}
+# (ffi, lib, library path, declarations); cffi objects are typed Any.
+_loaded: Optional[Tuple[Any, Any, str, _cdefs.Declarations]] = None
+
+PathLike = Union[str, "os.PathLike[str]"]
 
 
 class LibraryError(ImportError):
     """libhitray or its headers could not be found or do not match."""
 
 
-def use_library(path, include_dir=None):
+def use_library(path: PathLike, include_dir: Optional[PathLike] = None) -> None:
     """Load `path` instead of the package's libhitray (a build tree's
     ``lib/libhitray.so.0``, say). `include_dir` holds the ``hitray/`` header
     folder; by default the one beside the library or in the source tree. Call
@@ -47,15 +54,15 @@ def use_library(path, include_dir=None):
         _chosen["include_dir"] = os.fspath(include_dir) if include_dir is not None else None
 
 
-def _default_library_path():
+def _default_library_path() -> str:
     try:
         from .. import _core  # the extension module, when the package is built
     except ImportError:
         return os.path.join(_PACKAGE_DIR, "lib", "libhitray.so.0")
-    return _core._library_path()
+    return str(_core._library_path())
 
 
-def _find_include_dir(library):
+def _find_include_dir(library: str) -> str:
     candidates = []
     if _chosen["include_dir"]:
         candidates.append(_chosen["include_dir"])
@@ -69,13 +76,19 @@ def _find_include_dir(library):
                        + ", ".join(os.path.normpath(c) for c in candidates))
 
 
-def load():
+def load() -> Tuple[Any, Any]:
     """(ffi, lib): the FFI declared from the headers and the loaded library."""
+    return _load()[:2]
+
+
+def _load() -> Tuple[Any, Any, str, _cdefs.Declarations]:
     global _loaded
     with _lock:
         if _loaded is not None:
-            return _loaded[0], _loaded[1]
-        import cffi
+            return _loaded
+        # Imported by name: cffi ships no type information, so its objects
+        # are Any here.
+        cffi = importlib.import_module("cffi")
 
         library = _chosen["library"] or _default_library_path()
         if not os.path.isfile(library):
@@ -89,10 +102,10 @@ def load():
             raise LibraryError(f"hitray.abi: cannot load {library}: {e}") from e
         _check_version(ffi, lib, decls, library)
         _loaded = (ffi, lib, library, decls)
-        return ffi, lib
+        return _loaded
 
 
-def _check_version(ffi, lib, decls, library):
+def _check_version(ffi: Any, lib: Any, decls: _cdefs.Declarations, library: str) -> None:
     """The headers must describe the library that was loaded."""
     v = ffi.new("int32_t[3]")
     lib.hr_version(v + 0, v + 1, v + 2)
@@ -102,13 +115,11 @@ def _check_version(ffi, lib, decls, library):
                            f"headers read are for {want[0]}.{want[1]}")
 
 
-def loaded_library_path():
+def loaded_library_path() -> str:
     """The path of the libhitray file loaded (loading it if need be)."""
-    load()
-    return _loaded[2]
+    return _load()[2]
 
 
-def declarations():
+def declarations() -> _cdefs.Declarations:
     """The `_cdefs.Declarations` the FFI was made from."""
-    load()
-    return _loaded[3]
+    return _load()[3]

@@ -15,8 +15,11 @@ parameter: an omitted string reaches create as "", so an empty string means
 the Python default (and a required string must not be empty).
 """
 
+from __future__ import annotations
+
 import inspect
 import math
+from typing import Any, List, Optional, Union
 
 NUMBER = "number"
 STRING = "string"
@@ -29,7 +32,8 @@ class Param:
     the inclusive range `min`..`max` of a number (checked by the host before
     the class sees it), and a `help` line."""
 
-    def __init__(self, default=_REQUIRED, *, kind=None, min=-math.inf, max=math.inf, help=""):
+    def __init__(self, default: Any = _REQUIRED, *, kind: Optional[str] = None,
+                 min: float = -math.inf, max: float = math.inf, help: str = "") -> None:
         self.default = default
         self.kind = kind
         self.min = min
@@ -40,7 +44,8 @@ class Param:
 class ParamSpec:
     """One checked parameter, ready for hr_param_spec."""
 
-    def __init__(self, name, kind, default, required, lo, hi, help_text, integer):
+    def __init__(self, name: str, kind: str, default: Any, required: bool, lo: float, hi: float,
+                 help_text: str, integer: bool) -> None:
         self.name = name
         self.kind = kind
         self.default = default
@@ -50,22 +55,22 @@ class ParamSpec:
         self.help = help_text
         self.integer = integer  # the default was an int: give whole values as int
 
-    def to_python(self, number, string):
+    def to_python(self, number: float, string: str) -> Union[int, float, str]:
         """The value `cls(**params)` gets, from an hr_param's fields."""
         if self.kind == NUMBER:
             if self.integer and number.is_integer():
                 return int(number)
             return number
         if string == "" and not self.required:
-            return self.default
+            return str(self.default)
         return string
 
 
-def _is_number(value):
+def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
-def _spec(owner, name, declared, annotation=None):
+def _spec(owner: str, name: Any, declared: Any, annotation: Any = None) -> ParamSpec:
     """A ParamSpec from a default value or a Param; `owner` names the class
     in messages."""
     p = declared if isinstance(declared, Param) else Param(declared)
@@ -90,7 +95,7 @@ def _spec(owner, name, declared, annotation=None):
     if not (_is_number(p.min) and _is_number(p.max)) or math.isnan(p.min) or math.isnan(p.max) \
             or p.min > p.max:
         raise ValueError(f"{where}: range [{p.min!r}, {p.max!r}] is not a range of numbers")
-    default = None if required else p.default
+    default: Any = None if required else p.default
     if kind == NUMBER:
         if not required:
             if not _is_number(default) or not math.isfinite(default):
@@ -109,7 +114,7 @@ def _spec(owner, name, declared, annotation=None):
     return ParamSpec(name, kind, default, required, float(p.min), float(p.max), p.help, integer)
 
 
-def class_params(cls):
+def class_params(cls: type) -> List[ParamSpec]:
     """The ParamSpecs of `cls`, in declared order."""
     owner = getattr(cls, "__qualname__", repr(cls))
     declared = getattr(cls, "params", None)
@@ -119,10 +124,10 @@ def class_params(cls):
                              f"default or Param, not {type(declared).__name__}")
         return [_spec(owner, name, value) for name, value in declared.items()]
     try:
-        signature = inspect.signature(cls.__init__)
+        signature = inspect.signature(getattr(cls, "__init__"))
     except (TypeError, ValueError):
         return []
-    specs = []
+    specs: List[ParamSpec] = []
     for i, (name, p) in enumerate(signature.parameters.items()):
         if i == 0 and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD):
             continue  # self

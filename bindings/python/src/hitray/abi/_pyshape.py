@@ -33,11 +33,14 @@ host sees them (finite, strictly inside (tmin, tmax), sorted, non-zero
 normal); a violation is a ShapeError the same way.
 """
 
+from __future__ import annotations
+
 import inspect
 import math
 import re
 import struct
 import threading
+from typing import Any, Callable, Dict, List, Tuple
 
 from ._context import keep_alive, resolve
 from ._errors import ShapeError, record_shape_error
@@ -45,6 +48,8 @@ from ._library import load
 from ._params import NUMBER, class_params
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*$")
+Box = Tuple[float, float, float, float, float, float]  # xmin, ymin, zmin, xmax, ymax, zmax
+_UNBOUNDED: Box = (-math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf)
 DEFAULT_HIT_RELATIVE_ERROR = 1e-9
 
 # hr_hit as written from Python: t, point, normal, error, surface, entering,
@@ -64,18 +69,19 @@ class _Instance:
 
     __slots__ = ("obj", "hit", "bounds", "label", "handle")  # handle: see create
 
-    def __init__(self, obj, hit, bounds, label):
+    def __init__(self, obj: Any, hit: Callable[..., Any], bounds: Box, label: str) -> None:
         self.obj = obj
         self.hit = hit
         self.bounds = bounds
         self.label = label
+        self.handle: Any = None
 
 
 class _Registration:
     """Everything one registered class needs alive: the C tables, their
     strings, the callbacks, and the live instances (by handle address)."""
 
-    def __init__(self, name, cls):
+    def __init__(self, name: str, cls: type) -> None:
         self.name = name
         self.cls = cls
         self.label = cls.__name__
@@ -84,24 +90,25 @@ class _Registration:
         self.closed = bool(getattr(cls, "closed", False))
         self.surface_count = _positive_int(cls, "surface_count", 1)
         self.relative_error = _relative_error(cls)
-        self.host = None          # the context's hr_host, seen at the first create
-        self.live = {}            # shape pointer -> _Instance (which owns the pointed-at byte)
+        self.host: Any = None     # the context's hr_host, seen at the first create
+        # shape pointer -> _Instance (which owns the pointed-at byte)
+        self.live: Dict[int, _Instance] = {}
         self.live_lock = threading.Lock()
-        self.c_strings = []
-        self.c_params = None
-        self.c_class = None
-        self.callbacks = ()
+        self.c_strings: List[Any] = []
+        self.c_params: Any = None
+        self.c_class: Any = None
+        self.callbacks: Tuple[Any, ...] = ()
 
 
-def _positive_int(cls, attr, default):
+def _positive_int(cls: type, attr: str, default: int) -> int:
     value = getattr(cls, attr, default)
     if isinstance(value, bool) or not isinstance(value, int) or value < 1 or value > 2**31 - 1:
         raise ValueError(f"shape class {cls.__qualname__}: {attr} must be a positive integer, "
                          f"not {value!r}")
-    return value
+    return int(value)
 
 
-def _relative_error(cls):
+def _relative_error(cls: type) -> float:
     value = getattr(cls, "hit_relative_error", DEFAULT_HIT_RELATIVE_ERROR)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or \
             not math.isfinite(value) or value < 0:
@@ -110,7 +117,7 @@ def _relative_error(cls):
     return float(value)
 
 
-def _help_line(cls):
+def _help_line(cls: type) -> str:
     text = getattr(cls, "help", None)
     if text is None:
         doc = inspect.getdoc(cls) or ""
@@ -120,7 +127,7 @@ def _help_line(cls):
     return text
 
 
-def _check_layout(ffi):
+def _check_layout(ffi: Any) -> None:
     for name, fields, offsets, packed in (("hr_hit", _HIT_FIELDS, _HIT_OFFSETS, _HIT),
                                           ("hr_hit_args", _ARGS_FIELDS, _ARGS_OFFSETS, _ARGS)):
         got = tuple(ffi.offsetof(name, f) for f in fields)
@@ -129,14 +136,13 @@ def _check_layout(ffi):
                                f"is not the one this module reads and writes {offsets}")
 
 
-def _check_bounds(value, label):
+def _check_bounds(value: Any, label: str) -> Box:
     """((lo), (hi)) as 6 floats, or infinities for None."""
     if value is None:
-        inf = math.inf
-        return (-inf, -inf, -inf, inf, inf, inf)
+        return _UNBOUNDED
     try:
         (x0, y0, z0), (x1, y1, z1) = value
-        box = tuple(float(v) for v in (x0, y0, z0, x1, y1, z1))
+        box = (float(x0), float(y0), float(z0), float(x1), float(y1), float(z1))
     except (TypeError, ValueError) as e:
         raise ShapeError(f"{label}.bounds() must return ((xmin, ymin, zmin), (xmax, ymax, "
                          f"zmax)) or None, not {value!r}") from e
@@ -146,17 +152,17 @@ def _check_bounds(value, label):
     return box
 
 
-def _describe(exc):
+def _describe(exc: BaseException) -> str:
     text = str(exc)
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
 
 
-def _make_callbacks(reg, ffi, lib):
+def _make_callbacks(reg: _Registration, ffi: Any, lib: Any) -> Tuple[Any, Any, Any, Any]:
     hr_ok = 0
-    error_module = lib.HR_ERROR_MODULE
-    error_parameter = lib.HR_ERROR_PARAMETER
+    error_module = int(lib.HR_ERROR_MODULE)
+    error_parameter = int(lib.HR_ERROR_PARAMETER)
     NULL = ffi.NULL
-    def new_token():
+    def new_token() -> Any:
         return ffi.new("char[1]")
 
     buffer, cast, string = ffi.buffer, ffi.cast, ffi.string
@@ -174,7 +180,7 @@ def _make_callbacks(reg, ffi, lib):
     isfinite = math.isfinite
     cls = reg.cls
 
-    def fail(where, exc):
+    def fail(where: str, exc: BaseException) -> ShapeError:
         """Keep the error for whoever checks the failed call."""
         if isinstance(exc, ShapeError):
             error = exc
@@ -184,10 +190,10 @@ def _make_callbacks(reg, ffi, lib):
         record_shape_error(error)
         return error
 
-    def create(args, out_shape):
+    def create(args: Any, out_shape: Any) -> int:
         try:
             reg.host = args.host
-            kwargs = {}
+            kwargs: Dict[str, Any] = {}
             params = args.params
             for i, spec in enumerate(specs):
                 p = params[i]
@@ -225,7 +231,7 @@ def _make_callbacks(reg, ffi, lib):
                 buffer(args.error, len(message) + 1)[:] = message + b"\0"
             return error_parameter
 
-    def destroy(shape):
+    def destroy(shape: Any) -> None:
         # May run while the interpreter exits (a scene freed by the last
         # collection): only names bound here, and nothing may escape.
         try:
@@ -234,15 +240,15 @@ def _make_callbacks(reg, ffi, lib):
         except BaseException:
             pass
 
-    def bounds(shape, out):
+    def bounds(shape: Any, out: Any) -> None:
         try:
             box = instances[int(cast("uintptr_t", shape))].bounds
         except BaseException as e:  # not ours: a host bug; say unbounded, never crash
             fail(f"{reg.name}.bounds", e)
-            box = (-math.inf, -math.inf, -math.inf, math.inf, math.inf, math.inf)
+            box = _UNBOUNDED
         out.lo.x, out.lo.y, out.lo.z, out.hi.x, out.hi.y, out.hi.z = box
 
-    def hit(args):
+    def hit(args: Any) -> int:
         try:
             shape, ox, oy, oz, dx, dy, dz, tmin, tmax, _, _ = unpack_args(buffer(args))
             inst = instances[shape]
@@ -293,7 +299,7 @@ def _make_callbacks(reg, ffi, lib):
             out = args.out
             base = out.count
             if out.capacity - base < n:
-                status = reg.host.reserve(args.call, out, base + n)
+                status = int(reg.host.reserve(args.call, out, base + n))
                 if status != hr_ok:
                     fail(f"{reg.name}.hit", ShapeError(f"{inst.label}: no room for {n} hits"))
                     return status
@@ -311,8 +317,8 @@ def _make_callbacks(reg, ffi, lib):
             ffi.callback("hr_hit_fn", hit, error=error_module))
 
 
-def _build_class(reg, ffi, lib):
-    def c_string(text):
+def _build_class(reg: _Registration, ffi: Any, lib: Any) -> None:
+    def c_string(text: str) -> Any:
         s = ffi.new("char[]", text.encode("utf-8"))
         reg.c_strings.append(s)
         return s
@@ -343,7 +349,7 @@ def _build_class(reg, ffi, lib):
     reg.c_class = c
 
 
-def register_shape(name, cls, context=None):
+def register_shape(name: str, cls: type, context: Any = None) -> Any:
     """Register the Python class `cls` as the shape class `name` on
     `context` (None: the package's default context; a hitray.abi.Context;
     or an hr_context* cdata). A later registration of the same name wins;
