@@ -62,6 +62,27 @@ def test_sdl_and_a_two_thread_render(hitray):
     assert one[:, :20].max() > 0.3
 
 
+def test_scene_trace_on_several_threads(hitray):
+    scene = hitray.Scene()
+    scene.add(hitray.Shape("pyball", radius=1.0))
+    scene.add(hitray.Sphere().translate(3, 0, 0))
+    n = 2000
+    origins = np.zeros((n, 3))
+    origins[:, 0] = np.linspace(-0.5, 3.5, n)
+    origins[:, 2] = 5.0
+    result = scene.trace(origins, (0.0, 0.0, -1.0), threads=4)
+    x = origins[:, 0]
+    # Rays at |x| < 1 hit the Python ball at t = 5 - sqrt(1 - x^2); those
+    # within 1 of x = 3 the C sphere; the rest miss.
+    on_ball = np.abs(x) < 0.999
+    expected = 5.0 - np.sqrt(1.0 - x[on_ball] ** 2)
+    # The stable roots are good to a few ulps of t ~ 5 away from the rim.
+    assert np.allclose(result.t[on_ball], expected, rtol=1e-13, atol=0)
+    assert (result.object[on_ball] == 0).all()
+    assert (result.object[np.abs(x - 3.0) < 0.999] == 1).all()
+    assert (result.object[(x > 1.001) & (x < 1.999)] == -1).all()
+
+
 def test_a_failing_python_shape_raises_hitray_error_with_its_message(hitray):
     scene, camera = hitray.parse_sdl("camera 0 0 6  0 0 0  0 1 0  40\ngrumpy 1\n")
     with pytest.raises(hitray.Error) as e:
