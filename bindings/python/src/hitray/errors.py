@@ -9,6 +9,7 @@ three numbers) raise the usual ``TypeError`` or ``ValueError``.
 
 from __future__ import annotations
 
+import sys
 from typing import Optional
 
 __all__ = [
@@ -125,6 +126,16 @@ def _from_status(status: int, message: str, filename: Optional[str], line: int,
     its status, so that every error of a scene file can be caught as one and
     carries its place; the status tells what kind it was.
     """
+    cause = _python_shape_error()
+    if cause is not None and str(cause) not in message:
+        message = f"{message}: {cause}"
+    error = _exception(status, message, filename, line, column)
+    error.__cause__ = cause
+    return error
+
+
+def _exception(status: int, message: str, filename: Optional[str], line: int,
+               column: int) -> Error:
     if status == _OUT_OF_MEMORY:
         return Error(message, status)  # not MemoryError: Python's own is for its heap
     if status == _SDL or (line > 0 and filename is not None):
@@ -132,3 +143,11 @@ def _from_status(status: int, message: str, filename: Optional[str], line: int,
     if status == _IO:
         return FileError(message, status, filename)
     return _BY_STATUS.get(status, Error)(message, status)
+
+
+def _python_shape_error() -> Optional[BaseException]:
+    """What a shape class written in Python (hitray.abi.register_shape) raised
+    inside a callback, if one did: the library only knows that "a shape
+    failed", so the Python message and traceback are added here."""
+    errors = sys.modules.get("hitray.abi._errors")
+    return errors.take_shape_error() if errors is not None else None
