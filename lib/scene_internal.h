@@ -68,6 +68,11 @@ typedef struct hr_trace_ctx {
     void (*poll)(void *user);
     void *poll_user;
     uint32_t shade_calls;
+    /* Contribution cut-off (hr_render_options.min_weight): a bounce whose
+     * path weight would fall below this is not traced; 0: none. */
+    double min_weight;
+    uint64_t rays_cut;
+    uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
 } hr_trace_ctx;
 
 #define HR_POLL_INTERVAL 65536u
