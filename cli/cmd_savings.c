@@ -28,28 +28,52 @@ static const char savings_help[] =
     "                        reflected and refracted ray the scene calls for\n"
     "  effects-all           every effect's code forced on: the same image; the\n"
     "                        rays it adds are what the effect analysis saves\n"
-    "  adaptive              --adaptive T (left out with T = 0)\n"
-    "  min-weight            --min-weight W (left out with W = 0)\n"
-    "  both                  adaptive and min-weight together\n"
+    "  adaptive              one row per --adaptive value (none for 0)\n"
+    "  min-weight            one row per --min-weight value (none for 0)\n"
+    "  both                  adaptive and min-weight together (when each has\n"
+    "                        one value)\n"
     "\n"
     "options:\n"
     "  --size WxH            image size in pixels (default 320x240)\n"
     "  --spp N               samples per pixel of the full render, and of the\n"
     "                        pixels adaptive supersampling refines (default 16)\n"
-    "  --adaptive T          adaptive threshold, 0..1 (default 0.05)\n"
-    "  --min-weight W        contribution cut-off, 0..1 (default 0.05)\n"
+    "  --adaptive T[,T...]   adaptive thresholds, 0..1 (default 0.05); up to 8\n"
+    "  --min-weight W[,W...] contribution cut-offs, 0..1 (default 0.05); up to 8\n"
     "  --depth N             recursion depth (default: the scene's)\n"
     "  --threads N           threads (default 0: every core); the numbers are the\n"
     "                        same whatever the count\n"
     "  --json                one JSON object per row instead of the table\n"
     "  -h, --help            this help\n";
 
+#define MAX_VALUES 8
+
 typedef struct savings_request {
     const char *scene_path;
     int32_t width, height, spp, depth, threads;
-    double adaptive, min_weight;
+    double adaptive[MAX_VALUES], min_weight[MAX_VALUES];
+    int adaptive_count, min_weight_count;
     int json;
 } savings_request;
+
+/* "0.02,0.05,0.1": each a number within 0..1; 0 adds no row. */
+static int parse_values(const char *option, const char *text, double *out, int *count)
+{
+    char item[64];
+    *count = 0;
+    for (const char *p = text;;) {
+        const char *comma = strchr(p, ',');
+        size_t n = comma ? (size_t)(comma - p) : strlen(p);
+        if (*count == MAX_VALUES) return !cli_error("%s: at most %d values", option, MAX_VALUES);
+        if (n >= sizeof item) return !cli_error("%s: '%s' is not a list of numbers", option, text);
+        memcpy(item, p, n);
+        item[n] = '\0';
+        double v;
+        if (!cli_parse_fraction(option, item, &v)) return 0;
+        if (v > 0) out[(*count)++] = v;
+        if (!comma) return 1;
+        p = comma + 1;
+    }
+}
 
 static const cli_option savings_options[] = {
     {"--size", NULL, 1},     {"--spp", NULL, 1},     {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1},
@@ -62,7 +86,8 @@ static int parse_request(int argc, char **argv, savings_request *r)
 {
     memset(r, 0, sizeof *r);
     r->width = 320, r->height = 240, r->spp = 16, r->depth = -1;
-    r->adaptive = 0.05, r->min_weight = 0.05;
+    r->adaptive[0] = 0.05, r->min_weight[0] = 0.05;
+    r->adaptive_count = r->min_weight_count = 1;
     cli_parser p;
     cli_parser_init(&p, argc, argv, savings_options);
     const char *name, *value;
@@ -81,8 +106,9 @@ static int parse_request(int argc, char **argv, savings_request *r)
         int ok = 1;
         if (!strcmp(name, "--size")) ok = cli_parse_size(name, value, &r->width, &r->height);
         else if (!strcmp(name, "--spp")) ok = cli_parse_int(name, value, 2, 65536, &r->spp);
-        else if (!strcmp(name, "--adaptive")) ok = cli_parse_fraction(name, value, &r->adaptive);
-        else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
+        else if (!strcmp(name, "--adaptive")) ok = parse_values(name, value, r->adaptive, &r->adaptive_count);
+        else if (!strcmp(name, "--min-weight"))
+            ok = parse_values(name, value, r->min_weight, &r->min_weight_count);
         else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, HR_MAX_RECURSION_DEPTH, &r->depth);
         else if (!strcmp(name, "--threads")) ok = cli_parse_int(name, value, 0, 4096, &r->threads);
         else if (!strcmp(name, "--json")) r->json = 1;
@@ -187,30 +213,33 @@ static int render_row(const savings_request *r, cli_scene *s, const hr_camera *c
     return st == HR_OK ? 0 : cli_library_error(s->ctx, st);
 }
 
+typedef struct variant {
+    const char *name;
+    double parameter; /* NAN: none to show */
+    int32_t effects;
+    double adaptive, min_weight;
+} variant;
+
 static int run_savings(const savings_request *r, cli_scene *s)
 {
     hr_camera cam = cli_scene_camera(s, r->width, r->height);
-    row rows[5];
+    variant variants[3 + 2 * MAX_VALUES];
+    int nv = 0;
+    variants[nv++] = (variant){"effects-all", NAN, HR_EFFECTS_ALL, 0, 0};
+    for (int i = 0; i < r->adaptive_count; i++)
+        variants[nv++] = (variant){"adaptive", r->adaptive[i], HR_EFFECTS_AUTO, r->adaptive[i], 0};
+    for (int i = 0; i < r->min_weight_count; i++)
+        variants[nv++] = (variant){"min-weight", r->min_weight[i], HR_EFFECTS_AUTO, 0, r->min_weight[i]};
+    if (r->adaptive_count == 1 && r->min_weight_count == 1)
+        variants[nv++] = (variant){"both", NAN, HR_EFFECTS_AUTO, r->adaptive[0], r->min_weight[0]};
+    row rows[4 + 2 * MAX_VALUES];
     int n = 0;
     hr_image *reference = NULL;
-    rows[0] = (row){"full", NAN, {0}, {0, 0, 0}};
+    rows[n] = (row){"full", NAN, {0}, {0, 0, 0}};
     if (render_row(r, s, &cam, &rows[n++], &reference, HR_EFFECTS_AUTO, 0, 0)) return CLI_EXIT_ERROR;
-    struct variant {
-        const char *name;
-        double parameter;
-        int32_t effects;
-        double adaptive, min_weight;
-        int wanted;
-    } variants[] = {
-        {"effects-all", NAN, HR_EFFECTS_ALL, 0, 0, 1},
-        {"adaptive", r->adaptive, HR_EFFECTS_AUTO, r->adaptive, 0, r->adaptive > 0},
-        {"min-weight", r->min_weight, HR_EFFECTS_AUTO, 0, r->min_weight, r->min_weight > 0},
-        {"both", NAN, HR_EFFECTS_AUTO, r->adaptive, r->min_weight, r->adaptive > 0 && r->min_weight > 0},
-    };
     int rc = 0;
-    for (size_t i = 0; i < sizeof variants / sizeof variants[0] && !rc; i++) {
-        const struct variant *v = &variants[i];
-        if (!v->wanted) continue;
+    for (int i = 0; i < nv && !rc; i++) {
+        const variant *v = &variants[i];
         row *w = &rows[n];
         w->name = v->name;
         w->parameter = v->parameter;

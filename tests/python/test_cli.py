@@ -251,6 +251,14 @@ def test_savings_reports_rays_and_error(tmp_path):
     assert table[1].split()[:2] == ["render", "rays"]
     assert [line.split()[0] for line in table[2:]] == ["full", "effects-all", "min-weight"]
     assert table[4].split()[2] == str(rows["min-weight"]["rays"])
+    # Lists of values: a row each, and no "both".
+    r = run("savings", scene, "--size", "16x12", "--spp", "4", "--adaptive", "0.02,0.2", "--min-weight", "0",
+            "--json")
+    assert r.returncode == 0, r.stderr
+    rows = [json.loads(line) for line in r.stdout.splitlines()]
+    assert [(row["render"], row["parameter"]) for row in rows] == [
+        ("full", None), ("effects-all", None), ("adaptive", 0.02), ("adaptive", 0.2)]
+    assert rows[2]["pixels_refined"] >= rows[3]["pixels_refined"]
 
 
 def test_render_is_the_same_whatever_the_thread_count(scene, tmp_path):
