@@ -47,8 +47,10 @@ static hr_vec3 spawn_origin(const hr_hit *h, hr_vec3 side)
 
 /* A light adds exactly nothing where, in every channel, its colour or
  * both of the material's lit coefficients are zero: no multiplication can
- * make that non-zero, so its shadow ray can be saved. */
-static int light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
+ * make that non-zero, so its shadow ray can be saved. Commit marks the
+ * materials some light is inert for (HR_MAT_INERT_LIGHT); only their light
+ * loops ask. */
+int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
 {
     hr_color d = flags & HR_MAT_DIFFUSE ? mat->diffuse : rgb(0, 0, 0);
     hr_color sp = flags & HR_MAT_SPECULAR ? mat->specular : rgb(0, 0, 0);
@@ -66,7 +68,8 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
     hr_vec3 origin = spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
         const hr_light *L = &s->lights[i];
-        if (!tc->force_all_effects && light_adds_nothing(L, mat, flags)) continue;
+        if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hr_light_adds_nothing(L, mat, flags))
+            continue;
         hr_vec3 to_light = v3_sub(L->position, origin);
         hr_vec3 sdir = v3_normalize(to_light);
         double lambert = v3_dot(sdir, m);
