@@ -148,6 +148,22 @@ int cli_parse_doubles(const char *option, const char *text, int count, double *o
     return 1;
 }
 
+int cli_parse_fraction(const char *option, const char *text, double *out)
+{
+    const char *end = NULL;
+    double v;
+    if (!parse_double(text, &end, &v) || *end != '\0') {
+        cli_error("%s: '%s' is not a number", option, text);
+        return 0;
+    }
+    if (!(v >= 0.0 && v <= 1.0)) {
+        cli_error("%s: %s is out of range 0..1", option, text);
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
 int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t *height)
 {
     char *end = NULL;

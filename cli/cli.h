@@ -20,6 +20,7 @@
 int cmd_render(int argc, char **argv);
 int cmd_hits(int argc, char **argv);
 int cmd_shapes(int argc, char **argv);
+int cmd_savings(int argc, char **argv);
 
 /* --- errors (args.c) --- */
 
@@ -64,6 +65,8 @@ int cli_next(cli_parser *p, const char **name, const char **value);
 int cli_parse_int(const char *option, const char *text, long min, long max, int32_t *out);
 int cli_parse_doubles(const char *option, const char *text, int count, double *out);
 int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t *height);
+/* One decimal number within 0..1. */
+int cli_parse_fraction(const char *option, const char *text, double *out);
 
 /* --- output helpers --- */
 
@@ -105,6 +108,10 @@ typedef struct cli_scene {
 /* 0 on success; on failure the error is reported and everything freed. */
 int cli_scene_load(cli_scene *s, const char *path);
 int cli_scene_commit(cli_scene *s);
+/* The scene file's camera at width x height, or, for a file that sets none,
+ * one that frames what is there (Hill's default at (0,0,5) may see nothing
+ * of such a scene). */
+hr_camera cli_scene_camera(const cli_scene *s, int32_t width, int32_t height);
 void cli_scene_free(cli_scene *s);
 
 #endif

@@ -37,6 +37,14 @@ static const char render_help[] =
     "  --png16               16-bit PNG\n"
     "  --linear-png          PNG values written linearly, not sRGB-encoded\n"
     "  --exr-half            EXR with 16-bit half floats\n"
+    "  --effects auto|all    auto (default): run only the effects the scene calls\n"
+    "                        for; all: run every effect's code (same image), to\n"
+    "                        measure what the analysis saves\n"
+    "  --adaptive T          adaptive supersampling: sample pixel corners, give\n"
+    "                        the --spp pattern (N >= 2) only to pixels whose\n"
+    "                        corners differ by more than T (0..1, sRGB-encoded)\n"
+    "  --min-weight W        trace no reflected or refracted ray whose weight\n"
+    "                        (product of the coefficients on its path) is below W\n"
     "  --stats               also print rays by kind and the effects that ran\n"
     "  --stats-json FILE     write the statistics as one JSON object\n"
     "  -h, --help            this help\n";
@@ -51,13 +59,16 @@ typedef struct render_request {
     int has_camera;
     double camera[10];
     int png16, linear_png, exr_half, stats;
+    int32_t effects;
+    double adaptive, min_weight;
 } render_request;
 
 static const cli_option render_options[] = {
     {"--output", "-o", 1}, {"--exr", NULL, 1},        {"--size", NULL, 1},       {"--spp", NULL, 1},
     {"--threads", NULL, 1}, {"--depth", NULL, 1},     {"--block", NULL, 1},      {"--camera", NULL, 1},
     {"--png16", NULL, 0},  {"--linear-png", NULL, 0}, {"--exr-half", NULL, 0},   {"--stats", NULL, 0},
-    {"--stats-json", NULL, 1}, {"--help", "-h", 0},   {NULL, NULL, 0},
+    {"--stats-json", NULL, 1}, {"--effects", NULL, 1}, {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1},
+    {"--help", "-h", 0},   {NULL, NULL, 0},
 };
 
 static int has_image_extension(const char *path)
@@ -102,6 +113,14 @@ static int check_distinct(const char *option_a, const char *a, const char *optio
     return 0;
 }
 
+static int parse_effects(const char *option, const char *text, int32_t *out)
+{
+    if (!strcmp(text, "auto")) *out = HR_EFFECTS_AUTO;
+    else if (!strcmp(text, "all")) *out = HR_EFFECTS_ALL;
+    else return !cli_error("%s: '%s' is neither 'auto' nor 'all'", option, text);
+    return 1;
+}
+
 /* What parse_request found: go on, stop after an error (reported; the same
  * value cli_error returns), or stop after printing the help. */
 #define PARSE_OK 0
@@ -142,10 +161,16 @@ static int parse_request(int argc, char **argv, render_request *r)
         else if (!strcmp(name, "--linear-png")) r->linear_png = 1;
         else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
         else if (!strcmp(name, "--stats")) r->stats = 1;
+        else if (!strcmp(name, "--effects")) ok = parse_effects(name, value, &r->effects);
+        else if (!strcmp(name, "--adaptive")) ok = cli_parse_fraction(name, value, &r->adaptive);
+        else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
         if (!ok) return PARSE_ERROR;
     }
     if (!r->scene_path) return cli_error("render: no scene file given (see 'hitray render --help')");
     if (!r->output) return cli_error("render: no output file given (use -o OUT.png)");
+    if (r->adaptive > 0 && r->spp < 2)
+        return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
+    if (r->adaptive > 0 && r->block > 1) return cli_error("--adaptive: cannot be combined with --block");
     if (!has_image_extension(r->output))
         return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          r->output);
@@ -167,18 +192,13 @@ static int parse_request(int argc, char **argv, render_request *r)
 
 static hr_camera choose_camera(const render_request *r, const cli_scene *s)
 {
+    if (!r->has_camera) return cli_scene_camera(s, r->width, r->height);
     hr_camera cam = s->sdl.camera;
-    if (r->has_camera) {
-        const double *c = r->camera;
-        cam.eye = (hr_vec3){c[0], c[1], c[2]};
-        cam.look = (hr_vec3){c[3], c[4], c[5]};
-        cam.up = (hr_vec3){c[6], c[7], c[8]};
-        cam.view_angle = c[9];
-    } else if (!s->sdl.has_camera) {
-        /* Hill's default camera at (0,0,5) may well see nothing of a scene
-         * written without a camera: frame what is there instead. */
-        hr_scene_frame_camera(s->sdl.scene, &cam);
-    }
+    const double *c = r->camera;
+    cam.eye = (hr_vec3){c[0], c[1], c[2]};
+    cam.look = (hr_vec3){c[3], c[4], c[5]};
+    cam.up = (hr_vec3){c[6], c[7], c[8]};
+    cam.view_angle = c[9];
     cam.width = r->width;
     cam.height = r->height;
     return cam;
@@ -241,6 +261,10 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
         printf("effects: ");
         print_effects(stdout, s->effects, 0);
         putchar('\n');
+        if (r->adaptive > 0)
+            printf("adaptive: %" PRIu64 " of %" PRIu64 " pixels refined, %" PRId64 " camera rays saved\n",
+                   s->pixels_refined, (uint64_t)r->width * (uint64_t)r->height, s->samples_saved);
+        if (r->min_weight > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
     }
 }
 
@@ -274,8 +298,10 @@ static int write_stats_json(const render_request *r, const hr_render_stats *s)
     json_number(f, s->seconds);
     fputs(", \"effects\": [", f);
     print_effects(f, s->effects, 1);
-    fprintf(f, "], \"threads\": %d, \"width\": %d, \"height\": %d}\n", (int)s->threads, (int)r->width,
-            (int)r->height);
+    fprintf(f,
+            "], \"pixels_refined\": %" PRIu64 ", \"samples_saved\": %" PRId64 ", \"rays_cut\": %" PRIu64
+            ", \"threads\": %d, \"width\": %d, \"height\": %d}\n",
+            s->pixels_refined, s->samples_saved, s->rays_cut, (int)s->threads, (int)r->width, (int)r->height);
     int failed = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
     int err = errno;
     if (fclose(f) != 0 && !failed) failed = 1, err = errno;
@@ -298,6 +324,9 @@ static int render_and_write(const render_request *r, cli_scene *s)
     o.threads = r->threads;
     o.max_depth = r->depth;
     o.block_size = r->block;
+    o.effects = r->effects;
+    o.adaptive_threshold = r->adaptive;
+    o.min_weight = r->min_weight;
     cli_progress progress;
     o.progress = cli_progress_update;
     o.progress_user = &progress;

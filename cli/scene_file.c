@@ -30,3 +30,12 @@ void cli_scene_free(cli_scene *s)
     hr_context_destroy(s->ctx);
     memset(s, 0, sizeof *s);
 }
+
+hr_camera cli_scene_camera(const cli_scene *s, int32_t width, int32_t height)
+{
+    hr_camera cam = s->sdl.camera;
+    if (!s->sdl.has_camera) hr_scene_frame_camera(s->sdl.scene, &cam);
+    cam.width = width;
+    cam.height = height;
+    return cam;
+}

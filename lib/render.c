@@ -1,7 +1,13 @@
 /* Rendering: tiles handed out to a pool of threads through an atomic
  * counter. Every pixel is computed from the scene, camera and options alone
  * (a fixed sample pattern, no shared random state), so the image is the same
- * bit for bit whatever the number of threads or the order tiles finish. */
+ * bit for bit whatever the number of threads or the order tiles finish.
+ *
+ * Adaptive supersampling keeps that promise: a pixel's decision uses only
+ * the samples at its own four corners, which any tile computes to the same
+ * bits (corners on a tile's border are traced by both tiles). Each thread
+ * owns its tracing context and corner rows for the whole render, so no ray
+ * allocates. */
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -11,6 +17,7 @@
 #include <unistd.h>
 
 #include "errors.h"
+#include "image_srgb.h"
 #include "scene_internal.h"
 #include "vec.h"
 
@@ -43,10 +50,19 @@ typedef struct render_job {
     hr_status failure; /* first shape failure (guarded by progress_lock) */
 } render_job;
 
+/* A sample at a pixel corner: its colour, and that colour as shown
+ * (sRGB-encoded, clamped), what the adaptive test compares. */
+typedef struct corner_sample {
+    hr_color linear;
+    double shown[3];
+} corner_sample;
+
 typedef struct worker {
     render_job *job;
     pthread_t thread;
-    uint64_t primary, shadow, reflected, refracted;
+    hr_trace_ctx tc;         /* for every tile this thread renders */
+    corner_sample *corners;  /* adaptive: two rows of tile_size + 1 */
+    uint64_t primary, pixels_refined;
 } worker;
 
 /* Radical inverse in base 2: the second coordinate of Hammersley points. */
@@ -83,20 +99,33 @@ static void poll_progress(void *user)
     pthread_mutex_unlock(&job->progress_lock);
 }
 
-static void render_tile(worker *w, int64_t tile)
+static hr_color trace_camera_ray(worker *w, double px, double py)
 {
     render_job *job = w->job;
-    hr_trace_ctx tc;
-    hr_trace_ctx_init(&tc, job->scene);
-    tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
-    tc.cancelled = &job->cancelled;
-    tc.poll = poll_progress;
-    tc.poll_user = job;
-    int32_t tsize = job->opt.tile_size;
-    int32_t x0 = (int32_t)(tile % job->tiles_x) * tsize, y0 = (int32_t)(tile / job->tiles_x) * tsize;
-    int32_t x1 = x0 + tsize < job->width ? x0 + tsize : job->width;
-    int32_t y1 = y0 + tsize < job->height ? y0 + tsize : job->height;
-    int32_t block = job->opt.block_size, spp = job->opt.samples_per_pixel;
+    hr_ray ray;
+    hr_camera_ray(&job->camera, px, py, &ray);
+    w->primary++;
+    return hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
+}
+
+/* The full pattern over a pixel (or Hill's block) at (bx, by) of size
+ * bw x bh: the value a full render gives it. */
+static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, float *px)
+{
+    int32_t spp = w->job->opt.samples_per_pixel;
+    hr_color sum = rgb(0, 0, 0);
+    for (int32_t k = 0; k < spp; k++) {
+        double dx, dy;
+        sample_offset(k, spp, &dx, &dy);
+        sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh));
+    }
+    px[0] = (float)(sum.r / spp), px[1] = (float)(sum.g / spp), px[2] = (float)(sum.b / spp);
+}
+
+static void render_tile_full(worker *w, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    render_job *job = w->job;
+    int32_t block = job->opt.block_size;
     /* Blocks are aligned to the image, not the tile, so a block that straddles
      * tiles gets the same colour in both. */
     for (int32_t y = y0; y < y1; y++) {
@@ -116,29 +145,78 @@ static void render_tile(worker *w, int64_t tile)
             /* One pixel, or the one ray of a block over its whole area. */
             double bw = block < job->width - bx ? block : job->width - bx;
             double bh = block < job->height - by ? block : job->height - by;
-            hr_color sum = rgb(0, 0, 0);
-            for (int32_t k = 0; k < spp; k++) {
-                double dx, dy;
-                sample_offset(k, spp, &dx, &dy);
-                hr_ray ray;
-                hr_camera_ray(&job->camera, bx + dx * bw, by + dy * bh, &ray);
-                w->primary++;
-                sum = rgb_add(sum, hr_shade_ray(&tc, &ray, 0, job->max_depth));
-            }
-            float *px = &job->pixels[3 * ((size_t)y * job->width + x)];
-            px[0] = (float)(sum.r / spp), px[1] = (float)(sum.g / spp), px[2] = (float)(sum.b / spp);
+            full_pixel(w, bx, by, bw, bh, &job->pixels[3 * ((size_t)y * job->width + x)]);
         }
     }
-    w->shadow += tc.rays_shadow;
-    w->reflected += tc.rays_reflected;
-    w->refracted += tc.rays_refracted;
-    if (tc.status) {
+}
+
+static corner_sample sample_corner(worker *w, int32_t x, int32_t y)
+{
+    corner_sample c;
+    c.linear = trace_camera_ray(w, x, y);
+    c.shown[0] = hr_srgb_encode(c.linear.r);
+    c.shown[1] = hr_srgb_encode(c.linear.g);
+    c.shown[2] = hr_srgb_encode(c.linear.b);
+    return c;
+}
+
+/* The adaptive test: do the four corners of a pixel differ, in some
+ * channel as shown, by more than the threshold? */
+static int corners_differ(const corner_sample *a, const corner_sample *b, const corner_sample *c,
+                          const corner_sample *d, double threshold)
+{
+    for (int i = 0; i < 3; i++) {
+        double lo = fmin(fmin(a->shown[i], b->shown[i]), fmin(c->shown[i], d->shown[i]));
+        double hi = fmax(fmax(a->shown[i], b->shown[i]), fmax(c->shown[i], d->shown[i]));
+        if (hi - lo > threshold) return 1;
+    }
+    return 0;
+}
+
+/* Adaptive supersampling, one row of pixels at a time: the corner row above
+ * and the one below, then each pixel either refined (the full pattern) or
+ * given the mean of its corners. */
+static void render_tile_adaptive(worker *w, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    render_job *job = w->job;
+    int32_t n = x1 - x0 + 1;
+    corner_sample *above = w->corners, *below = w->corners + job->opt.tile_size + 1;
+    for (int32_t i = 0; i < n; i++) above[i] = sample_corner(w, x0 + i, y0);
+    for (int32_t y = y0; y < y1; y++) {
+        for (int32_t i = 0; i < n; i++) below[i] = sample_corner(w, x0 + i, y + 1);
+        for (int32_t x = x0; x < x1; x++) {
+            int32_t i = x - x0;
+            float *px = &job->pixels[3 * ((size_t)y * job->width + x)];
+            if (corners_differ(&above[i], &above[i + 1], &below[i], &below[i + 1],
+                               job->opt.adaptive_threshold)) {
+                full_pixel(w, x, y, 1.0, 1.0, px);
+                w->pixels_refined++;
+                continue;
+            }
+            hr_color sum = rgb_add(rgb_add(above[i].linear, above[i + 1].linear),
+                                   rgb_add(below[i].linear, below[i + 1].linear));
+            px[0] = (float)(sum.r / 4), px[1] = (float)(sum.g / 4), px[2] = (float)(sum.b / 4);
+        }
+        corner_sample *t = above;
+        above = below, below = t;
+    }
+}
+
+static void render_tile(worker *w, int64_t tile)
+{
+    render_job *job = w->job;
+    int32_t tsize = job->opt.tile_size;
+    int32_t x0 = (int32_t)(tile % job->tiles_x) * tsize, y0 = (int32_t)(tile / job->tiles_x) * tsize;
+    int32_t x1 = x0 + tsize < job->width ? x0 + tsize : job->width;
+    int32_t y1 = y0 + tsize < job->height ? y0 + tsize : job->height;
+    if (job->opt.adaptive_threshold > 0) render_tile_adaptive(w, x0, y0, x1, y1);
+    else render_tile_full(w, x0, y0, x1, y1);
+    if (w->tc.status) {
         pthread_mutex_lock(&job->progress_lock);
-        if (!job->failure) job->failure = tc.status;
+        if (!job->failure) job->failure = w->tc.status;
         pthread_mutex_unlock(&job->progress_lock);
         atomic_store(&job->cancelled, 1);
     }
-    hr_trace_ctx_release(&tc);
 }
 
 static void *worker_main(void *arg)
@@ -202,6 +280,18 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
                         (int)o->max_depth, HR_MAX_RECURSION_DEPTH);
     if (o->effects != HR_EFFECTS_AUTO && o->effects != HR_EFFECTS_ALL)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: effects must be HR_EFFECTS_AUTO or HR_EFFECTS_ALL");
+    if (!(o->adaptive_threshold >= 0.0 && o->adaptive_threshold <= 1.0))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: adaptive threshold %g must be within 0..1 (0: off)", o->adaptive_threshold);
+    if (o->adaptive_threshold > 0.0 && o->samples_per_pixel < 2)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: adaptive supersampling needs samples per pixel >= 2 (the most a pixel gets)");
+    if (o->adaptive_threshold > 0.0 && o->block_size > 1)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: adaptive supersampling works on single pixels: block size must be 1");
+    if (!(o->min_weight >= 0.0 && o->min_weight <= 1.0))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: minimum weight %g must be within 0..1 (0: off)",
+                        o->min_weight);
     return HR_OK;
 }
 
@@ -254,10 +344,25 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     int32_t nthreads = job->opt.threads > 0 ? job->opt.threads : core_count();
     if (nthreads > job->tile_count) nthreads = (int32_t)job->tile_count;
     worker *workers = calloc((size_t)nthreads, sizeof *workers);
+    int adaptive = job->opt.adaptive_threshold > 0.0;
+    int ready = workers != NULL;
+    for (int32_t i = 0; ready && i < nthreads; i++) {
+        worker *w = &workers[i];
+        w->job = job;
+        hr_trace_ctx_init(&w->tc, scene);
+        w->tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
+        w->tc.min_weight = job->opt.min_weight;
+        w->tc.cancelled = &job->cancelled;
+        w->tc.poll = poll_progress;
+        w->tc.poll_user = job;
+        if (adaptive) {
+            w->corners = malloc(2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners);
+            ready = w->corners != NULL;
+        }
+    }
     double t0 = now_seconds();
     int32_t started = 0;
-    if (workers) {
-        for (int32_t i = 0; i < nthreads; i++) workers[i].job = job;
+    if (ready) {
         /* The calling thread is worker 0; the others are started here. */
         for (started = 1; started < nthreads; started++)
             if (pthread_create(&workers[started].thread, NULL, worker_main, &workers[started]) != 0) break;
@@ -265,7 +370,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         for (int32_t i = 1; i < started; i++) pthread_join(workers[i].thread, NULL);
     }
     double seconds = now_seconds() - t0;
-    if (!workers) st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!ready) st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     else if (job->failure) st = hr_error(ctx, job->failure, "render: a shape failed while tracing: %s",
                                          hr_status_name(job->failure));
     else if (atomic_load(&job->cancelled)) st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
@@ -275,24 +380,22 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         s.threads = started;
         for (int32_t i = 0; i < started; i++) {
             s.primary += workers[i].primary;
-            s.shadow += workers[i].shadow;
-            s.reflected += workers[i].reflected;
-            s.refracted += workers[i].refracted;
+            s.shadow += workers[i].tc.rays_shadow;
+            s.reflected += workers[i].tc.rays_reflected;
+            s.refracted += workers[i].tc.rays_refracted;
+            s.rays_cut += workers[i].tc.rays_cut;
+            s.pixels_refined += workers[i].pixels_refined;
+            s.effects |= workers[i].tc.effects_ran;
         }
         s.seconds = seconds;
-        /* Bounces run at the depth this render used, which may differ from
-         * the scene's own. */
-        uint32_t bounces = HR_EFFECT_REFLECTION | HR_EFFECT_REFRACTION;
-        s.effects = (scene->effects & ~bounces) | (job->max_depth > 0 ? scene->bounce_effects : 0u) |
-                    (job->opt.samples_per_pixel > 1 ? HR_EFFECT_SUPERSAMPLING : 0u);
-        /* Forced: every shading path ran (bounces only if the depth allows
-         * one); supersampling is a matter of the sample count either way. */
-        if (job->opt.effects == HR_EFFECTS_ALL)
-            s.effects = (HR_EFFECT_EMISSION | HR_EFFECT_AMBIENT | HR_EFFECT_DIFFUSE |
-                         HR_EFFECT_SPECULAR | HR_EFFECT_SHADOWS) |
-                        (job->max_depth > 0 ? bounces : 0u) |
-                        (s.effects & HR_EFFECT_SUPERSAMPLING);
+        if (job->opt.samples_per_pixel > 1) s.effects |= HR_EFFECT_SUPERSAMPLING;
+        if (adaptive)
+            s.samples_saved = (int64_t)job->width * job->height * job->opt.samples_per_pixel - (int64_t)s.primary;
         memcpy(stats, &s, s.struct_size);
+    }
+    for (int32_t i = 0; workers && i < nthreads; i++) {
+        hr_trace_ctx_release(&workers[i].tc);
+        free(workers[i].corners);
     }
     free(workers);
     pthread_mutex_destroy(&job->progress_lock);

@@ -418,6 +418,9 @@ static void work_out_effects(hr_scene *s)
         if (lit && !rgb_is_zero(m->specular)) f |= HR_MAT_SPECULAR;
         if (m->reflectivity > 0 && m->reflectivity >= g->min_reflectivity) f |= HR_MAT_REFLECTS;
         if (m->transparency > 0 && m->transparency >= g->min_transparency) f |= HR_MAT_REFRACTS;
+        if (f & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR))
+            for (int32_t k = 0; k < s->light_count; k++)
+                if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;

@@ -15,6 +15,7 @@
 #define HR_MAT_SPECULAR 8u
 #define HR_MAT_REFLECTS 16u
 #define HR_MAT_REFRACTS 32u
+#define HR_MAT_INERT_LIGHT 64u /* some light cannot add to its diffuse or specular */
 
 typedef struct hr_object {
     int64_t index;
@@ -75,6 +76,11 @@ typedef struct hr_trace_ctx {
     void (*poll)(void *user);
     void *poll_user;
     uint32_t shade_calls;
+    /* Contribution cut-off (hr_render_options.min_weight): a bounce whose
+     * path weight would fall below this is not traced; 0: none. */
+    double min_weight;
+    uint64_t rays_cut;
+    uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
 } hr_trace_ctx;
 
 #define HR_POLL_INTERVAL 65536u
@@ -99,6 +105,8 @@ int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
 int hr_scene_trace_any(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax);
 
 /* Hill's shade (lib/shade.c). */
+/* 1 if light L can add nothing to a material with these HR_MAT_* flags. */
+int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags);
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
 
 #endif

@@ -12,7 +12,14 @@
  * casts no shadow ray. Shadows are Hill's: any object between the point and
  * the light blocks it completely. Each term is skipped unless the material
  * calls for it (flags worked out at commit), so an effect the scene lacks
- * costs no ray. */
+ * costs no ray: a purely emissive object runs no light loop, a light that
+ * is behind the surface or whose colour the material cannot reflect casts
+ * no shadow ray.
+ *
+ * The contribution cut-off (hr_render_options.min_weight) weighs each path:
+ * a bounce adds reflectivity (or transparency) times the colour it brings
+ * back, so a ray's weight is the product of those coefficients along its
+ * path, and one below the cut-off is not traced. */
 #include <float.h>
 #include <math.h>
 
@@ -38,6 +45,20 @@ static hr_vec3 spawn_origin(const hr_hit *h, hr_vec3 side)
     return o;
 }
 
+/* A light adds exactly nothing where, in every channel, its colour or
+ * both of the material's lit coefficients are zero: no multiplication can
+ * make that non-zero, so its shadow ray can be saved. Commit marks the
+ * materials some light is inert for (HR_MAT_INERT_LIGHT); only their light
+ * loops ask. */
+int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
+{
+    hr_color d = flags & HR_MAT_DIFFUSE ? mat->diffuse : rgb(0, 0, 0);
+    hr_color sp = flags & HR_MAT_SPECULAR ? mat->specular : rgb(0, 0, 0);
+    return (L->color.r == 0.0 || (d.r == 0.0 && sp.r == 0.0)) &&
+           (L->color.g == 0.0 || (d.g == 0.0 && sp.g == 0.0)) &&
+           (L->color.b == 0.0 || (d.b == 0.0 && sp.b == 0.0));
+}
+
 static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, hr_vec3 m,
                              hr_vec3 to_eye, uint32_t flags)
 {
@@ -47,6 +68,8 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
     hr_vec3 origin = spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
         const hr_light *L = &s->lights[i];
+        if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hr_light_adds_nothing(L, mat, flags))
+            continue;
         hr_vec3 to_light = v3_sub(L->position, origin);
         hr_vec3 sdir = v3_normalize(to_light);
         double lambert = v3_dot(sdir, m);
@@ -54,23 +77,47 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
         if (s->effects & HR_EFFECT_SHADOWS || tc->force_all_effects) {
             hr_ray shadow = {origin, to_light};
             tc->rays_shadow++;
+            tc->effects_ran |= HR_EFFECT_SHADOWS;
             /* The light sits at t = 1 along this ray. */
             if (hr_scene_trace_any(tc, &shadow, 0.0, 1.0)) continue;
         }
         if (!(lambert > 0.0)) continue;
         hr_color c = rgb(0, 0, 0);
-        if (flags & HR_MAT_DIFFUSE) c = rgb_scale(mat->diffuse, lambert);
+        if (flags & HR_MAT_DIFFUSE) {
+            c = rgb_scale(mat->diffuse, lambert);
+            tc->effects_ran |= HR_EFFECT_DIFFUSE;
+        }
         if (flags & HR_MAT_SPECULAR) {
             hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
             double phong = v3_dot(half, m);
             if (phong > 0.0) c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
+            tc->effects_ran |= HR_EFFECT_SPECULAR;
         }
         sum = rgb_add(sum, rgb_mul(L->color, c));
     }
     return sum;
 }
 
+/* Whether a bounce whose path weight would be `weight` is traced. A forced
+ * bounce (one only HR_EFFECTS_ALL traces, weight 0 throughout its subtree)
+ * always is: it contributes nothing either way, and it is there to be run. */
+static int worth_tracing(hr_trace_ctx *tc, double weight, int forced)
+{
+    if (forced || weight >= tc->min_weight) return 1;
+    tc->rays_cut++;
+    return 0;
+}
+
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
+                      double weight, int forced);
+
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
+{
+    return shade(tc, ray, depth, max_depth, 1.0, 0);
+}
+
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
+                      double weight, int forced)
 {
     const hr_scene *s = tc->scene;
     if (tc->cancelled) {
@@ -92,8 +139,14 @@ hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     hr_vec3 m = v3_dot(h.normal, dir) > 0.0 ? v3_neg(h.normal) : h.normal;
 
     hr_color c = rgb(0, 0, 0);
-    if (flags & HR_MAT_EMITS) c = rgb_add(c, mat->emissive);
-    if (flags & HR_MAT_AMBIENT) c = rgb_add(c, rgb_mul(mat->ambient, s->globals.global_ambient));
+    if (flags & HR_MAT_EMITS) {
+        c = rgb_add(c, mat->emissive);
+        tc->effects_ran |= HR_EFFECT_EMISSION;
+    }
+    if (flags & HR_MAT_AMBIENT) {
+        c = rgb_add(c, rgb_mul(mat->ambient, s->globals.global_ambient));
+        tc->effects_ran |= HR_EFFECT_AMBIENT;
+    }
     if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0)
         c = rgb_add(c, direct_light(tc, o, &h, m, to_eye, flags));
     if (depth >= max_depth) return c;
@@ -107,12 +160,17 @@ hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     if (tc->force_all_effects) flags |= HR_MAT_REFLECTS | HR_MAT_REFRACTS;
 
     double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
-    if (flags & HR_MAT_REFLECTS) {
+    if ((flags & HR_MAT_REFLECTS) &&
+        worth_tracing(tc, weight * reflect_weight, forced || reflect_weight == 0.0)) {
         hr_ray r = {spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
-        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &r, depth + 1, max_depth), reflect_weight));
+        tc->effects_ran |= HR_EFFECT_REFLECTION;
+        hr_color seen = shade(tc, &r, depth + 1, max_depth, weight * reflect_weight,
+                              forced || reflect_weight == 0.0);
+        c = rgb_add(c, rgb_scale(seen, reflect_weight));
     }
-    if (flags & HR_MAT_REFRACTS) {
+    if ((flags & HR_MAT_REFRACTS) &&
+        worth_tracing(tc, weight * refract_weight, forced || refract_weight == 0.0)) {
         /* Snell with Hill's speeds: sin(t) = (c2 / c1) sin(i). Entering goes
          * from the surrounding space (speed 1) into the material. */
         double c1 = h.entering ? 1.0 : mat->speed_of_light;
@@ -129,7 +187,10 @@ hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
             t.dir = v3_add(v3_scale(dir, ratio), v3_scale(m, ratio * cos_i - sqrt(cos_t2)));
             tc->rays_refracted++;
         }
-        c = rgb_add(c, rgb_scale(hr_shade_ray(tc, &t, depth + 1, max_depth), refract_weight));
+        tc->effects_ran |= HR_EFFECT_REFRACTION;
+        hr_color seen = shade(tc, &t, depth + 1, max_depth, weight * refract_weight,
+                              forced || refract_weight == 0.0);
+        c = rgb_add(c, rgb_scale(seen, refract_weight));
     }
     return c;
 }

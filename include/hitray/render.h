@@ -43,6 +43,22 @@ typedef struct hr_render_options {
     int32_t reserved;
     hr_progress_fn progress;   /* may be NULL */
     void *progress_user;
+    /* Added after the first release: a caller whose struct_size ends before a
+     * field gets its default, 0: off. */
+    double adaptive_threshold; /* > 0: adaptive supersampling. Every pixel
+                                  corner is sampled once; a pixel whose four
+                                  corners differ by more than this (largest
+                                  channel difference, display space: sRGB
+                                  encoded, clamped to [0, 1]) gets the full
+                                  samples_per_pixel pattern, the same bits as
+                                  a full render; the others get the mean of
+                                  their corners. Within [0, 1]; needs
+                                  samples_per_pixel >= 2 and block_size 1. */
+    double min_weight;         /* > 0: contribution cut-off. A reflected or
+                                  transmitted ray whose weight (the product
+                                  of the reflectivities and transparencies
+                                  along its path) is below this is not
+                                  traced. Within [0, 1]. */
 } hr_render_options;
 HR_API void hr_render_options_default(hr_render_options *o);
 
@@ -55,8 +71,18 @@ typedef struct hr_render_stats {
     uint64_t refracted; /* transmitted rays (total internal reflection counts
                            as reflected) */
     double seconds;     /* wall time of the render */
-    uint32_t effects;   /* HR_EFFECT_* bits that ran */
+    uint32_t effects;   /* HR_EFFECT_* bits whose code ran at least once
+                           (so a mirror out of view adds no "reflection") */
     int32_t reserved;
+    /* Added after the first release: written only as far as struct_size reaches. */
+    uint64_t pixels_refined; /* adaptive: pixels given every sample */
+    int64_t samples_saved;   /* adaptive: camera rays a full render would cast
+                                (pixels x samples_per_pixel) minus `primary`;
+                                negative where corner samples cost more than
+                                they saved; 0 without adaptive */
+    uint64_t rays_cut;       /* cut-off: reflected and transmitted rays not
+                                traced (each also saves the rays it would
+                                have spawned) */
 } hr_render_stats;
 
 /* Render into a new image of width x height x 3 linear floats. `stats` may

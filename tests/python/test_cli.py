@@ -149,7 +149,7 @@ def test_stats_json_keys(scene, tmp_path):
     assert r.returncode == 0, r.stderr
     data = json.loads(stats.read_text())
     assert set(data) == {"primary", "shadow", "reflected", "refracted", "seconds", "effects", "threads",
-                         "width", "height"}
+                         "width", "height", "pixels_refined", "samples_saved", "rays_cut"}
     assert data["primary"] == 16 * 12  # one ray per pixel at 1 spp
     assert data["shadow"] > 0  # one light, lit surfaces
     assert data["reflected"] == 0 and data["refracted"] == 0  # no mirror, no glass
@@ -169,6 +169,96 @@ def test_stats_flag_prints_ray_kinds_and_effects(scene, tmp_path):
     assert lines[1].startswith("rays: primary 256, shadow ")
     assert "reflected 0" in lines[1] and "refracted 0" in lines[1]
     assert lines[2].startswith("effects: ") and "supersampling" in lines[2]
+
+
+# A scene with a mirror floor and a glass ball: every kind of ray.
+MIRROR_SCENE = """\
+camera 0 2 8   0 0.5 0   0 1 0   40
+background 0.1 0.2 0.3
+maxRecursionDepth 4
+light 5 8 6   1 1 1
+push translate -1 1 0  diffuse 0.8 0.2 0.2  sphere pop
+push translate 1.2 1 -0.5  diffuse 0.1 0.1 0.1  transparency 0.8  speedOfLight 0.7  sphere pop
+push rotate -90 1 0 0  reflectivity 0.7  plane pop
+"""
+
+
+@pytest.mark.parametrize("text, bounces", [(SCENE, False), (MIRROR_SCENE, True)])
+def test_effects_all_renders_the_same_image(tmp_path, text, bounces):
+    scene = write_sdl(tmp_path, "scene.sdl", text)
+    stats = {}
+    for mode in ("auto", "all"):
+        r = run("render", scene, "-o", tmp_path / f"{mode}.pfm", "--size", "24x18", "--effects", mode,
+                "--stats-json", tmp_path / f"{mode}.json")
+        assert r.returncode == 0, r.stderr
+        stats[mode] = json.loads((tmp_path / f"{mode}.json").read_text())
+    assert (tmp_path / "auto.pfm").read_bytes() == (tmp_path / "all.pfm").read_bytes()
+    auto, all_ = stats["auto"], stats["all"]
+    if not bounces:  # no mirror, no glass: no bounce is cast
+        assert auto["reflected"] == 0 and auto["refracted"] == 0
+        assert "reflection" not in auto["effects"] and "refraction" not in auto["effects"]
+    assert all_["reflected"] > auto["reflected"] and all_["refracted"] > auto["refracted"]
+    assert all_["shadow"] > auto["shadow"] and all_["primary"] == auto["primary"]
+    assert {"reflection", "refraction", "shadows", "emission"} <= set(all_["effects"])
+
+
+def test_adaptive_and_cut_off_report_what_they_saved(tmp_path):
+    scene = write_sdl(tmp_path, "scene.sdl", MIRROR_SCENE)
+    stats = tmp_path / "s.json"
+    r = run("render", scene, "-o", tmp_path / "a.pfm", "--size", "32x24", "--spp", "9", "--adaptive", "0.05",
+            "--min-weight", "0.6", "--stats", "--stats-json", stats, "--threads", "2")
+    assert r.returncode == 0, r.stderr
+    data = json.loads(stats.read_text())
+    lines = r.stdout.splitlines()
+    assert lines[3] == (f"adaptive: {data['pixels_refined']} of 768 pixels refined, "
+                        f"{data['samples_saved']} camera rays saved")
+    assert lines[4] == f"cut-off: {data['rays_cut']} rays not traced"
+    assert 0 < data["pixels_refined"] < 768
+    assert data["samples_saved"] == 32 * 24 * 9 - data["primary"] > 0
+    assert data["rays_cut"] > 0  # transparency 0.8 and reflectivity 0.7 bounces twice are below 0.6
+    # The same image whatever the thread count.
+    r = run("render", scene, "-o", tmp_path / "b.pfm", "--size", "32x24", "--spp", "9", "--adaptive", "0.05",
+            "--min-weight", "0.6", "--threads", "1")
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "a.pfm").read_bytes() == (tmp_path / "b.pfm").read_bytes()
+
+
+def test_savings_reports_rays_and_error(tmp_path):
+    scene = write_sdl(tmp_path, "scene.sdl", MIRROR_SCENE)
+    r = run("savings", scene, "--size", "32x24", "--spp", "4", "--adaptive", "0.05", "--min-weight", "0.5",
+            "--json", "--threads", "2")
+    assert r.returncode == 0, r.stderr
+    rows = {row["render"]: row for row in map(json.loads, r.stdout.splitlines())}
+    assert list(rows) == ["full", "effects-all", "adaptive", "min-weight", "both"]
+    full = rows["full"]
+    assert full["rays_saved"] == 0 and full["rmse"] == 0 and full["pixels_differing"] == 0
+    assert full["primary"] == 32 * 24 * 4
+    for row in rows.values():
+        assert row["rays"] == row["primary"] + row["shadow"] + row["reflected"] + row["refracted"]
+        assert row["rays_saved"] == full["rays"] - row["rays"]
+        assert 0 <= row["rmse"] <= row["max_error"] <= 1
+    analysis = rows["effects-all"]  # what the effect analysis saves: rays, at no error
+    assert analysis["rays_saved"] < 0 and analysis["max_error"] == 0 and analysis["pixels_differing"] == 0
+    assert rows["adaptive"]["parameter"] == 0.05 and rows["adaptive"]["rays_saved"] > 0
+    assert rows["adaptive"]["pixels_refined"] > 0
+    assert rows["min-weight"]["rays_cut"] > 0 and rows["min-weight"]["rays_saved"] > 0
+    assert rows["min-weight"]["primary"] == full["primary"]
+    assert rows["both"]["rays"] < min(rows["adaptive"]["rays"], rows["min-weight"]["rays"])
+    # The table says the same.
+    r = run("savings", scene, "--size", "32x24", "--spp", "4", "--adaptive", "0", "--min-weight", "0.5")
+    assert r.returncode == 0, r.stderr
+    table = r.stdout.splitlines()
+    assert table[1].split()[:2] == ["render", "rays"]
+    assert [line.split()[0] for line in table[2:]] == ["full", "effects-all", "min-weight"]
+    assert table[4].split()[2] == str(rows["min-weight"]["rays"])
+    # Lists of values: a row each, and no "both".
+    r = run("savings", scene, "--size", "16x12", "--spp", "4", "--adaptive", "0.02,0.2", "--min-weight", "0",
+            "--json")
+    assert r.returncode == 0, r.stderr
+    rows = [json.loads(line) for line in r.stdout.splitlines()]
+    assert [(row["render"], row["parameter"]) for row in rows] == [
+        ("full", None), ("effects-all", None), ("adaptive", 0.02), ("adaptive", 0.2)]
+    assert rows[2]["pixels_refined"] >= rows[3]["pixels_refined"]
 
 
 def test_render_is_the_same_whatever_the_thread_count(scene, tmp_path):
@@ -387,7 +477,7 @@ def test_shapes_reports_modules_that_failed(tmp_path):
 
 # --- help and version --------------------------------------------------------
 
-@pytest.mark.parametrize("verb", ["render", "hits", "shapes"])
+@pytest.mark.parametrize("verb", ["render", "hits", "shapes", "savings"])
 def test_help_of_each_verb(verb):
     for flag in ("--help", "-h"):
         r = run(verb, flag)
@@ -465,6 +555,15 @@ def error_cases(tmp_path, scene):
                                "--exr", tmp_path / "o.exr"],
         "newline before a number": ["hits", scene, "--origin", "\n0,0,5", "--dir", "0,0,-1"],
         "newline after a comma": ["hits", scene, "--origin", "0,\n0,5", "--dir", "0,0,-1"],
+        "effects neither": ["render", scene, "-o", out, "--effects", "some"],
+        "adaptive above 1": ["render", scene, "-o", out, "--spp", "4", "--adaptive", "2"],
+        "adaptive nan": ["render", scene, "-o", out, "--spp", "4", "--adaptive", "nan"],
+        "adaptive at 1 spp": ["render", scene, "-o", out, "--adaptive", "0.1"],
+        "adaptive with blocks": ["render", scene, "-o", out, "--spp", "4", "--adaptive", "0.1", "--block", "2"],
+        "min-weight negative": ["render", scene, "-o", out, "--min-weight", "-0.1"],
+        "savings without scene": ["savings", "--size", "4x4"],
+        "savings at 1 spp": ["savings", scene, "--spp", "1"],
+        "savings bad threshold": ["savings", scene, "--adaptive", "x"],
     }
 
 
