@@ -166,13 +166,12 @@ const hr_shape_class *harness_find_class(const harness_module *module, const cha
     return NULL;
 }
 
-hr_status harness_create(const hr_shape_class *cls, const char *const *names,
-                         const double *values, int count, void **out_shape, char *error,
-                         size_t error_size)
+/* Every parameter of the class at its default (objects unset); 0 if the
+ * class has more than the 16 the harness holds. */
+static int default_params(const hr_shape_class *cls, hr_param params[16])
 {
-    hr_param params[16];
-    memset(params, 0, sizeof params);
-    if (cls->param_count > 16) return HR_ERROR_INVALID_ARGUMENT;
+    memset(params, 0, 16 * sizeof *params);
+    if (cls->param_count > 16) return 0;
     for (int32_t i = 0; i < cls->param_count; i++) {
         params[i].name = cls->params[i].name;
         params[i].type = cls->params[i].type;
@@ -180,10 +179,14 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
         params[i].string = "";
         params[i].object = -1;
     }
-    for (int g = 0; g < count; g++)
-        for (int32_t i = 0; i < cls->param_count; i++)
-            if (strcmp(cls->params[i].name, names[g]) == 0) params[i].number = values[g];
-    const void *objects[16] = {NULL};
+    return 1;
+}
+
+/* The class's create with the test host, as the library would call it. */
+static hr_status create_from(const hr_shape_class *cls, const hr_param *params,
+                             const void *const *objects, void **out_shape, char *error,
+                             size_t error_size)
+{
     hr_create_args args;
     memset(&args, 0, sizeof args);
     args.struct_size = sizeof args;
@@ -199,39 +202,34 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
     return cls->create(&args, out_shape);
 }
 
+hr_status harness_create(const hr_shape_class *cls, const char *const *names,
+                         const double *values, int count, void **out_shape, char *error,
+                         size_t error_size)
+{
+    hr_param params[16];
+    if (!default_params(cls, params)) return HR_ERROR_INVALID_ARGUMENT;
+    for (int g = 0; g < count; g++)
+        for (int32_t i = 0; i < cls->param_count; i++)
+            if (strcmp(cls->params[i].name, names[g]) == 0) params[i].number = values[g];
+    const void *objects[16] = {NULL};
+    return create_from(cls, params, objects, out_shape, error, error_size);
+}
+
 hr_status harness_create_composite(const hr_shape_class *cls, const char *const *names,
                                    const harness_child *const *children, int count,
                                    void **out_shape, char *error, size_t error_size)
 {
     hr_param params[16];
     const void *objects[16] = {NULL};
-    memset(params, 0, sizeof params);
-    if (cls->param_count > 16) return HR_ERROR_INVALID_ARGUMENT;
+    if (!default_params(cls, params)) return HR_ERROR_INVALID_ARGUMENT;
     for (int32_t i = 0; i < cls->param_count; i++) {
-        params[i].name = cls->params[i].name;
-        params[i].type = cls->params[i].type;
-        params[i].number = cls->params[i].default_number;
-        params[i].string = "";
-        params[i].object = -1;
         for (int g = 0; g < count; g++)
             if (strcmp(cls->params[i].name, names[g]) == 0) {
                 objects[i] = children[g];
                 params[i].object = children[g] ? children[g]->object : -1;
             }
     }
-    hr_create_args args;
-    memset(&args, 0, sizeof args);
-    args.struct_size = sizeof args;
-    args.param_count = cls->param_count;
-    args.params = params;
-    args.objects = objects;
-    args.host = &test_host;
-    args.error = error;
-    args.error_size = error_size;
-    args.base_dir = "";
-    if (error && error_size) error[0] = '\0';
-    *out_shape = NULL;
-    return cls->create(&args, out_shape);
+    return create_from(cls, params, objects, out_shape, error, error_size);
 }
 
 int harness_open(harness_shape *out, const char *file_stem, const char *class_name,
