@@ -55,3 +55,36 @@ void tb_dark_globals(hr_scene *s, int32_t depth)
     g.max_recursion_depth = depth;
     hr_scene_set_globals(s, &g);
 }
+
+void tb_add_mirror_glass_set(hr_scene *s, int with_mirror_and_glass)
+{
+    hr_material floor_m;
+    hr_material_default(&floor_m);
+    if (with_mirror_and_glass) floor_m.reflectivity = 0.6;
+    hr_transform ft;
+    hr_transform_identity(&ft);
+    hr_transform_rotate(&ft, -90, 1, 0, 0);
+    tb_add(s, "plane", &floor_m, &ft);
+    hr_material red;
+    hr_material_default(&red);
+    red.diffuse = (hr_color){0.8, 0.1, 0.1};
+    red.specular = (hr_color){0.5, 0.5, 0.5};
+    red.specular_exponent = 30;
+    hr_transform a = tb_place(-1.2, 1, 0, 1);
+    tb_add(s, "sphere", &red, &a);
+    hr_material glass;
+    hr_material_default(&glass);
+    if (with_mirror_and_glass) glass.transparency = 0.9, glass.speed_of_light = 0.67;
+    hr_transform b = tb_place(1.2, 1, 0.5, 1);
+    tb_add(s, "sphere", &glass, &b);
+}
+
+hr_camera tb_mirror_glass_view(int32_t width, int32_t height)
+{
+    hr_camera c;
+    hr_camera_default(&c);
+    c.width = width, c.height = height;
+    c.eye = (hr_vec3){0, 2.5, 7};
+    c.look = (hr_vec3){0, 0.8, 0};
+    return c;
+}

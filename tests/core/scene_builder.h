@@ -14,5 +14,10 @@ hr_transform tb_place(double x, double y, double z, double scale);
 void tb_light(hr_scene *s, double x, double y, double z, double r, double g, double b);
 /* Globals with no ambient light and a black background. */
 void tb_dark_globals(hr_scene *s, int32_t depth);
+/* A floor (a mirror when `with_mirror_and_glass`), a red specular ball and
+ * a ball (glass when `with_mirror_and_glass`): objects 0, 1, 2; no lights. */
+void tb_add_mirror_glass_set(hr_scene *s, int with_mirror_and_glass);
+/* The camera that frames that set at the given size. */
+hr_camera tb_mirror_glass_view(int32_t width, int32_t height);
 
 #endif

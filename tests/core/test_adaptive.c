@@ -24,25 +24,7 @@ static hr_scene *scene(void)
 {
     hr_scene *s;
     hr_scene_create(ctx, &s);
-    hr_material floor_m;
-    hr_material_default(&floor_m);
-    floor_m.reflectivity = 0.6;
-    hr_transform ft;
-    hr_transform_identity(&ft);
-    hr_transform_rotate(&ft, -90, 1, 0, 0);
-    tb_add(s, "plane", &floor_m, &ft);
-    hr_material red;
-    hr_material_default(&red);
-    red.diffuse = (hr_color){0.8, 0.1, 0.1};
-    red.specular = (hr_color){0.5, 0.5, 0.5};
-    red.specular_exponent = 30;
-    hr_transform a = tb_place(-1.2, 1, 0, 1);
-    tb_add(s, "sphere", &red, &a);
-    hr_material glass;
-    hr_material_default(&glass);
-    glass.transparency = 0.9, glass.speed_of_light = 0.67;
-    hr_transform b = tb_place(1.2, 1, 0.5, 1);
-    tb_add(s, "sphere", &glass, &b);
+    tb_add_mirror_glass_set(s, 1);
     tb_light(s, 5, 8, 6, 1, 1, 1);
     hr_scene_commit(s);
     return s;
@@ -50,12 +32,7 @@ static hr_scene *scene(void)
 
 static hr_camera view(void)
 {
-    hr_camera c;
-    hr_camera_default(&c);
-    c.width = W, c.height = H;
-    c.eye = (hr_vec3){0, 2.5, 7};
-    c.look = (hr_vec3){0, 0.8, 0};
-    return c;
+    return tb_mirror_glass_view(W, H);
 }
 
 static hr_image *render(hr_scene *s, const hr_render_options *o, hr_render_stats *st)

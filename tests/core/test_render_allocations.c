@@ -83,11 +83,7 @@ static hr_scene *busy_scene(void)
 
 static long allocations_of_render(hr_scene *s, int32_t size, int32_t threads, int adaptive, uint64_t *rays)
 {
-    hr_camera c;
-    hr_camera_default(&c);
-    c.width = size, c.height = size;
-    c.eye = (hr_vec3){0, 2.5, 7};
-    c.look = (hr_vec3){0, 0.8, 0};
+    hr_camera c = tb_mirror_glass_view(size, size);
     hr_render_options o;
     hr_render_options_default(&o);
     o.threads = threads;
