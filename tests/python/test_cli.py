@@ -19,19 +19,10 @@ import time
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-BUILD = pathlib.Path(os.environ.get("HITRAY_BUILD_DIR", ROOT / "build"))
-HITRAY = BUILD / "bin" / "hitray"
+from conftest import BUILD, ROOT
+from conftest import TWO_SPHERES_SDL as SCENE  # two spheres on a floor, one light
 
-# A small scene with a camera: two spheres on a floor, one light.
-SCENE = """\
-camera 0 2 8   0 0.5 0   0 1 0   40
-background 0.1 0.2 0.3
-light 5 8 6   1 1 1
-push translate -1 1 0  diffuse 0.8 0.2 0.2  sphere pop
-push translate 1.2 1 -0.5  diffuse 0.2 0.8 0.2  specular 0.5 0.5 0.5  specularExponent 20  sphere pop
-push rotate -90 1 0 0  plane pop
-"""
+HITRAY = BUILD / "bin" / "hitray"
 
 
 @pytest.fixture(scope="session", autouse=True)
