@@ -7,10 +7,12 @@ ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
 PYTHON_BUILD ?= build-python
 PYTHON_ASAN_BUILD ?= build-python-asan
+FUZZ_BUILD ?= build-fuzz
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build demo test test-c test-asan test-tsan test-python test-python-asan install clean bench
+.PHONY: all deps build demo test test-c test-asan test-tsan test-fuzz test-python test-python-asan \
+        install clean bench bench-accuracy fuzz
 
 all: build
 
@@ -27,10 +29,12 @@ demo: build
 	@mkdir -p out
 	$(BUILD)/bin/hitray render scenes/demo.sdl -o out/demo.png --exr out/demo.exr
 
-# Every test: the C suite (ctest), the same suite under AddressSanitizer and
-# UndefinedBehaviorSanitizer and again under ThreadSanitizer, and the Python
-# tests (the command line, and the package installed into .venv).
-test: test-c test-asan test-tsan test-python
+# Every test: the C suite (ctest, with the numerical hard cases of
+# tests/numerics and the fuzz corpora replayed), the same suite under
+# AddressSanitizer and UndefinedBehaviorSanitizer and again under
+# ThreadSanitizer, each libFuzzer harness for a short bounded time, and the
+# Python tests (the command line, and the package installed into .venv).
+test: test-c test-asan test-tsan test-fuzz test-python
 
 test-c: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -49,6 +53,19 @@ $(TSAN_BUILD)/build.ninja: | deps
 test-tsan: deps $(TSAN_BUILD)/build.ninja
 	cmake --build $(TSAN_BUILD) -j $(JOBS)
 	TSAN_OPTIONS=halt_on_error=1 ctest --test-dir $(TSAN_BUILD) --output-on-failure -j $(JOBS)
+
+# The libFuzzer harnesses (tests/fuzz), built with clang and ASan+UBSan in
+# $(FUZZ_BUILD). `make fuzz` runs each for FUZZ_SECONDS (FUZZ_TARGETS picks
+# some); `make test-fuzz` runs each for FUZZ_TEST_SECONDS and replays every
+# corpus file. See FUZZING.md.
+FUZZ_SECONDS ?= 300
+FUZZ_TEST_SECONDS ?= 15
+FUZZ_TARGETS ?=
+fuzz: deps
+	tests/fuzz/run_fuzzers.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+test-fuzz: deps
+	tests/fuzz/run_fuzzers.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_TEST_SECONDS) --replay $(FUZZ_TARGETS)
 
 # The package is (re)installed into .venv as a user installs it, from
 # bindings/python; its CMake build directory is kept in $(PYTHON_BUILD), so
@@ -87,5 +104,11 @@ bench: build
 	cmake --build $(BUILD) -j $(JOBS)
 	python3 bench/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
+# What accuracy costs in time (bench/accuracy): measures every accuracy knob
+# on this machine and writes docs/accuracy.md with its tables and plots.
+bench-accuracy: build
+	@scripts/bootstrap.sh --accuracy
+	.venv/bin/python bench/accuracy/run_accuracy.py --build $(BUILD)
+
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) out

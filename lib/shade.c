@@ -20,30 +20,10 @@
  * a bounce adds reflectivity (or transparency) times the colour it brings
  * back, so a ray's weight is the product of those coefficients along its
  * path, and one below the cut-off is not traced. */
-#include <float.h>
 #include <math.h>
 
 #include "scene_internal.h"
 #include "vec.h"
-
-/* Spawned rays start a little off the surface, on the side they leave by:
- * far enough that rounding of the hit point can't put the origin behind the
- * surface. The distance is the hit's own error bound projected on the
- * normal (pbrt's offset), with a floor of a few ulps of the point's
- * magnitude for shapes that report a zero bound. */
-static hr_vec3 spawn_origin(const hr_hit *h, hr_vec3 side)
-{
-    hr_vec3 p = h->point;
-    double floor_err = 8.0 * DBL_EPSILON * v3_max_abs(p);
-    double err = h->error > floor_err ? h->error : floor_err;
-    double d = err * (fabs(side.x) + fabs(side.y) + fabs(side.z));
-    hr_vec3 o = v3_madd(p, side, d);
-    /* Round away from the surface so the offset survives the addition. */
-    o.x = side.x > 0 ? nextafter(o.x, INFINITY) : side.x < 0 ? nextafter(o.x, -INFINITY) : o.x;
-    o.y = side.y > 0 ? nextafter(o.y, INFINITY) : side.y < 0 ? nextafter(o.y, -INFINITY) : o.y;
-    o.z = side.z > 0 ? nextafter(o.z, INFINITY) : side.z < 0 ? nextafter(o.z, -INFINITY) : o.z;
-    return o;
-}
 
 /* A light adds exactly nothing where, in every channel, its colour or
  * both of the material's lit coefficients are zero: no multiplication can
@@ -65,7 +45,7 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
     const hr_scene *s = tc->scene;
     const hr_material *mat = &o->material;
     hr_color sum = rgb(0, 0, 0);
-    hr_vec3 origin = spawn_origin(h, m);
+    hr_vec3 origin = hr_hit_spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
         const hr_light *L = &s->lights[i];
         if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hr_light_adds_nothing(L, mat, flags))
@@ -162,7 +142,7 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
     if ((flags & HR_MAT_REFLECTS) &&
         worth_tracing(tc, weight * reflect_weight, forced || reflect_weight == 0.0)) {
-        hr_ray r = {spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
+        hr_ray r = {hr_hit_spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
         tc->effects_ran |= HR_EFFECT_REFLECTION;
         hr_color seen = shade(tc, &r, depth + 1, max_depth, weight * reflect_weight,
@@ -179,11 +159,11 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
         double cos_t2 = 1.0 - ratio * ratio * (1.0 - cos_i * cos_i);
         hr_ray t;
         if (cos_t2 < 0.0) { /* total internal reflection */
-            t.origin = spawn_origin(&h, m);
+            t.origin = hr_hit_spawn_origin(&h, m);
             t.dir = v3_madd(dir, m, 2.0 * cos_i);
             tc->rays_reflected++;
         } else {
-            t.origin = spawn_origin(&h, v3_neg(m));
+            t.origin = hr_hit_spawn_origin(&h, v3_neg(m));
             t.dir = v3_add(v3_scale(dir, ratio), v3_scale(m, ratio * cos_i - sqrt(cos_t2)));
             tc->rays_refracted++;
         }

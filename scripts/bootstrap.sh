@@ -5,12 +5,16 @@
 set -eu
 cd "$(dirname "$0")/.."
 
-# `bootstrap.sh --bench` adds what `make bench` compares against.
+# `bootstrap.sh --bench` adds what `make bench` compares against;
+# `bootstrap.sh --accuracy` adds matplotlib for `make bench-accuracy`'s plots.
 bench_pkgs=""
 [ "${1:-}" = "--bench" ] && bench_pkgs="povray libembree-dev"
+# clang, its runtimes (libFuzzer, the sanitizers) and llvm (the symbolizer)
+# build and run the fuzz harnesses in tests/fuzz.
 need_pkgs=""
 for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev libopenexr-dev \
-           python3 python3-venv python3-dev $bench_pkgs; do
+           python3 python3-venv python3-dev \
+           clang libclang-rt-14-dev llvm $bench_pkgs; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
         need_pkgs="$need_pkgs $pkg"
 done
@@ -40,4 +44,10 @@ if [ -n "$stale" ]; then
         "$venv/bin/python" -m pip install -q -r "$req"
     done
     touch "$stamp"
+fi
+
+# The accuracy study's plots (bench/accuracy), not needed by the tests.
+if [ "${1:-}" = "--accuracy" ]; then
+    "$venv/bin/python" -c "import matplotlib" 2>/dev/null ||
+        "$venv/bin/python" -m pip install -q "matplotlib>=3.6"
 fi

@@ -146,6 +146,13 @@ HR_API const char *hr_effect_name(uint32_t effect);
 HR_API hr_status hr_scene_first_hit(const hr_scene *scene, const hr_ray *ray,
                                     double tmin, double tmax, hr_hit *out,
                                     int32_t *found);
+/* The origin of a ray leaving the world-space hit `hit` (as
+ * hr_scene_first_hit or hr_scene_all_hits return it) toward the side that
+ * `side` points to: a unit normal, or its negation to pass into a solid.
+ * The point is moved off the surface by the hit's own error bound (not a
+ * fixed epsilon), so a ray spawned there does not hit the surface it left.
+ * The renderer spawns its shadow, reflected and refracted rays with it. */
+HR_API hr_vec3 hr_hit_spawn_origin(const hr_hit *hit, hr_vec3 side);
 /* Hill's Intersection of the whole scene: every hit of every top-level object
  * with tmin < t < tmax, sorted by t. `out` is the caller's record: start it
  * zeroed (or from hr_intersection_init) and release it when done; its storage

@@ -1,0 +1,28 @@
+/* Where a ray spawned at a hit starts: the one rule the renderer uses for
+ * shadow, reflected and refracted rays, public so a caller's own integrator
+ * (and the self-intersection tests) leave surfaces the same way. */
+#include <float.h>
+#include <math.h>
+
+#include "scene_internal.h"
+#include "vec.h"
+
+/* The distance is the hit's own error bound projected on the side vector
+ * (pbrt's offset: the point is within `error` of the true surface in each
+ * coordinate, so moving it by error * (|sx| + |sy| + |sz|) along a unit side
+ * clears the surface whatever the rounding was), with a floor of a few ulps
+ * of the point's magnitude for shapes that report a zero bound. Each
+ * coordinate is then rounded one ulp further away from the surface, so the
+ * offset survives the addition's own rounding. */
+HR_API hr_vec3 hr_hit_spawn_origin(const hr_hit *hit, hr_vec3 side)
+{
+    hr_vec3 p = hit->point;
+    double floor_err = 8.0 * DBL_EPSILON * v3_max_abs(p);
+    double err = hit->error > floor_err ? hit->error : floor_err;
+    double d = err * (fabs(side.x) + fabs(side.y) + fabs(side.z));
+    hr_vec3 o = v3_madd(p, side, d);
+    o.x = side.x > 0 ? nextafter(o.x, INFINITY) : side.x < 0 ? nextafter(o.x, -INFINITY) : o.x;
+    o.y = side.y > 0 ? nextafter(o.y, INFINITY) : side.y < 0 ? nextafter(o.y, -INFINITY) : o.y;
+    o.z = side.z > 0 ? nextafter(o.z, INFINITY) : side.z < 0 ? nextafter(o.z, -INFINITY) : o.z;
+    return o;
+}
