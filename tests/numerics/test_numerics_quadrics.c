@@ -1,4 +1,4 @@
-/* Hard cases of the quadrics in object space (cases Q01-Q12 of CATALOG.md):
+/* Hard cases of the quadrics in object space (cases Q01-Q14 of CATALOG.md):
  * the sphere far away and grazed, exact tangents, signed zeros, the
  * cylinder nearly parallel to its axis, the cone along its generators and
  * through its apex. The modules are loaded by the test host
@@ -30,28 +30,23 @@ static void far_probe(ray_rng *rng, double distance, hr_vec3 centre, nf_probe *o
                            (to.y - o.y) * length / distance, (to.z - o.z) * length / distance);
 }
 
-static void far_1e4(ray_rng *rng, int i, nf_probe *out)
+/* The distance (and centre) the families below are run at: set by the
+ * case before nf_run_family, which takes a plain function. */
+static double family_distance;
+static hr_vec3 family_centre;
+
+static void far_family(ray_rng *rng, int i, nf_probe *out)
 {
     (void)i;
-    far_probe(rng, 1e4, harness_vec(0, 0, 0), out);
+    far_probe(rng, family_distance, family_centre, out);
 }
 
-static void far_1e6(ray_rng *rng, int i, nf_probe *out)
+static void run_far(const char *module, const char *cls, double s, double distance,
+                    hr_vec3 centre, int rays, uint64_t seed, nc_result *out)
 {
-    (void)i;
-    far_probe(rng, 1e6, harness_vec(0, 0, 0), out);
-}
-
-static void far_1e6_mid(ray_rng *rng, int i, nf_probe *out)
-{
-    (void)i;
-    far_probe(rng, 1e6, harness_vec(0, 0, 0.5), out);
-}
-
-static void far_1e4_mid(ray_rng *rng, int i, nf_probe *out)
-{
-    (void)i;
-    far_probe(rng, 1e4, harness_vec(0, 0, 0.5), out);
+    family_distance = distance;
+    family_centre = centre;
+    nf_run_family(module, cls, s, far_family, rays, seed, out);
 }
 
 /* The textbook root pair from b^2 - a c in double, for the printed
@@ -78,15 +73,15 @@ static double naive_worst(double distance, uint64_t seed)
     return worst;
 }
 
-static void run_far_sphere(double distance, nf_probe_fn make, uint64_t seed, nc_result *out)
+static void run_far_sphere(double distance, uint64_t seed, nc_result *out)
 {
-    nf_run_family("sphere", "sphere", NAN, make, 4000, seed, out);
+    run_far("sphere", "sphere", NAN, distance, harness_vec(0, 0, 0), 4000, seed, out);
     snprintf(out->note, sizeof out->note, "textbook b^2 - ac: worst %.3g of the tolerance",
              naive_worst(distance, seed));
 }
 
-static void q01(nc_result *out) { run_far_sphere(1e4, far_1e4, 0x9a01, out); }
-static void q02(nc_result *out) { run_far_sphere(1e6, far_1e6, 0x9a02, out); }
+static void q01(nc_result *out) { run_far_sphere(1e4, 0x9a01, out); }
+static void q02(nc_result *out) { run_far_sphere(1e6, 0x9a02, out); }
 
 /* Grazing band: from `distance` away, the line passes the centre at
  * impact parameter 1 + delta, delta = +-m 10^-k (k = 6 .. 17), in a random
@@ -94,6 +89,13 @@ static void q02(nc_result *out) { run_far_sphere(1e6, far_1e6, 0x9a02, out); }
  * double ray in quad; the band 8u: the discriminant |d|^2 (1 - h^2) is
  * computed to within about 7u |d|^2 (test_shape_accuracy.c's budget), so
  * its sign is right when |1 - h^2| = 2 |delta| exceeds that. */
+/* +-m 10^-k, m in [1, 10), k = 6 .. 17: from 1e-5 down to below u. */
+static double grazing_delta(ray_rng *rng)
+{
+    return (rng_chance(rng, 0.5) ? 1 : -1) * rng_uniform(rng, 1, 10) *
+           pow(10, -(double)(6 + (int)rng_uniform(rng, 0, 12)));
+}
+
 static void grazing_probe(ray_rng *rng, double distance, nf_probe *out)
 {
     const hr_vec3 d = rng_unit_vector(rng);
@@ -101,9 +103,7 @@ static void grazing_probe(ray_rng *rng, double distance, nf_probe *out)
     const double wd = w.x * d.x + w.y * d.y + w.z * d.z;
     w = harness_vec(w.x - wd * d.x, w.y - wd * d.y, w.z - wd * d.z);
     const double wl = sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
-    const double delta = (rng_chance(rng, 0.5) ? 1 : -1) * rng_uniform(rng, 1, 10) *
-                         pow(10, -(double)(6 + (int)rng_uniform(rng, 0, 12)));
-    const double h = (1 + delta) / wl, length = exp2(rng_uniform(rng, -3, 3));
+    const double h = (1 + grazing_delta(rng)) / wl, length = exp2(rng_uniform(rng, -3, 3));
     out->ray = harness_ray(h * w.x - distance * d.x, h * w.y - distance * d.y,
                            h * w.z - distance * d.z, d.x * length, d.y * length, d.z * length);
     const quad o[3] = {out->ray.origin.x, out->ray.origin.y, out->ray.origin.z};
@@ -115,20 +115,65 @@ static void grazing_probe(ray_rng *rng, double distance, nf_probe *out)
     out->band = 8 * NC_U;
 }
 
-static void grazing_10(ray_rng *rng, int i, nf_probe *out)
+static void grazing_family(ray_rng *rng, int i, nf_probe *out)
 {
     (void)i;
-    grazing_probe(rng, 10, out);
+    grazing_probe(rng, family_distance, out);
 }
 
-static void grazing_1e4(ray_rng *rng, int i, nf_probe *out)
+/* The cylinder's wall grazed: lines at distance 1 + delta from the axis
+ * (delta as in Q03) in a plane of constant z in (0.1, 0.9), from `distance`
+ * away. The wall's discriminant |w0 e - omega u|^2 - (u x e)^2 is |e|^2
+ * (1 - h^2) here (omega = 0, w0 = 1), computed to within about 7u |e|^2
+ * as the sphere's, so the band is again 8u in delta. */
+static void wall_grazing_probe(ray_rng *rng, double distance, nf_probe *out)
+{
+    const double phi = rng_uniform(rng, 0, 6.283185307179586);
+    const double dx = cos(phi), dy = sin(phi);
+    const double h = 1 + grazing_delta(rng), z = rng_uniform(rng, 0.1, 0.9);
+    const double length = exp2(rng_uniform(rng, -3, 3));
+    out->ray = harness_ray(-h * dy - distance * dx, h * dx - distance * dy, z, dx * length,
+                           dy * length, 0);
+    const quad ox = out->ray.origin.x, oy = out->ray.origin.y;
+    const quad ex = out->ray.dir.x, ey = out->ray.dir.y;
+    const quad cross = ox * ey - oy * ex;
+    out->distance = (double)((cross * cross / (ex * ex + ey * ey) - 1) / 2);
+    out->band = 8 * NC_U;
+}
+
+static void wall_grazing_family(ray_rng *rng, int i, nf_probe *out)
 {
     (void)i;
-    grazing_probe(rng, 1e4, out);
+    wall_grazing_probe(rng, family_distance, out);
 }
 
-static void q03(nc_result *out) { nf_run_family("sphere", "sphere", NAN, grazing_10, 6000, 0x9a03, out); }
-static void q04(nc_result *out) { nf_run_family("sphere", "sphere", NAN, grazing_1e4, 6000, 0x9a04, out); }
+static void run_grazing(const char *module, const char *cls, nf_probe_fn make, double distance,
+                        int rays, uint64_t seed, nc_result *out)
+{
+    family_distance = distance;
+    nf_run_family(module, cls, NAN, make, rays, seed, out);
+}
+
+static void q13(nc_result *out)
+{
+    run_grazing("sphere", "sphere", grazing_family, 1e6, 6000, 0x9a14, out);
+}
+
+static void q14(nc_result *out)
+{
+    run_grazing("cylinder", "cylinder", wall_grazing_family, 10, 4000, 0x9a15, out);
+    run_grazing("cylinder", "cylinder", wall_grazing_family, 1e4, 4000, 0x9a16, out);
+}
+
+static void q03(nc_result *out)
+{
+    run_grazing("sphere", "sphere", grazing_family, 10, 6000, 0x9a03, out);
+}
+
+static void q04(nc_result *out)
+{
+    run_grazing("sphere", "sphere", grazing_family, 1e4, 6000, 0x9a04, out);
+}
 
 /* Exact tangents: rays whose discriminant is exactly 0 in real arithmetic
  * and whose inputs are all exact in double, from near and far, with
@@ -328,13 +373,13 @@ static void q10(nc_result *out)
 
 static void q11(nc_result *out)
 {
-    nf_run_family("cylinder", "cylinder", NAN, far_1e6_mid, 4000, 0x9a11, out);
+    run_far("cylinder", "cylinder", NAN, 1e6, harness_vec(0, 0, 0.5), 4000, 0x9a11, out);
 }
 
 static void q12(nc_result *out)
 {
-    nf_run_family("cylinder", "taperedCylinder", 0.5, far_1e4_mid, 2000, 0x9a12, out);
-    nf_run_family("cylinder", "cone", NAN, far_1e4_mid, 2000, 0x9a13, out);
+    run_far("cylinder", "taperedCylinder", 0.5, 1e4, harness_vec(0, 0, 0.5), 2000, 0x9a12, out);
+    run_far("cylinder", "cone", NAN, 1e4, harness_vec(0, 0, 0.5), 2000, 0x9a13, out);
 }
 
 #define BY_CONDITION "|t - t_ref| <= 8 u cond; count exact outside the rounding band"
@@ -364,6 +409,10 @@ static const nc_case cases[] = {
      BY_CONDITION, q11},
     {"Q12", "taperedCylinder", "s = 0.5 and the cone from 1e4", "tapered Lagrange form",
      BY_CONDITION, q12},
+    {"Q13", "sphere", "grazing band from 1e6", "12 digits cancel in o x d",
+     "hit/miss right outside |delta| <= 8u; t by condition", q13},
+    {"Q14", "cylinder", "wall grazed at 1 +- 1e-6..1e-17 from 10 and 1e4", "wall tangency",
+     "hit/miss right outside |delta| <= 8u; t by condition", q14},
 };
 
 int main(void)

@@ -1,4 +1,4 @@
-/* The torus's hard cases (T01-T09 of CATALOG.md), with the default solver,
+/* The torus's hard cases (T01-T10 of CATALOG.md), with the default solver,
  * in object space through the test host, against the Sturm-sequence roots
  * of the quartic in quad precision (quad_reference.c, quad_poly.c): the
  * equatorial line, the axis through the hole, exact and near tangents on
@@ -158,6 +158,7 @@ static void run_tube(double tube, double distance, int rays, uint64_t seed, nc_r
 static void t05(nc_result *out) { run_tube(1e-3, 3, 3000, 0x7005, out); }
 static void t06(nc_result *out) { run_tube(1e-6, 3, 3000, 0x7006, out); }
 static void t07(nc_result *out) { run_tube(0.2, 1e4, 3000, 0x7007, out); }
+static void t10(nc_result *out) { run_tube(0.2, 1e6, 2000, 0x7010, out); }
 
 /* T08, T09: grazing rays (random_ray_grazing_torus: along a tangent,
  * moved off the surface by 1e-4 .. 1e-12), tube 0.2 and the thin 1e-3. */
@@ -199,6 +200,8 @@ static const nc_case cases[] = {
      BY_CONDITION, t08},
     {"T09", "torus", "grazing the thin tube 1e-3", "near-double roots of a thin tube",
      BY_CONDITION, t09},
+    {"T10", "torus", "far torus: rays from 1e6 through the tube", "coefficients ~1e24",
+     BY_CONDITION, t10},
 };
 
 int main(void)
