@@ -72,22 +72,26 @@ typedef struct spawn_shape {
 #define SHELL_GAP 1e-5
 
 static const spawn_shape shapes[] = {
-    {"sphere", "sphere", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5, {{-1, -1, -1}, {1, 1, 1}}},
+    {"sphere", "sphere", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5,
+     {{-1, -1, -1}, {1, 1, 1}}},
     {"plane", "plane", NAN, NULL, OPEN, SHELL_LIFT, {0, 0, 0}, 0, {{-2, -2, -1}, {2, 2, 1}}},
     {"square", "square", NAN, NULL, OPEN, SHELL_LIFT, {0, 0, 0}, 0, {{-1, -1, -1}, {1, 1, 1}}},
     {"cube", "cube", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5, {{-1, -1, -1}, {1, 1, 1}}},
-    {"cylinder", "cylinder", NAN, NULL, CONVEX, SHELL_CYLINDER, {0, 0, 0}, 0, {{-1, -1, 0}, {1, 1, 1}}},
+    {"cylinder", "cylinder", NAN, NULL, CONVEX, SHELL_CYLINDER, {0, 0, 0}, 0,
+     {{-1, -1, 0}, {1, 1, 1}}},
     /* Support distances from the centre: cone 0.25 (base), tapered 0.5 (base and cap), icosahedron
      * 0.795 (inradius), the union 0.75 (at the crease): sigma = 1e-5 / that. */
     {"cone", "cone", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0.25}, 4e-5, {{-1, -1, 0}, {1, 1, 1}}},
     {"taperedCylinder", "taperedCylinder", 0.5, NULL, CONVEX, SHELL_SCALE, {0, 0, 0.5}, 2e-5,
      {{-1, -1, 0}, {1, 1, 1}}},
-    {"torus", "torus", 0.2, NULL, NONCONVEX, SHELL_TUBE, {0, 0, 0}, 0, {{-1.2, -1.2, -0.2}, {1.2, 1.2, 0.2}}},
+    {"torus", "torus", 0.2, NULL, NONCONVEX, SHELL_TUBE, {0, 0, 0}, 0,
+     {{-1.2, -1.2, -0.2}, {1.2, 1.2, 0.2}}},
     {"icosahedron", "icosahedron", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1.3e-5,
      {{-1, -1, -1}, {1, 1, 1}}},
     {"mesh cube.obj", "mesh", NAN, "cube.obj", CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5,
      {{-1, -1, -1}, {1, 1, 1}}},
-    {"union", "union", NAN, NULL, NONCONVEX, SHELL_SCALE, {0, 0, 0}, 1.4e-5, {{-1.5, -1, -1}, {1.5, 1, 1}}},
+    {"union", "union", NAN, NULL, NONCONVEX, SHELL_SCALE, {0, 0, 0}, 1.4e-5,
+     {{-1.5, -1, -1}, {1.5, 1, 1}}},
 };
 
 /* Adds one object of `cls` (with its number parameter or mesh file) under
@@ -235,7 +239,10 @@ static hr_vec3 hemisphere(ray_rng *rng, hr_vec3 side)
     hr_vec3 v = rng_unit_vector(rng);
     double along = dot3(v, side);
     if (along < 0) v = plus(v, scaled(side, -2 * along)), along = -along;
-    if (rng_chance(rng, 0.25)) v = plus(v, scaled(side, (pow(10, rng_uniform(rng, -7, -3)) - 1) * along));
+    if (rng_chance(rng, 0.25)) {
+        const double keep = pow(10, rng_uniform(rng, -7, -3));
+        v = plus(v, scaled(side, (keep - 1) * along));
+    }
     return v;
 }
 
@@ -312,7 +319,8 @@ static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit
     /* The facing side: primary rays come from outside (or above a plane). */
     const hr_vec3 n = hit->normal;
     const hr_vec3 offset_point = hr_hit_spawn_origin(hit, n);
-    const double offset = sqrt(dot3(minus(offset_point, hit->point), minus(offset_point, hit->point)));
+    const hr_vec3 moved = minus(offset_point, hit->point);
+    const double offset = sqrt(dot3(moved, moved));
     /* The world gap to the shell along the (unit) normal, from the hit
      * point itself: the first hit of the shell on that line. */
     const hr_ray probe = {hit->point, n};
@@ -335,11 +343,11 @@ static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit
             tally->shell_unreachable++;
         } else {
             tally->shell_missed++;
-            if (tally->shell_missed <= 3) {
-                printf("  %s: shell missed from (%.17g, %.17g, %.17g), gap/offset %.3g dir %g %g %g n.d %g\n",
-                       sh->label, hit->point.x, hit->point.y, hit->point.z, ratio, dir.x, dir.y, dir.z, dot3(dir, n));
-                for (int32_t j = 0; j < list->count; j++) printf("    t %.17g obj %d ent %d\n", list->hits[j].t, (int)list->hits[j].object, list->hits[j].entering);
-            }
+            if (tally->shell_missed <= 3)
+                printf("  %s: a ray spawned from (%.17g, %.17g, %.17g) along (%.17g, %.17g, "
+                       "%.17g) does not start inside the shell (gap/offset %.3g)\n",
+                       sh->label, hit->point.x, hit->point.y, hit->point.z, dir.x, dir.y, dir.z,
+                       ratio);
         }
     }
     /* Which bound sets the offset: the hit's error or hr_hit_spawn_origin's
@@ -347,10 +355,10 @@ static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit
     const double floor_err = 8 * DBL_EPSILON *
                              fmax(fabs(hit->point.x), fmax(fabs(hit->point.y), fabs(hit->point.z)));
     if (ratio <= 2 && tally->unreachable_points++ < 2)
-        printf("  %s: at (%.6g, %.6g, %.6g) the gap %.3g is %.3g offsets (offset %.3g from %s %.3g)\n",
+        printf("  %s: at (%.6g, %.6g, %.6g) the gap %.3g is %.3g offsets (offset %.3g, from %s "
+               "%.3g)\n",
                sh->label, hit->point.x, hit->point.y, hit->point.z, gap, ratio, offset,
-               floor_err > hit->error ? "the floor" : "the hit error",
-               fmax(floor_err, hit->error));
+               floor_err > hit->error ? "the floor" : "the hit error", fmax(floor_err, hit->error));
     for (int i = 0; i < SPAWN_TO; i++) {
         const hr_vec3 q = {rng_uniform(rng, 2 * sh->box.lo.x, 2 * sh->box.hi.x),
                            rng_uniform(rng, 2 * sh->box.lo.y, 2 * sh->box.hi.y),

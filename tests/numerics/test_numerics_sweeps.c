@@ -304,7 +304,8 @@ static void s09(nc_result *out)
                  "icosahedron edge");
     bad += sweep(&ico, along(vertex, vertex, 2), v3(1, 0.3, 0), v3(-vertex.x, -vertex.y, -vertex.z),
                  2, 0, 0, "icosahedron vertex");
-    bad += sweep(&ico, along(vertex, vertex, 2), v3(0, 0.6, -1), v3(-vertex.x, -vertex.y, -vertex.z),
+    bad += sweep(&ico, along(vertex, vertex, 2), v3(0, 0.6, -1),
+                 v3(-vertex.x, -vertex.y, -vertex.z),
                  2, 0, 0, "icosahedron vertex, other way");
     /* cube.obj's +z face is split along a diagonal: sweep across it. */
     bad += sweep(&cube, v3(0.2, 0.2, 3), v3(1, -1, 0), v3(0.05, -0.1, -1), 2, 0, 0,
@@ -386,7 +387,8 @@ static const nc_case cases[] = {
      "|t - t_ref| <= u |t|; overflowing hits dropped", s02},
     {"S03", "square", "edge x = 1 and corner swept by 1e-7", "inside test on a rounded point",
      "hit iff inside, outside gamma(4) (|o| + |t d|)", s03},
-    {"S04", "cube", "edges and a corner swept by 1e-7", "two slabs end at the same t", NO_HOLES, s04},
+    {"S04", "cube", "edges and a corner swept by 1e-7", "two slabs end at the same t", NO_HOLES,
+     s04},
     {"S05", "cube", "in the plane of a face, y = 1 + c, d.y = +-0", "closed faces, zero d",
      "2 hits for c <= 0, none above", s05},
     {"S06", "cube/plane/square", "signed zeros in origin and direction", "-0 / +0 branches",

@@ -243,7 +243,8 @@ static const placement placements[] = {
     /* X06: the cube, non-uniform 1e-2, 1, 1e2, at 1e6. */
     {"cube", {1e-2, 1, 1e2}, {1e6, 0, -1e6}, 70, 4, {0, 0, 0}, UNIT_BOX},
     /* X07: the cylinder scaled 1e4 at 1e6. */
-    {"cylinder", {1e4, 1e4, 1e4}, {-1e6, 1e6, 1e6}, 80, 4, {0, 0, 0.5}, {{-0.8, -0.8, 0.1}, {0.8, 0.8, 0.9}}},
+    {"cylinder", {1e4, 1e4, 1e4}, {-1e6, 1e6, 1e6}, 80, 4, {0, 0, 0.5},
+     {{-0.8, -0.8, 0.1}, {0.8, 0.8, 0.9}}},
     /* X08: the plane rotated and at 1e6, half the rays 1e-6 above it. */
     {"plane", {1, 1, 1}, {1e6, 1e6, 1e6}, 90, 4, {0, 0, 0}, {{-2, -2, 0}, {2, 2, 0}}},
 };
