@@ -49,7 +49,7 @@
 
 #define SPAWN_OUT 1000
 #define SPAWN_TO 1000
-#define HITS_PER_TRANSFORM 3
+#define HITS_PER_TRANSFORM 2
 #define TRANSFORMS 12
 
 /* --- Scenes ------------------------------------------------------------------- */
