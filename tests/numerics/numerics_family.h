@@ -24,8 +24,10 @@
 
 /* A ray, its distance from the family's degeneracy and the band within
  * which either answer is right. A NaN distance means: use the reference's
- * margin, with the band the distance the rounding of t itself moves a
- * crossing by (NF_T_FACTOR u condition |d|, the largest over the roots). */
+ * margin, with the band at least the distance the rounding of t itself
+ * moves a crossing by (NF_T_FACTOR u condition |d|, the largest over the
+ * roots); `band` can raise it (a near-tangent miss has no root whose
+ * condition would say how close it is). */
 typedef struct nf_probe {
     hr_ray ray;
     double distance, band;

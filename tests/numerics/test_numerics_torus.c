@@ -1,4 +1,4 @@
-/* The torus's hard cases (T01-T10 of CATALOG.md), with the default solver,
+/* The torus's hard cases (T01-T11 of CATALOG.md), with the default solver,
  * in object space through the test host, against the Sturm-sequence roots
  * of the quartic in quad precision (quad_reference.c, quad_poly.c): the
  * equatorial line, the axis through the hole, exact and near tangents on
@@ -180,6 +180,38 @@ static void t09(nc_result *out)
     nf_run_family("torus", "torus", 1e-3, grazing_probe, 3000, 0x7009, out);
 }
 
+/* T11: grazing so close that the chord is 1e-7 long or less: through a
+ * random surface point along a random tangent, moved off the surface along
+ * the normal by +-10^-(13 .. 16) (at and below the rounding of f), the
+ * origin within 1 of the touching point (as a ray spawned there would be).
+ * The pair of roots is then a near-double root next to a critical point of
+ * f where f' is ~0 too: a Newton step from a value within rounding jumps
+ * anywhere. */
+static void close_graze_probe(ray_rng *rng, int i, nf_probe *out)
+{
+    (void)i;
+    const double r = probe_tube;
+    const double phi = rng_uniform(rng, 0, 6.283185307179586);
+    const double theta = rng_uniform(rng, 0, 6.283185307179586);
+    const hr_vec3 n = {cos(theta) * cos(phi), cos(theta) * sin(phi), sin(theta)};
+    const hr_vec3 p = {(1 + r * cos(theta)) * cos(phi), (1 + r * cos(theta)) * sin(phi),
+                       r * sin(theta)};
+    hr_vec3 v = rng_unit_vector(rng);
+    const double vn = v.x * n.x + v.y * n.y + v.z * n.z;
+    v = harness_vec(v.x - vn * n.x, v.y - vn * n.y, v.z - vn * n.z);
+    const double off = (rng_chance(rng, 0.5) ? 1 : -1) * pow(10, -rng_uniform(rng, 13, 16));
+    const double back = rng_uniform(rng, -1, 1);
+    out->ray = harness_ray(p.x + off * n.x - back * v.x, p.y + off * n.y - back * v.y,
+                           p.z + off * n.z - back * v.z, v.x, v.y, v.z);
+    out->band = 8 * NC_U * pow(1 + r, 4) / r; /* T04's: where f's sign at the touch is noise */
+}
+
+static void t11(nc_result *out)
+{
+    probe_tube = 0.2;
+    nf_run_family("torus", "torus", 0.2, close_graze_probe, 3000, 0x7011, out);
+}
+
 #define BY_CONDITION "|t - t_ref| <= 8 u cond; count exact outside the rounding band"
 
 static const nc_case cases[] = {
@@ -202,6 +234,8 @@ static const nc_case cases[] = {
      BY_CONDITION, t09},
     {"T10", "torus", "far torus: rays from 1e6 through the tube", "coefficients ~1e24",
      BY_CONDITION, t10},
+    {"T11", "torus", "grazing 1e-13 .. 1e-16 off, the touch within 1 of the origin",
+     "near-double root at a critical point", BY_CONDITION, t11},
 };
 
 int main(void)
