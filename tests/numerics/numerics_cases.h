@@ -24,7 +24,7 @@ typedef struct nc_result {
     double worst;
     long samples;
     long events;
-    char note[160];
+    char note[200];
 } nc_result;
 
 typedef struct nc_case {

@@ -55,6 +55,9 @@
 /* --- Scenes ------------------------------------------------------------------- */
 
 enum shell_kind { SHELL_SCALE, SHELL_TUBE, SHELL_LIFT, SHELL_CYLINDER };
+/* Where a shape's error bounds are most strained: every other hit point is
+ * taken within 1e-6 .. 1e-12 of one of these. */
+enum seam_kind { SEAM_NONE, SEAM_EDGES, SEAM_RIMS, SEAM_APEX, SEAM_VERTEX, SEAM_CREASE };
 enum convexity { OPEN, CONVEX, NONCONVEX };
 
 typedef struct spawn_shape {
@@ -67,31 +70,36 @@ typedef struct spawn_shape {
     hr_vec3 centre; /* SHELL_SCALE: the interior point the shell is scaled about */
     double sigma;   /* SHELL_SCALE: 1 + sigma, the smallest gap being 1e-5 */
     hr_bounds box;  /* object-space box the random targets are drawn around */
+    int seams;      /* enum seam_kind */
 } spawn_shape;
 
 #define SHELL_GAP 1e-5
 
 static const spawn_shape shapes[] = {
     {"sphere", "sphere", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5,
-     {{-1, -1, -1}, {1, 1, 1}}},
-    {"plane", "plane", NAN, NULL, OPEN, SHELL_LIFT, {0, 0, 0}, 0, {{-2, -2, -1}, {2, 2, 1}}},
-    {"square", "square", NAN, NULL, OPEN, SHELL_LIFT, {0, 0, 0}, 0, {{-1, -1, -1}, {1, 1, 1}}},
-    {"cube", "cube", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5, {{-1, -1, -1}, {1, 1, 1}}},
+     {{-1, -1, -1}, {1, 1, 1}}, SEAM_NONE},
+    {"plane", "plane", NAN, NULL, OPEN, SHELL_LIFT, {0, 0, 0}, 0, {{-2, -2, -1}, {2, 2, 1}},
+     SEAM_NONE},
+    {"square", "square", NAN, NULL, OPEN, SHELL_LIFT, {0, 0, 0}, 0, {{-1, -1, -1}, {1, 1, 1}},
+     SEAM_EDGES},
+    {"cube", "cube", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5, {{-1, -1, -1}, {1, 1, 1}},
+     SEAM_EDGES},
     {"cylinder", "cylinder", NAN, NULL, CONVEX, SHELL_CYLINDER, {0, 0, 0}, 0,
-     {{-1, -1, 0}, {1, 1, 1}}},
+     {{-1, -1, 0}, {1, 1, 1}}, SEAM_RIMS},
     /* Support distances from the centre: cone 0.25 (base), tapered 0.5 (base and cap), icosahedron
      * 0.795 (inradius), the union 0.75 (at the crease): sigma = 1e-5 / that. */
-    {"cone", "cone", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0.25}, 4e-5, {{-1, -1, 0}, {1, 1, 1}}},
+    {"cone", "cone", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0.25}, 4e-5, {{-1, -1, 0}, {1, 1, 1}},
+     SEAM_APEX},
     {"taperedCylinder", "taperedCylinder", 0.5, NULL, CONVEX, SHELL_SCALE, {0, 0, 0.5}, 2e-5,
-     {{-1, -1, 0}, {1, 1, 1}}},
+     {{-1, -1, 0}, {1, 1, 1}}, SEAM_RIMS},
     {"torus", "torus", 0.2, NULL, NONCONVEX, SHELL_TUBE, {0, 0, 0}, 0,
-     {{-1.2, -1.2, -0.2}, {1.2, 1.2, 0.2}}},
+     {{-1.2, -1.2, -0.2}, {1.2, 1.2, 0.2}}, SEAM_NONE},
     {"icosahedron", "icosahedron", NAN, NULL, CONVEX, SHELL_SCALE, {0, 0, 0}, 1.3e-5,
-     {{-1, -1, -1}, {1, 1, 1}}},
+     {{-1, -1, -1}, {1, 1, 1}}, SEAM_VERTEX},
     {"mesh cube.obj", "mesh", NAN, "cube.obj", CONVEX, SHELL_SCALE, {0, 0, 0}, 1e-5,
-     {{-1, -1, -1}, {1, 1, 1}}},
+     {{-1, -1, -1}, {1, 1, 1}}, SEAM_EDGES},
     {"union", "union", NAN, NULL, NONCONVEX, SHELL_SCALE, {0, 0, 0}, 1.4e-5,
-     {{-1.5, -1, -1}, {1.5, 1, 1}}},
+     {{-1.5, -1, -1}, {1.5, 1, 1}}, SEAM_CREASE},
 };
 
 /* Adds one object of `cls` (with its number parameter or mesh file) under
@@ -264,6 +272,7 @@ static int is_shell(const spawn_world *w, const hr_hit *h)
 
 typedef struct spawn_tally {
     long rays, self_hits, shell_missed, shell_unreachable, unreachable_points;
+    long band_points, band_self_hits; /* hit points within the seam band, and their self-hits */
     double min_gap_ratio;
 } spawn_tally;
 
@@ -284,10 +293,14 @@ static int self_hit(const spawn_shape *sh, const spawn_world *w, const hr_hit *h
 }
 
 static void count_self_hit(const spawn_shape *sh, const spawn_world *w, const hr_hit *hit,
-                           hr_vec3 dir, hr_intersection *list, spawn_tally *tally)
+                           int in_band, hr_vec3 dir, hr_intersection *list, spawn_tally *tally)
 {
     tally->rays++;
     if (!self_hit(sh, w, hit, dir, list)) return;
+    if (in_band) {
+        tally->band_self_hits++;
+        return;
+    }
     if (tally->self_hits++ < 3)
         printf("  %s: a ray spawned from (%.17g, %.17g, %.17g) along (%.17g, %.17g, %.17g) "
                "hits its own surface (error %.3g)\n",
@@ -311,11 +324,69 @@ static int shell_found(const spawn_shape *sh, const spawn_world *w, const hr_int
     return 0;
 }
 
+/* The distance (object units) from an object-space point of the surface to
+ * the nearest seam of the shape: an edge of the cube or square, a rim, the
+ * cone's apex or base rim, a vertex of the icosahedron, the union's crease;
+ * infinity for a shape without one. */
+static double seam_distance(const spawn_shape *sh, hr_vec3 p)
+{
+    const double rho = sqrt(p.x * p.x + p.y * p.y);
+    switch (sh->seams) {
+    case SEAM_EDGES: {
+        double m[3] = {1 - fabs(p.x), 1 - fabs(p.y), 1 - fabs(p.z)};
+        if (sh->convexity == OPEN) return fmin(m[0], m[1]);
+        /* On a face one of them is ~0; the edge is where a second one is. */
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2 - i; j++)
+                if (fabs(m[j]) > fabs(m[j + 1])) {
+                    const double tmp = m[j];
+                    m[j] = m[j + 1], m[j + 1] = tmp;
+                }
+        return hypot(m[0], m[1]);
+    }
+    case SEAM_RIMS: {
+        const double top = isnan(sh->param) ? 1 : sh->param;
+        return fmin(hypot(rho - 1, p.z), hypot(rho - top, p.z - 1));
+    }
+    case SEAM_APEX: return fmin(hypot(rho, p.z - 1), hypot(rho - 1, p.z));
+    case SEAM_VERTEX: {
+        const double g = (1 + sqrt(5.0)) / 2, k = 1 / sqrt(1 + g * g);
+        double best = INFINITY;
+        for (int c = 0; c < 3; c++)
+            for (int s = 0; s < 4; s++) {
+                /* (0, +-1, +-g) k and its cyclic shifts */
+                const double v[3] = {0, (s & 1 ? -1 : 1) * k, (s & 2 ? -g : g) * k};
+                const double q[3] = {v[(3 - c) % 3], v[(4 - c) % 3], v[(5 - c) % 3]};
+                best = fmin(best, sqrt((p.x - q[0]) * (p.x - q[0]) + (p.y - q[1]) * (p.y - q[1]) +
+                                       (p.z - q[2]) * (p.z - q[2])));
+            }
+        return best;
+    }
+    case SEAM_CREASE: return hypot(p.x, hypot(p.y, p.z) - sqrt(0.75));
+    default: return INFINITY;
+    }
+}
+
 /* Rays spawned from one world-space hit. */
 static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit *hit,
                        const hr_transform *t, ray_rng *rng, hr_intersection *list,
                        spawn_tally *tally)
 {
+    /* The seam band: where the hit point is nearer a seam than its own
+     * error and its spawn offset (mapped into object space by |M^-1|), the
+     * offset, made along this surface's normal, may leave the origin on
+     * the wrong side of the other surface of the seam: there either answer
+     * is right (CATALOG.md, "seams"), and self-hits are counted apart. */
+    const hr_vec3 p_obj = hr_transform_point(t->inv, hit->point);
+    const hr_vec3 shifted = minus(hr_hit_spawn_origin(hit, hit->normal), hit->point);
+    double to_object = 0;
+    for (int r = 0; r < 3; r++)
+        to_object = fmax(to_object, fabs(t->inv[4 * r]) + fabs(t->inv[4 * r + 1]) +
+                                        fabs(t->inv[4 * r + 2]));
+    const double reach = fmax(fabs(shifted.x), fmax(fabs(shifted.y), fabs(shifted.z)));
+    const double band = 2 * to_object * (reach + hit->error);
+    const int in_band = seam_distance(sh, p_obj) <= band;
+    tally->band_points += in_band;
     /* The facing side: primary rays come from outside (or above a plane). */
     const hr_vec3 n = hit->normal;
     const hr_vec3 offset_point = hr_hit_spawn_origin(hit, n);
@@ -332,7 +403,7 @@ static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit
     if (ratio < tally->min_gap_ratio) tally->min_gap_ratio = ratio;
     for (int i = 0; i < SPAWN_OUT; i++) {
         const hr_vec3 dir = hemisphere(rng, n);
-        count_self_hit(sh, w, hit, dir, list, tally);
+        count_self_hit(sh, w, hit, in_band, dir, list, tally);
         const hr_ray out = {hr_hit_spawn_origin(hit, n), dir};
         CHECK_OK(hr_scene_all_hits(w->shelled, &out, 0, INFINITY, list));
         if (shell_found(sh, w, list)) continue;
@@ -365,7 +436,47 @@ static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit
                            rng_uniform(rng, 2 * sh->box.lo.z - 0.5, 2 * sh->box.hi.z + 0.5)};
         const hr_vec3 dir = minus(hr_transform_point(t->m, q), hit->point);
         if (dir.x == 0 && dir.y == 0 && dir.z == 0) continue;
-        count_self_hit(sh, w, hit, dir, list, tally);
+        count_self_hit(sh, w, hit, in_band, dir, list, tally);
+    }
+}
+
+/* A point just inside a seam of the shape (object space), 10^-(6 .. 12)
+ * from it, for a primary ray to aim at: the hit lands that close to an edge
+ * (the cube's, the square's, cube.obj's), a rim (the cylinder's, the
+ * tapered one's), the cone's apex or base rim, a vertex of the
+ * icosahedron, or the crease of the union. */
+static hr_vec3 seam_target(const spawn_shape *sh, ray_rng *rng)
+{
+    const double in = 1 - pow(10, -rng_uniform(rng, 6, 12));
+    const double phi = rng_uniform(rng, 0, 6.283185307179586);
+    const double sx = rng_chance(rng, 0.5) ? 1 : -1, sy = rng_chance(rng, 0.5) ? 1 : -1;
+    const double along = rng_uniform(rng, -1, 1);
+    switch (sh->seams) {
+    case SEAM_EDGES: {
+        if (sh->convexity == OPEN) return (hr_vec3){sx * in, along, 0};
+        const int axis = (int)rng_uniform(rng, 0, 3) % 3;
+        const hr_vec3 e[3] = {{along, sx * in, sy * in}, {sx * in, along, sy * in},
+                              {sx * in, sy * in, along}};
+        return e[axis];
+    }
+    case SEAM_RIMS: {
+        const int cap = rng_chance(rng, 0.5);
+        const double r = cap ? (isnan(sh->param) ? 1 : sh->param) : 1;
+        return (hr_vec3){r * in * cos(phi), r * in * sin(phi), cap ? in : 1 - in};
+    }
+    case SEAM_APEX:
+        if (rng_chance(rng, 0.5)) return (hr_vec3){0, 0, in};
+        return (hr_vec3){in * cos(phi), in * sin(phi), 1 - in};
+    case SEAM_VERTEX: {
+        const double g = (1 + sqrt(5.0)) / 2, k = in / sqrt(1 + g * g);
+        return (hr_vec3){0, sx * k, sy * g * k};
+    }
+    case SEAM_CREASE:
+        return (hr_vec3){0, sqrt(0.75) * in * cos(phi), sqrt(0.75) * in * sin(phi)};
+    default:
+        return (hr_vec3){rng_uniform(rng, sh->box.lo.x, sh->box.hi.x),
+                         rng_uniform(rng, sh->box.lo.y, sh->box.hi.y),
+                         rng_uniform(rng, sh->box.lo.z, sh->box.hi.z)};
     }
 }
 
@@ -403,7 +514,7 @@ static void run_spawn(const spawn_shape *sh, nc_result *out)
     rng_seed(&rng, UINT64_C(0x5e1f0000) + (uint64_t)(sh - shapes));
     hr_intersection list;
     hr_intersection_init(&list);
-    spawn_tally tally = {0, 0, 0, 0, 0, INFINITY};
+    spawn_tally tally = {0, 0, 0, 0, 0, 0, 0, INFINITY};
     int points = 0;
     for (int k = 0; k < TRANSFORMS; k++) {
         const hr_transform t = transform_of(k, &rng);
@@ -419,9 +530,9 @@ static void run_spawn(const spawn_shape *sh, nc_result *out)
             hr_vec3 u = rng_unit_vector(&rng);
             if (sh->convexity == OPEN) u.z = fabs(u.z) + 0.2;
             const hr_vec3 from = plus(sh->centre, scaled(u, 4 / sqrt(dot3(u, u))));
-            const hr_vec3 to = {rng_uniform(&rng, sh->box.lo.x, sh->box.hi.x),
-                                rng_uniform(&rng, sh->box.lo.y, sh->box.hi.y),
-                                rng_uniform(&rng, sh->box.lo.z, sh->box.hi.z)};
+            /* The first hit point anywhere, the second near a seam. */
+            const spawn_shape anywhere = {.box = sh->box, .seams = SEAM_NONE};
+            const hr_vec3 to = seam_target(got ? sh : &anywhere, &rng);
             const hr_vec3 wf = hr_transform_point(t.m, from);
             const hr_ray primary = {wf, minus(hr_transform_point(t.m, to), wf)};
             hr_hit hit;
@@ -437,9 +548,10 @@ static void run_spawn(const spawn_shape *sh, nc_result *out)
     out->samples = tally.rays;
     out->events = tally.self_hits + tally.shell_missed;
     snprintf(out->note, sizeof out->note,
-             "%d hit points, %ld self-hits, shell missed %ld, unreachable %ld, min gap/offset %.3g",
-             points, tally.self_hits, tally.shell_missed, tally.shell_unreachable,
-             tally.min_gap_ratio);
+             "%d hit points, %ld self-hits, %ld in the seam band from %ld points; shell missed "
+             "%ld, unreachable %ld, min gap/offset %.3g",
+             points, tally.self_hits, tally.band_self_hits, tally.band_points, tally.shell_missed,
+             tally.shell_unreachable, tally.min_gap_ratio);
     CHECK_MSG(points >= TRANSFORMS * HITS_PER_TRANSFORM / 2, "%s: only %d hit points", sh->label,
               points);
     hr_intersection_release(&list);
