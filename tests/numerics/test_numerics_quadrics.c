@@ -1,4 +1,4 @@
-/* Hard cases of the quadrics in object space (cases Q01-Q14 of CATALOG.md):
+/* Hard cases of the quadrics in object space (cases Q01-Q15 of CATALOG.md):
  * the sphere far away and grazed, exact tangents, signed zeros, the
  * cylinder nearly parallel to its axis, the cone along its generators and
  * through its apex. The modules are loaded by the test host
@@ -34,6 +34,7 @@ static void far_probe(ray_rng *rng, double distance, hr_vec3 centre, nf_probe *o
  * case before nf_run_family, which takes a plain function. */
 static double family_distance;
 static hr_vec3 family_centre;
+static double family_taper; /* the tapered families' s */
 
 static void far_family(ray_rng *rng, int i, nf_probe *out)
 {
@@ -152,6 +153,41 @@ static void run_grazing(const char *module, const char *cls, nf_probe_fn make, d
 {
     family_distance = distance;
     nf_run_family(module, cls, NAN, make, rays, seed, out);
+}
+
+/* The tapered wall grazed (the cone's and taperedCylinder 0.5's): lines
+ * through a random point of the wall (heights 0.05 .. 0.95) along a random
+ * tangent, moved off the wall along its normal by +-10^-(6 .. 17), from
+ * `family_distance` away. Hit or miss by the reference's margin and the
+ * rounding band (compare_ray); t by condition. */
+static void tapered_grazing_family(ray_rng *rng, int i, nf_probe *out)
+{
+    (void)i;
+    const double s = family_taper, k = s - 1;
+    const double phi = rng_uniform(rng, 0, 6.283185307179586), z = rng_uniform(rng, 0.05, 0.95);
+    const double w = 1 + k * z;
+    const hr_vec3 p = {w * cos(phi), w * sin(phi), z};
+    hr_vec3 n = {cos(phi), sin(phi), -k};
+    const double nl = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    n = harness_vec(n.x / nl, n.y / nl, n.z / nl);
+    hr_vec3 v = rng_unit_vector(rng);
+    const double vn = v.x * n.x + v.y * n.y + v.z * n.z;
+    v = harness_vec(v.x - vn * n.x, v.y - vn * n.y, v.z - vn * n.z);
+    const double vl = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    const double off = grazing_delta(rng), back = family_distance / vl;
+    out->ray = harness_ray(p.x + off * n.x - back * v.x, p.y + off * n.y - back * v.y,
+                           p.z + off * n.z - back * v.z, v.x, v.y, v.z);
+    out->band = 8 * NC_U; /* as Q03: the Lagrange discriminant is within ~7u |e|^2 */
+}
+
+static void q15(nc_result *out)
+{
+    family_taper = 0;
+    run_grazing("cylinder", "cone", tapered_grazing_family, 10, 3000, 0x9a17, out);
+    run_grazing("cylinder", "cone", tapered_grazing_family, 1e4, 3000, 0x9a18, out);
+    family_taper = 0.5;
+    family_distance = 1e4;
+    nf_run_family("cylinder", "taperedCylinder", 0.5, tapered_grazing_family, 3000, 0x9a19, out);
 }
 
 static void q13(nc_result *out)
@@ -413,6 +449,8 @@ static const nc_case cases[] = {
      "hit/miss right outside |delta| <= 8u; t by condition", q13},
     {"Q14", "cylinder", "wall grazed at 1 +- 1e-6..1e-17 from 10 and 1e4", "wall tangency",
      "hit/miss right outside |delta| <= 8u; t by condition", q14},
+    {"Q15", "cone", "cone and tapered walls grazed, 1e-6..1e-17 off", "slanted wall tangency",
+     BY_CONDITION, q15},
 };
 
 int main(void)

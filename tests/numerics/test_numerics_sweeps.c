@@ -282,7 +282,8 @@ static void s08(nc_result *out)
 
 /* S09: meshes. The icosahedron's edge from (0, 1, g) to (0, -1, g) (g the
  * golden ratio, then scaled onto the unit sphere) and its vertex (0, 1, g),
- * rays along -m (m the edge midpoint or the vertex) swept across; and the
+ * rays along -m (m the edge midpoint or the vertex) swept across, from 2
+ * and (the edge) from 1e6 away; and the
  * diagonal shared by the two triangles of a face of cube.obj. Triangles
  * meeting at an edge must hand over without a hole or a double hit
  * (mesh_triangle.h's watertight test); the mesh is one surface, so only
@@ -302,6 +303,8 @@ static void s09(nc_result *out)
     long bad = 0;
     bad += sweep(&ico, along(mid, mid, 2), v3(1, 0, 0), v3(-mid.x, -mid.y, -mid.z), 2, 0, 0,
                  "icosahedron edge");
+    bad += sweep(&ico, along(mid, mid, 1e6), v3(1, 0, 0), v3(-mid.x, -mid.y, -mid.z), 2, 0, 0,
+                 "icosahedron edge from 1e6");
     bad += sweep(&ico, along(vertex, vertex, 2), v3(1, 0.3, 0), v3(-vertex.x, -vertex.y, -vertex.z),
                  2, 0, 0, "icosahedron vertex");
     bad += sweep(&ico, along(vertex, vertex, 2), v3(0, 0.6, -1),
@@ -312,7 +315,7 @@ static void s09(nc_result *out)
                  "cube.obj face diagonal");
     bad += sweep(&cube, v3(2, 2, 2), v3(-1, 1, 0), v3(-1, -1, -1), 2, 0, 0, "cube.obj corner");
     out->events += bad;
-    out->samples += 5 * (2 * HALF_STEPS + 1);
+    out->samples += 6 * (2 * HALF_STEPS + 1);
     harness_close(&cube);
     harness_close(&ico);
 }
