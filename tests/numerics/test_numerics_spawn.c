@@ -3,7 +3,9 @@
  *
  * Self-intersection, as pbrt tests it. Every shape class is placed under
  * transforms with scales 1e-4 .. 1e4 (uniform and non-uniform, rotated) and
- * translations up to 1e6. From each hit of a primary ray, rays are spawned
+ * translations up to 1e6. Primary rays hit it anywhere, and (every other
+ * one) just inside a seam: an edge, a rim, the cone's apex, a mesh vertex,
+ * the CSG crease. From each hit of a primary ray, rays are spawned
  * with hr_hit_spawn_origin (the renderer's own offset, from the hit's error
  * bound): SPAWN_OUT rays into the hemisphere of the facing normal (a quarter
  * of them within 1e-3 .. 1e-7 of the tangent plane, where rounding bites)
@@ -18,14 +20,18 @@
  *   true re-entry however close it is, with no distance threshold;
  * - any solid entered (the ray points inside): a first hit that enters (the
  *   origin was still outside), or no hit at all.
+ * A hit nearer a seam than its spawn offset may leave the origin on the
+ * wrong side of the seam's other surface, which no offset along one normal
+ * can avoid: such self-hits are counted apart (seam_distance, spawn_from).
  * The shell: the same scene with a second object enclosing the first at a
  * gap of at least 1e-5 object units everywhere (object units: Hill's
  * generic shapes have size 1, so the gap is 1e-5 of the object's size in
- * every transform). Every outward ray must hit the shell first. Where the
- * gap in world units is smaller than the spawn offset (the hit's world error
- * bound projected on the normal), the ray starts beyond the shell and cannot
- * find it: the test counts those hits and prints the smallest gap/offset
- * ratio, and requires the shell only where the ratio exceeds 1.
+ * every transform). Every outward ray must start inside the shell (its
+ * first crossing of the shell leaves it). Where the gap in world units is
+ * smaller than the spawn offset (the hit's world error bound, or
+ * hr_hit_spawn_origin's floor, projected on the normal), the ray starts
+ * beyond the shell and cannot: the test counts those rays, prints the
+ * smallest gap/offset ratio, and requires the shell where it exceeds 2.
  *
  * Shadow acne: a plane, a sphere and a cube lit by a light nearly in the
  * tangent plane (1e-3 above the plane and the cube's top, grazing the
