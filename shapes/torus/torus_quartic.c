@@ -272,15 +272,29 @@ static double eval_df(const torus_frame *fr, double u, double *deriv, double *bo
 
 typedef double (*eval_fn)(const torus_frame *fr, double u, double *deriv, double *bound);
 
+/* A Newton step from a value within its rounding bound is noise over f':
+ * one about the size of the noise itself (below 2^-26 of |x| + 1, where f'
+ * is anything but tiny) takes the root to where the noise is centred; a
+ * longer one says f' is ~0 there. */
+#define SETTLED_STEP 0x1p-26
+
 /* The one root of a function monotone on [x0, x1], given its values f0, f1
  * there, nonzero and of opposite signs: Newton steps from the regula falsi
  * point, replaced by bisection whenever a step leaves the bracket (which
  * shrinks at every evaluation), until the value is within its rounding
  * bound (no step can then do better than noise: one last Newton step takes
  * the root to where the noise is centred), or the step or the bracket is
- * down to rounding. */
-static double bracketed_root(const torus_frame *fr, eval_fn fn, double x0, double x1, double f0,
-                             double f1)
+ * down to rounding.
+ * Next to a near-double root (a ray grazing the torus so closely that its
+ * two crossings are 1e-8 apart) f' is ~1e-14 where f reaches its noise, and
+ * that last step would land anywhere in the bracket, far from the root (an
+ * exit 6e-8 behind a ray's origin came out 0.04 ahead of it). There the
+ * search goes on with `precise` (NULL: none), a more accurate evaluation of
+ * the same function, from the same point (Horner's f is noise at 1e-14 near
+ * the tube, torus_eval's at 1e-16), and stops at x, without the step, once
+ * that too is noise. */
+static double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise, double x0,
+                             double x1, double f0, double f1)
 {
     double lo = x0, hi = x1;
     const int rising = f1 > 0.0;
@@ -290,11 +304,18 @@ static double bracketed_root(const torus_frame *fr, eval_fn fn, double x0, doubl
         double dfx, bound;
         const double fx = fn(fr, x, &dfx, &bound);
         if (fx == 0.0) return x;
+        double next = x - fx / dfx;
+        if (fabs(fx) <= bound) {
+            if (next >= lo && next <= hi && fabs(next - x) <= SETTLED_STEP * (fabs(x) + 1.0))
+                return next;
+            if (!precise || fn == precise) return x;
+            fn = precise; /* the sign of fx is noise too: the bracket stays */
+            continue;
+        }
         if ((fx > 0.0) == rising) hi = x;
         else lo = x;
-        double next = x - fx / dfx;
         const int inside = next >= lo && next <= hi;
-        if (inside && (fabs(fx) <= bound || next == x)) return next;
+        if (inside && next == x) return next;
         if (!inside) next = 0.5 * (lo + hi);
         const double step = fabs(next - x);
         x = next;
@@ -306,16 +327,20 @@ static double bracketed_root(const torus_frame *fr, eval_fn fn, double x0, doubl
 
 /* Newton steps on the accurate f from a root found with Horner's f, which
  * is within Horner's noise of it: at most three, stopping once |f| is
- * within its rounding bound, and never leaving [lo, hi]. */
+ * within its rounding bound, never leaving [lo, hi], and only while |f|
+ * falls (where f is nearly flat, next to a near-double root, a step from a
+ * value near the noise can jump far from the root). */
 static double polish_root(const torus_frame *fr, double u, double lo, double hi)
 {
-    for (int i = 0; i < 3; i++) {
-        double df, bound;
-        const double fx = torus_eval(fr, u, &df, &bound);
-        if (fabs(fx) <= bound) break;
+    double df, bound;
+    double fx = torus_eval(fr, u, &df, &bound);
+    for (int i = 0; i < 3 && fabs(fx) > bound; i++) {
         const double next = u - fx / df;
         if (!(next >= lo && next <= hi) || next == u) break;
-        u = next;
+        double next_df, next_bound;
+        const double next_f = torus_eval(fr, next, &next_df, &next_bound);
+        if (!(fabs(next_f) < fabs(fx))) break;
+        u = next, fx = next_f, df = next_df, bound = next_bound;
     }
     return u;
 }
@@ -377,7 +402,8 @@ static int critical_points(const torus_frame *fr, double x[5])
     for (int i = 0; i + 1 < n_split; i++) {
         const double right = eval_df(fr, split[i + 1], &slope, &bound);
         if (left != 0.0 && right != 0.0 && (left < 0.0) != (right < 0.0)) {
-            const double root = bracketed_root(fr, eval_df, split[i], split[i + 1], left, right);
+            const double root =
+                bracketed_root(fr, eval_df, NULL, split[i], split[i + 1], left, right);
             if (root > x[n - 1] && root < hi) x[n++] = root;
         } else if (right == 0.0 && i + 2 < n_split && split[i + 1] > x[n - 1]) {
             x[n++] = split[i + 1]; /* f' touches zero at a root of f'' */
@@ -430,7 +456,7 @@ static void solve_bracketing(const torus_frame *fr, collector *col)
             /* A piece wholly before tmin holds no wanted root. */
             if (frame_t(fr, x[j + 1]) > col->tmin) {
                 const double root =
-                    bracketed_root(fr, eval_f_horner, x[j], x[j + 1], f_start, f_end);
+                    bracketed_root(fr, eval_f_horner, torus_eval, x[j], x[j + 1], f_start, f_end);
                 emit(col, polish_root(fr, root, x[j], x[j + 1]), f_start > 0.0);
             }
         }
