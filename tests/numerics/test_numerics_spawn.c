@@ -28,8 +28,8 @@
  * generic shapes have size 1, so the gap is 1e-5 of the object's size in
  * every transform). Every outward ray must start inside the shell (its
  * first crossing of the shell leaves it). Where the gap in world units is
- * smaller than the spawn offset (the hit's world error bound, or
- * hr_hit_spawn_origin's floor, projected on the normal), the ray starts
+ * smaller than the spawn offset (the hit's world error bound projected on
+ * the normal), the ray starts
  * beyond the shell and cannot: the test counts those rays, prints the
  * smallest gap/offset ratio, and requires the shell where it exceeds 2.
  *
@@ -427,15 +427,19 @@ static void spawn_from(const spawn_shape *sh, const spawn_world *w, const hr_hit
                        ratio);
         }
     }
-    /* Which bound sets the offset: the hit's error or hr_hit_spawn_origin's
-     * floor of 8 epsilon |p| (CATALOG.md, "the shell"). */
-    const double floor_err = 8 * DBL_EPSILON *
-                             fmax(fabs(hit->point.x), fmax(fabs(hit->point.y), fabs(hit->point.z)));
+    /* Which bound sets the offset: the hit's error, or hr_hit_spawn_origin's
+     * stand-in of 8 epsilon |p| for a hit that reports none (CATALOG.md,
+     * "the shell"). */
+    const int stand_in = !(hit->error > 0);
+    const double bound = stand_in ? 8 * DBL_EPSILON *
+                                        fmax(fabs(hit->point.x),
+                                             fmax(fabs(hit->point.y), fabs(hit->point.z)))
+                                  : hit->error;
     if (ratio <= 2 && tally->unreachable_points++ < 2)
         printf("  %s: at (%.6g, %.6g, %.6g) the gap %.3g is %.3g offsets (offset %.3g, from %s "
                "%.3g)\n",
                sh->label, hit->point.x, hit->point.y, hit->point.z, gap, ratio, offset,
-               floor_err > hit->error ? "the floor" : "the hit error", fmax(floor_err, hit->error));
+               stand_in ? "the stand-in for a zero error" : "the hit error", bound);
     for (int i = 0; i < SPAWN_TO; i++) {
         const hr_vec3 q = {rng_uniform(rng, 2 * sh->box.lo.x, 2 * sh->box.hi.x),
                            rng_uniform(rng, 2 * sh->box.lo.y, 2 * sh->box.hi.y),
