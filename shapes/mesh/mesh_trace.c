@@ -232,11 +232,20 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                                          th.t - args->tmin > th.t_error);
                     continue;
                 }
+                /* A tie goes to the entering hit, as in the all-hits order
+                 * (hit_before): a ray through a vertex or an edge where it
+                 * touches the mesh meets an entering and an exiting
+                 * triangle at one t, and the first hit must be the first
+                 * of all hits whichever the BVH reaches first. */
+                if (found && !(th.t < best.t || (th.t == best.t && th.entering > best.entering)))
+                    continue;
                 found = 1;
                 best = th;
                 best_tri = i;
                 if (mode == HR_TRACE_ANY) goto done;
-                tmax = th.t; /* nearer hits only from here on */
+                /* Nearer hits only from here on; an exiting best still lets
+                 * an entering hit at the same t in. */
+                tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
             }
         } else {
             /* Near child first: the right one when the ray runs down the axis. */
