@@ -158,15 +158,26 @@ static void sort_hits(hr_hit *h, size_t n)
  * crosses itself there) and the expectation follows what was found.
  * `surface` holds each hit's "outside the caller's interval" mark, which a
  * moved hit takes over from the place it takes. */
+static double ray_speed(const hr_ray *ray)
+{
+    return fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
+}
+
+/* How far apart in t two crossings of a closed mesh may lie and still be
+ * put in the other order by alternate_closed. */
+static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
+{
+    return (a->error + b->error) / ray_speed(ray) * 4.0 +
+           8.0 * DBL_EPSILON * fmax(fabs(a->t), fabs(b->t));
+}
+
 static void alternate_closed(const hr_ray *ray, hr_hit *h, size_t n)
 {
-    const double speed = fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
     int expected = 1;
     for (size_t i = 0; i < n; i++) {
         if (h[i].entering != expected) {
             for (size_t j = i + 1; j < n; j++) {
-                const double slack = (h[i].error + h[j].error) / speed * 4.0 +
-                                     8.0 * DBL_EPSILON * fmax(fabs(h[i].t), fabs(h[j].t));
+                const double slack = closed_slack(ray, &h[i], &h[j]);
                 if (!(h[j].t - h[i].t <= slack)) break;
                 if (h[j].entering != expected) continue;
                 hr_hit moved = h[j];
@@ -193,10 +204,34 @@ static hr_status make_room(const hr_hit_args *args, const hr_host *host)
     return out->count < out->capacity ? HR_OK : HR_ERROR_OUT_OF_MEMORY;
 }
 
+/* The largest error bound fill_hit can give a hit of this mesh: the
+ * barycentric sum of a coordinate is at most the largest coordinate
+ * magnitude (twice that, generously, for the rounding of the weights). */
+static double largest_error(const mesh *m)
+{
+    const hr_bounds *b = &m->bounds;
+    const double big = fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
+                            fmax(fabs(b->lo.z), fabs(b->hi.z)));
+    return MESH_GAMMA(7) * 2.0 * big;
+}
+
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
     mesh_ray r;
     if (!mesh_ray_init(&r, &args->ray)) return HR_OK;
+    /* A closed mesh's first hit must be the first of its all-hits list,
+     * which alternate_closed may have reordered where an entering and an
+     * exiting crossing lie within rounding of each other (a ray through a
+     * vertex or an edge: the two triangles' t differ by a few ulps, and the
+     * nearer may be the exiting one). So the first-hit search also looks
+     * that far past its best hit, and if it sees such a near tie, the
+     * answer is taken from the all-hits list itself (rare: only rays
+     * through vertices and edges pay for it). */
+    const int tie_check = mode == HR_TRACE_FIRST && m->closed;
+    const double tie_error = tie_check ? largest_error(m) : 0.0;
+    int near_tie = 0;
+    hr_hit best_hit;
+    memset(&best_hit, 0, sizeof best_hit);
     /* A closed mesh's list is put in order over the whole line (see
      * alternate_closed); hits outside (tmin, tmax) are dropped after. */
     const int whole_line = mode == HR_TRACE_ALL && m->closed;
@@ -237,6 +272,14 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                  * touches the mesh meets an entering and an exiting
                  * triangle at one t, and the first hit must be the first
                  * of all hits whichever the BVH reaches first. */
+                hr_hit candidate;
+                if (tie_check) {
+                    fill_hit(m, &args->ray, i, &th, &candidate);
+                    if (found && candidate.entering != best_hit.entering &&
+                        fabs(candidate.t - best_hit.t) <= closed_slack(&args->ray, &candidate,
+                                                                       &best_hit))
+                        near_tie = 1;
+                }
                 if (found && !(th.t < best.t || (th.t == best.t && th.entering > best.entering)))
                     continue;
                 found = 1;
@@ -244,8 +287,16 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                 best_tri = i;
                 if (mode == HR_TRACE_ANY) goto done;
                 /* Nearer hits only from here on; an exiting best still lets
-                 * an entering hit at the same t in. */
+                 * an entering hit at the same t in, and a closed mesh's
+                 * search runs on over the slack of a near tie. */
                 tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
+                if (tie_check) {
+                    best_hit = candidate;
+                    const double window = (candidate.error + tie_error) / ray_speed(&args->ray) *
+                                              4.0 +
+                                          16.0 * DBL_EPSILON * fabs(th.t);
+                    tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
+                }
             }
         } else {
             /* Near child first: the right one when the ray runs down the axis. */
@@ -271,6 +322,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
         } while (mode == HR_TRACE_FIRST && found && !box_hit(&m->nodes[node], &r, tmin, tmax));
     }
 done:
+    if (near_tie) {
+        const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
+        if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;
+        return st;
+    }
     if (mode != HR_TRACE_ALL) {
         if (!found) return HR_OK;
         fill_hit(m, &args->ray, best_tri, &best, &args->out->hits[args->out->count++]);
