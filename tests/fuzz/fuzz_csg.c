@@ -275,11 +275,12 @@ static void check_ray(const tree *t, const hr_ray *ray, fuzz_input *in, hr_inter
      * error bounds, one of them a rounding after tmin, the result may
      * rightly enter there although the whole ray merged the two. */
     if (whole->count == 0) return;
-    const int32_t i1 = (int32_t)fuzz_choice(in, (unsigned)whole->count + 1);
-    const int32_t i2 = i1 + (int32_t)fuzz_choice(in, (unsigned)whole->count + 1);
+    const int32_t count = whole->count < 256 ? whole->count : 256;
+    const int32_t i1 = (int32_t)fuzz_choice(in, (unsigned)count);
+    const int32_t i2 = i1 + (int32_t)fuzz_choice(in, (unsigned)(count - i1));
     const double t1 = i1 == 0 ? 0.0 : 0.5 * whole->hits[i1 - 1].t + 0.5 * whole->hits[i1].t;
     const double t2 =
-        i2 + 1 >= whole->count ? INFINITY : 0.5 * whole->hits[i2].t + 0.5 * whole->hits[i2 + 1].t;
+        i2 + 1 >= count ? INFINITY : 0.5 * whole->hits[i2].t + 0.5 * whole->hits[i2 + 1].t;
     all_hits(t, ray, t1, t2, part);
     int32_t expect = 0;
     for (int32_t i = 0; i < whole->count; i++) {
