@@ -262,9 +262,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                     }
                     hr_hit *hit = &args->out->hits[args->out->count++];
                     fill_hit(m, &args->ray, i, &th, hit);
+                    /* The caller's interval as mesh_triangle_test applies it
+                     * (so a hit is kept by the same test in every mode). */
                     if (whole_line)
                         hit->surface = !(th.t > args->tmin && th.t < args->tmax &&
-                                         th.t - args->tmin > th.t_error);
+                                         !(th.t - args->tmin <= th.t_error));
                     continue;
                 }
                 /* A tie goes to the entering hit, as in the all-hits order
