@@ -1,22 +1,24 @@
-/* Fuzz harness: every built-in shape class through the module ABI.
+/* Fuzz harness: every shape class of the built-in modules (and of any
+ * module named in HITRAY_FUZZ_SHAPE_MODULES) through the module ABI.
  *
- * The modules are loaded from the build tree by the module harness
- * (tests/shapes/module_harness.c), whose harness_trace checks every point
- * of the contract in shape_module.h on each call: HR_OK, earlier hits
- * untouched, count within the free space (one at most from the fast
- * paths), t strictly inside (tmin, tmax) and sorted, every field finite,
- * error >= 0, a non-zero normal, the surface id in range, `object` left
- * alone, and entering flags alternating for a closed solid.
+ * The modules are loaded by the module harness (tests/shapes/
+ * module_harness.c), whose harness_trace checks every point of the
+ * contract in shape_module.h on each call: HR_OK, earlier hits untouched,
+ * count within the free space (one at most from the fast paths), t
+ * strictly inside (tmin, tmax) and sorted, every field finite, error >= 0,
+ * a non-zero normal, the surface id in range, `object` left alone, and
+ * entering flags alternating for a closed solid.
  *
- * The input picks a class, its parameters (any double, so out-of-range
- * ones too, which create must refuse with a message) and up to four rays
- * with their (tmin, tmax) (any doubles: huge, tiny, subnormal, zero,
- * negative zero, infinite, NaN). On top of harness_trace, for every ray:
- * - first_hit and any_hit agree with hit: a hit exactly when hit has one,
- *   and first_hit's is hit's first (same t, surface and entering);
- * - every hit point lies within the class's bounds grown by its error
- *   bound (each coordinate of the exact surface point is inside the
- *   bounds, and the bound is per coordinate);
+ * Input: a byte picks the class (composites are left to fuzz_csg.c); then
+ * each parameter in the class's order, a number as any double (so out of
+ * range too: create must then refuse, with a message, and must accept
+ * every value in range) and a string as a choice (the torus's solvers and
+ * a few mesh files, the last of each wrong); then up to four rays, six
+ * doubles each (huge, tiny, subnormal, zero, negative zero, infinite,
+ * NaN: see fuzz_input.h), each with (0, inf), (-inf, inf) or two more
+ * doubles as (tmin, tmax). On top of harness_trace, for every ray:
+ * - first_hit and any_hit agree with hit, and every hit point lies within
+ *   the class's bounds grown by its error bound (fuzz_modes.h);
  * - for the quadrics, the square, the cube and the torus, the point's
  *   Euclidean distance from the surface it names, computed in __float128
  *   by ref_surface_distance, is at most sqrt(3) times its error bound: the
@@ -29,6 +31,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fuzz_input.h"
@@ -37,54 +40,77 @@
 #include "module_harness.h"
 #include "quad_reference.h"
 
-#define MODULE_COUNT 7
-static const char *const module_stems[MODULE_COUNT] = {"sphere", "plane",    "square", "cube",
-                                                        "cylinder", "torus", "mesh"};
-static harness_module modules[MODULE_COUNT];
+/* The built-in modules of one shape each (csg has its own harness), then
+ * any listed in HITRAY_FUZZ_SHAPE_MODULES (paths separated by ':'): a
+ * plugin built outside the tree is fuzzed the same way (FUZZING.md). */
+static const char *const builtin_stems[] = {"sphere", "plane", "square", "cube",
+                                            "cylinder", "torus", "mesh"};
+#define BUILTIN_COUNT ((int)(sizeof builtin_stems / sizeof builtin_stems[0]))
+#define MAX_MODULES 16
+#define MAX_CLASSES 64
+static harness_module modules[MAX_MODULES];
+static int module_count;
 
-/* How a class takes its parameters. */
-enum { PARAMS_NONE, PARAMS_S, PARAMS_TORUS, PARAMS_FILE };
-
+/* Every class of those modules but composites, in module order then the
+ * module's own order (an input's first byte picks one). */
 typedef struct fuzz_class {
-    int module;       /* index into module_stems */
-    const char *name;
-    int params;       /* PARAMS_* */
-    int reference;    /* 1: ref_surface_distance knows it */
+    const harness_module *module;
+    const hr_shape_class *cls;
+    int reference; /* 1: ref_surface_distance knows it (a built-in quadric, ...) */
 } fuzz_class;
+static fuzz_class classes[MAX_CLASSES];
+static unsigned class_count;
 
-static const fuzz_class classes[] = {
-    {0, "sphere", PARAMS_NONE, 1},       {1, "plane", PARAMS_NONE, 1},
-    {2, "square", PARAMS_NONE, 1},       {3, "cube", PARAMS_NONE, 1},
-    {4, "cylinder", PARAMS_NONE, 1},     {4, "cone", PARAMS_NONE, 1},
-    {4, "taperedCylinder", PARAMS_S, 1}, {5, "torus", PARAMS_TORUS, 1},
-    {6, "tetrahedron", PARAMS_NONE, 0},  {6, "octahedron", PARAMS_NONE, 0},
-    {6, "dodecahedron", PARAMS_NONE, 0}, {6, "icosahedron", PARAMS_NONE, 0},
-    {6, "mesh", PARAMS_FILE, 0},
-};
-#define CLASS_COUNT ((unsigned)(sizeof classes / sizeof classes[0]))
+/* The classes quad_reference.c knows, when a built-in module provides them. */
+static const char *const reference_names[] = {"sphere", "plane", "square", "cube",
+                                              "cylinder", "cone", "taperedCylinder", "torus"};
 
-/* Solver names: the three the torus has, the default (empty) and one it
- * must refuse. */
+/* Values of string parameters the harness knows by name: the torus's
+ * solvers and a mesh's files; the last of each must be refused (a solver
+ * it does not have, a file that does not exist). A string parameter of
+ * another name gets "" or "fuzz", and either answer is accepted. */
 static const char *const solvers[] = {"", "ferrari", "ferrari-newton", "bracketing", "newton"};
-/* Mesh files: the committed test meshes and one that does not exist. */
 static const char *const mesh_files[] = {"cube.obj", "cube.3vn", "tetra_hill.3vn",
                                          "smooth_square.obj", "missing.obj"};
+static const char *const other_strings[] = {"", "fuzz"};
+
+static void add_module(const char *path_or_stem, int builtin)
+{
+    if (module_count == MAX_MODULES) fuzz_fail("shapes: more than %d modules", MAX_MODULES);
+    harness_module *m = &modules[module_count];
+    if (!(builtin ? harness_load(path_or_stem, m) : harness_load_path(path_or_stem, m)))
+        fuzz_require_no_failures("shapes: loading the modules");
+    module_count++;
+    for (int32_t i = 0; i < m->info->class_count; i++) {
+        const hr_shape_class *cls = m->info->classes[i];
+        if (cls->flags & HR_SHAPE_COMPOSITE) continue;
+        if (class_count == MAX_CLASSES) fuzz_fail("shapes: more than %d classes", MAX_CLASSES);
+        fuzz_class *fc = &classes[class_count++];
+        fc->module = m;
+        fc->cls = cls;
+        fc->reference = 0;
+        for (size_t k = 0; builtin && k < sizeof reference_names / sizeof reference_names[0]; k++)
+            if (strcmp(cls->name, reference_names[k]) == 0) fc->reference = 1;
+    }
+}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    for (int i = 0; i < MODULE_COUNT; i++) harness_load(module_stems[i], &modules[i]);
-    fuzz_require_no_failures("shapes: loading the modules");
-    return 0;
-}
-
-/* Whether `value` is in the range the class states for parameter `name`. */
-static int in_spec(const hr_shape_class *cls, const char *name, double value)
-{
-    for (int32_t i = 0; i < cls->param_count; i++)
-        if (strcmp(cls->params[i].name, name) == 0)
-            return value >= cls->params[i].min && value <= cls->params[i].max;
+    for (int i = 0; i < BUILTIN_COUNT; i++) add_module(builtin_stems[i], 1);
+    const char *extra = getenv("HITRAY_FUZZ_SHAPE_MODULES");
+    while (extra && *extra) {
+        const char *end = strchr(extra, ':');
+        const size_t n = end ? (size_t)(end - extra) : strlen(extra);
+        char path[512];
+        if (n > 0 && n < sizeof path) {
+            memcpy(path, extra, n);
+            path[n] = '\0';
+            add_module(path, 0);
+        }
+        extra = end ? end + 1 : NULL;
+    }
     return 0;
 }
 
@@ -144,43 +170,48 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
                   all[n_all - 1].entering ? "entering" : "exiting");
 }
 
-/* Creates the class with parameters from the input. Returns 1 with the
- * shape made, 0 when create refused (which must be exactly when a
- * parameter is out of the class's stated range, and with a message);
- * `number` receives the number parameter (s or tube), NaN for none. */
-static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *shape,
-                        double *number)
+/* Creates the class with every parameter from the input, in the class's
+ * order: a number parameter any double, a string one a choice. Returns 1
+ * with the shape made, 0 when create refused, which it must do, with a
+ * message, exactly when a value is out of the class's stated range (or a
+ * string the harness knows is wrong); `number` receives the first number
+ * parameter (s, tube), NaN for none. */
+static int create_shape(fuzz_input *in, harness_shape *shape, double *number)
 {
     *number = NAN;
     const hr_shape_class *cls = shape->cls;
-    hr_param given[2];
+    hr_param given[16];
     memset(given, 0, sizeof given);
-    int count = 0, valid = 1;
+    int count = 0, valid = 1, known = 1;
     char path[600];
-    if (fc->params == PARAMS_S || fc->params == PARAMS_TORUS) {
-        given[0].name = fc->params == PARAMS_S ? "s" : "tube";
-        given[0].type = HR_PARAM_NUMBER;
-        given[0].number = fuzz_double(in);
-        valid = in_spec(cls, given[0].name, given[0].number);
-        *number = given[0].number;
-        count = 1;
-    }
-    if (fc->params == PARAMS_TORUS) {
-        const unsigned k = fuzz_choice(in, sizeof solvers / sizeof solvers[0]);
-        given[1].name = "solver";
-        given[1].type = HR_PARAM_STRING;
-        given[1].string = solvers[k];
-        valid = valid && strcmp(solvers[k], "newton") != 0;
-        count = 2;
-    }
-    if (fc->params == PARAMS_FILE) {
-        const unsigned k = fuzz_choice(in, sizeof mesh_files / sizeof mesh_files[0]);
-        snprintf(path, sizeof path, "%s/tests/data/meshes/%s", HR_TEST_SOURCE_DIR, mesh_files[k]);
-        given[0].name = "file";
-        given[0].type = HR_PARAM_STRING;
-        given[0].string = path;
-        valid = strcmp(mesh_files[k], "missing.obj") != 0;
-        count = 1;
+    for (int32_t i = 0; i < cls->param_count && count < 16; i++) {
+        const hr_param_spec *spec = &cls->params[i];
+        hr_param *p = &given[count++];
+        p->name = spec->name;
+        p->type = spec->type;
+        if (spec->type == HR_PARAM_NUMBER) {
+            p->number = fuzz_double(in);
+            if (isnan(*number)) *number = p->number;
+            /* min > max: no range stated */
+            if (spec->min <= spec->max && !(p->number >= spec->min && p->number <= spec->max))
+                valid = 0;
+        } else if (spec->type == HR_PARAM_STRING) {
+            const char *const *values = other_strings;
+            unsigned n = sizeof other_strings / sizeof other_strings[0];
+            const int solver = strcmp(spec->name, "solver") == 0;
+            const int file = strcmp(spec->name, "file") == 0;
+            if (solver) values = solvers, n = sizeof solvers / sizeof solvers[0];
+            if (file) values = mesh_files, n = sizeof mesh_files / sizeof mesh_files[0];
+            const unsigned k = fuzz_choice(in, n);
+            p->string = values[k];
+            if (file) {
+                snprintf(path, sizeof path, "%s/tests/data/meshes/%s", HR_TEST_SOURCE_DIR,
+                         values[k]);
+                p->string = path;
+            }
+            if ((solver || file) && k == n - 1) valid = 0;
+            if (!solver && !file) known = 0;
+        }
     }
     char error[512];
     const hr_status st =
@@ -190,8 +221,9 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
         if (!shape->shape) fuzz_fail("%s: create returned HR_OK and no shape", cls->name);
         return 1;
     }
-    if (valid) fuzz_fail("%s: create refused valid parameters: status %d: %s", cls->name,
-                         (int)st, error);
+    if (valid && known)
+        fuzz_fail("%s: create refused valid parameters: status %d: %s", cls->name, (int)st,
+                  error);
     if (shape->shape) fuzz_fail("%s: create refused and still made a shape", cls->name);
     if (!error[0]) fuzz_fail("%s: create refused (status %d) without a message", cls->name,
                              (int)st);
@@ -212,15 +244,14 @@ static void read_interval(fuzz_input *in, double *tmin, double *tmax)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fuzz_input in = fuzz_input_make(data, size);
-    const fuzz_class *fc = &classes[fuzz_choice(&in, CLASS_COUNT)];
+    const fuzz_class *fc = &classes[fuzz_choice(&in, class_count)];
     harness_shape shape;
     memset(&shape, 0, sizeof shape);
-    shape.module = modules[fc->module];
-    shape.cls = harness_find_class(&shape.module, fc->name);
-    if (!shape.cls) fuzz_fail("no class '%s' in %s", fc->name, shape.module.path);
+    shape.module = *fc->module;
+    shape.cls = fc->cls;
     double number;
-    if (!create_shape(&in, fc, &shape, &number)) return 0;
-    const ref_shape ref = ref_shape_of(fc->name, number);
+    if (!create_shape(&in, &shape, &number)) return 0;
+    const ref_shape ref = ref_shape_of(fc->cls->name, number);
     for (int r = 0; r < 4 && (r == 0 || fuzz_more(&in)); r++) {
         hr_ray ray;
         ray.origin.x = fuzz_double(&in);

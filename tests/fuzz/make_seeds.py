@@ -26,9 +26,10 @@ def ray(origin, direction, interval=None):
     return out + bytes([2]) + raw(interval[0]) + raw(interval[1])
 
 
-# The class table of fuzz_shapes.c, in order, and how each reads parameters.
-CLASSES = ["sphere", "plane", "square", "cube", "cylinder", "cone", "taperedCylinder",
-           "torus", "tetrahedron", "octahedron", "dodecahedron", "icosahedron", "mesh"]
+# The classes fuzz_shapes.c finds in the built-in modules, in its order
+# (module by module, each module's classes in its own order).
+CLASSES = ["sphere", "plane", "square", "cube", "taperedCylinder", "cylinder", "cone",
+           "torus", "mesh", "tetrahedron", "octahedron", "dodecahedron", "icosahedron"]
 RAYS = [
     ray((0, 0, 5), (0, 0, -1)),
     ray((0.5, 0.25, 0.5), (1, 0.5, -0.25), "line"),

@@ -146,8 +146,15 @@ const hr_host *harness_host(void)
 
 int harness_load(const char *file_stem, harness_module *out)
 {
+    char path[sizeof out->path];
+    snprintf(path, sizeof path, "%s/%s.so", HR_TEST_SHAPE_DIR, file_stem);
+    return harness_load_path(path, out);
+}
+
+int harness_load_path(const char *path, harness_module *out)
+{
     memset(out, 0, sizeof *out);
-    snprintf(out->path, sizeof out->path, "%s/%s.so", HR_TEST_SHAPE_DIR, file_stem);
+    snprintf(out->path, sizeof out->path, "%s", path);
     out->handle = dlopen(out->path, RTLD_NOW | RTLD_LOCAL);
     CHECK_MSG(out->handle != NULL, "dlopen %s: %s", out->path, dlerror());
     if (!out->handle) return 0;

@@ -34,6 +34,8 @@ const hr_host *harness_host(void);
 /* Loads HR_TEST_SHAPE_DIR/<file_stem>.so and calls its entry point.
  * Returns 1 on success; on failure records a test failure and returns 0. */
 int harness_load(const char *file_stem, harness_module *out);
+/* The same for the module file at `path` (a plugin built elsewhere). */
+int harness_load_path(const char *path, harness_module *out);
 void harness_unload(harness_module *module);
 const hr_shape_class *harness_find_class(const harness_module *module, const char *class_name);
 
