@@ -57,6 +57,8 @@ typedef struct fuzz_class {
     const harness_module *module;
     const hr_shape_class *cls;
     int reference; /* 1: ref_surface_distance knows it (a built-in quadric, ...) */
+    int builtin;   /* from a built-in module: its create refuses exactly what
+                      its specs' ranges leave out (see create_shape) */
 } fuzz_class;
 static fuzz_class classes[MAX_CLASSES];
 static unsigned class_count;
@@ -89,6 +91,7 @@ static void add_module(const char *path_or_stem, int builtin)
         fc->module = m;
         fc->cls = cls;
         fc->reference = 0;
+        fc->builtin = builtin;
         for (size_t k = 0; builtin && k < sizeof reference_names / sizeof reference_names[0]; k++)
             if (strcmp(cls->name, reference_names[k]) == 0) fc->reference = 1;
     }
@@ -172,11 +175,17 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
 
 /* Creates the class with every parameter from the input, in the class's
  * order: a number parameter any double, a string one a choice. Returns 1
- * with the shape made, 0 when create refused, which it must do, with a
- * message, exactly when a value is out of the class's stated range (or a
- * string the harness knows is wrong); `number` receives the first number
+ * with the shape made, 0 when it was not. A refusal must come with
+ * HR_ERROR_PARAMETER (HR_ERROR_IO for a mesh file) and a message.
+ * The host checks ranges before create (shape_module.h), so a module may
+ * rely on it; the built-in modules refuse out-of-range values all the same
+ * (in case a host or a test passes them) and nothing else but a wrong
+ * string, so for them both ways are checked. A plugin is given only what
+ * a host would pass it, and may refuse more than its ranges say (the
+ * example disk refuses a radius of 0). `number` receives the first number
  * parameter (s, tube), NaN for none. */
-static int create_shape(fuzz_input *in, harness_shape *shape, double *number)
+static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *shape,
+                        double *number)
 {
     *number = NAN;
     const hr_shape_class *cls = shape->cls;
@@ -213,6 +222,8 @@ static int create_shape(fuzz_input *in, harness_shape *shape, double *number)
             if (!solver && !file) known = 0;
         }
     }
+    if (!fc->builtin && !valid) return 0; /* the host refuses it, create never sees it */
+    if (!fc->builtin) known = 0;
     char error[512];
     const hr_status st =
         harness_create_params(cls, given, count, &shape->shape, error, sizeof error);
@@ -250,7 +261,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     shape.module = *fc->module;
     shape.cls = fc->cls;
     double number;
-    if (!create_shape(&in, &shape, &number)) return 0;
+    if (!create_shape(&in, fc, &shape, &number)) return 0;
     const ref_shape ref = ref_shape_of(fc->cls->name, number);
     for (int r = 0; r < 4 && (r == 0 || fuzz_more(&in)); r++) {
         hr_ray ray;
