@@ -68,6 +68,8 @@ for h in $harnesses; do
     log="$build/logs/$h.log"
     mkdir -p "$found" "$artifacts"
     common="-timeout=$timeout_s -rss_limit_mb=$rss_mb -artifact_prefix=$artifacts/"
+    dict="$root/tests/fuzz/$h.dict"
+    [ -f "$dict" ] && common="$common -dict=$dict"
     if [ -n "$replay" ]; then
         echo "run_fuzzers: $h: replaying $(ls "$seeds" | wc -l) corpus files"
         # shellcheck disable=SC2086
