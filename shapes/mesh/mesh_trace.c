@@ -223,14 +223,21 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
      * which alternate_closed may have reordered where an entering and an
      * exiting crossing lie within rounding of each other (a ray through a
      * vertex or an edge: the two triangles' t differ by a few ulps, and the
-     * nearer may be the exiting one). So the first-hit search also looks
-     * that far past its best hit, and if it sees such a near tie, the
-     * answer is taken from the all-hits list itself (rare: only rays
-     * through vertices and edges pay for it). */
+     * nearer may be the exiting one). The all-hits query tests triangles
+     * over the whole line, and a crossing it moved up may be one the
+     * caller's interval refuses on its own (within its t error of tmin:
+     * a degenerate triangle at a vertex can have a t error of 10). So the
+     * first-hit search of a closed mesh tests triangles over the whole
+     * line too, remembers the crossings it sees (its best hit kept to the
+     * caller's interval), looks as far past its best hit as a near tie can
+     * reach, and when one of them forms a near tie with the best, or there
+     * were too many to remember, takes the answer from the all-hits list
+     * itself (rare: rays through vertices and edges). */
     const int tie_check = mode == HR_TRACE_FIRST && m->closed;
     const double tie_error = tie_check ? largest_error(m) : 0.0;
-    int near_tie = 0;
-    hr_hit best_hit;
+    enum { TIE_SEEN = 16 };
+    hr_hit seen[TIE_SEEN], best_hit;
+    int seen_count = 0, seen_overflow = 0, near_tie = 0;
     memset(&best_hit, 0, sizeof best_hit);
     /* A closed mesh's list is put in order over the whole line (see
      * alternate_closed); hits outside (tmin, tmax) are dropped after. */
@@ -252,7 +259,8 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                 const uint32_t *c = m->corners + 3 * (size_t)i;
                 mesh_triangle_hit th;
                 if (!mesh_triangle_test(&r, &m->vertices[c[0]], &m->vertices[c[1]],
-                                        &m->vertices[c[2]], tmin, tmax, &th))
+                                        &m->vertices[c[2]], tie_check ? -INFINITY : tmin, tmax,
+                                        &th))
                     continue;
                 if (mode == HR_TRACE_ALL) {
                     hr_status st = make_room(args, m->host);
@@ -277,10 +285,10 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                 hr_hit candidate;
                 if (tie_check) {
                     fill_hit(m, &args->ray, i, &th, &candidate);
-                    if (found && candidate.entering != best_hit.entering &&
-                        fabs(candidate.t - best_hit.t) <= closed_slack(&args->ray, &candidate,
-                                                                       &best_hit))
-                        near_tie = 1;
+                    if (seen_count < TIE_SEEN) seen[seen_count++] = candidate;
+                    else seen_overflow = 1;
+                    /* The caller's interval, as mesh_triangle_test applies it. */
+                    if (!(th.t > tmin && !(th.t - tmin <= th.t_error))) continue;
                 }
                 if (found && !(th.t < best.t || (th.t == best.t && th.entering > best.entering)))
                     continue;
@@ -324,6 +332,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
         } while (mode == HR_TRACE_FIRST && found && !box_hit(&m->nodes[node], &r, tmin, tmax));
     }
 done:
+    near_tie = found && seen_overflow;
+    for (int k = 0; found && k < seen_count; k++)
+        if (seen[k].entering != best_hit.entering &&
+            fabs(seen[k].t - best_hit.t) <= closed_slack(&args->ray, &seen[k], &best_hit))
+            near_tie = 1;
     if (near_tie) {
         const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
         if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;
