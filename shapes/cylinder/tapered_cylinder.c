@@ -169,11 +169,14 @@ SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_r
     const hr_vec3 p = shape_ray_at(ray, hit->t);
     const double z = shape_clamp(p.z, 0.0, 1.0);
     const double radius = fma(k, z, 1.0);
-    const double rho = sqrt(p.x * p.x + p.y * p.y);
+    /* (x, y) rescaled before rho is taken, as the sphere does: below 1e-154
+     * their squares are subnormal and rho loses digits. */
+    const hr_vec3 q = shape_vec3_rescaled(shape_vec3(p.x, p.y, 0.0));
+    const double rho = sqrt(q.x * q.x + q.y * q.y);
     const double bound = shape_gamma(8) * (1.0 + fabs(k) * z);
     if (rho > 0.0) {
         const double scale = radius / rho;
-        hit->point = shape_vec3(p.x * scale, p.y * scale, z);
+        hit->point = shape_vec3(q.x * scale, q.y * scale, z);
         hit->error = bound;
     } else {
         hit->point = shape_vec3(0.0, 0.0, z);
