@@ -8,7 +8,9 @@
 /* Traces the ray with hit, first_hit and any_hit (harness_trace checks the
  * contract of each call) and checks that they agree: first_hit and any_hit
  * find a hit exactly when hit does, and first_hit's is hit's first (same
- * t, surface and entering flag). Then checks that every hit point lies in
+ * t, surface and entering flag; or another of hit's hits with hit's first's
+ * entering flag, as close to it as rounding of t can put two crossings:
+ * see same_first). Then checks that every hit point lies in
  * the shape's bounds grown by the hit's error bound (the exact surface
  * point is inside the bounds, and the bound is per coordinate). Aborts on
  * a broken check; returns hit's count (at most HARNESS_MAX_HITS copied to
