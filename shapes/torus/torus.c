@@ -75,7 +75,11 @@ static void torus_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
         cy = q.y / rho_q;
         k = shape_sum_value(rho2_minus_1) / ((rho + 1.0) * rho);
     }
-    hr_vec3 v = rho > 0.0 ? shape_vec3(p.x * k, p.y * k, p.z) : shape_vec3(p.x - 1.0, p.y, p.z);
+    /* v rescaled before its length is taken: near the ring circle it is
+     * tiny, and subnormal squares gave a normal longer than 1 in z, so a
+     * thin tube's point left the tube. */
+    hr_vec3 v = shape_vec3_rescaled(rho > 0.0 ? shape_vec3(p.x * k, p.y * k, p.z)
+                                              : shape_vec3(p.x - 1.0, p.y, p.z));
     double length = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
     if (!(length > 0.0)) {
         v = shape_vec3(cx, cy, 0.0);
