@@ -95,8 +95,10 @@ static void trace_mesh(mesh *m)
                 if (!(ray.dir.x != 0 || ray.dir.y != 0 || ray.dir.z != 0)) continue;
                 const double tmin = intervals[k][0], tmax = intervals[k][1];
                 hr_hit all[HARNESS_MAX_HITS];
-                const int n = fuzz_trace_modes(&shape, ray, tmin, tmax, all);
-                if (!m->closed || tmin != -INFINITY || n > HARNESS_MAX_HITS) continue;
+                const int n = fuzz_trace_modes(&shape, ray, tmin, tmax, m->closed, all);
+                /* harness_trace copies at most HARNESS_MAX_HITS: a list that
+                 * long may be longer, and its balance cannot be counted. */
+                if (!m->closed || tmin != -INFINITY || n >= HARNESS_MAX_HITS) continue;
                 int winding = 0;
                 for (int i = 0; i < n; i++) winding += all[i].entering ? 1 : -1;
                 if (winding != 0)

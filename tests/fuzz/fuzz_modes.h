@@ -8,15 +8,16 @@
 /* Traces the ray with hit, first_hit and any_hit (harness_trace checks the
  * contract of each call) and checks that they agree: first_hit and any_hit
  * find a hit exactly when hit does, and first_hit's is hit's first (same
- * t, surface and entering flag; or another of hit's hits with hit's first's
- * entering flag, as close to it as rounding of t can put two crossings:
- * see same_first). Then checks that every hit point lies in
+ * t, surface and entering flag; or another of hit's hits as close to it
+ * as rounding of t can put two crossings, with the same entering flag when
+ * `closed`, the shape is a closed solid: see same_first). Then checks that every hit point lies in
  * the shape's bounds grown by the hit's error bound (the exact surface
  * point is inside the bounds, and the bound is per coordinate). Aborts on
- * a broken check; returns hit's count (at most HARNESS_MAX_HITS copied to
- * `all`). */
+ * a broken check; returns hit's count as harness_trace does (at most
+ * HARNESS_MAX_HITS, which a longer list gives too), the hits copied to
+ * `all`. */
 int fuzz_trace_modes(const harness_shape *shape, hr_ray ray, double tmin, double tmax,
-                     hr_hit all[HARNESS_MAX_HITS]);
+                     int closed, hr_hit all[HARNESS_MAX_HITS]);
 
 #define FUZZ_RAY_FMT "%s: ray (%a, %a, %a) + t (%a, %a, %a), t in (%a, %a): "
 #define FUZZ_RAY_ARGS(name, r, tmin, tmax)                                                     \

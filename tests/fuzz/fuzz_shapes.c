@@ -170,7 +170,8 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
 {
     const hr_shape_class *cls = shape->cls;
     hr_hit all[HARNESS_MAX_HITS];
-    const int n_all = fuzz_trace_modes(shape, ray, tmin, tmax, all);
+    const int n_all =
+        fuzz_trace_modes(shape, ray, tmin, tmax, (cls->flags & HR_SHAPE_CLOSED) != 0, all);
     hr_bounds b;
     cls->bounds(shape->shape, &b);
     for (int i = 0; i < n_all && i < HARNESS_MAX_HITS; i++) {
@@ -185,7 +186,7 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
         }
     }
     if ((cls->flags & HR_SHAPE_CLOSED) && tmin == -INFINITY && tmax == INFINITY && n_all > 0 &&
-        n_all <= HARNESS_MAX_HITS && passage_representable(&ray, &b) &&
+        n_all < HARNESS_MAX_HITS && passage_representable(&ray, &b) &&
         (fc->reference || !near_underflow(&ray)) &&
         (n_all % 2 != 0 || !all[0].entering || all[n_all - 1].entering))
         fuzz_fail(FUZZ_RAY_FMT "over the whole line %d hits, the first %s, the last %s",
