@@ -219,6 +219,14 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
     mesh_ray r;
     if (!mesh_ray_init(&r, &args->ray)) return HR_OK;
+    /* A closed mesh's any hit is its first hit: the all-hits repair (see
+     * alternate_closed and the first-hit search below) may drop a touch at
+     * a vertex whose crossings come out a rounding apart, and a shadow ray
+     * must not be blocked by a touch a camera ray does not see. Any-hit
+     * stops at the first crossing it meets and cannot tell. (The regular
+     * solids are closed and small; large meshes from files are mostly open
+     * surfaces and keep the cheaper search.) */
+    if (mode == HR_TRACE_ANY && m->closed) mode = HR_TRACE_FIRST;
     /* A closed mesh's first hit must be the first of its all-hits list,
      * which alternate_closed may have reordered where an entering and an
      * exiting crossing lie within rounding of each other (a ray through a
