@@ -147,17 +147,6 @@ static void sort_hits(hr_hit *h, size_t n)
     }
 }
 
-/* A closed mesh's crossings alternate along the exact line, entering
- * first (the line starts outside), and the entering flags are exact; only
- * the computed t can put two crossings a rounding apart in the wrong order.
- * So a closed mesh's all-hits query collects the whole line, and where the
- * sorted list breaks the alternation, the next crossing of the expected kind
- * within the two hits' error bounds (as distances along the ray) is moved
- * up and given the t of the place it takes, which keeps the list sorted.
- * Where none is that close, the list is left as computed (the surface
- * crosses itself there) and the expectation follows what was found.
- * `surface` holds each hit's "outside the caller's interval" mark, which a
- * moved hit takes over from the place it takes. */
 static double ray_speed(const hr_ray *ray)
 {
     return fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
@@ -171,6 +160,17 @@ static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
            8.0 * DBL_EPSILON * fmax(fabs(a->t), fabs(b->t));
 }
 
+/* A closed mesh's crossings alternate along the exact line, entering
+ * first (the line starts outside), and the entering flags are exact; only
+ * the computed t can put two crossings a rounding apart in the wrong order.
+ * So a closed mesh's all-hits query collects the whole line, and where the
+ * sorted list breaks the alternation, the next crossing of the expected kind
+ * within the two hits' error bounds (as distances along the ray) is moved
+ * up and given the t of the place it takes, which keeps the list sorted.
+ * Where none is that close, the list is left as computed (the surface
+ * crosses itself there) and the expectation follows what was found.
+ * `surface` holds each hit's "outside the caller's interval" mark, which a
+ * moved hit takes over from the place it takes. */
 static void alternate_closed(const hr_ray *ray, hr_hit *h, size_t n)
 {
     int expected = 1;
@@ -210,8 +210,9 @@ static hr_status make_room(const hr_hit_args *args, const hr_host *host)
 static double largest_error(const mesh *m)
 {
     const hr_bounds *b = &m->bounds;
-    const double big = fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
-                            fmax(fabs(b->lo.z), fabs(b->hi.z)));
+    const double big =
+        fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
+             fmax(fabs(b->lo.z), fabs(b->hi.z)));
     return MESH_GAMMA(7) * 2.0 * big;
 }
 
@@ -285,11 +286,6 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                                          !(th.t - args->tmin <= th.t_error));
                     continue;
                 }
-                /* A tie goes to the entering hit, as in the all-hits order
-                 * (hit_before): a ray through a vertex or an edge where it
-                 * touches the mesh meets an entering and an exiting
-                 * triangle at one t, and the first hit must be the first
-                 * of all hits whichever the BVH reaches first. */
                 hr_hit candidate;
                 if (tie_check) {
                     fill_hit(m, &args->ray, i, &th, &candidate);
@@ -298,6 +294,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                     /* The caller's interval, as mesh_triangle_test applies it. */
                     if (!(th.t > tmin && !(th.t - tmin <= th.t_error))) continue;
                 }
+                /* A tie goes to the entering hit, as in the all-hits order
+                 * (hit_before): a ray through a vertex or an edge where it
+                 * touches the mesh meets an entering and an exiting
+                 * triangle at one t, and the first hit must be the first
+                 * of all hits whichever the BVH reaches first. */
                 if (found && !(th.t < best.t || (th.t == best.t && th.entering > best.entering)))
                     continue;
                 found = 1;
@@ -310,9 +311,9 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                 tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
                 if (tie_check) {
                     best_hit = candidate;
-                    const double window = (candidate.error + tie_error) / ray_speed(&args->ray) *
-                                              4.0 +
-                                          16.0 * DBL_EPSILON * fabs(th.t);
+                    const double window =
+                        (candidate.error + tie_error) / ray_speed(&args->ray) * 4.0 +
+                        16.0 * DBL_EPSILON * fabs(th.t);
                     tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
                 }
             }
