@@ -248,6 +248,15 @@ static void classify(const tree *t, const hr_ray *ray, const hr_intersection *hi
                   said ? "inside" : "outside");
 }
 
+/* A point of the gap (a, b) off the grid the input's values lie on: the
+ * midpoint of two grid times is a grid time, where an operand's surface may
+ * well be (a ray starting on it is classified by where the operand goes
+ * next, docs/csg.md, and may rightly differ from the whole ray there). */
+static double between(double a, double b)
+{
+    return a + (b - a) * 0.41421356237309503;
+}
+
 static int wide_gap(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
 {
     const double speed = fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
@@ -283,8 +292,8 @@ static void check_ray(const tree *t, const hr_ray *ray, fuzz_input *in, hr_inter
     const double speed = fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
     const double reach = 16.0 / speed;
     for (int k = 1; k <= GRID_SAMPLES; k++) classify(t, ray, whole, reach * k / GRID_SAMPLES);
-    /* A sub-interval whose ends lie between hits of the whole ray (the
-     * midpoint before hit i1, or 0; the one after hit i2, or infinity):
+    /* A sub-interval whose ends lie between hits of the whole ray (a point
+     * of the gap before hit i1, or 0; of the one after hit i2, or infinity):
      * the hits inside it and no others. Not an end at a hit itself: a ray
      * starting on a boundary is classified by where each operand goes next
      * (docs/csg.md), so where two operands' faces coincide within their
@@ -300,9 +309,9 @@ static void check_ray(const tree *t, const hr_ray *ray, fuzz_input *in, hr_inter
     if ((i1 > 0 && !wide_gap(ray, &whole->hits[i1 - 1], &whole->hits[i1])) ||
         (i2 + 1 < count && !wide_gap(ray, &whole->hits[i2], &whole->hits[i2 + 1])))
         return;
-    const double t1 = i1 == 0 ? 0.0 : 0.5 * whole->hits[i1 - 1].t + 0.5 * whole->hits[i1].t;
+    const double t1 = i1 == 0 ? 0.0 : between(whole->hits[i1 - 1].t, whole->hits[i1].t);
     const double t2 =
-        i2 + 1 >= count ? INFINITY : 0.5 * whole->hits[i2].t + 0.5 * whole->hits[i2 + 1].t;
+        i2 + 1 >= count ? INFINITY : between(whole->hits[i2].t, whole->hits[i2 + 1].t);
     all_hits(t, ray, t1, t2, part);
     int32_t expect = 0;
     for (int32_t i = 0; i < whole->count; i++) {
