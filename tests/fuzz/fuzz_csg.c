@@ -9,8 +9,8 @@
  *
  * Offsets and scales are mostly multiples of 1/8 (but the octahedron's, see
  * add_leaf), so faces coincide and rays run along them and through edges
- * often: the cases csg_combine.c groups by error bound. Each committed scene is traced along rays from the
- * input with Hill's queries, checking:
+ * often: the cases csg_combine.c groups by error bound. Each committed
+ * scene is traced along rays from the input with Hill's queries, checking:
  * - hr_scene_all_hits: hits finite, strictly inside (tmin, tmax), sorted,
  *   entering and exiting alternately (the result is a solid), entered
  *   first when the ray starts outside and left last (every leaf is

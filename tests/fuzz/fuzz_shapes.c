@@ -180,9 +180,9 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
             const double distance = ref_surface_distance(ref, h->surface, h->point);
             if (!(distance <= sqrt(3.0) * h->error * (1 + 4 * DBL_EPSILON)))
                 fuzz_fail(FUZZ_RAY_FMT "hit %d at (%a, %a, %a) on surface %d is %.3g from it, "
-                                  "error bound %.3g",
-                          FUZZ_RAY_ARGS(cls->name, ray, tmin, tmax), i, h->point.x, h->point.y, h->point.z,
-                          (int)h->surface, distance, h->error);
+                                       "error bound %.3g",
+                          FUZZ_RAY_ARGS(cls->name, ray, tmin, tmax), i, h->point.x, h->point.y,
+                          h->point.z, (int)h->surface, distance, h->error);
         }
     }
     if ((cls->flags & HR_SHAPE_CLOSED) && tmin == -INFINITY && tmax == INFINITY && n_all > 0 &&
