@@ -171,7 +171,7 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
     const hr_shape_class *cls = shape->cls;
     hr_hit all[HARNESS_MAX_HITS];
     const int n_all =
-        fuzz_trace_modes(shape, ray, tmin, tmax, (cls->flags & HR_SHAPE_CLOSED) != 0, all);
+        fuzz_trace_modes(shape, ray, tmin, tmax, (cls->flags & HR_SHAPE_CLOSED) != 0, 0.0, all);
     hr_bounds b;
     cls->bounds(shape->shape, &b);
     for (int i = 0; i < n_all && i < HARNESS_MAX_HITS; i++) {
