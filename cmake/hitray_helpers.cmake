@@ -14,12 +14,12 @@ function(hitray_add_shape name)
   set_property(GLOBAL APPEND PROPERTY HITRAY_SHAPE_TARGETS shape_${name})
 endfunction()
 
-# hitray_add_c_test(<name> SOURCES <files...> [LIBS <libs...>])
-# A C test program run by ctest with no arguments; it knows the source and
+# hitray_add_c_test(<name> SOURCES <files...> [LIBS <libs...>] [ARGS <args...>])
+# A C test program run by ctest (with ARGS, none by default); it knows the source and
 # build trees through HR_TEST_SOURCE_DIR and HR_TEST_BINARY_DIR. Every test
 # depends on every shape module, so ctest never runs against stale modules.
 function(hitray_add_c_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;ARGS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/include
                              ${PROJECT_SOURCE_DIR}/tests/support)
@@ -33,5 +33,5 @@ function(hitray_add_c_test name)
   if(shape_targets)
     add_dependencies(${name} ${shape_targets})
   endif()
-  add_test(NAME ${name} COMMAND ${name})
+  add_test(NAME ${name} COMMAND ${name} ${ARG_ARGS})
 endfunction()

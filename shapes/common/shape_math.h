@@ -82,6 +82,23 @@ static inline int shape_vec3_is_finite(hr_vec3 v)
     return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
+/* v scaled by a power of two (exactly) to a largest component in
+ * [0.5, 1), so that its squares neither underflow nor overflow: a length
+ * taken from them then has the relative error the shapes' bounds assume
+ * (theta_3 for a sum of three squares) for any finite v, where below about
+ * 1e-154 the squares turn subnormal and the length loses digits. Zero and
+ * non-finite vectors come back unchanged. Normalising the result gives the
+ * same bits as normalising v itself wherever v's squares are safe (the
+ * scaling is exact and cancels). */
+static inline hr_vec3 shape_vec3_rescaled(hr_vec3 v)
+{
+    const double big = shape_max3(fabs(v.x), fabs(v.y), fabs(v.z));
+    if (!(big > 0.0) || !isfinite(big)) return v;
+    int exponent;
+    frexp(big, &exponent);
+    return shape_vec3(ldexp(v.x, -exponent), ldexp(v.y, -exponent), ldexp(v.z, -exponent));
+}
+
 /* Rounding error of shape_ray_at(ray, t), per coordinate, when t itself came
  * from `t_roundings` chained roundings of exact inputs (t~ = t (1 + theta_m)).
  * Coordinate i is fl(o_i + fl(t~ d_i)) = (o_i + t d_i (1 + theta_{m+1}))

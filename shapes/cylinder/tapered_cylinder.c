@@ -78,10 +78,29 @@ typedef struct tapered_cylinder {
     double slope; /* k = s - 1: the wall's radius is w(z) = 1 + k z */
 } tapered_cylinder;
 
-/* The span of the ray inside the quadric Q <= 0, in our nappe. */
+/* The span of the ray inside the quadric Q <= 0, in our nappe.
+ *
+ * The coefficients are products of two direction components, which
+ * underflow for a direction shorter than about 1e-154: a ray 1e-308 long
+ * then had a == b == 0 and was taken for one parallel to the axis, inside
+ * the wall everywhere, and left through a cap disk at a point far outside
+ * the disk. The roots scale with the direction (d' = 2^e d has roots
+ * t' = t / 2^e), so the quadric is solved for the direction scaled by a
+ * power of two to a largest component in [1, 2), and the roots are scaled
+ * back. Both scalings are exact (barring overflow of a root, which then is
+ * infinite and never reported), so every other ray gets the same bits as
+ * before. */
 SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, const hr_ray *ray)
 {
-    const hr_vec3 o = ray->origin, d = ray->dir;
+    const hr_vec3 o = ray->origin;
+    const double largest = shape_max3(fabs(ray->dir.x), fabs(ray->dir.y), fabs(ray->dir.z));
+    int exponent = 0;
+    if (largest > 0.0 && isfinite(largest)) {
+        frexp(largest, &exponent); /* largest = m 2^exponent, m in [0.5, 1) */
+        exponent -= 1;
+    }
+    const hr_vec3 d = shape_vec3(ldexp(ray->dir.x, -exponent), ldexp(ray->dir.y, -exponent),
+                                 ldexp(ray->dir.z, -exponent));
     const double k = shape->slope;
     const double w0 = fma(k, o.z, 1.0);
     const double omega = k * d.z;
@@ -114,6 +133,7 @@ SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, cons
 
     double roots[2];
     const int count = shape_solve_half_quadratic(qa, qb, qc, qdisc, roots);
+    for (int i = 0; i < count; i++) roots[i] = ldexp(roots[i], -exponent);
     if (qa > 0.0)
         return count == 2 ? shape_span_make(roots[0], SURFACE_WALL, roots[1], SURFACE_WALL)
                           : shape_span_nowhere();
@@ -149,11 +169,14 @@ SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_r
     const hr_vec3 p = shape_ray_at(ray, hit->t);
     const double z = shape_clamp(p.z, 0.0, 1.0);
     const double radius = fma(k, z, 1.0);
-    const double rho = sqrt(p.x * p.x + p.y * p.y);
+    /* (x, y) rescaled before rho is taken, as the sphere does: below 1e-154
+     * their squares are subnormal and rho loses digits. */
+    const hr_vec3 q = shape_vec3_rescaled(shape_vec3(p.x, p.y, 0.0));
+    const double rho = sqrt(q.x * q.x + q.y * q.y);
     const double bound = shape_gamma(8) * (1.0 + fabs(k) * z);
     if (rho > 0.0) {
         const double scale = radius / rho;
-        hit->point = shape_vec3(p.x * scale, p.y * scale, z);
+        hit->point = shape_vec3(q.x * scale, q.y * scale, z);
         hit->error = bound;
     } else {
         hit->point = shape_vec3(0.0, 0.0, z);

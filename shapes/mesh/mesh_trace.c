@@ -147,6 +147,19 @@ static void sort_hits(hr_hit *h, size_t n)
     }
 }
 
+static double ray_speed(const hr_ray *ray)
+{
+    return fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
+}
+
+/* How far apart in t two crossings of a closed mesh may lie and still be
+ * put in the other order by alternate_closed. */
+static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
+{
+    return (a->error + b->error) / ray_speed(ray) * 4.0 +
+           8.0 * DBL_EPSILON * fmax(fabs(a->t), fabs(b->t));
+}
+
 /* A closed mesh's crossings alternate along the exact line, entering
  * first (the line starts outside), and the entering flags are exact; only
  * the computed t can put two crossings a rounding apart in the wrong order.
@@ -160,13 +173,11 @@ static void sort_hits(hr_hit *h, size_t n)
  * moved hit takes over from the place it takes. */
 static void alternate_closed(const hr_ray *ray, hr_hit *h, size_t n)
 {
-    const double speed = fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
     int expected = 1;
     for (size_t i = 0; i < n; i++) {
         if (h[i].entering != expected) {
             for (size_t j = i + 1; j < n; j++) {
-                const double slack = (h[i].error + h[j].error) / speed * 4.0 +
-                                     8.0 * DBL_EPSILON * fmax(fabs(h[i].t), fabs(h[j].t));
+                const double slack = closed_slack(ray, &h[i], &h[j]);
                 if (!(h[j].t - h[i].t <= slack)) break;
                 if (h[j].entering != expected) continue;
                 hr_hit moved = h[j];
@@ -193,10 +204,50 @@ static hr_status make_room(const hr_hit_args *args, const hr_host *host)
     return out->count < out->capacity ? HR_OK : HR_ERROR_OUT_OF_MEMORY;
 }
 
+/* The largest error bound fill_hit can give a hit of this mesh: the
+ * barycentric sum of a coordinate is at most the largest coordinate
+ * magnitude (twice that, generously, for the rounding of the weights). */
+static double largest_error(const mesh *m)
+{
+    const hr_bounds *b = &m->bounds;
+    const double big =
+        fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
+             fmax(fabs(b->lo.z), fabs(b->hi.z)));
+    return MESH_GAMMA(7) * 2.0 * big;
+}
+
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
     mesh_ray r;
     if (!mesh_ray_init(&r, &args->ray)) return HR_OK;
+    /* A closed mesh's any hit is its first hit: the all-hits repair (see
+     * alternate_closed and the first-hit search below) may drop a touch at
+     * a vertex whose crossings come out a rounding apart, and a shadow ray
+     * must not be blocked by a touch a camera ray does not see. Any-hit
+     * stops at the first crossing it meets and cannot tell. (The regular
+     * solids are closed and small; large meshes from files are mostly open
+     * surfaces and keep the cheaper search.) */
+    if (mode == HR_TRACE_ANY && m->closed) mode = HR_TRACE_FIRST;
+    /* A closed mesh's first hit must be the first of its all-hits list,
+     * which alternate_closed may have reordered where an entering and an
+     * exiting crossing lie within rounding of each other (a ray through a
+     * vertex or an edge: the two triangles' t differ by a few ulps, and the
+     * nearer may be the exiting one). The all-hits query tests triangles
+     * over the whole line, and a crossing it moved up may be one the
+     * caller's interval refuses on its own (within its t error of tmin:
+     * a degenerate triangle at a vertex can have a t error of 10). So the
+     * first-hit search of a closed mesh tests triangles over the whole
+     * line too, remembers the crossings it sees (its best hit kept to the
+     * caller's interval), looks as far past its best hit as a near tie can
+     * reach, and when one of them forms a near tie with the best, or there
+     * were too many to remember, takes the answer from the all-hits list
+     * itself (rare: rays through vertices and edges). */
+    const int tie_check = mode == HR_TRACE_FIRST && m->closed;
+    const double tie_error = tie_check ? largest_error(m) : 0.0;
+    enum { TIE_SEEN = 16 };
+    hr_hit seen[TIE_SEEN], best_hit;
+    int seen_count = 0, seen_overflow = 0, near_tie = 0;
+    memset(&best_hit, 0, sizeof best_hit);
     /* A closed mesh's list is put in order over the whole line (see
      * alternate_closed); hits outside (tmin, tmax) are dropped after. */
     const int whole_line = mode == HR_TRACE_ALL && m->closed;
@@ -217,7 +268,8 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                 const uint32_t *c = m->corners + 3 * (size_t)i;
                 mesh_triangle_hit th;
                 if (!mesh_triangle_test(&r, &m->vertices[c[0]], &m->vertices[c[1]],
-                                        &m->vertices[c[2]], tmin, tmax, &th))
+                                        &m->vertices[c[2]], tie_check ? -INFINITY : tmin, tmax,
+                                        &th))
                     continue;
                 if (mode == HR_TRACE_ALL) {
                     hr_status st = make_room(args, m->host);
@@ -227,16 +279,43 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
                     }
                     hr_hit *hit = &args->out->hits[args->out->count++];
                     fill_hit(m, &args->ray, i, &th, hit);
+                    /* The caller's interval as mesh_triangle_test applies it
+                     * (so a hit is kept by the same test in every mode). */
                     if (whole_line)
                         hit->surface = !(th.t > args->tmin && th.t < args->tmax &&
-                                         th.t - args->tmin > th.t_error);
+                                         !(th.t - args->tmin <= th.t_error));
                     continue;
                 }
+                hr_hit candidate;
+                if (tie_check) {
+                    fill_hit(m, &args->ray, i, &th, &candidate);
+                    if (seen_count < TIE_SEEN) seen[seen_count++] = candidate;
+                    else seen_overflow = 1;
+                    /* The caller's interval, as mesh_triangle_test applies it. */
+                    if (!(th.t > tmin && !(th.t - tmin <= th.t_error))) continue;
+                }
+                /* A tie goes to the entering hit, as in the all-hits order
+                 * (hit_before): a ray through a vertex or an edge where it
+                 * touches the mesh meets an entering and an exiting
+                 * triangle at one t, and the first hit must be the first
+                 * of all hits whichever the BVH reaches first. */
+                if (found && !(th.t < best.t || (th.t == best.t && th.entering > best.entering)))
+                    continue;
                 found = 1;
                 best = th;
                 best_tri = i;
                 if (mode == HR_TRACE_ANY) goto done;
-                tmax = th.t; /* nearer hits only from here on */
+                /* Nearer hits only from here on; an exiting best still lets
+                 * an entering hit at the same t in, and a closed mesh's
+                 * search runs on over the slack of a near tie. */
+                tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
+                if (tie_check) {
+                    best_hit = candidate;
+                    const double window =
+                        (candidate.error + tie_error) / ray_speed(&args->ray) * 4.0 +
+                        16.0 * DBL_EPSILON * fabs(th.t);
+                    tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
+                }
             }
         } else {
             /* Near child first: the right one when the ray runs down the axis. */
@@ -262,6 +341,16 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
         } while (mode == HR_TRACE_FIRST && found && !box_hit(&m->nodes[node], &r, tmin, tmax));
     }
 done:
+    near_tie = found && seen_overflow;
+    for (int k = 0; found && k < seen_count; k++)
+        if (seen[k].entering != best_hit.entering &&
+            fabs(seen[k].t - best_hit.t) <= closed_slack(&args->ray, &seen[k], &best_hit))
+            near_tie = 1;
+    if (near_tie) {
+        const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
+        if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;
+        return st;
+    }
     if (mode != HR_TRACE_ALL) {
         if (!found) return HR_OK;
         fill_hit(m, &args->ray, best_tri, &best, &args->out->hits[args->out->count++]);

@@ -170,8 +170,11 @@ static inline double mesh_t_error(const mesh_ray *r, const double A[3], const do
     const double max_x = fmax(fabs(A[0]), fmax(fabs(B[0]), fabs(C[0])));
     const double max_y = fmax(fabs(A[1]), fmax(fabs(B[1]), fabs(C[1])));
     const double delta_z = MESH_GAMMA(3) * max_z;
-    const double delta_x = MESH_GAMMA(5) * (max_x + 2.0 * fabs(r->d[r->kx]) * max_z);
-    const double delta_y = MESH_GAMMA(5) * (max_y + 2.0 * fabs(r->d[r->ky]) * max_z);
+    /* |d| max_z first: it is |sx p[kz]|, a sheared size; doubling |d|
+     * first overflowed for a direction near DBL_MAX, and inf * 0 made the
+     * bound NaN. */
+    const double delta_x = MESH_GAMMA(5) * (max_x + 2.0 * (fabs(r->d[r->kx]) * max_z));
+    const double delta_y = MESH_GAMMA(5) * (max_y + 2.0 * (fabs(r->d[r->ky]) * max_z));
     const double delta_e =
         2.0 * (MESH_GAMMA(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     const double max_e = fmax(fabs(U), fmax(fabs(V), fabs(W)));

@@ -72,7 +72,11 @@ SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing o
 static void sphere_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
     (void)shape;
-    hr_vec3 p = shape_ray_at(ray, hit->t);
+    /* Rescaled before its length is taken: a far ray's point can come out
+     * tiny (o + t d cancels), and the squares of a point below 1e-154 are
+     * subnormal, which put p / |p| 6e-12 off the sphere against a bound
+     * of 7e-16. */
+    hr_vec3 p = shape_vec3_rescaled(shape_ray_at(ray, hit->t));
     const double length = sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
     if (length > 0.0) {
         const double scale = 1.0 / length;

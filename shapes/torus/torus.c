@@ -64,11 +64,22 @@ static void torus_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
         shape_sum rho2_minus_1 = shape_sum_start(-1.0);
         shape_sum_add_product(&rho2_minus_1, p.x, p.x);
         shape_sum_add_product(&rho2_minus_1, p.y, p.y);
-        cx = p.x / rho;
-        cy = p.y / rho;
+        /* The ring direction from (x, y) rescaled, as the sphere does: below
+         * 1e-154 their squares are subnormal and rho loses digits, which
+         * would put c, and the point, off the ring circle. (k may keep the
+         * plain rho: any unit n of the meridian plane puts c + tube n on
+         * the surface.) */
+        const hr_vec3 q = shape_vec3_rescaled(shape_vec3(p.x, p.y, 0.0));
+        const double rho_q = sqrt(q.x * q.x + q.y * q.y);
+        cx = q.x / rho_q;
+        cy = q.y / rho_q;
         k = shape_sum_value(rho2_minus_1) / ((rho + 1.0) * rho);
     }
-    hr_vec3 v = rho > 0.0 ? shape_vec3(p.x * k, p.y * k, p.z) : shape_vec3(p.x - 1.0, p.y, p.z);
+    /* v rescaled before its length is taken: near the ring circle it is
+     * tiny, and subnormal squares gave a normal longer than 1 in z, so a
+     * thin tube's point left the tube. */
+    hr_vec3 v = shape_vec3_rescaled(rho > 0.0 ? shape_vec3(p.x * k, p.y * k, p.z)
+                                              : shape_vec3(p.x - 1.0, p.y, p.z));
     double length = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
     if (!(length > 0.0)) {
         v = shape_vec3(cx, cy, 0.0);

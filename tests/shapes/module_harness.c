@@ -22,12 +22,21 @@ static void host_free(void *ptr)
     free(ptr);
 }
 
+/* What harness_trace puts in the `object` of every free slot, to see that
+ * a shape leaves it alone. */
+#define UNTOUCHED_OBJECT INT64_C(0x5a5a5a5a5a5a5a5a)
+
 static hr_status host_reserve(void *call, hr_intersection *list, int32_t capacity)
 {
     (void)call;
     if (capacity <= list->capacity) return HR_OK;
     hr_hit *grown = realloc(list->hits, (size_t)capacity * sizeof *grown);
     if (!grown) return HR_ERROR_OUT_OF_MEMORY;
+    /* New slots are marked as harness_trace marks its own. */
+    for (int32_t i = list->capacity; i < capacity; i++) {
+        memset(&grown[i], 0, sizeof grown[i]);
+        grown[i].object = UNTOUCHED_OBJECT;
+    }
     list->hits = grown;
     list->capacity = capacity;
     return HR_OK;
@@ -137,8 +146,15 @@ const hr_host *harness_host(void)
 
 int harness_load(const char *file_stem, harness_module *out)
 {
+    char path[sizeof out->path];
+    snprintf(path, sizeof path, "%s/%s.so", HR_TEST_SHAPE_DIR, file_stem);
+    return harness_load_path(path, out);
+}
+
+int harness_load_path(const char *path, harness_module *out)
+{
     memset(out, 0, sizeof *out);
-    snprintf(out->path, sizeof out->path, "%s/%s.so", HR_TEST_SHAPE_DIR, file_stem);
+    snprintf(out->path, sizeof out->path, "%s", path);
     out->handle = dlopen(out->path, RTLD_NOW | RTLD_LOCAL);
     CHECK_MSG(out->handle != NULL, "dlopen %s: %s", out->path, dlerror());
     if (!out->handle) return 0;
@@ -206,11 +222,28 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
                          const double *values, int count, void **out_shape, char *error,
                          size_t error_size)
 {
+    hr_param given[16];
+    if (count < 0 || count > 16) return HR_ERROR_INVALID_ARGUMENT;
+    memset(given, 0, sizeof given);
+    for (int g = 0; g < count; g++) {
+        given[g].name = names[g];
+        given[g].type = HR_PARAM_NUMBER;
+        given[g].number = values[g];
+    }
+    return harness_create_params(cls, given, count, out_shape, error, error_size);
+}
+
+hr_status harness_create_params(const hr_shape_class *cls, const hr_param *given, int count,
+                                void **out_shape, char *error, size_t error_size)
+{
     hr_param params[16];
     if (!default_params(cls, params)) return HR_ERROR_INVALID_ARGUMENT;
     for (int g = 0; g < count; g++)
         for (int32_t i = 0; i < cls->param_count; i++)
-            if (strcmp(cls->params[i].name, names[g]) == 0) params[i].number = values[g];
+            if (strcmp(cls->params[i].name, given[g].name) == 0) {
+                params[i].number = given[g].number;
+                params[i].string = given[g].string ? given[g].string : "";
+            }
     const void *objects[16] = {NULL};
     return create_from(cls, params, objects, out_shape, error, error_size);
 }
@@ -263,7 +296,6 @@ void harness_close(harness_shape *shape)
 /* The host's list holds this many older hits before the call, to check that
  * a shape appends and leaves them alone. */
 #define EARLIER_HITS 2
-#define UNTOUCHED_OBJECT INT64_C(0x5a5a5a5a5a5a5a5a)
 
 static const char *mode_name(int32_t mode)
 {
@@ -279,7 +311,10 @@ static void check_contract(const harness_shape *shape, const hr_ray *ray, double
 #define RAY_ARGS                                                                            \
     name, mode_name(mode), ray->origin.x, ray->origin.y, ray->origin.z, ray->dir.x, ray->dir.y, \
         ray->dir.z, tmin, tmax
-    CHECK_MSG(count >= 0 && count <= HARNESS_MAX_HITS, RAY_FMT "count %d", RAY_ARGS, count);
+    /* The free space promised, or what the shape grew the list to through
+     * host->reserve (a mesh may have any number of hits). */
+    CHECK_MSG(count >= 0 && count <= list->capacity - EARLIER_HITS, RAY_FMT "count %d", RAY_ARGS,
+              count);
     CHECK_MSG(mode == HARNESS_ALL || count <= 1, RAY_FMT "%d hits from a fast path", RAY_ARGS,
               count);
     for (int i = 0; i < EARLIER_HITS; i++)

@@ -34,6 +34,8 @@ const hr_host *harness_host(void);
 /* Loads HR_TEST_SHAPE_DIR/<file_stem>.so and calls its entry point.
  * Returns 1 on success; on failure records a test failure and returns 0. */
 int harness_load(const char *file_stem, harness_module *out);
+/* The same for the module file at `path` (a plugin built elsewhere). */
+int harness_load_path(const char *path, harness_module *out);
 void harness_unload(harness_module *module);
 const hr_shape_class *harness_find_class(const harness_module *module, const char *class_name);
 
@@ -43,6 +45,13 @@ const hr_shape_class *harness_find_class(const harness_module *module, const cha
 hr_status harness_create(const hr_shape_class *cls, const char *const *names,
                          const double *values, int count, void **out_shape, char *error,
                          size_t error_size);
+
+/* Calls cls->create with every parameter of the class at its default, then
+ * the parameters in `given` (count of them; number or string, matched by
+ * name) overriding. Returns create's status; `error` receives create's
+ * message. */
+hr_status harness_create_params(const hr_shape_class *cls, const hr_param *given, int count,
+                                void **out_shape, char *error, size_t error_size);
 
 /* A child object for a composite under test (what the host's trace_child
  * and child_bounds receive): `shape` placed in the parent's space by
@@ -72,8 +81,10 @@ void harness_close(harness_shape *shape);
 
 /* Calls the class's hit (HARNESS_ALL), first_hit or any_hit on `ray` and
  * copies what it appended into hits[] (HARNESS_MAX_HITS of room); returns
- * the count. Every call checks: HR_OK; the existing entries of the host's
- * list untouched; count within the free space (at most 1 for first/any);
+ * the count (at most HARNESS_MAX_HITS: the rest of a longer list is checked,
+ * not copied). Every call checks: HR_OK; the existing entries of the host's
+ * list untouched; count within the free space or what host->reserve grew it
+ * to (at most 1 for first/any);
  * t strictly inside (tmin, tmax); sorted; every field finite; error >= 0;
  * normal non-zero; surface id in range; entering 0 or 1; `object` not
  * written; for a closed shape in HARNESS_ALL mode, entering flags
