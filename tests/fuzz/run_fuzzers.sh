@@ -2,7 +2,7 @@
 # Builds the libFuzzer harnesses of tests/fuzz with clang (ASan+UBSan) and
 # runs them; see FUZZING.md.
 #
-#   run_fuzzers.sh [--build DIR] [--seconds N] [--replay] [--jobs N] [HARNESS...]
+#   run_fuzzers.sh [--build DIR] [--seconds N] [--replay] [--seed S] [--jobs N] [HARNESS...]
 #
 # Each harness (all of them when none is named: shapes csg sdl mesh) runs
 # for N seconds (default 60) starting from its committed seeds in
@@ -10,6 +10,9 @@
 # crashes to DIR/artifacts/<harness>/, so the source tree is never written
 # (merge finds into the committed corpus as FUZZING.md says). With --replay
 # every committed corpus file is first run once through the fuzz binary.
+# --seed S fixes libFuzzer's random seed (default: a new one each run), so
+# that `make test-fuzz` walks the same mutations on every machine: CI checks
+# that nothing regressed, and exploring is `make fuzz`'s job.
 # Exits non-zero, naming the harness and the input that broke it, on any
 # crash, sanitizer report, timeout, leak or contract break.
 set -eu
@@ -17,6 +20,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 build=build-fuzz
 seconds=60
 replay=""
+seed=""
 jobs=${FUZZ_JOBS:-2}
 harnesses=""
 while [ $# -gt 0 ]; do
@@ -24,8 +28,9 @@ while [ $# -gt 0 ]; do
     --build) build=$2; shift 2 ;;
     --seconds) seconds=$2; shift 2 ;;
     --replay) replay=1; shift ;;
+    --seed) seed=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
-    -h | --help) sed -n '2,15p' "$0"; exit 0 ;;
+    -h | --help) sed -n '2,18p' "$0"; exit 0 ;;
     -*) echo "run_fuzzers.sh: unknown option $1" >&2; exit 2 ;;
     *) harnesses="$harnesses $1"; shift ;;
     esac
@@ -70,6 +75,7 @@ for h in $harnesses; do
     common="-timeout=$timeout_s -rss_limit_mb=$rss_mb -artifact_prefix=$artifacts/"
     dict="$root/tests/fuzz/$h.dict"
     [ -f "$dict" ] && common="$common -dict=$dict"
+    [ -n "$seed" ] && common="$common -seed=$seed"
     if [ -n "$replay" ]; then
         echo "run_fuzzers: $h: replaying $(ls "$seeds" | wc -l) corpus files"
         # shellcheck disable=SC2086
