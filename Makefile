@@ -57,10 +57,12 @@ test-tsan: deps $(TSAN_BUILD)/build.ninja
 # The libFuzzer harnesses (tests/fuzz), built with clang and ASan+UBSan in
 # $(FUZZ_BUILD). `make fuzz` runs each for FUZZ_SECONDS (FUZZ_TARGETS picks
 # some); `make test-fuzz` replays every corpus file, then runs each harness
-# for FUZZ_TEST_SECONDS from the fixed seed FUZZ_TEST_SEED, so CI repeats
-# the same mutations rather than exploring anew. See FUZZING.md.
+# from the fixed seed FUZZ_TEST_SEED for FUZZ_TEST_RUNS inputs (at most
+# FUZZ_TEST_SECONDS), so CI repeats the same inputs rather than exploring
+# anew. See FUZZING.md.
 FUZZ_SECONDS ?= 300
-FUZZ_TEST_SECONDS ?= 15
+FUZZ_TEST_SECONDS ?= 30
+FUZZ_TEST_RUNS ?= 50000
 FUZZ_TEST_SEED ?= 1
 FUZZ_TARGETS ?=
 fuzz: deps
@@ -68,7 +70,7 @@ fuzz: deps
 
 test-fuzz: deps
 	tests/fuzz/run_fuzzers.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_TEST_SECONDS) --replay \
-	    --seed $(FUZZ_TEST_SEED) $(FUZZ_TARGETS)
+	    --runs $(FUZZ_TEST_RUNS) --seed $(FUZZ_TEST_SEED) $(FUZZ_TARGETS)
 
 # The package is (re)installed into .venv as a user installs it, from
 # bindings/python; its CMake build directory is kept in $(PYTHON_BUILD), so

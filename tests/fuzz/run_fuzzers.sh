@@ -2,7 +2,8 @@
 # Builds the libFuzzer harnesses of tests/fuzz with clang (ASan+UBSan) and
 # runs them; see FUZZING.md.
 #
-#   run_fuzzers.sh [--build DIR] [--seconds N] [--replay] [--seed S] [--jobs N] [HARNESS...]
+#   run_fuzzers.sh [--build DIR] [--seconds N] [--runs N] [--replay] [--seed S] [--jobs N]
+#                  [HARNESS...]
 #
 # Each harness (all of them when none is named: shapes csg sdl mesh) runs
 # for N seconds (default 60) starting from its committed seeds in
@@ -10,9 +11,12 @@
 # crashes to DIR/artifacts/<harness>/, so the source tree is never written
 # (merge finds into the committed corpus as FUZZING.md says). With --replay
 # every committed corpus file is first run once through the fuzz binary.
-# --seed S fixes libFuzzer's random seed (default: a new one each run), so
-# that `make test-fuzz` walks the same mutations on every machine: CI checks
-# that nothing regressed, and exploring is `make fuzz`'s job.
+# --seed S fixes libFuzzer's random seed (default: a new one each run) and
+# starts from the committed seeds alone (DIR/corpus/<harness> is emptied
+# first), and --runs N stops after N inputs (--seconds still caps the
+# time): together they make `make test-fuzz` walk the same inputs on every
+# machine, a slower one only stopping earlier on the same path. CI checks
+# that nothing regressed; exploring is `make fuzz`'s job.
 # Exits non-zero, naming the harness and the input that broke it, on any
 # crash, sanitizer report, timeout, leak or contract break.
 set -eu
@@ -21,6 +25,7 @@ build=build-fuzz
 seconds=60
 replay=""
 seed=""
+runs=""
 jobs=${FUZZ_JOBS:-2}
 harnesses=""
 while [ $# -gt 0 ]; do
@@ -29,8 +34,9 @@ while [ $# -gt 0 ]; do
     --seconds) seconds=$2; shift 2 ;;
     --replay) replay=1; shift ;;
     --seed) seed=$2; shift 2 ;;
+    --runs) runs=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
-    -h | --help) sed -n '2,18p' "$0"; exit 0 ;;
+    -h | --help) sed -n '2,22p' "$0"; exit 0 ;;
     -*) echo "run_fuzzers.sh: unknown option $1" >&2; exit 2 ;;
     *) harnesses="$harnesses $1"; shift ;;
     esac
@@ -71,6 +77,7 @@ for h in $harnesses; do
     found="$build/corpus/$h"
     artifacts="$build/artifacts/$h"
     log="$build/logs/$h.log"
+    [ -n "$seed" ] && rm -rf "$found"
     mkdir -p "$found" "$artifacts"
     common="-timeout=$timeout_s -rss_limit_mb=$rss_mb -artifact_prefix=$artifacts/"
     dict="$root/tests/fuzz/$h.dict"
@@ -86,9 +93,11 @@ for h in $harnesses; do
             continue
         fi
     fi
-    echo "run_fuzzers: $h: fuzzing for $seconds s (log $log)"
+    echo "run_fuzzers: $h: fuzzing for $seconds s${runs:+ or $runs inputs}${seed:+ from seed $seed} (log $log)"
     # shellcheck disable=SC2086
-    if "$binary" $common -max_total_time="$seconds" -print_final_stats=1 "$found" "$seeds" \
+    limit="-max_total_time=$seconds"
+    [ -n "$runs" ] && limit="$limit -runs=$runs"
+    if "$binary" $common $limit -print_final_stats=1 "$found" "$seeds" \
         >"$log" 2>&1; then
         grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|stat::new_units_added" "$log" |
             sed "s/^/run_fuzzers: $h: /"
