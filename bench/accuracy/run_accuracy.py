@@ -124,7 +124,8 @@ class Study:
         self.docs = pathlib.Path(args.docs).resolve()
         self.assets = self.docs / "accuracy"
         self.raw = self.assets / "raw"
-        self.cache = pathlib.Path(args.cache).resolve() if args.cache else self.build / "accuracy-cache"
+        self.cache = (pathlib.Path(args.cache).resolve() if args.cache
+                      else self.build / "accuracy-cache")
         self.work = pathlib.Path(tempfile.mkdtemp(prefix="hitray-accuracy-"))
         self.md = []
         self.loads = []
@@ -263,20 +264,24 @@ class Study:
                    for sv in solvers}
         far_sets = [st for st in sets if st.startswith("far")]
         other = [st for st in sets if st not in far_sets]
-        spread = max((by[st, sv]["worst_uc"] for st in far_sets for sv in solvers), default=0)
-        closed = max((by[st, "ferrari"]["worst_uc"] for st in other), default=0)
-        polished = max((by[st, "ferrari-newton"]["worst_uc"] for st in other), default=0)
+        def worst_of(solver, group):
+            return max((by[st, solver]["worst_uc"] for st in group), default=0)
+
+        closed_far = worst_of("ferrari", far_sets)
+        polished_far = worst_of("ferrari-newton", far_sets)
+        closed, polished = worst_of("ferrari", other), worst_of("ferrari-newton", other)
         out.append(
             "- For a user: the solvers with no wrong root count on clear rays and no speckle "
             f"in these renders: {', '.join(f'`{sv}`' for sv in clean) if clean else 'none'}. "
             "Fastest first hit on how many of the sets: "
             + ", ".join(f"`{sv}` {n}" for sv, n in fastest.items())
-            + f". For rays from far away (the far sets) every solver's worst error is at most "
-            f"{spread:.3g} u·c, so only the cost differs; on the other sets (near the torus, "
-            f"grazing, thin tubes: also where shadow rays start) the closed form's worst error "
-            f"reaches {closed:.3g} u·c and Newton polishing brings it to {polished:.3g} u·c, "
-            "but polishing cannot restore a root the closed form lost, nor remove one it "
-            "invented (the −/+ counts above).")
+            + f". For rays from far away (the far sets) the closed form's worst error is "
+            f"{closed_far:.3g} u·c and the polished solvers' at most "
+            f"{max(polished_far, worst_of('bracketing', far_sets)):.3g} u·c; on the other sets "
+            "(near the torus, grazing, thin tubes: also where shadow rays start) the closed "
+            f"form's worst error reaches {closed:.3g} u·c and Newton polishing brings it to "
+            f"{polished:.3g} u·c, but polishing cannot restore a root the closed form lost, nor "
+            "remove one it invented (the −/+ counts above).")
         out.append("")
         return out
 
@@ -359,7 +364,8 @@ class Study:
             first = by[methods[0]]
             row = [shape, first["scale"], first["hits"]]
             for m in methods:
-                row += [f"{by[m]['out_self']}/{by[m]['in_self']}/{by[m]['in_lost']}", by[m]["offset"]]
+                row += [f"{by[m]['out_self']}/{by[m]['in_self']}/{by[m]['in_lost']}",
+                        by[m]["offset"]]
             body.append(row)
         md += table(["shape", "scale S", "hits"]
                     + [h for m in methods for h in (f"{m}: out/in/lost", "offset / S")], body)
@@ -374,8 +380,8 @@ class Study:
         md += table(["scale S"] + [f"{m}: thinnest g" for m in methods],
                     [[scale] + [by[m] for m in methods] for scale, by in gaps.items()])
         self.plot_spawn([r for r, _ in selfhit], [r for r, _ in shell])
-        md += ["![spawned rays: self-hits and thinnest shell over scale](accuracy/spawn_offset.png)",
-               ""]
+        md += ["![spawned rays: self-hits and thinnest shell over scale]"
+               "(accuracy/spawn_offset.png)", ""]
         out = ["**Reading it.**", ""]
         for method in methods:
             rs = [r for r, _ in selfhit if r["method"] == method]
@@ -383,9 +389,9 @@ class Study:
             lost = [r["scale"] for r in rs if r["in_lost"]]
             gaps = {r["scale"]: r["thinnest_gap"] for r, _ in shell if r["method"] == method}
             picks = sorted(set([min(gaps), 1.0, 1e6, max(gaps)]) & set(gaps))
+            bad_text = ", ".join(f"{x:g}" for x in sorted(set(bad))) or "none of those tried"
             out.append(
-                f"- {method}: self-hits at scales "
-                f"{', '.join(f'{x:g}' for x in sorted(set(bad))) if bad else 'none of those tried'}; "
+                f"- {method}: self-hits at scales {bad_text}; "
                 f"rays lost through the object at "
                 f"{', '.join(f'{x:g}' for x in sorted(set(lost))) if lost else 'none'}; "
                 "thinnest shell found "
@@ -432,7 +438,8 @@ class Study:
         key.update((ROOT / scene).read_bytes())
         key.update(f"{self.s['render_size']} {self.s['ref_spp']} {self.tool_hash()}".encode())
         self.cache.mkdir(parents=True, exist_ok=True)
-        path = self.cache / f"{name}-{self.s['render_size']}-{self.s['ref_spp']}-{key.hexdigest()[:16]}.pfm"
+        size, spp = self.s["render_size"], self.s["ref_spp"]
+        path = self.cache / f"{name}-{size}-{spp}-{key.hexdigest()[:16]}.pfm"
         cmd = [self.exe("bin", "hitray"), "render", scene, "-o", "REF.pfm", "--size",
                self.s["render_size"], "--spp", str(self.s["ref_spp"])]
         if not path.exists():
@@ -487,7 +494,8 @@ class Study:
             md += table(["setting", "seconds", "rays", "pixels refined", "RMSE", "command"],
                         [[f"{r['spp']} spp" if r["adaptive"] is None
                           else f"adaptive {r['adaptive']}, {r['spp']} spp",
-                          f"{r['seconds']:.4f}", r["rays"], r["refined"] if r["adaptive"] else "—",
+                          f"{r['seconds']:.4f}", r["rays"],
+                          r["refined"] if r["adaptive"] else "—",
                           f"{r['rmse']:.3e}", f"`{quote(r['cmd'])} --stats-json S.json`"]
                          for r in rows])
         self.plot_samples(plots)
@@ -516,14 +524,24 @@ class Study:
                         f"time^{slope:.2f}).")
             else:
                 lead = f"- {name}: one full-sampling setting only."
-            better = [f"adaptive {a['adaptive']} at {a['spp']} spp ({a['seconds']:.3g} s, RMSE "
-                      f"{a['rmse']:.3g}; the fastest full render as accurate: {f['spp']} spp, "
-                      f"{f['seconds']:.3g} s, RMSE {f['rmse']:.3g})"
+            better = [f"T = {a['adaptive']} at {a['spp']} spp {f['seconds'] / a['seconds']:.1f}× "
+                      f"faster than {f['spp']} spp"
                       for a, f in wins if a["seconds"] < f["seconds"]]
-            out.append(lead + (" Adaptive settings faster than every full render at least as "
-                               "accurate: " + "; ".join(better) + "." if better else
+            out.append(lead + (" Adaptive settings faster than the fastest full render at least "
+                               "as accurate: " + "; ".join(better) + "." if better else
                                " No adaptive setting was faster than every full render at least "
                                "as accurate."))
+            top = max((r["spp"] for r in adaptive), default=None)
+            flat = sorted((a for a in adaptive if a["spp"] == top), key=lambda a: a["adaptive"])
+            same = [f["rmse"] for f in full if f["spp"] == top]
+            if flat and same:
+                rising = len(flat) > 1 and all(x["rmse"] < y["rmse"]
+                                               for x, y in zip(flat, flat[1:]))
+                out.append(f"  At {top} spp the adaptive RMSE is "
+                           + ", ".join(f"{a['rmse']:.3g} (T = {a['adaptive']})" for a in flat)
+                           + f" where the full render reaches {same[0]:.3g}: what is left is the "
+                           "error of the pixels not refined, which more samples do not reduce"
+                           + ("; the smaller T, the lower it was here." if rising else "."))
         out.append("- For a user: read the plot at the error you can accept; adaptive "
                    "supersampling pays where most pixels are flat (its corners agree) and "
                    "cannot see detail that falls between the corners (docs/effects.md), which "
@@ -552,7 +570,8 @@ class Study:
                                    color=colours[i], label=f"{st}: {r['solver']}")
             style_axes(ax, "ns per first-hit solve (best of passes)", "u · condition", title,
                        legend=0)
-        handles = [plt.Line2D([], [], marker=m, ls="", color="k", label=s) for s, m in markers.items()]
+        handles = [plt.Line2D([], [], marker=m, ls="", color="k", label=s)
+                   for s, m in markers.items()]
         handles += [plt.Line2D([], [], marker="o", ls="", color=colours[i], label=st)
                     for i, st in enumerate(sets)]
         axes[1].legend(handles=handles, fontsize=7, loc="best")
@@ -568,15 +587,29 @@ class Study:
         a = plt.imread(self.work / f"{stem}_bracketing.png")[..., :3]
         b = plt.imread(self.work / f"{stem}_{worst['solver']}.png")[..., :3]
         ys, xs = np.nonzero(np.abs(a - b).max(axis=2) > 0.5 / 255)
-        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-        for ax, img, title in ((axes[0], a, "bracketing"), (axes[1], b, worst["solver"])):
-            ax.imshow(img, interpolation="nearest")
-            ax.scatter(xs, ys, s=120, facecolors="none", edgecolors="red", linewidths=1)
-            ax.set_title(title)
+        # A window around the speckles, enlarged: at full size they are a
+        # few pixels of a large frame.
+        half = 16
+        cy = int(np.clip(np.median(ys), half, a.shape[0] - half))
+        cx = int(np.clip(np.median(xs), half, a.shape[1] - half))
+        window = (slice(cy - half, cy + half), slice(cx - half, cx + half))
+        fig, axes = plt.subplots(1, 3, figsize=(12, 4))
+        axes[0].imshow(a, interpolation="nearest")
+        axes[0].add_patch(plt.Rectangle((cx - half, cy - half), 2 * half, 2 * half, fill=False,
+                                        edgecolor="red"))
+        axes[0].set_title("bracketing, whole frame")
+        for ax, img, title in ((axes[1], a, "bracketing"), (axes[2], b, worst["solver"])):
+            ax.imshow(img[window], interpolation="nearest")
+            ax.scatter(xs - (cx - half), ys - (cy - half), s=160, facecolors="none",
+                       edgecolors="red", linewidths=1)
+            ax.set_xlim(-0.5, 2 * half - 0.5)
+            ax.set_ylim(2 * half - 0.5, -0.5)
+            ax.set_title(f"{title}, the red box enlarged")
+        for ax in axes:
             ax.axis("off")
         caption = (f"Distance {worst['distance']:g}, tube {worst['tube']:g}: the "
                    f"{worst['shade']} pixels where `{worst['solver']}` differs from "
-                   "`bracketing`, ringed in red.")
+                   "`bracketing` (8-bit sRGB), ringed in red.")
         self.save(fig, "torus_far_speckles.png")
         return stem, caption
 
@@ -601,7 +634,8 @@ class Study:
             rate = []
             for sc in scales:
                 hits = sum(r["hits"] for r in rs if r["scale"] == sc)
-                bad = sum(r["out_self"] + r["in_self"] + r["in_lost"] for r in rs if r["scale"] == sc)
+                bad = sum(r["out_self"] + r["in_self"] + r["in_lost"]
+                          for r in rs if r["scale"] == sc)
                 rate.append(bad / (2 * hits) if hits else 0)
             axes[0].plot(scales, rate, "o-", label=m)
             rs = [r for r in shell if r["method"] == m]
@@ -657,8 +691,9 @@ class Study:
                 "program is in `docs/accuracy/raw/`). Rerun it to measure another machine.", "",
                 f"- Machine: {load_run_bench().machine_line()}",
                 f"- Run: {started:%Y-%m-%d %H:%M} UTC, commit {git_commit()}, "
-                f"{'--quick (smoke run: small sets, not for reading)' if self.args.quick else 'full'}"
-                f", {elapsed:.0f} s in all",
+                + ("--quick (smoke run: small sets, not for reading)" if self.args.quick
+                   else "full")
+                + f", {elapsed:.0f} s in all",
                 f"- Load average (1, 5, 15 min): {fmt_load(load_before)} before, "
                 f"{fmt_load(load_after)} after; after each part: "
                 + "; ".join(f"{w} ({sec:.0f} s) {fmt_load(l)}" for w, sec, l in self.loads),
@@ -678,7 +713,10 @@ def fmt_load(load):
 def git_commit():
     out = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
                          capture_output=True, text=True).stdout.strip() or "unknown"
-    dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--untracked-files=no"],
+    # What this study writes does not count: a rerun over an earlier one's
+    # docs is still a run of the committed code.
+    dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--untracked-files=no",
+                            "--", ".", ":!docs/accuracy.md", ":!docs/accuracy"],
                            capture_output=True, text=True).stdout.strip()
     return out + (" (with uncommitted changes)" if dirty else "")
 

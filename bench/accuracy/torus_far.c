@@ -188,7 +188,8 @@ static void run_tube(hr_context *ctx, double distance, double tube, int width, i
         float *data = hr_image_data(image);
         if (s == 0) memcpy(bracketing_image, data, (size_t)pixels * 3 * sizeof(float));
         int shade = 0;
-        for (int p = 0; p < pixels; p++) shade += shade_differs(data + 3 * p, bracketing_image + 3 * p);
+        for (int p = 0; p < pixels; p++)
+            shade += shade_differs(data + 3 * p, bracketing_image + 3 * p);
         if (images) {
             char path[1024];
             snprintf(path, sizeof path, "%s/torus_far_%g_%g_%s.png", images, distance, tube,
@@ -229,7 +230,8 @@ int main(int argc, char **argv)
     if (hr_context_create(&ctx) != HR_OK) return 1;
     static const double distances[] = {1e4, 1e6}, tubes[] = {0.2, 0.05, 0.01};
     for (int d = 0; d < 2; d++)
-        for (int t = 0; t < 3; t++) run_tube(ctx, distances[d], tubes[t], width, height, repeats, images);
+        for (int t = 0; t < 3; t++)
+            run_tube(ctx, distances[d], tubes[t], width, height, repeats, images);
     hr_context_destroy(ctx);
     return 0;
 }
