@@ -389,12 +389,13 @@ class Study:
             lost = [r["scale"] for r in rs if r["in_lost"]]
             gaps = {r["scale"]: r["thinnest_gap"] for r, _ in shell if r["method"] == method}
             picks = sorted(set([min(gaps), 1.0, 1e6, max(gaps)]) & set(gaps))
-            bad_text = ", ".join(f"{x:g}" for x in sorted(set(bad))) or "none of those tried"
+            def scales(xs, what):
+                listed = ", ".join(f"{x:g}" for x in sorted(set(xs)))
+                return f"{what} at S = {listed}" if xs else f"no {what} at any scale"
+
             out.append(
-                f"- {method}: self-hits at scales {bad_text}; "
-                f"rays lost through the object at "
-                f"{', '.join(f'{x:g}' for x in sorted(set(lost))) if lost else 'none'}; "
-                "thinnest shell found "
+                f"- {method}: {scales(bad, 'self-hits')}; "
+                f"{scales(lost, 'rays lost through the object')}; thinnest shell found "
                 + ", ".join(f"{gaps[x]:.3g} at S = {x:g}" for x in picks) + ".")
         bound_ok = not any(r["out_self"] + r["in_self"] + r["in_lost"]
                            for r, _ in selfhit if r["method"] == "error bound")
