@@ -17,8 +17,8 @@ in DOCS/accuracy/:
   quadratic against the modules' stable forms, by distance);
 - spawned rays: build/bench/accuracy/spawn_offset (fixed epsilons against
   hr_hit_spawn_origin: self-hits over scene scale, thinnest shell);
-- samples per pixel and adaptive supersampling: `hitray render` of
-  scenes/demo.sdl and bench/scenes/sphere_grid.sdl, RMSE of the shown
+- samples per pixel, adaptive supersampling and the contribution cut-off:
+  `hitray render` of scenes/demo.sdl and bench/scenes/sphere_grid.sdl, RMSE of the shown
   (sRGB-encoded, clamped) values against a high-sample reference rendered
   once and cached under BUILD/accuracy-cache (keyed by the scene, the size,
   the sample count and the bytes of the hitray binary and libraries).
@@ -49,22 +49,27 @@ import numpy as np  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
-# name -> (scene file relative to ROOT, what it shows)
+# name -> (scene file relative to ROOT, what it shows, whether the
+# contribution cut-off can cut anything: only mirrors and glass spawn rays
+# with a weight below 1)
 RENDER_SCENES = {
-    "demo": ("scenes/demo.sdl", "the demo: mirror, glass ball, shadows, depth 6"),
+    "demo": ("scenes/demo.sdl", "the demo: mirror, glass ball, shadows, depth 6", True),
     "sphere_grid": ("bench/scenes/sphere_grid.sdl",
-                    "10,000 small spheres receding to the horizon: detail far below a pixel"),
+                    "10,000 small spheres receding to the horizon: detail far below a pixel; no "
+                    "mirror or glass, so no --min-weight rows", False),
 }
 
 # Each setting of the study in full and in --quick form.
 FULL = dict(torus_rays=20000, torus_repeats=5, quad_rays=50000, quad_repeats=5,
             spawn_rays=20000, shell_rays=500, far_size="320x240", far_repeats=3,
             render_size="200x150", spp=[1, 2, 4, 8, 16, 32, 64, 128, 256], ref_spp=2048,
-            adaptive=[0.02, 0.05, 0.1], adaptive_spp=[4, 16, 64, 256], render_repeats=3)
+            adaptive=[0.02, 0.05, 0.1], adaptive_spp=[4, 16, 64, 256],
+            min_weight=[0.01, 0.05, 0.1, 0.2], min_weight_spp=16, render_repeats=3)
 QUICK = dict(torus_rays=1000, torus_repeats=1, quad_rays=1000, quad_repeats=1,
              spawn_rays=500, shell_rays=20, far_size="64x48", far_repeats=1,
              render_size="48x36", spp=[1, 4, 16], ref_spp=64,
-             adaptive=[0.05], adaptive_spp=[16], render_repeats=1)
+             adaptive=[0.05], adaptive_spp=[16], min_weight=[0.1], min_weight_spp=4,
+             render_repeats=1)
 
 
 ERROR_HEADER = ["worst rel", "p99 rel", "worst u·c", "p99 u·c", "clear −/+", "tangent −/+"]
@@ -410,7 +415,7 @@ class Study:
         out.append("")
         md += out
 
-    # --- renders: samples per pixel and adaptive supersampling -------------------
+    # --- renders: samples per pixel, adaptive supersampling, the cut-off --------
 
     def tool_hash(self):
         """The bytes that decide a render: the binary, the library, the modules."""
@@ -422,11 +427,13 @@ class Study:
             h.update(p.read_bytes())
         return h.hexdigest()
 
-    def render(self, scene, spp, adaptive, out):
+    def render(self, scene, spp, out, adaptive=None, min_weight=None):
         cmd = [self.exe("bin", "hitray"), "render", scene, "-o", out, "--size",
                self.s["render_size"], "--spp", str(spp)]
         if adaptive:
             cmd += ["--adaptive", str(adaptive)]
+        if min_weight:
+            cmd += ["--min-weight", str(min_weight)]
         stats = out.with_suffix(".json")
         result = subprocess.run([str(c) for c in cmd + ["--stats-json", stats]], cwd=ROOT,
                                 capture_output=True, text=True)
@@ -446,20 +453,23 @@ class Study:
         if not path.exists():
             print(f"run_accuracy: reference {rel(path)} (once)", file=sys.stderr, flush=True)
             tmp = self.work / f"{name}-ref.pfm"
-            self.render(scene, self.s["ref_spp"], None, tmp)
+            self.render(scene, self.s["ref_spp"], tmp)
             shutil.copyfile(tmp, path)
         return read_pfm(path), cmd
 
     def samples(self):
         s = self.s
         md = self.md
-        md += ["## Samples per pixel and adaptive supersampling", "",
+        md += ["## Samples per pixel, adaptive supersampling and the cut-off", "",
                f"`hitray render` at {s['render_size']}, every core, `--spp N` for N = "
                f"{', '.join(map(str, s['spp']))}, and `--adaptive T --spp N` for T = "
                f"{', '.join(map(str, s['adaptive']))} and N = "
                f"{', '.join(map(str, s['adaptive_spp']))} (adaptive supersampling, "
                "docs/effects.md: pixels whose corners differ by more than T get the N-sample "
-               "pattern, the others the mean of their corners). Error: RMSE of every channel "
+               "pattern, the others the mean of their corners), and the other opt-in saving, "
+               f"`--min-weight W --spp {s['min_weight_spp']}` for W = "
+               f"{', '.join(map(str, s['min_weight']))} (the contribution cut-off: no reflected "
+               "or refracted ray whose path weight is below W). Error: RMSE of every channel "
                "of every pixel as shown (sRGB-encoded, clamped to [0, 1], the PNG's value "
                "before rounding) against a reference rendered with "
                f"`--spp {s['ref_spp']}` (the same command with that count; cached in the "
@@ -470,33 +480,37 @@ class Study:
                f"{s['render_repeats']} runs. rays: every ray cast (camera, shadow, reflected, "
                "refracted).", ""]
         plots = {}
-        for name, (scene, what) in RENDER_SCENES.items():
+        for name, (scene, what, cuts) in RENDER_SCENES.items():
             ref, ref_cmd = self.reference(name, scene)
             start = time.monotonic()
-            settings = [(n, None) for n in s["spp"]]
-            settings += [(n, t) for t in s["adaptive"] for n in s["adaptive_spp"]]
+            settings = [dict(spp=n) for n in s["spp"]]
+            settings += [dict(spp=n, adaptive=t) for t in s["adaptive"] for n in s["adaptive_spp"]]
+            if cuts:
+                settings += [dict(spp=s["min_weight_spp"], min_weight=w) for w in s["min_weight"]]
             rows = []
-            for spp, adaptive in settings:
-                out = self.work / f"{name}-{spp}-{adaptive}.pfm"
+            for i, setting in enumerate(settings):
+                out = self.work / f"{name}-{i}.pfm"
                 best = None
                 for _ in range(s["render_repeats"]):
-                    cmd, stats = self.render(scene, spp, adaptive, out)
+                    cmd, stats = self.render(scene, out=out, **setting)
                     if best is None or stats["seconds"] < best["seconds"]:
                         best = stats
                 rays = sum(best[k] for k in ("primary", "shadow", "reflected", "refracted"))
                 rmse = display_rmse(read_pfm(out), ref)
                 shown = [c if c != out else "OUT.pfm" for c in cmd]
-                rows.append(dict(spp=spp, adaptive=adaptive, seconds=best["seconds"], rays=rays,
-                                 rmse=rmse, refined=best.get("pixels_refined", 0), cmd=shown))
+                rows.append(dict({"adaptive": None, "min_weight": None}, **setting,
+                                 seconds=best["seconds"], rays=rays, rmse=rmse,
+                                 refined=best.get("pixels_refined", 0),
+                                 cut=best.get("rays_cut", 0), cmd=shown))
             self.note_load(f"renders of {name}", time.monotonic() - start)
             plots[name] = rows
             md += [f"### {name}: `{scene}`", "", f"{what.capitalize()}. Reference: "
                    f"`{quote(ref_cmd)}`.", ""]
-            md += table(["setting", "seconds", "rays", "pixels refined", "RMSE", "command"],
-                        [[f"{r['spp']} spp" if r["adaptive"] is None
-                          else f"adaptive {r['adaptive']}, {r['spp']} spp",
-                          f"{r['seconds']:.4f}", r["rays"],
+            md += table(["setting", "seconds", "rays", "pixels refined", "rays cut", "RMSE",
+                         "command"],
+                        [[setting_label(r), f"{r['seconds']:.4f}", r["rays"],
                           r["refined"] if r["adaptive"] else "—",
+                          r["cut"] if r["min_weight"] else "—",
                           f"{r['rmse']:.3e}", f"`{quote(r['cmd'])} --stats-json S.json`"]
                          for r in rows])
         self.plot_samples(plots)
@@ -506,7 +520,7 @@ class Study:
     def samples_reading(self, plots):
         out = ["**Reading it.**", ""]
         for name, rows in plots.items():
-            full = [r for r in rows if r["adaptive"] is None]
+            full = [r for r in rows if r["adaptive"] is None and r["min_weight"] is None]
             adaptive = [r for r in rows if r["adaptive"] is not None]
             # An adaptive setting beats full sampling when some full setting
             # is both slower and less accurate (dominated).
@@ -543,6 +557,15 @@ class Study:
                            + f" where the full render reaches {same[0]:.3g}: what is left is the "
                            "error of the pixels not refined, which more samples do not reduce"
                            + ("; the smaller T, the lower it was here." if rising else "."))
+            cut = [r for r in rows if r["min_weight"] is not None]
+            base = [f for f in full if cut and f["spp"] == cut[0]["spp"]]
+            if cut and base:
+                b = base[0]
+                out.append(f"  The cut-off at {b['spp']} spp (full: {b['seconds']:.3g} s, RMSE "
+                           f"{b['rmse']:.3g}): "
+                           + "; ".join(f"W = {r['min_weight']} {r['cut']} rays cut, "
+                                       f"{b['seconds'] / r['seconds']:.2f}× the speed, RMSE "
+                                       f"{r['rmse']:.3g}" for r in cut) + ".")
         out.append("- For a user: read the plot at the error you can accept; adaptive "
                    "supersampling pays where most pixels are flat (its corners agree) and "
                    "cannot see detail that falls between the corners (docs/effects.md), which "
@@ -652,9 +675,16 @@ class Study:
         fig, axes = plt.subplots(1, len(plots), figsize=(5.5 * len(plots), 4.4))
         axes = np.atleast_1d(axes)
         for ax, (name, rows) in zip(axes, plots.items()):
-            full = [r for r in rows if r["adaptive"] is None]
+            full = [r for r in rows if r["adaptive"] is None and r["min_weight"] is None]
             ax.plot([r["seconds"] for r in full], [r["rmse"] for r in full], "o-", color="k",
                     label="--spp N")
+            cut = [r for r in rows if r["min_weight"] is not None]
+            if cut:
+                ax.plot([r["seconds"] for r in cut], [r["rmse"] for r in cut], "^", color="m",
+                        label=f"--min-weight W --spp {cut[0]['spp']}")
+                for r in cut:
+                    ax.annotate(f"W={r['min_weight']}", (r["seconds"], r["rmse"]), fontsize=6,
+                                xytext=(-30, 4), textcoords="offset points")
             for r in full:
                 ax.annotate(str(r["spp"]), (r["seconds"], r["rmse"]), fontsize=7,
                             xytext=(3, 3), textcoords="offset points")
@@ -705,6 +735,14 @@ class Study:
         (self.docs / "accuracy.md").write_text("\n".join(head + self.md).rstrip() + "\n")
         print(f"run_accuracy: wrote {rel(self.docs / 'accuracy.md')} in {elapsed:.0f} s",
               file=sys.stderr)
+
+
+def setting_label(r):
+    if r["adaptive"] is not None:
+        return f"adaptive {r['adaptive']}, {r['spp']} spp"
+    if r["min_weight"] is not None:
+        return f"min-weight {r['min_weight']}, {r['spp']} spp"
+    return f"{r['spp']} spp"
 
 
 def fmt_load(load):

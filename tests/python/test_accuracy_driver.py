@@ -35,7 +35,7 @@ def test_writes_every_section_and_plot(quick_run):
     text = (quick_run / "accuracy.md").read_text()
     for heading in ("## Torus root solvers", "### The far torus, rendered",
                     "## Sphere and cylinder", "## Spawned-ray offset",
-                    "## Samples per pixel and adaptive supersampling"):
+                    "## Samples per pixel, adaptive supersampling and the cut-off"):
         assert heading in text
     for png in ("torus_solvers", "quadric_forms", "spawn_offset", "samples"):
         path = quick_run / "accuracy" / f"{png}.png"
@@ -58,4 +58,6 @@ def test_tables_quote_what_the_programs_printed(quick_run):
     assert "build/bench/accuracy/spawn_offset --rays=" in text
     # Every render row names its own command.
     renders = [r for r in text.splitlines() if r.startswith("| ") and "hitray render" in r]
-    assert len(renders) == 2 * 4  # two scenes: spp 1, 4, 16 and one adaptive setting
+    # Two scenes: spp 1, 4, 16 and one adaptive setting; the demo also one
+    # cut-off (the sphere grid has nothing to cut).
+    assert len(renders) == 2 * 4 + 1
