@@ -134,6 +134,7 @@ class Study:
         self.work = pathlib.Path(tempfile.mkdtemp(prefix="hitray-accuracy-"))
         self.md = []
         self.loads = []
+        self.summary = []  # (section title, anchor, the reading's advice for a user)
 
     # --- running things ----------------------------------------------------
 
@@ -166,6 +167,14 @@ class Study:
         cmd = [self.exe(*path.split("/")), *flags]
         cmd += [f"--{k.replace('_', '-')}={v}" for k, v in options.items()]
         return cmd, self.run_json(pathlib.Path(path).name, cmd)
+
+    def advise(self, title, anchor, reading):
+        """Keeps a reading's last line, its advice for a user, for the summary
+        at the top; returns the reading."""
+        advice = [line for line in reading if line.startswith("- For a user: ")]
+        if advice:
+            self.summary.append((title, anchor, advice[-1][len("- For a user: "):]))
+        return reading
 
     def note_load(self, what, seconds):
         self.loads.append((what, seconds, os.getloadavg()))
@@ -218,7 +227,8 @@ class Study:
         if speckle:
             md += [f"![{speckle[1]}](accuracy/torus_far_speckles.png)", "",
                    f"*{speckle[1]}*", ""]
-        md += self.torus_reading([r for r, _ in rows], [r for r, _ in far])
+        md += self.advise("Torus solvers", "torus-root-solvers",
+                          self.torus_reading([r for r, _ in rows], [r for r, _ in far]))
 
     def torus_reading(self, rows, far):
         out = ["**Reading it.**", ""]
@@ -286,7 +296,7 @@ class Study:
             "(near the torus, grazing, thin tubes: also where shadow rays start) the closed "
             f"form's worst error reaches {closed:.3g} u·c and Newton polishing brings it to "
             f"{polished:.3g} u·c, but polishing cannot restore a root the closed form lost, nor "
-            "remove one it invented (the −/+ counts above).")
+            "remove one it invented (the −/+ counts of the table).")
         out.append("")
         return out
 
@@ -334,11 +344,18 @@ class Study:
                 f"distance. Clear rays with a wrong hit count: textbook {wrong_tb}, stable "
                 f"{wrong_st}. The module call costs {min(cost):.1f}–{max(cost):.1f}× the bare "
                 "textbook roots (that includes filling the hit records).")
-        out.append("- For a user: nothing to choose (the modules always use the stable forms); "
-                   "this is what they buy, and what a shape written with the textbook formula "
-                   "(a Python or plug-in shape, say) would lose for far rays.")
+        worst_tb = max(rs, key=lambda r: r["worst_uc"] if r["form"] == "textbook" else 0)
+        worst_st = max(r["worst_uc"] for r in rs if r["form"] != "textbook")
+        out.append("- For a user: nothing to choose: the modules always use the stable forms, "
+                   f"whose t stayed within {worst_st:.3g} u·c at every distance, where the "
+                   f"textbook quadratic's error grows with the distance ({worst_tb['worst_uc']:.3g} "
+                   f"u·c, relative {worst_tb['worst_rel']:.2g}, for a {worst_tb['shape']} "
+                   f"{worst_tb['distance']:g} away). A shape written with the textbook formula "
+                   "(a Python or plug-in shape, say) would have that error for far rays.")
         out.append("")
-        self.md += out
+        self.md += self.advise("Sphere and cylinder",
+                               "sphere-and-cylinder-the-textbook-quadratic-against-the-stable-forms",
+                               out)
 
     def spawn(self):
         s = self.s
@@ -413,7 +430,7 @@ class Study:
                    + "; hitray spawns every shadow, reflected and refracted ray with it, so "
                    "there is no knob: this section is why.")
         out.append("")
-        md += out
+        md += self.advise("Spawned-ray offset", "spawned-ray-offset", out)
 
     # --- renders: samples per pixel, adaptive supersampling, the cut-off --------
 
@@ -515,7 +532,9 @@ class Study:
                          for r in rows])
         self.plot_samples(plots)
         md += ["![RMSE against render time, log-log](accuracy/samples.png)", ""]
-        md += self.samples_reading(plots)
+        md += self.advise("Samples, adaptive supersampling, cut-off",
+                          "samples-per-pixel-adaptive-supersampling-and-the-cut-off",
+                          self.samples_reading(plots))
 
     def samples_reading(self, plots):
         out = ["**Reading it.**", ""]
@@ -731,7 +750,9 @@ class Study:
                 "- Timing: the best of several repeats (the count is given with each table): a "
                 "busy machine only slows a run down, so the fastest is the closest to the "
                 "machine's speed. Other work on the machine still shifts every time; the errors "
-                "and counts do not depend on it.", ""]
+                "and counts do not depend on it.", "", "## In short", ""]
+        head += [f"- **[{title}](#{anchor})**: {advice}" for title, anchor, advice in self.summary]
+        head.append("")
         (self.docs / "accuracy.md").write_text("\n".join(head + self.md).rstrip() + "\n")
         print(f"run_accuracy: wrote {rel(self.docs / 'accuracy.md')} in {elapsed:.0f} s",
               file=sys.stderr)
