@@ -7,7 +7,7 @@
  * degrees, centred that far from the eye, framed tightly (at 1e4 a view
  * angle of about 0.019 degrees), one light, a dark background; built
  * through the library because the SDL reader gives the torus no solver
- * parameter. For each tube and solver one JSON line:
+ * parameter. For each distance, tube and solver one JSON line:
  * - hitmiss: pixels whose primary ray (through the pixel centre, what the
  *   renderer casts at 1 spp) hits where the reference misses or misses where
  *   it hits. The reference carries the world ray into object space in
@@ -19,9 +19,10 @@
  * - t_rel: the worst relative error of t over the pixels where both hit;
  * - shade: pixels of the rendered 8-bit sRGB image that differ from the
  *   render with the bracketing solver. Bracketing is the reference image
- *   because its own hitmiss count against the quad reference is what this
- *   program prints first (0 in every run so far) and its t is within a few
- *   u * condition (bench/torus_solvers.c);
+ *   because it is the one solver that misses no root (torus_quartic.c), its t
+ *   is within a few u * condition (bench/torus_solvers.c), and its own hitmiss
+ *   count against the quad reference is the first line this program prints
+ *   for each view, so a reader can check it;
  * - seconds: the render's wall time at 1 spp, the best of `repeats`.
  * With --images, DIR/torus_far_<distance>_<tube>_<solver>.png are the
  * renders. */
