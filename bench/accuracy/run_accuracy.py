@@ -486,7 +486,8 @@ class Study:
                "pattern, the others the mean of their corners), and the other opt-in saving, "
                f"`--min-weight W --spp {s['min_weight_spp']}` for W = "
                f"{', '.join(map(str, s['min_weight']))} (the contribution cut-off: no reflected "
-               "or refracted ray whose path weight is below W). Error: RMSE of every channel "
+               "or refracted ray whose path weight is below W). Error (computed by "
+               "run_accuracy.py from the PFM images the commands wrote): RMSE of every channel "
                "of every pixel as shown (sRGB-encoded, clamped to [0, 1], the PNG's value "
                "before rounding) against a reference rendered with "
                f"`--spp {s['ref_spp']}` (the same command with that count; cached in the "
@@ -494,9 +495,11 @@ class Study:
                "of its own, so the smallest RMSEs are an upper bound on the distance to the "
                "true image. Time: the render's wall time (--stats-json `seconds`: not the "
                f"loading of the scene or the writing of the image), best of "
-               f"{s['render_repeats']} runs. rays: every ray cast (camera, shadow, reflected, "
-               "refracted).", ""]
+               f"{s['render_repeats']} runs, shown to 0.1 ms. rays: every ray cast (camera, "
+               "shadow, reflected, refracted); pixels refined and rays cut: the statistics "
+               "`pixels_refined` and `rays_cut`.", ""]
         plots = {}
+        raw = []  # each render's fastest --stats-json and its RMSE, for raw/renders.jsonl
         for name, (scene, what, cuts) in RENDER_SCENES.items():
             ref, ref_cmd = self.reference(name, scene)
             start = time.monotonic()
@@ -514,7 +517,9 @@ class Study:
                         best = stats
                 rays = sum(best[k] for k in ("primary", "shadow", "reflected", "refracted"))
                 rmse = display_rmse(read_pfm(out), ref)
-                shown = [c if c != out else "OUT.pfm" for c in cmd]
+                shown = [c if c != out else "OUT.pfm" for c in cmd] + ["--stats-json", "S.json"]
+                raw.append(json.dumps({"scene": scene, "command": quote(shown),
+                                       "best_stats": best, "rmse": rmse}))
                 rows.append(dict({"adaptive": None, "min_weight": None}, **setting,
                                  seconds=best["seconds"], rays=rays, rmse=rmse,
                                  refined=best.get("pixels_refined", 0),
@@ -528,8 +533,9 @@ class Study:
                         [[setting_label(r), f"{r['seconds']:.4f}", r["rays"],
                           r["refined"] if r["adaptive"] else "—",
                           r["cut"] if r["min_weight"] else "—",
-                          f"{r['rmse']:.3e}", f"`{quote(r['cmd'])} --stats-json S.json`"]
+                          f"{r['rmse']:.3e}", f"`{quote(r['cmd'])}`"]
                          for r in rows])
+        (self.raw / "renders.jsonl").write_text("\n".join(raw) + "\n")
         self.plot_samples(plots)
         md += ["![RMSE against render time, log-log](accuracy/samples.png)", ""]
         md += self.advise("Samples, adaptive supersampling, cut-off",
@@ -738,7 +744,8 @@ class Study:
         head = ["# Accuracy: what each knob costs in time", "",
                 "Written by `bench/accuracy/run_accuracy.py` (`make bench-accuracy`); every number "
                 "below is what the quoted command printed in that run (the raw output of each "
-                "program is in `docs/accuracy/raw/`). Rerun it to measure another machine.", "",
+                "program, and the statistics of each render, are in `docs/accuracy/raw/`). "
+                "Rerun it to measure another machine.", "",
                 f"- Machine: {load_run_bench().machine_line()}",
                 f"- Run: {started:%Y-%m-%d %H:%M} UTC, commit {git_commit()}, "
                 + ("--quick (smoke run: small sets, not for reading)" if self.args.quick

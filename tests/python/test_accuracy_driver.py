@@ -61,3 +61,5 @@ def test_tables_quote_what_the_programs_printed(quick_run):
     # Two scenes: spp 1, 4, 16 and one adaptive setting; the demo also one
     # cut-off (the sphere grid has nothing to cut).
     assert len(renders) == 2 * 4 + 1
+    kept = [json.loads(line) for line in (raw / "renders.jsonl").read_text().splitlines()]
+    assert [f"`{k['command']}`" in text for k in kept] == [True] * len(renders)
