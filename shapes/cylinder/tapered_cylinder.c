@@ -54,9 +54,12 @@
  * w~ is added to the bound.) Like the sphere's, this bounds the distance to
  * the surface, not the displacement along it.
  * Disks: x, y from origin + t dir, z exactly 0 or 1; t = fl(fl(h - o.z)/d.z)
- * has two roundings, see shape_ray_point_error.
+ * has two roundings, see shape_ray_point_error. A point outside the disk's
+ * radius is moved radially onto its rim, as the wall's z is clamped into
+ * the slab (see disk_fill).
  * Normals: the wall's is the gradient of Q / 2, (x, y, -k w) (+z at the
  * apex, where the gradient vanishes); the disks' are -z and +z. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -187,19 +190,53 @@ SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_r
         hit->normal = shape_vec3(0.0, 0.0, 1.0);
 }
 
-static void disk_fill(const hr_ray *ray, hr_hit *hit)
+/* A disk's time is an end of the span of the slab that the wall's span
+ * did not cut off, so the ray is inside the wall there only as far as
+ * rounding of the wall's roots can tell. For s >> 1 the wall meets both
+ * disks at an angle of about 1 / |k|, and a point a distance e from the
+ * quadric may lie e |k| outside the disk: with s = 1e6, a ray crossing
+ * z = 1 just 5e-7 outside the cap's rim, and the quadric 5e-13 above it,
+ * had a wall root one ulp before the cap's time and left through the cap
+ * 5e-7 off it, against a bound of 1e-9. The root's error has no bound
+ * here, so the point is clamped onto the disk instead, as wall_fill clamps
+ * z: (x, y) scaled by r / rho where rho > r, on q = (x, y) 2^-e scaled
+ * exactly to a largest component in [0.5, 1). There rho~ = |q| (1 +
+ * theta_2), scale~ = (r / |q|)(1 + theta_3), x' = qx r / |q| (1 + theta_4),
+ * each coordinate within gamma(4) r of the rim point (qx, qy) r / |q|; a
+ * cap radius s below DBL_MIN may round the scale and the product to
+ * subnormals, off by DBL_TRUE_MIN / 2 each, so the bound is
+ * gamma(4) r + DBL_TRUE_MIN. The ray-point bound is kept where it is
+ * larger: the clamp is a projection onto the disk, which brings the point
+ * no farther from any point of the disk, an exact crossing near the rim
+ * included. A point whose rho~ rounded to r or below lies within
+ * gamma(3) r outside, which that bound (at least gamma(5) r / sqrt(2))
+ * covers. */
+static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
 {
     const int cap = hit->surface == SURFACE_CAP;
-    hit->point = shape_vec3(ray->origin.x + hit->t * ray->dir.x,
-                            ray->origin.y + hit->t * ray->dir.y, cap ? 1.0 : 0.0);
+    const double r = cap ? shape->s : 1.0;
+    const double x = ray->origin.x + hit->t * ray->dir.x;
+    const double y = ray->origin.y + hit->t * ray->dir.y;
+    hit->point = shape_vec3(x, y, cap ? 1.0 : 0.0);
     hit->normal = shape_vec3(0.0, 0.0, cap ? 1.0 : -1.0);
     hit->error = shape_ray_point_error(ray, hit->t, 2);
+    const double big = fmax(fabs(x), fabs(y));
+    if (!(big > 0.0) || !isfinite(big)) return;
+    int exponent;
+    frexp(big, &exponent);
+    const double qx = ldexp(x, -exponent), qy = ldexp(y, -exponent);
+    const double rho = sqrt(qx * qx + qy * qy);
+    if (!(rho > ldexp(r, -exponent))) return;
+    const double scale = r / rho;
+    hit->point.x = qx * scale;
+    hit->point.y = qy * scale;
+    hit->error = fmax(hit->error, shape_gamma(4) * r + DBL_TRUE_MIN);
 }
 
 static void tapered_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
     if (hit->surface == SURFACE_WALL) wall_fill(shape, ray, hit);
-    else disk_fill(ray, hit);
+    else disk_fill(shape, ray, hit);
 }
 
 static hr_status tapered_trace(const hr_hit_args *args, int32_t mode)
