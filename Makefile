@@ -112,7 +112,6 @@ bench: build
 # What accuracy costs in time (bench/accuracy): measures every accuracy knob
 # on this machine and writes docs/accuracy.md with its tables and plots.
 bench-accuracy: build
-	@scripts/bootstrap.sh --accuracy
 	.venv/bin/python bench/accuracy/run_accuracy.py --build $(BUILD)
 
 clean:

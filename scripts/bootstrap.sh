@@ -5,8 +5,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 
-# `bootstrap.sh --bench` adds what `make bench` compares against;
-# `bootstrap.sh --accuracy` adds matplotlib for `make bench-accuracy`'s plots.
+# `bootstrap.sh --bench` adds what `make bench` compares against.
 bench_pkgs=""
 [ "${1:-}" = "--bench" ] && bench_pkgs="povray libembree-dev"
 # clang, its runtimes (libFuzzer, the sanitizers) and llvm (the symbolizer)
@@ -46,8 +45,3 @@ if [ -n "$stale" ]; then
     touch "$stamp"
 fi
 
-# The accuracy study's plots (bench/accuracy), not needed by the tests.
-if [ "${1:-}" = "--accuracy" ]; then
-    "$venv/bin/python" -c "import matplotlib" 2>/dev/null ||
-        "$venv/bin/python" -m pip install -q "matplotlib>=3.6"
-fi

@@ -2,7 +2,7 @@
 bench-accuracy`) into a temporary folder: it runs every program of the study
 and writes the document, the plots and the raw output, and the tables quote
 what the programs printed. A few seconds; needs the build's bench programs
-and matplotlib (`scripts/bootstrap.sh --accuracy`)."""
+and matplotlib (scripts/requirements-test.txt)."""
 
 import json
 import subprocess
@@ -19,7 +19,6 @@ PROGRAMS = ["bench/torus_solvers", "bench/accuracy/quadric_forms",
 
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory):
-    pytest.importorskip("matplotlib")
     missing = [p for p in PROGRAMS if not (BUILD / p).is_file()]
     if missing:
         pytest.skip(f"not built: {', '.join(missing)} (HITRAY_BUILD_BENCH)")
