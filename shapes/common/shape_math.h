@@ -82,6 +82,24 @@ static inline int shape_vec3_is_finite(hr_vec3 v)
     return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
+/* The power of two that brings v's largest component into [0.5, 1):
+ * *exponent = e with max |v_i| = m 2^e, m in [0.5, 1). Returns 0 (and
+ * leaves *exponent alone) for a zero or non-finite v, which no scaling
+ * helps. */
+static inline int shape_vec3_scale_exponent(hr_vec3 v, int *exponent)
+{
+    const double big = shape_max3(fabs(v.x), fabs(v.y), fabs(v.z));
+    if (!(big > 0.0) || !isfinite(big)) return 0;
+    frexp(big, exponent);
+    return 1;
+}
+
+/* v 2^e, exact barring overflow or underflow. */
+static inline hr_vec3 shape_vec3_ldexp(hr_vec3 v, int e)
+{
+    return shape_vec3(ldexp(v.x, e), ldexp(v.y, e), ldexp(v.z, e));
+}
+
 /* v scaled by a power of two (exactly) to a largest component in
  * [0.5, 1), so that its squares neither underflow nor overflow: a length
  * taken from them then has the relative error the shapes' bounds assume
@@ -92,11 +110,8 @@ static inline int shape_vec3_is_finite(hr_vec3 v)
  * scaling is exact and cancels). */
 static inline hr_vec3 shape_vec3_rescaled(hr_vec3 v)
 {
-    const double big = shape_max3(fabs(v.x), fabs(v.y), fabs(v.z));
-    if (!(big > 0.0) || !isfinite(big)) return v;
     int exponent;
-    frexp(big, &exponent);
-    return shape_vec3(ldexp(v.x, -exponent), ldexp(v.y, -exponent), ldexp(v.z, -exponent));
+    return shape_vec3_scale_exponent(v, &exponent) ? shape_vec3_ldexp(v, -exponent) : v;
 }
 
 /* Rounding error of shape_ray_at(ray, t), per coordinate, when t itself came

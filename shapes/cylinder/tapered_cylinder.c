@@ -96,14 +96,9 @@ typedef struct tapered_cylinder {
 SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, const hr_ray *ray)
 {
     const hr_vec3 o = ray->origin;
-    const double largest = shape_max3(fabs(ray->dir.x), fabs(ray->dir.y), fabs(ray->dir.z));
     int exponent = 0;
-    if (largest > 0.0 && isfinite(largest)) {
-        frexp(largest, &exponent); /* largest = m 2^exponent, m in [0.5, 1) */
-        exponent -= 1;
-    }
-    const hr_vec3 d = shape_vec3(ldexp(ray->dir.x, -exponent), ldexp(ray->dir.y, -exponent),
-                                 ldexp(ray->dir.z, -exponent));
+    if (shape_vec3_scale_exponent(ray->dir, &exponent)) exponent -= 1; /* to [1, 2) */
+    const hr_vec3 d = shape_vec3_ldexp(ray->dir, -exponent);
     const double k = shape->slope;
     const double w0 = fma(k, o.z, 1.0);
     const double omega = k * d.z;
@@ -220,16 +215,14 @@ static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *
     hit->point = shape_vec3(x, y, cap ? 1.0 : 0.0);
     hit->normal = shape_vec3(0.0, 0.0, cap ? 1.0 : -1.0);
     hit->error = shape_ray_point_error(ray, hit->t, 2);
-    const double big = fmax(fabs(x), fabs(y));
-    if (!(big > 0.0) || !isfinite(big)) return;
     int exponent;
-    frexp(big, &exponent);
-    const double qx = ldexp(x, -exponent), qy = ldexp(y, -exponent);
-    const double rho = sqrt(qx * qx + qy * qy);
+    if (!shape_vec3_scale_exponent(shape_vec3(x, y, 0.0), &exponent)) return;
+    const hr_vec3 q = shape_vec3_ldexp(shape_vec3(x, y, 0.0), -exponent);
+    const double rho = sqrt(q.x * q.x + q.y * q.y);
     if (!(rho > ldexp(r, -exponent))) return;
     const double scale = r / rho;
-    hit->point.x = qx * scale;
-    hit->point.y = qy * scale;
+    hit->point.x = q.x * scale;
+    hit->point.y = q.y * scale;
     hit->error = fmax(hit->error, shape_gamma(4) * r + DBL_TRUE_MIN);
 }
 
