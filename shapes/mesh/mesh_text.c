@@ -1,12 +1,12 @@
 /* Tokens, numbers and messages of the mesh readers (mesh_text.h). */
 #include "mesh_text.h"
 
-#include <langinfo.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
+
+#include "mesh_number.h"
 
 void mesh_text_init(mesh_text *t, const char *text, size_t length, const char *shown, char *error,
                     size_t error_size)
@@ -109,7 +109,8 @@ static int is_digit(char c)
 }
 
 /* The decimal grammar: [+-] digits [. digits] [e [+-] digits], at least one
- * digit before the exponent. strtod alone would also take hex, inf and nan. */
+ * digit before the exponent. The converter alone would also take inf and nan
+ * (and strtod hex). */
 static int is_decimal(const char *s, size_t n)
 {
     size_t i = 0, digits = 0;
@@ -131,29 +132,13 @@ static int is_decimal(const char *s, size_t n)
 
 int mesh_parse_number(const mesh_token *tok, double *out)
 {
-    /* Longer numbers than this carry no more information for a double. */
-    char buffer[512];
-    if (tok->length == 0 || tok->length >= sizeof buffer - 8) return 0;
+    /* Tokens this long are refused before any conversion: no coordinate
+     * needs 500 characters, and the limit is the one the readers have
+     * always applied. */
+    if (tok->length == 0 || tok->length >= 504) return 0;
     if (!is_decimal(tok->start, tok->length)) return 0;
-    /* strtod reads the decimal point of the calling thread's locale: write
-     * that point in place of '.' (nl_langinfo reads the same locale, and
-     * unlike localeconv shares no static buffer between threads). */
-    const char *point = nl_langinfo(RADIXCHAR);
-    size_t k = 0;
-    for (size_t i = 0; i < tok->length; i++) {
-        if (tok->start[i] == '.' && point && point[0] && strcmp(point, ".") != 0) {
-            size_t np = strlen(point);
-            if (np > 4) return 0;
-            memcpy(buffer + k, point, np);
-            k += np;
-        } else {
-            buffer[k++] = tok->start[i];
-        }
-    }
-    buffer[k] = '\0';
-    char *end = NULL;
-    double value = strtod(buffer, &end);
-    if (!end || *end != '\0') return 0;
+    double value;
+    if (!mesh_decimal_to_double(tok->start, tok->length, &value)) return 0;
     if (!isfinite(value) || fabs(value) > MESH_MAX_COORDINATE) return -1;
     *out = value;
     return 1;
