@@ -6,11 +6,21 @@
  * it: a pathological file (a million triangles stacked on one point) still
  * gives a tree no deeper than MESH_BVH_MAX_DEPTH.
  *
+ * The build works on one array of items (a triangle's box, its centre and
+ * its number, 40 bytes) that it partitions in place, so each level reads
+ * the array front to back. A node costs two passes over its items: one
+ * bins them on all three axes at once, one partitions them and gathers the
+ * bounds of each side's centres; the boxes of the two sides come from the
+ * bins (a union of float boxes is exact), so no pass is spent on bounds.
+ *
  * Nodes are laid out depth first (left child next to its parent), and the
  * triangles are put in leaf order, so a leaf is a run of the corner array. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "mesh.h"
 
@@ -22,8 +32,6 @@
  * per ray. */
 #define TRAVERSAL_COST 4.0
 
-/* Float bounds of a double: rounded down (up), so the float box contains
- * the double one; beyond float's range, the widest box. */
 static float float_down(double x)
 {
     if (x > FLT_MAX) return FLT_MAX;
@@ -40,20 +48,35 @@ static float float_up(double x)
     return (double)f < x ? nextafterf(f, INFINITY) : f;
 }
 
+/* x, y, z and a fourth lane kept at 0, so that the binning loads a box
+ * as two SSE vectors. */
 typedef struct box {
-    float lo[3], hi[3];
+    float lo[4], hi[4];
 } box;
 
 static void box_empty(box *b)
 {
     for (int a = 0; a < 3; a++) b->lo[a] = INFINITY, b->hi[a] = -INFINITY;
+    b->lo[3] = b->hi[3] = 0.0f;
 }
 
-static void box_grow(box *b, const box *o)
+/* Written as selections, not conditional stores, so that they compile to
+ * min and max instructions without branches. */
+static float min_f(float a, float b)
+{
+    return a < b ? a : b;
+}
+
+static float max_f(float a, float b)
+{
+    return a > b ? a : b;
+}
+
+static void box_grow(box *restrict b, const box *restrict o)
 {
     for (int a = 0; a < 3; a++) {
-        if (o->lo[a] < b->lo[a]) b->lo[a] = o->lo[a];
-        if (o->hi[a] > b->hi[a]) b->hi[a] = o->hi[a];
+        b->lo[a] = min_f(o->lo[a], b->lo[a]);
+        b->hi[a] = max_f(o->hi[a], b->hi[a]);
     }
 }
 
@@ -67,18 +90,26 @@ static double box_half_area(const box *b)
     return dx * dy + dy * dz + dz * dx;
 }
 
+/* A triangle as the build moves it: its conservative float box, the
+ * box's centre (kept finite) and its number. */
+typedef struct item {
+    box b;
+    float c[3];
+    uint32_t tri; /* read with c as a fourth lane, masked off */
+} item;
+
+/* A node still to build: items[begin, end), the union of their boxes and
+ * the bounds of their centres. */
 typedef struct task {
-    uint32_t begin, end; /* range of `order` */
+    uint32_t begin, end;
     uint32_t parent;     /* node whose `index` names this right child */
     int32_t depth;
     int32_t is_right;
+    box bounds, centres;
 } task;
 
 typedef struct builder {
-    const mesh *m;
-    box *boxes;        /* per triangle, float, conservative */
-    float *centroids;  /* 3 per triangle: the box centre */
-    uint32_t *order;   /* triangle numbers in leaf order */
+    item *items;
     mesh_bvh_node *nodes;
     uint32_t node_count;
 } builder;
@@ -97,52 +128,71 @@ static void triangle_box(const mesh *m, uint32_t t, box *out)
         out->lo[a] = float_down(lo);
         out->hi[a] = float_up(hi);
     }
+    out->lo[3] = out->hi[3] = 0.0f;
 }
 
-static void sift_by_axis(const float *c, int axis, uint32_t *o, size_t root, size_t n)
+static void box_add_point(box *restrict b, const float *restrict p)
+{
+    for (int a = 0; a < 3; a++) {
+        b->lo[a] = min_f(p[a], b->lo[a]);
+        b->hi[a] = max_f(p[a], b->hi[a]);
+    }
+}
+
+/* The task's bounds and centres, from its items (the root, and the halves
+ * of a median split). */
+static void gather_bounds(const builder *b, task *t)
+{
+    box_empty(&t->bounds);
+    box_empty(&t->centres);
+    for (uint32_t i = t->begin; i < t->end; i++) {
+        box_grow(&t->bounds, &b->items[i].b);
+        box_add_point(&t->centres, b->items[i].c);
+    }
+}
+
+static void sift_by_axis(item *o, int axis, size_t root, size_t n)
 {
     for (;;) {
         size_t child = 2 * root + 1;
         if (child >= n) return;
-        if (child + 1 < n && c[3 * (size_t)o[child] + axis] < c[3 * (size_t)o[child + 1] + axis])
-            child++;
-        if (!(c[3 * (size_t)o[root] + axis] < c[3 * (size_t)o[child] + axis])) return;
-        uint32_t t = o[root];
+        if (child + 1 < n && o[child].c[axis] < o[child + 1].c[axis]) child++;
+        if (!(o[root].c[axis] < o[child].c[axis])) return;
+        item t = o[root];
         o[root] = o[child], o[child] = t;
         root = child;
     }
 }
 
-/* Rearranges order[begin, end) so that the k-th smallest centroid on
- * `axis` is at k, smaller ones before it and larger ones after:
- * quickselect (Hoare partition around the middle element), O(n) on
- * average and without recursion; after 64 rounds (an input built against
- * the pivot rule) the range is heapsorted instead, so the worst case is
+/* Rearranges items[begin, end) so that the k-th smallest centre on `axis`
+ * is at k, smaller ones before it and larger ones after: quickselect
+ * (Hoare partition around the middle element), O(n) on average and
+ * without recursion; after 64 rounds (an input built against the pivot
+ * rule) the range is heapsorted instead, so the worst case is
  * O(n log n). */
 static void select_median(builder *b, uint32_t begin, uint32_t end, int axis, uint32_t k)
 {
-    uint32_t *o = b->order;
-    const float *c = b->centroids;
+    item *o = b->items;
     uint32_t lo = begin, hi = end - 1;
     for (int round = 0; lo < hi; round++) {
         if (round == 64) {
             const size_t n = (size_t)hi - lo + 1;
-            uint32_t *r = o + lo;
-            for (size_t i = n / 2; i-- > 0;) sift_by_axis(c, axis, r, i, n);
+            item *r = o + lo;
+            for (size_t i = n / 2; i-- > 0;) sift_by_axis(r, axis, i, n);
             for (size_t e = n; e-- > 1;) {
-                uint32_t t = r[0];
+                item t = r[0];
                 r[0] = r[e], r[e] = t;
-                sift_by_axis(c, axis, r, 0, e);
+                sift_by_axis(r, axis, 0, e);
             }
             return;
         }
-        float pivot = c[3 * (size_t)o[lo + (hi - lo) / 2] + axis];
+        float pivot = o[lo + (hi - lo) / 2].c[axis];
         uint32_t i = lo, j = hi;
         while (i <= j) {
-            while (c[3 * (size_t)o[i] + axis] < pivot) i++;
-            while (c[3 * (size_t)o[j] + axis] > pivot) j--;
+            while (o[i].c[axis] < pivot) i++;
+            while (o[j].c[axis] > pivot) j--;
             if (i <= j) {
-                uint32_t t = o[i];
+                item t = o[i];
                 o[i] = o[j], o[j] = t;
                 i++;
                 if (j == 0) break;
@@ -155,96 +205,177 @@ static void select_median(builder *b, uint32_t begin, uint32_t end, int axis, ui
     }
 }
 
-/* Chooses how to split order[begin, end) with the binned SAH; returns the
- * split position (begin < split < end), or 0 for a leaf. */
-static uint32_t split_node(builder *b, const task *t, const box *bounds)
+/* Where a node's centres start on each axis, and the bins per unit
+ * length (0 on an axis without extent). */
+typedef struct binning {
+    float lo[4], scale[4];
+} binning;
+
+/* The bins of an item's centre on the three axes: (c - lo) scale in float,
+ * clamped to [0, BINS - 1] (a NaN, from an infinite difference times a
+ * zero scale, to 0), truncated. Monotone in c, so a bin boundary is a
+ * plane; the SSE2 and the scalar forms give the same bins (the same float
+ * operations), and the same function bins and partitions. */
+static void bins_of(const binning *g, const item *it, int out[4])
+{
+#if defined(__SSE2__)
+    const __m128 lane_mask = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    const __m128 c = _mm_and_ps(_mm_loadu_ps(it->c), lane_mask);
+    __m128 k = _mm_mul_ps(_mm_sub_ps(c, _mm_loadu_ps(g->lo)), _mm_loadu_ps(g->scale));
+    k = _mm_min_ps(_mm_max_ps(k, _mm_setzero_ps()), _mm_set1_ps((float)(BINS - 1)));
+    _mm_storeu_si128((__m128i *)(void *)out, _mm_cvttps_epi32(k));
+#else
+    for (int a = 0; a < 3; a++) {
+        float k = (it->c[a] - g->lo[a]) * g->scale[a];
+        k = k > 0.0f ? k : 0.0f;
+        k = k < (float)(BINS - 1) ? k : (float)(BINS - 1);
+        out[a] = (int)k;
+    }
+    out[3] = 0;
+#endif
+}
+
+typedef struct bin {
+    box b;
+    uint32_t count;
+} bin;
+
+static void bin_add(bin *into, const item *it)
+{
+    into->count++;
+#if defined(__SSE2__)
+    _mm_storeu_ps(into->b.lo, _mm_min_ps(_mm_loadu_ps(it->b.lo), _mm_loadu_ps(into->b.lo)));
+    _mm_storeu_ps(into->b.hi, _mm_max_ps(_mm_loadu_ps(it->b.hi), _mm_loadu_ps(into->b.hi)));
+#else
+    box_grow(&into->b, &it->b);
+#endif
+}
+
+typedef struct split {
+    int axis, last_bin; /* left: bins 0..last_bin on axis */
+    double cost;        /* count times half area, summed over the sides */
+    box left, right;
+} split;
+
+/* The best binned SAH split of the task on any axis; cost INFINITY when
+ * no axis separates its centres. One pass bins every item on all three
+ * axes. */
+static split best_split(const builder *b, const task *t, const binning *g)
+{
+    bin bins[3][BINS];
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < BINS; k++) box_empty(&bins[a][k].b), bins[a][k].count = 0;
+    for (uint32_t i = t->begin; i < t->end; i++) {
+        const item *it = &b->items[i];
+        int k[4];
+        bins_of(g, it, k);
+        bin_add(&bins[0][k[0]], it);
+        bin_add(&bins[1][k[1]], it);
+        bin_add(&bins[2][k[2]], it);
+    }
+    split best = {-1, 0, INFINITY, {{0}, {0}}, {{0}, {0}}};
+    for (int a = 0; a < 3; a++) {
+        if (!(g->scale[a] > 0.0f)) continue;
+        /* Boxes, areas and counts to the right of each boundary, then a
+         * sweep from the left. An empty bin changes neither side: its
+         * boundary splits the items as the one before it does, at the
+         * same cost, so it is not evaluated (most bins of a small node
+         * are empty). */
+        const bin *row = bins[a];
+        box right_box[BINS];
+        double right_area[BINS];
+        uint32_t right_count[BINS];
+        box acc;
+        box_empty(&acc);
+        double area = 0.0;
+        uint32_t count = 0;
+        for (int k = BINS - 1; k > 0; k--) {
+            if (row[k].count) {
+                box_grow(&acc, &row[k].b);
+                count += row[k].count;
+                area = box_half_area(&acc);
+            }
+            right_box[k] = acc;
+            right_area[k] = area;
+            right_count[k] = count;
+        }
+        box_empty(&acc);
+        count = 0;
+        for (int k = 0; k < BINS - 1; k++) {
+            if (!row[k].count) continue;
+            box_grow(&acc, &row[k].b);
+            count += row[k].count;
+            if (right_count[k + 1] == 0) break;
+            double cost = count * box_half_area(&acc) + right_count[k + 1] * right_area[k + 1];
+            if (cost < best.cost) {
+                best.cost = cost, best.axis = a, best.last_bin = k;
+                best.left = acc, best.right = right_box[k + 1];
+            }
+        }
+    }
+    return best;
+}
+
+/* Splits items[begin, end) of the task into the two children's tasks:
+ * returns 0 for a leaf. */
+static int split_node(builder *b, const task *t, task *left, task *right)
 {
     const uint32_t n = t->end - t->begin;
     if (n <= 2) return 0;
-    float cmin[3] = {INFINITY, INFINITY, INFINITY}, cmax[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t i = t->begin; i < t->end; i++) {
-        const float *c = b->centroids + 3 * (size_t)b->order[i];
-        for (int a = 0; a < 3; a++) {
-            if (c[a] < cmin[a]) cmin[a] = c[a];
-            if (c[a] > cmax[a]) cmax[a] = c[a];
-        }
-    }
     int widest = 0;
     double widest_extent = -1.0;
+    binning g;
+    memset(&g, 0, sizeof g);
     for (int a = 0; a < 3; a++) {
-        double e = (double)cmax[a] - cmin[a];
+        double e = (double)t->centres.hi[a] - t->centres.lo[a];
         if (e > widest_extent) widest_extent = e, widest = a;
+        g.lo[a] = t->centres.lo[a];
+        g.scale[a] = e > 0.0 && isfinite(e) ? (float)(BINS / e) : 0.0f;
     }
-    int median = t->depth >= MESH_BVH_SAH_DEPTH || !(widest_extent > 0.0) ||
-                 !isfinite(widest_extent);
-    int best_axis = -1, best_bin = 0;
-    double best_cost = INFINITY;
-    if (!median) {
-        for (int a = 0; a < 3; a++) {
-            double extent = (double)cmax[a] - cmin[a];
-            if (!(extent > 0.0)) continue;
-            box bin_box[BINS];
-            uint32_t bin_count[BINS] = {0};
-            for (int k = 0; k < BINS; k++) box_empty(&bin_box[k]);
-            const double scale = BINS * (1.0 - 1e-9) / extent;
-            for (uint32_t i = t->begin; i < t->end; i++) {
-                uint32_t tri = b->order[i];
-                int k = (int)(((double)b->centroids[3 * (size_t)tri + a] - cmin[a]) * scale);
-                k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
-                bin_count[k]++;
-                box_grow(&bin_box[k], &b->boxes[tri]);
-            }
-            /* Areas and counts to the right of each boundary, then a sweep
-             * from the left. */
-            double right_area[BINS];
-            uint32_t right_count[BINS];
-            box acc;
-            box_empty(&acc);
-            uint32_t count = 0;
-            for (int k = BINS - 1; k > 0; k--) {
-                box_grow(&acc, &bin_box[k]);
-                count += bin_count[k];
-                right_area[k] = box_half_area(&acc);
-                right_count[k] = count;
-            }
-            box_empty(&acc);
-            count = 0;
-            for (int k = 0; k < BINS - 1; k++) {
-                box_grow(&acc, &bin_box[k]);
-                count += bin_count[k];
-                if (count == 0 || right_count[k + 1] == 0) continue;
-                double cost = count * box_half_area(&acc) + right_count[k + 1] * right_area[k + 1];
-                if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = k;
-            }
-        }
-        if (best_axis < 0) median = 1;
-    }
-    if (!median) {
+    *left = (task){t->begin, 0, 0, t->depth + 1, 0, {{0}, {0}}, {{0}, {0}}};
+    *right = (task){0, t->end, 0, t->depth + 1, 1, {{0}, {0}}, {{0}, {0}}};
+    const int median = t->depth >= MESH_BVH_SAH_DEPTH || !(widest_extent > 0.0) ||
+                       !isfinite(widest_extent);
+    split s = {-1, 0, INFINITY, {{0}, {0}}, {{0}, {0}}};
+    if (!median) s = best_split(b, t, &g);
+    if (s.axis >= 0) {
         /* Split when a node visit plus the children's expected tests cost
          * less than testing the whole node. */
-        const double area = box_half_area(bounds);
-        const double split_cost = area > 0 && isfinite(area) ? TRAVERSAL_COST + best_cost / area : 0.0;
+        const double area = box_half_area(&t->bounds);
+        const double split_cost = area > 0 && isfinite(area) ? TRAVERSAL_COST + s.cost / area : 0.0;
         if (split_cost >= n && n <= MESH_BVH_MAX_LEAF) return 0;
-        const int a = best_axis;
-        const double scale = BINS * (1.0 - 1e-9) / ((double)cmax[a] - cmin[a]);
+        const int a = s.axis;
+        box_empty(&left->centres);
+        box_empty(&right->centres);
         uint32_t i = t->begin, j = t->end;
         while (i < j) {
-            uint32_t tri = b->order[i];
-            int k = (int)(((double)b->centroids[3 * (size_t)tri + a] - cmin[a]) * scale);
-            k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
-            if (k <= best_bin) {
+            item *it = &b->items[i];
+            int k[4];
+            bins_of(&g, it, k);
+            if (k[a] <= s.last_bin) {
+                box_add_point(&left->centres, it->c);
                 i++;
             } else {
-                b->order[i] = b->order[--j];
-                b->order[j] = tri;
+                box_add_point(&right->centres, it->c);
+                const item moved = *it;
+                *it = b->items[--j];
+                b->items[j] = moved;
             }
         }
-        if (i > t->begin && i < t->end) return i;
+        /* Both sides hold items: the sweep only took boundaries with
+         * counts on either side. */
+        left->end = right->begin = i;
+        left->bounds = s.left;
+        right->bounds = s.right;
+        return 1;
     }
     if (n <= MESH_BVH_MAX_LEAF) return 0;
     const uint32_t mid = t->begin + n / 2;
     if (widest_extent > 0.0) select_median(b, t->begin, t->end, widest, mid);
-    return mid;
+    left->end = right->begin = mid;
+    gather_bounds(b, left);
+    gather_bounds(b, right);
+    return 1;
 }
 
 static uint32_t centroid_axis_of(const box *bounds)
@@ -258,37 +389,35 @@ static uint32_t centroid_axis_of(const box *bounds)
     return axis;
 }
 
-static void build_nodes(builder *b)
+static void build_nodes(builder *b, uint32_t count)
 {
-    const mesh *m = b->m;
     task stack[MESH_BVH_MAX_DEPTH + 4];
     int top = 0;
-    stack[top++] = (task){0, m->triangle_count, 0, 0, 0};
+    stack[top] = (task){0, count, 0, 0, 0, {{0}, {0}}, {{0}, {0}}};
+    gather_bounds(b, &stack[top++]);
     while (top > 0) {
-        task t = stack[--top];
+        const task t = stack[--top];
         const uint32_t self = b->node_count++;
         if (t.is_right) b->nodes[t.parent].index = self;
-        box bounds;
-        box_empty(&bounds);
-        for (uint32_t i = t.begin; i < t.end; i++) box_grow(&bounds, &b->boxes[b->order[i]]);
         mesh_bvh_node *node = &b->nodes[self];
         for (int a = 0; a < 3; a++) {
-            node->lo[a] = nextafterf(bounds.lo[a], -INFINITY);
-            node->hi[a] = nextafterf(bounds.hi[a], INFINITY);
+            node->lo[a] = nextafterf(t.bounds.lo[a], -INFINITY);
+            node->hi[a] = nextafterf(t.bounds.hi[a], INFINITY);
         }
-        uint32_t split = split_node(b, &t, &bounds);
-        if (split == 0) {
+        task left, right;
+        if (!split_node(b, &t, &left, &right)) {
             node->index = t.begin;
             node->count = (uint16_t)(t.end - t.begin);
             node->axis = 0;
             continue;
         }
         node->count = 0;
-        node->axis = (uint16_t)centroid_axis_of(&bounds);
         /* The split axis orders traversal; the widest extent is a good
          * stand-in whichever axis the SAH picked. */
-        stack[top++] = (task){split, t.end, self, t.depth + 1, 1};
-        stack[top++] = (task){t.begin, split, self, t.depth + 1, 0};
+        node->axis = (uint16_t)centroid_axis_of(&t.bounds);
+        right.parent = self;
+        stack[top++] = right;
+        stack[top++] = left;
     }
 }
 
@@ -298,36 +427,33 @@ hr_status mesh_bvh_build(mesh *m)
     const size_t n = m->triangle_count;
     builder b;
     memset(&b, 0, sizeof b);
-    b.m = m;
-    b.boxes = host->alloc(n * sizeof *b.boxes);
-    b.centroids = host->alloc(3 * n * sizeof *b.centroids);
-    b.order = host->alloc(n * sizeof *b.order);
+    b.items = host->alloc(n * sizeof *b.items);
     b.nodes = host->alloc((2 * n - 1) * sizeof *b.nodes);
     uint32_t *corners = host->alloc(3 * n * sizeof *corners);
     uint32_t *corner_normals = m->corner_normals ? host->alloc(3 * n * sizeof *corner_normals) : NULL;
     hr_status st = HR_OK;
-    if (!b.boxes || !b.centroids || !b.order || !b.nodes || !corners ||
-        (m->corner_normals && !corner_normals)) {
+    if (!b.items || !b.nodes || !corners || (m->corner_normals && !corner_normals)) {
         st = HR_ERROR_OUT_OF_MEMORY;
         goto done;
     }
     for (uint32_t t = 0; t < n; t++) {
-        triangle_box(m, t, &b.boxes[t]);
+        item *it = &b.items[t];
+        triangle_box(m, t, &it->b);
         for (int a = 0; a < 3; a++) {
             /* A box past float's range has infinite sides: keep its centre
              * finite so that binning and selection compare numbers. */
-            float c = 0.5f * b.boxes[t].lo[a] + 0.5f * b.boxes[t].hi[a];
+            float c = 0.5f * it->b.lo[a] + 0.5f * it->b.hi[a];
             if (isnan(c)) c = 0.0f;
-            b.centroids[3 * (size_t)t + a] = fmaxf(-FLT_MAX, fminf(FLT_MAX, c));
+            it->c[a] = fmaxf(-FLT_MAX, fminf(FLT_MAX, c));
         }
-        b.order[t] = t;
+        it->tri = t;
     }
-    build_nodes(&b);
+    build_nodes(&b, (uint32_t)n);
     /* Triangles in leaf order; the nodes trimmed to what was used. */
     for (size_t i = 0; i < n; i++) {
-        memcpy(corners + 3 * i, m->corners + 3 * (size_t)b.order[i], 3 * sizeof *corners);
+        memcpy(corners + 3 * i, m->corners + 3 * (size_t)b.items[i].tri, 3 * sizeof *corners);
         if (corner_normals)
-            memcpy(corner_normals + 3 * i, m->corner_normals + 3 * (size_t)b.order[i],
+            memcpy(corner_normals + 3 * i, m->corner_normals + 3 * (size_t)b.items[i].tri,
                    3 * sizeof *corner_normals);
     }
     host->free(m->corners);
@@ -355,9 +481,7 @@ hr_status mesh_bvh_build(mesh *m)
     m->bounds.lo = lo;
     m->bounds.hi = hi;
 done:
-    host->free(b.boxes);
-    host->free(b.centroids);
-    host->free(b.order);
+    host->free(b.items);
     host->free(b.nodes);
     host->free(corners);
     host->free(corner_normals);
