@@ -94,8 +94,11 @@ static inline double mesh_two_sum(double a, double b, double *error)
  * exactly (FMA), and the four terms are summed into a non-overlapping
  * expansion h0..h3 of increasing magnitude (Shewchuk's Grow-Expansion).
  * The value returned has the sign of the largest non-zero component, which
- * is the sign of the exact sum, and is zero only when that sum is. */
-static inline double mesh_exact_difference(double a, double b, double c, double d)
+ * is the sign of the exact sum, and is zero only when that sum is. Kept
+ * out of line: it is the rare path, and inlined it kept the common one
+ * (mesh_edge_function) from being inlined into the triangle test. */
+static __attribute__((noinline, unused)) double mesh_exact_difference(double a, double b,
+                                                                      double c, double d)
 {
     const double p1 = a * b, e1 = fma(a, b, -p1);
     const double p2 = c * d, e2 = fma(c, d, -p2);
