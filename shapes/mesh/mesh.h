@@ -5,9 +5,9 @@
  *
  * Storage per triangle: 12 bytes of vertex indices, 12 more when the mesh
  * has normals, the vertices themselves (24 bytes each, shared: a closed
- * mesh has about half as many vertices as triangles) and the BVH nodes
- * (32 bytes each, about one per three triangles with leaves of about four):
- * some 36 bytes a triangle for a closed mesh without normals
+ * mesh has about half as many vertices as triangles) and the BVH's interior
+ * nodes (64 bytes each, one fewer than the leaves, which hold about five
+ * triangles): some 36 bytes a triangle for a closed mesh without normals
  * (test_shape_mesh_large prints the figure). The BVH orders the triangles
  * themselves, so no index array sits between them. */
 #ifndef HITRAY_MESH_H
@@ -23,17 +23,20 @@
 /* Indices are 32-bit; the largest count of vertices, normals or triangles. */
 #define MESH_MAX_COUNT ((size_t)UINT32_MAX - 1u)
 
-/* One BVH node, 32 bytes. The box is in float, rounded outward and grown by
- * one float ulp, so it contains every point the double-precision triangle
- * test can accept inside it. An interior node's left child is the next
- * node; `index` is its right child. A leaf (count > 0) holds triangles
- * index .. index + count - 1. `axis` is the split axis, which orders the
- * traversal front to back. */
+/* One interior BVH node, 64 bytes: the boxes of its two children, side by
+ * side per axis (lo[axis][child]) so that the traversal tests both in one
+ * SSE2 step, and what each child is. Each box is in float, rounded outward
+ * and grown by one float ulp, so it contains every point the
+ * double-precision triangle test can accept inside it. A child with
+ * count 0 is the node `index`; one with count > 0 is a leaf of triangles
+ * index .. index + count - 1. The left child of a node, when it is a node,
+ * is the next one. `axis` is the widest axis of the node's box, which
+ * orders the traversal front to back. */
 typedef struct mesh_bvh_node {
-    float lo[3], hi[3];
-    uint32_t index;
-    uint16_t count;
-    uint16_t axis;
+    float lo[3][2], hi[3][2];
+    uint32_t index[2];
+    uint16_t count[2];
+    uint32_t axis;
 } mesh_bvh_node;
 
 /* The deepest a BVH is built: SAH splits up to MESH_BVH_SAH_DEPTH levels,
@@ -50,8 +53,12 @@ typedef struct mesh {
     uint32_t *corners;     /* 3 vertex indices per triangle, in BVH order */
     uint32_t *corner_normals; /* 3 normal indices per triangle or NULL */
     uint32_t vertex_count, normal_count, triangle_count;
-    uint32_t node_count;
+    uint32_t node_count;   /* interior nodes; 0 when the root is a leaf */
     mesh_bvh_node *nodes;
+    /* The root's box (as a child's) and what it is (as a child is). */
+    float root_lo[3], root_hi[3];
+    uint32_t root_index;
+    uint16_t root_count;
     hr_bounds bounds;
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */

@@ -13,7 +13,8 @@
  * bounds of each side's centres; the boxes of the two sides come from the
  * bins (a union of float boxes is exact), so no pass is spent on bounds.
  *
- * Nodes are laid out depth first (left child next to its parent), and the
+ * Nodes are laid out depth first (left child next to its parent), each
+ * interior node holding its two children's boxes (mesh.h), and the
  * triangles are put in leaf order, so a leaf is a run of the corner array. */
 #include <float.h>
 #include <math.h>
@@ -108,9 +109,18 @@ typedef struct task {
     box bounds, centres;
 } task;
 
+/* A node as the build makes it, with its own box (pack_nodes moves each
+ * box into the parent). */
+typedef struct built_node {
+    float lo[3], hi[3];
+    uint32_t index; /* leaf: first triangle; interior: right child */
+    uint16_t count; /* > 0: a leaf */
+    uint16_t axis;
+} built_node;
+
 typedef struct builder {
     item *items;
-    mesh_bvh_node *nodes;
+    built_node *nodes;
     uint32_t node_count;
 } builder;
 
@@ -399,7 +409,7 @@ static void build_nodes(builder *b, uint32_t count)
         const task t = stack[--top];
         const uint32_t self = b->node_count++;
         if (t.is_right) b->nodes[t.parent].index = self;
-        mesh_bvh_node *node = &b->nodes[self];
+        built_node *node = &b->nodes[self];
         for (int a = 0; a < 3; a++) {
             node->lo[a] = nextafterf(t.bounds.lo[a], -INFINITY);
             node->hi[a] = nextafterf(t.bounds.hi[a], INFINITY);
@@ -419,6 +429,47 @@ static void build_nodes(builder *b, uint32_t count)
         stack[top++] = right;
         stack[top++] = left;
     }
+}
+
+/* The built tree in the layout the traversal reads: the root's box and
+ * kind in the mesh, each interior node holding its children's boxes.
+ * Interior nodes keep their depth-first order, so a left child that is a
+ * node is still the next one. */
+static hr_status pack_nodes(mesh *m, const built_node *built, uint32_t count)
+{
+    const built_node *root = &built[0];
+    memcpy(m->root_lo, root->lo, sizeof m->root_lo);
+    memcpy(m->root_hi, root->hi, sizeof m->root_hi);
+    m->root_index = root->count ? root->index : 0;
+    m->root_count = root->count;
+    m->node_count = 0;
+    m->nodes = NULL;
+    if (root->count) return HR_OK;
+    const hr_host *host = m->host;
+    uint32_t *rank = host->alloc(count * sizeof *rank);
+    uint32_t interior = 0;
+    if (!rank) return HR_ERROR_OUT_OF_MEMORY;
+    for (uint32_t i = 0; i < count; i++) rank[i] = built[i].count ? 0 : interior++;
+    m->nodes = host->alloc(interior * sizeof *m->nodes);
+    if (!m->nodes) {
+        host->free(rank);
+        return HR_ERROR_OUT_OF_MEMORY;
+    }
+    for (uint32_t i = 0; i < count; i++) {
+        if (built[i].count) continue;
+        mesh_bvh_node *node = &m->nodes[rank[i]];
+        const uint32_t children[2] = {i + 1, built[i].index};
+        for (int k = 0; k < 2; k++) {
+            const built_node *c = &built[children[k]];
+            for (int a = 0; a < 3; a++) node->lo[a][k] = c->lo[a], node->hi[a][k] = c->hi[a];
+            node->index[k] = c->count ? c->index : rank[children[k]];
+            node->count[k] = c->count;
+        }
+        node->axis = built[i].axis;
+    }
+    m->node_count = interior;
+    host->free(rank);
+    return HR_OK;
 }
 
 hr_status mesh_bvh_build(mesh *m)
@@ -449,7 +500,7 @@ hr_status mesh_bvh_build(mesh *m)
         it->tri = t;
     }
     build_nodes(&b, (uint32_t)n);
-    /* Triangles in leaf order; the nodes trimmed to what was used. */
+    /* Triangles in leaf order. */
     for (size_t i = 0; i < n; i++) {
         memcpy(corners + 3 * i, m->corners + 3 * (size_t)b.items[i].tri, 3 * sizeof *corners);
         if (corner_normals)
@@ -464,13 +515,8 @@ hr_status mesh_bvh_build(mesh *m)
         m->corner_normals = corner_normals;
         corner_normals = NULL;
     }
-    m->nodes = host->alloc(b.node_count * sizeof *m->nodes);
-    if (!m->nodes) {
-        st = HR_ERROR_OUT_OF_MEMORY;
-        goto done;
-    }
-    memcpy(m->nodes, b.nodes, b.node_count * sizeof *m->nodes);
-    m->node_count = b.node_count;
+    st = pack_nodes(m, b.nodes, b.node_count);
+    if (st) goto done;
     /* The object's bounds, exact: those of the corners of its triangles. */
     hr_vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < 3 * n; i++) {

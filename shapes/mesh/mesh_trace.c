@@ -22,28 +22,64 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "mesh.h"
 #include "mesh_triangle.h"
 
-/* The slab test of a node's box over [tmin, tmax]. The box is conservative
- * (outward-rounded float, one ulp more), and each slab time is widened by
- * 2 gamma(3) of itself to cover its own rounding (pbrt's argument). A NaN
- * time ((lo - o) * inf with lo == o, for a ray in a slab's plane) leaves the
- * interval as it was: conservative. */
-static int box_hit(const mesh_bvh_node *n, const mesh_ray *r, double tmin, double tmax)
+/* The slab test of a box over [tmin, tmax]; the box's coordinates are
+ * lo[a * stride], hi[a * stride] (a child's box in a node has stride 2).
+ * The box is conservative (outward-rounded float, one ulp more), and each
+ * slab time is widened by 2 gamma(3) of itself to cover its own rounding
+ * (pbrt's argument). A NaN time ((lo - o) * inf with lo == o, for a ray in
+ * a slab's plane) leaves the interval as it was: conservative. */
+static int box_hit(const float *lo, const float *hi, size_t stride, const mesh_ray *r, double tmin,
+                   double tmax)
 {
     const double pad = 2.0 * MESH_GAMMA(3);
     double t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; a++) {
-        double near = ((r->neg[a] ? n->hi[a] : n->lo[a]) - r->o[a]) * r->inv_d[a];
-        double far = ((r->neg[a] ? n->lo[a] : n->hi[a]) - r->o[a]) * r->inv_d[a];
+        const size_t i = (size_t)a * stride;
+        double near = ((r->neg[a] ? hi[i] : lo[i]) - r->o[a]) * r->inv_d[a];
+        double far = ((r->neg[a] ? lo[i] : hi[i]) - r->o[a]) * r->inv_d[a];
         near -= pad * fabs(near);
         far += pad * fabs(far);
         if (near > t0) t0 = near;
         if (far < t1) t1 = far;
     }
     return t0 <= t1;
+}
+
+/* Both children's boxes of a node at once: bit k set when child k's box is
+ * met. The SSE2 form does box_hit's arithmetic in two lanes, operation for
+ * operation (max and min take the interval's side on a NaN, as box_hit's
+ * comparisons do), so the two give the same answers. */
+static int box_hit_pair(const mesh_bvh_node *n, const mesh_ray *r, double tmin, double tmax)
+{
+#if defined(__SSE2__)
+    const __m128d pad = _mm_set1_pd(2.0 * MESH_GAMMA(3));
+    const __m128d sign = _mm_set1_pd(-0.0);
+    __m128d t0 = _mm_set1_pd(tmin), t1 = _mm_set1_pd(tmax);
+    for (int a = 0; a < 3; a++) {
+        const float *near_f = r->neg[a] ? n->hi[a] : n->lo[a];
+        const float *far_f = r->neg[a] ? n->lo[a] : n->hi[a];
+        const __m128d o = _mm_set1_pd(r->o[a]), inv = _mm_set1_pd(r->inv_d[a]);
+        const __m128 near_2 = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)near_f));
+        const __m128 far_2 = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)far_f));
+        __m128d near = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(near_2), o), inv);
+        __m128d far = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(far_2), o), inv);
+        near = _mm_sub_pd(near, _mm_mul_pd(pad, _mm_andnot_pd(sign, near)));
+        far = _mm_add_pd(far, _mm_mul_pd(pad, _mm_andnot_pd(sign, far)));
+        t0 = _mm_max_pd(near, t0);
+        t1 = _mm_min_pd(far, t1);
+    }
+    return _mm_movemask_pd(_mm_cmple_pd(t0, t1));
+#else
+    return box_hit(&n->lo[0][0], &n->hi[0][0], 2, r, tmin, tmax) |
+           box_hit(&n->lo[0][1], &n->hi[0][1], 2, r, tmin, tmax) << 1;
+#endif
 }
 
 /* (B - A) x (C - A) with the edges scaled by a power of two first, so tiny
@@ -299,42 +335,53 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
 }
 
 /* The BVH walk: every leaf whose box the ray meets over the query's
- * interval, which leaves may narrow as they go. */
+ * interval, which leaves may narrow as they go. Both children of a node
+ * are tested at once; the near one (the right one when the ray runs down
+ * the node's axis) is entered first and the other pushed. A stack entry is
+ * a child still to enter, node * 2 + which. */
 static void walk(query *q)
 {
     const mesh *m = q->m;
     const mesh_ray *r = &q->r;
-    uint32_t stack[MESH_BVH_MAX_DEPTH + 2];
+    if (!box_hit(m->root_lo, m->root_hi, 1, r, q->tmin, q->tmax)) return;
+    if (m->root_count) {
+        visit_leaf(q, m->root_index, m->root_index + m->root_count);
+        return;
+    }
+    uint64_t stack[MESH_BVH_MAX_DEPTH + 2];
     int top = 0;
     uint32_t node = 0;
-    if (!box_hit(&m->nodes[0], r, q->tmin, q->tmax)) return;
     for (;;) {
         const mesh_bvh_node *n = &m->nodes[node];
-        if (n->count > 0) {
-            if (visit_leaf(q, n->index, n->index + n->count)) return;
-        } else {
-            /* Near child first: the right one when the ray runs down the axis. */
-            uint32_t first = node + 1, second = n->index;
-            if (r->neg[n->axis]) first = n->index, second = node + 1;
-            int hit_first = box_hit(&m->nodes[first], r, q->tmin, q->tmax);
-            int hit_second = box_hit(&m->nodes[second], r, q->tmin, q->tmax);
-            if (hit_first && hit_second) {
-                stack[top++] = second;
-                node = first;
-                continue;
-            }
-            if (hit_first || hit_second) {
-                node = hit_first ? first : second;
-                continue;
-            }
+        const int hits = box_hit_pair(n, r, q->tmin, q->tmax);
+        const int near = r->neg[n->axis], far = !near;
+        int child = -1;
+        if (hits & 1 << near) {
+            if (hits & 1 << far) stack[top++] = (uint64_t)node << 1 | (uint64_t)far;
+            child = near;
+        } else if (hits & 1 << far) {
+            child = far;
         }
-        /* Next pushed box; in first-hit mode skip those now beyond the
-         * nearest hit found since they were pushed. */
-        do {
-            if (top == 0) return;
-            node = stack[--top];
-        } while (q->mode == HR_TRACE_FIRST && q->found &&
-                 !box_hit(&m->nodes[node], r, q->tmin, q->tmax));
+        /* Enter the child: a node goes round the outer loop, a leaf is
+         * tested here; then the next pushed child, which in first-hit mode
+         * is skipped when its box now lies beyond the nearest hit found
+         * since it was pushed. */
+        for (;;) {
+            if (child >= 0) {
+                if (n->count[child] == 0) {
+                    node = n->index[child];
+                    break;
+                }
+                if (visit_leaf(q, n->index[child], n->index[child] + n->count[child])) return;
+            }
+            do {
+                if (top == 0) return;
+                const uint64_t entry = stack[--top];
+                n = &m->nodes[entry >> 1];
+                child = (int)(entry & 1);
+            } while (q->mode == HR_TRACE_FIRST && q->found &&
+                     !box_hit(&n->lo[0][child], &n->hi[0][child], 2, r, q->tmin, q->tmax));
+        }
     }
 }
 
