@@ -195,12 +195,15 @@ static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const 
     mesh_shear(r, a, A);
     mesh_shear(r, b, B);
     mesh_shear(r, c, C);
+    /* Each edge function only when the ones before agree (most triangles
+     * a ray is tested against lie beside it). */
     const double U = mesh_edge_function(C[0], B[1], C[1], B[0]);
-    const double V = mesh_edge_function(A[0], C[1], A[1], C[0]);
-    const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
     const int su = mesh_sign_of(U, C, B);
     if (su == 0) return 0;
-    if (mesh_sign_of(V, A, C) != su || mesh_sign_of(W, B, A) != su) return 0;
+    const double V = mesh_edge_function(A[0], C[1], A[1], C[0]);
+    if (mesh_sign_of(V, A, C) != su) return 0;
+    const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
+    if (mesh_sign_of(W, B, A) != su) return 0;
     /* Same signs (zeros count as either): the sum is zero only when all
      * three are, a triangle seen edge on. */
     const double det = U + V + W;
