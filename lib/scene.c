@@ -69,7 +69,8 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     free(scene->objects);
     free(scene->lights);
     free(scene->unbounded);
-    hr_bvh_release(&scene->bvh);
+    accel_bvh4_release(&scene->bvh);
+    free(scene->leaf_objects);
     free(scene);
 }
 
@@ -469,10 +470,15 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
             s->unbounded[s->unbounded_count++] = o;
         }
     }
-    int ok = hr_bvh_build(&s->bvh, boxes, nb);
+    /* Leaves of up to 4 objects: a node visit costs about half an object
+     * test (a transform and a shape call). */
+    const accel_bvh4_options bvh_options = {.max_leaf = 4, .traversal_cost = 0.5};
+    int built = accel_bvh4_build(&s->bvh, boxes, (uint32_t)nb, &bvh_options);
     free(boxes);
-    if (!ok) {
+    s->leaf_objects = built == 0 ? malloc((size_t)(nb ? nb : 1) * sizeof *s->leaf_objects) : NULL;
+    if (!s->leaf_objects) {
         free(owner);
+        accel_bvh4_release(&s->bvh);
         /* The scene stays uncommitted and commit may be tried again, which
          * allocates this anew. */
         free(s->unbounded);
@@ -480,8 +486,8 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
         s->unbounded_count = 0;
         return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory building the BVH");
     }
-    /* Items name BVH inputs; map them to object indices once. */
-    for (int32_t i = 0; i < s->bvh.item_count; i++) s->bvh.items[i] = owner[s->bvh.items[i]];
+    /* Items name BVH inputs; the walk wants the objects themselves. */
+    for (uint32_t i = 0; i < s->bvh.item_count; i++) s->leaf_objects[i] = s->objects[owner[s->bvh.items[i]]];
     free(owner);
     work_out_effects(s);
     s->committed = 1;

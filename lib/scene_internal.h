@@ -6,7 +6,7 @@
 
 #include <hitray/hitray.h>
 
-#include "bvh.h"
+#include "bvh4.h"
 
 /* Per-material flags worked out at commit, so shade() tests one bit. */
 #define HR_MAT_EMITS 1u
@@ -46,7 +46,8 @@ struct hr_scene {
     uint32_t bounce_effects;    /* REFLECTION/REFRACTION the materials call for
                                    at any depth (a render or shade may ask for
                                    more depth than the scene's) */
-    hr_bvh bvh;                 /* over bounded top-level objects */
+    accel_bvh4 bvh;             /* over bounded top-level objects */
+    const hr_object **leaf_objects; /* those objects in the BVH's leaf order */
     const hr_object **unbounded; /* top-level objects outside the BVH */
     int32_t unbounded_count;
 };

@@ -206,10 +206,6 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
 
 /* --- Whole-scene queries ------------------------------------------------- */
 
-/* Each level pops one node and pushes at most two, so the stack never holds
- * more than depth + 1 entries. */
-#define BVH_STACK (HR_BVH_MAX_DEPTH + 2)
-
 typedef struct first_state {
     hr_trace_ctx *tc;
     const hr_ray *ray;
@@ -235,58 +231,25 @@ static int visit_object(first_state *fs, const hr_object *o)
     return 0;
 }
 
-/* Front-to-back traversal; boxes further than the best hit are skipped.
- * The walk goes straight down to the nearer child a ray meets and stacks
- * only the farther one of two, so a node is pushed only when both children
- * are hit; tmin and the best distance so far are kept in locals (a shape
- * call is the only thing that can move the best). */
+/* The objects of one BVH leaf; a nearer hit lowers fs->best, which the
+ * walk reads back. */
+static int visit_leaf(void *user, uint32_t first, uint32_t count)
+{
+    first_state *fs = user;
+    const hr_object *const *objects = fs->tc->scene->leaf_objects + first;
+    for (uint32_t i = 0; i < count; i++)
+        if (visit_object(fs, objects[i])) return ACCEL_WALK_STOP;
+    return ACCEL_WALK_GO_ON;
+}
+
+/* Unbounded objects (planes) first, then the BVH front to back; boxes
+ * further than the best hit so far are skipped. */
 static void traverse(first_state *fs)
 {
     const hr_scene *s = fs->tc->scene;
     for (int32_t i = 0; i < s->unbounded_count; i++)
         if (visit_object(fs, s->unbounded[i])) return;
-    if (s->bvh.node_count == 0) return;
-    const hr_bvh_node *nodes = s->bvh.nodes;
-    const int32_t *items = s->bvh.items;
-    hr_bvh_ray br;
-    hr_bvh_ray_init(&br, fs->ray);
-    const double tmin = fs->tmin;
-    double best = fs->best;
-    int32_t stack[BVH_STACK];
-    double entry[BVH_STACK]; /* where the ray enters each stacked box */
-    int32_t top = 0;
-    double t;
-    if (!hr_bvh_ray_box(&br, &nodes[0].box, tmin, best, &t)) return;
-    int32_t node = 0;
-    for (;;) {
-        const hr_bvh_node *n = &nodes[node];
-        if (n->count > 0) {
-            for (int32_t i = 0; i < n->count; i++)
-                if (visit_object(fs, s->objects[items[n->first + i]])) return;
-            best = fs->best;
-        } else {
-            double te[2];
-            int both = hr_bvh_ray_box2(&br, &s->bvh, n->first, tmin, best, te);
-            if (both == 3) {
-                /* Visit the near one now, stack the far one. */
-                int near_left = te[0] <= te[1];
-                stack[top] = n->first + near_left, entry[top++] = te[near_left];
-                node = n->first + !near_left;
-                continue;
-            }
-            if (both) {
-                node = n->first + (both >> 1);
-                continue;
-            }
-        }
-        /* Next stacked box that may still hold something nearer than the
-         * best hit, which may have come nearer since it was pushed. */
-        do {
-            if (top == 0) return;
-            --top;
-        } while (entry[top] > best);
-        node = stack[top];
-    }
+    accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
 }
 
 static hr_intersection *host_scratch_acquire(void *call);

@@ -1,0 +1,312 @@
+/* A 4-wide bounding volume hierarchy with float child boxes, walked four
+ * boxes per SSE step: the acceleration structure of the scene (lib/) and of
+ * the mesh module, one piece of code for both.
+ *
+ * Built over double boxes by a binned SAH (accel/bvh4_build.c): a binary
+ * tree first, collapsed to four children a node by pulling up the largest
+ * grandchildren. Each child box is rounded outward to float, so it contains
+ * the double box it came from.
+ *
+ * The traversal is conservative: it may visit a box the ray misses, never
+ * skip one the ray meets within [tmin, tmax]. Why that holds in float (the
+ * argument accel_ray4_init and accel_bvh4_test rely on):
+ * - the ray's direction is scaled by a power of two so its largest
+ *   component is in [1, 2): exact, and t along it is t * 2^scale_exp;
+ * - the origin is rounded up and down to float, and each slab distance uses
+ *   the rounding that makes the near distance smaller and the far one
+ *   larger, so the origin's rounding can only widen the interval;
+ * - 1/d is rounded once in double and once to float, (b - o) once and the
+ *   product once: four roundings of at most 2^-24 relative each, so every
+ *   slab distance is within 4 * 2^-24 of its exact value (subnormal results
+ *   aside, which are off by at most 2^-149 absolute). The entry distance
+ *   (a max of such values and tmin) and the exit distance (a min) are then
+ *   moved outward by 2^-20 relative and 2^-149 absolute, far more than
+ *   those errors;
+ * - a direction component so small that 1/d would overflow float (below
+ *   2^-100 of the largest) gives NaN slab distances, which the max/min
+ *   ignore: that axis culls nothing, which is conservative. An exactly zero
+ *   component gives +-inf distances (or NaN for an origin exactly on the
+ *   slab plane, again ignored), the textbook treatment of a parallel ray;
+ * - tmin is rounded down and tmax up to float (after scaling).
+ * So a box is skipped only when the exact ray misses it; the hits a walk
+ * finds are the shapes' own, in double, and do not depend on the walk. */
+#ifndef HITRAY_ACCEL_BVH4_H
+#define HITRAY_ACCEL_BVH4_H
+
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <hitray/common.h>
+
+#include "float_bounds.h"
+
+/* SAH splits down to this depth of the binary tree, halving below it; with
+ * at most ACCEL_BVH4_MAX_ITEMS items the tree is at most
+ * ACCEL_BVH_MAX_DEPTH levels deep, and so is the 4-wide one. */
+#define ACCEL_BVH_SAH_DEPTH 64
+#define ACCEL_BVH_MAX_DEPTH (ACCEL_BVH_SAH_DEPTH + 32)
+#define ACCEL_BVH4_MAX_ITEMS ((uint32_t)INT32_MAX)
+/* A walk pushes at most three children per level it descends. */
+#define ACCEL_BVH4_STACK (3 * ACCEL_BVH_MAX_DEPTH + 4)
+
+/* A slot with no child: its box is empty (lo = +inf, hi = -inf). */
+#define ACCEL_BVH4_EMPTY UINT32_MAX
+
+/* One node: four child boxes, by axis then child (lo[a][k] is child k's
+ * lower bound on axis a), and what each child is. 128 bytes. */
+typedef struct accel_bvh4_node {
+    float lo[3][4], hi[3][4];
+    /* count[k] > 0: a leaf of items ref[k] .. ref[k] + count[k] - 1;
+     * count[k] == 0: an inner child, node ref[k] (ACCEL_BVH4_EMPTY: none). */
+    uint32_t ref[4];
+    uint32_t count[4];
+} accel_bvh4_node;
+
+typedef struct accel_bvh4 {
+    accel_bvh4_node *nodes; /* node 0 is the root; NULL when there are no items */
+    uint32_t node_count;
+    /* The input index of each item, in leaf order: a leaf's items are a run
+     * of this array, so a caller may lay its own data out in this order. */
+    uint32_t *items;
+    uint32_t item_count;
+    uint32_t depth; /* levels of nodes (1: the root alone) */
+    void (*free_fn)(void *ptr);
+} accel_bvh4;
+
+typedef struct accel_bvh4_options {
+    /* Leaves hold at most this many items (1 .. 16). */
+    uint32_t max_leaf;
+    /* Cost of visiting a node against testing one item, for the SAH. */
+    double traversal_cost;
+    /* Zero-filling allocator and its free (both NULL: calloc and free), so
+     * a module can allocate through its host. */
+    void *(*alloc)(size_t size);
+    void (*free)(void *ptr);
+} accel_bvh4_options;
+
+/* Build over `count` boxes (NaN-free; infinite extents are allowed).
+ * Returns 0 on success, -1 when out of memory, -2 when count exceeds
+ * ACCEL_BVH4_MAX_ITEMS. */
+int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
+                     const accel_bvh4_options *options);
+/* Frees what build allocated (with the options' free); safe on a zeroed or
+ * released tree. */
+void accel_bvh4_release(accel_bvh4 *bvh);
+
+/* --- Walking ------------------------------------------------------------- */
+
+/* A ray prepared for accel_bvh4_test. */
+typedef struct accel_ray4 {
+#if defined(__SSE2__)
+    __m128 o_near[3], o_far[3], inv_near[3], inv_far[3];
+#else
+    float o_near[3], o_far[3], inv_near[3], inv_far[3];
+#endif
+    /* Byte offsets in a node of the plane each axis meets first and last. */
+    size_t near_at[3], far_at[3];
+    /* The walk's t is (t - t_offset) * t_scale: t_scale for the direction's
+     * scaling, t_offset (tmin when negative, else 0) so that the walk's
+     * interval starts at 0 or later, which the slack's direction needs. */
+    double t_scale, t_offset;
+} accel_ray4;
+
+/* Relative slack on every slab distance, folded into 1/d: far more than
+ * the five roundings of 2^-24 it covers (see the top of this file). */
+#define ACCEL_SLACK 0x1p-20
+/* Absolute slack on the entry and exit distances: the error of a subnormal
+ * float result. */
+#define ACCEL_TINY 0x1p-149f
+
+/* For a walk over [tmin, ...] (tmin finite). */
+static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
+{
+    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    /* A negative tmin moves the origin back to where the interval starts;
+     * the moved origin is bracketed with the error of that product and sum
+     * (gamma(2) of the terms' magnitudes). */
+    r->t_offset = tmin < 0 ? tmin : 0.0;
+    const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
+    double big = fabs(d[0]);
+    if (fabs(d[1]) > big) big = fabs(d[1]);
+    if (fabs(d[2]) > big) big = fabs(d[2]);
+    /* A direction far from unit length is scaled by a power of two, exactly,
+     * so 1/d of its largest component stays well inside float's range: by
+     * 2^(1-e), where 2^(e-1) is the power of two at or below the largest
+     * |component| (read off its exponent bits), and t along the scaled
+     * direction is t * 2^(e-1). Zero, subnormal and non-finite directions
+     * are left as they are, which only makes their walk cull less. */
+    double down = 1.0;
+    r->t_scale = 1.0;
+    if (!(big >= 0x1p-60 && big <= 0x1p60)) {
+        uint64_t bits;
+        memcpy(&bits, &big, sizeof bits);
+        int biased = (int)(bits >> 52); /* big >= 0: no sign bit */
+        if (biased > 1 && biased < 2046) {
+            uint64_t down_bits = (uint64_t)(2046 - biased) << 52, up_bits = (uint64_t)biased << 52;
+            memcpy(&down, &down_bits, sizeof down);
+            memcpy(&r->t_scale, &up_bits, sizeof r->t_scale);
+        }
+    }
+    for (int a = 0; a < 3; a++) {
+        double da = d[a] * down;
+        int neg = signbit(da) != 0;
+        /* 1/0 is inf of the zero's sign: the parallel ray's slab test. A
+         * 1/d beyond 2^100 would overflow float: NaN, so the axis culls
+         * nothing. */
+        double i = 1.0 / da;
+        float inv_near = (float)(i * (1.0 - ACCEL_SLACK)), inv_far = (float)(i * (1.0 + ACCEL_SLACK));
+        if (!(fabs(i) <= 0x1p100) && da != 0) inv_near = inv_far = NAN;
+        float up, dn;
+        if (r->t_offset == 0) {
+            accel_float_bracket(o[a], &dn, &up);
+        } else {
+            double moved = o[a] + r->t_offset * d[a];
+            double err = (fabs(o[a]) + fabs(r->t_offset * d[a])) * 0x1p-50;
+            dn = accel_float_at_most(moved - err);
+            up = accel_float_at_least(moved + err);
+        }
+        float on = neg ? dn : up, of = neg ? up : dn;
+        size_t lo_at = offsetof(accel_bvh4_node, lo) + (size_t)a * 4 * sizeof(float);
+        size_t hi_at = offsetof(accel_bvh4_node, hi) + (size_t)a * 4 * sizeof(float);
+        r->near_at[a] = neg ? hi_at : lo_at;
+        r->far_at[a] = neg ? lo_at : hi_at;
+#if defined(__SSE2__)
+        r->o_near[a] = _mm_set1_ps(on);
+        r->o_far[a] = _mm_set1_ps(of);
+        r->inv_near[a] = _mm_set1_ps(inv_near);
+        r->inv_far[a] = _mm_set1_ps(inv_far);
+#else
+        r->o_near[a] = on;
+        r->o_far[a] = of;
+        r->inv_near[a] = inv_near;
+        r->inv_far[a] = inv_far;
+#endif
+    }
+}
+
+/* The float bounds of a ray's interval, in the walk's t. */
+static inline float accel_ray4_tmin(const accel_ray4 *r, double tmin)
+{
+    return accel_float_at_most((tmin - r->t_offset) * r->t_scale);
+}
+static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
+{
+    return accel_float_at_least((tmax - r->t_offset) * r->t_scale);
+}
+
+/* Which of a node's four children the ray may meet within [tmin, tmax]
+ * (floats from accel_ray4_tmin/_tmax, tmin >= 0 by construction): bit k
+ * for child k, with a lower bound of where it enters in entry[k]. With the
+ * interval at t >= 0, only positive slab distances can decide a test, and
+ * for those the slack in inv_near (inv_far) makes the entry smaller (the
+ * exit larger); a negative distance stays negative. */
+static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_node *n,
+                                       float tmin, float tmax, float entry[4])
+{
+    const char *base = (const char *)n;
+#if defined(__SSE2__)
+    __m128 lo = _mm_set1_ps(tmin), hi = _mm_set1_ps(tmax);
+    for (int a = 0; a < 3; a++) {
+        __m128 bn = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a]));
+        __m128 bf = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));
+        __m128 tn = _mm_mul_ps(_mm_sub_ps(bn, r->o_near[a]), r->inv_near[a]);
+        __m128 tf = _mm_mul_ps(_mm_sub_ps(bf, r->o_far[a]), r->inv_far[a]);
+        /* max(x, acc) is x > acc ? x : acc: a NaN x leaves acc as it was */
+        lo = _mm_max_ps(tn, lo);
+        hi = _mm_min_ps(tf, hi);
+    }
+    const __m128 tiny = _mm_set1_ps(ACCEL_TINY);
+    lo = _mm_sub_ps(lo, tiny);
+    hi = _mm_add_ps(hi, tiny);
+    _mm_storeu_ps(entry, lo);
+    return (unsigned)_mm_movemask_ps(_mm_cmple_ps(lo, hi));
+#else
+    unsigned mask = 0;
+    for (int k = 0; k < 4; k++) {
+        float lo = tmin, hi = tmax;
+        for (int a = 0; a < 3; a++) {
+            const float *bn = (const float *)(const void *)(base + r->near_at[a]);
+            const float *bf = (const float *)(const void *)(base + r->far_at[a]);
+            float tn = (bn[k] - r->o_near[a]) * r->inv_near[a];
+            float tf = (bf[k] - r->o_far[a]) * r->inv_far[a];
+            lo = tn > lo ? tn : lo;
+            hi = tf < hi ? tf : hi;
+        }
+        lo -= ACCEL_TINY;
+        hi += ACCEL_TINY;
+        entry[k] = lo;
+        if (lo <= hi) mask |= 1u << k;
+    }
+    return mask;
+#endif
+}
+
+/* What a walk's leaf callback returns. */
+#define ACCEL_WALK_GO_ON 0
+#define ACCEL_WALK_STOP 1
+
+/* Front-to-back walk: calls leaf(user, first, count) for each leaf the ray
+ * may meet, nearest entry first, skipping what lies beyond *tmax. The
+ * callback may lower *tmax (a nearer hit); the walk reads it after each
+ * call. Returns ACCEL_WALK_STOP if a callback did. Inline, so the callback
+ * and the ray stay in registers in the caller's loop. */
+static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                  double *tmax,
+                                  int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                  void *user)
+{
+    if (!bvh->nodes) return ACCEL_WALK_GO_ON;
+    accel_ray4 r;
+    accel_ray4_init(&r, ray, tmin);
+    const float tmin_f = accel_ray4_tmin(&r, tmin);
+    float tmax_f = accel_ray4_tmax(&r, *tmax);
+    uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
+    float stack_entry[ACCEL_BVH4_STACK];
+    uint32_t top = 0;
+    uint32_t ref = 0, count = 0; /* the root, an inner node */
+    for (;;) {
+        if (count > 0) {
+            double before = *tmax;
+            if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
+            if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax);
+        } else {
+            const accel_bvh4_node *n = &bvh->nodes[ref];
+            float entry[4];
+            unsigned mask = accel_bvh4_test(&r, n, tmin_f, tmax_f, entry);
+            /* Hit children nearest first (insertion sort of at most 4). */
+            uint32_t order[4], hits = 0;
+            while (mask) {
+                uint32_t k = (uint32_t)__builtin_ctz(mask);
+                mask &= mask - 1;
+                if (n->count[k] == 0 && n->ref[k] == ACCEL_BVH4_EMPTY) continue;
+                uint32_t j = hits++;
+                while (j > 0 && entry[order[j - 1]] > entry[k]) order[j] = order[j - 1], j--;
+                order[j] = k;
+            }
+            if (hits > 0) {
+                for (uint32_t j = hits - 1; j > 0; j--) {
+                    uint32_t k = order[j];
+                    stack_ref[top] = n->ref[k], stack_count[top] = n->count[k];
+                    stack_entry[top++] = entry[k];
+                }
+                ref = n->ref[order[0]], count = n->count[order[0]];
+                continue;
+            }
+        }
+        /* The next stacked child that may still hold something nearer than
+         * the best hit, which may have come nearer since it was pushed. */
+        do {
+            if (top == 0) return ACCEL_WALK_GO_ON;
+            --top;
+        } while (stack_entry[top] > tmax_f);
+        ref = stack_ref[top], count = stack_count[top];
+    }
+}
+
+#endif

@@ -1,0 +1,296 @@
+/* The 4-wide BVH on its own (accel/, linked in as a static library, so the
+ * test can look at the tree):
+ * - the build: every item in exactly one leaf, leaves within max_leaf, the
+ *   depth within ACCEL_BVH_MAX_DEPTH (the walk's stack is sized from it) on
+ *   SAH's worst case, every float child box containing the double boxes of
+ *   everything below it, and no overflow or NaN near the ends of the range;
+ * - the walk: conservative. For random and hard rays (axis-parallel, tiny
+ *   direction components, origins on slab planes, far origins, origins
+ *   beyond float's range, rays that just touch a box's face or edge) every
+ *   box that the ray meets within [tmin, tmax] by an exact slab test must
+ *   have its leaf visited. The exact test is done in __float128: the
+ *   inputs are doubles, and (b - o) / d to 113 bits decides every case
+ *   whose answer is not a tie within 2^-100, so the rays that touch a box
+ *   are built to touch it exactly (t_enter == t_exit in the reference). */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh4.h"
+#include "hr_test.h"
+
+typedef __float128 quad;
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
+static double uniform(void) /* [0, 1) */
+{
+    rng_state ^= rng_state << 13, rng_state ^= rng_state >> 7, rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) * 0x1p-53;
+}
+static double between(double a, double b) { return a + (b - a) * uniform(); }
+
+/* --- the build ------------------------------------------------------------ */
+
+static uint32_t depth_below(const accel_bvh4 *bvh, uint32_t node)
+{
+    const accel_bvh4_node *n = &bvh->nodes[node];
+    uint32_t deepest = 0;
+    for (int k = 0; k < 4; k++) {
+        if (n->count[k] > 0 || n->ref[k] == ACCEL_BVH4_EMPTY) continue;
+        uint32_t d = depth_below(bvh, n->ref[k]);
+        if (d > deepest) deepest = d;
+    }
+    return 1 + deepest;
+}
+
+static int box_holds(const accel_bvh4_node *n, int k, const hr_bounds *b)
+{
+    return n->lo[0][k] <= b->lo.x && n->lo[1][k] <= b->lo.y && n->lo[2][k] <= b->lo.z &&
+           n->hi[0][k] >= b->hi.x && n->hi[1][k] >= b->hi.y && n->hi[2][k] >= b->hi.z;
+}
+
+/* Every item below slot k of n lies inside slot outer_k of outer. */
+static int items_within(const accel_bvh4 *bvh, const hr_bounds *boxes, const accel_bvh4_node *n,
+                        int k, const accel_bvh4_node *outer, int outer_k)
+{
+    if (n->count[k] > 0) {
+        int ok = 1;
+        for (uint32_t i = n->ref[k]; i < n->ref[k] + n->count[k]; i++)
+            ok &= box_holds(outer, outer_k, &boxes[bvh->items[i]]);
+        return ok;
+    }
+    if (n->ref[k] == ACCEL_BVH4_EMPTY) return 1;
+    const accel_bvh4_node *c = &bvh->nodes[n->ref[k]];
+    int ok = 1;
+    for (int j = 0; j < 4; j++) ok &= items_within(bvh, boxes, c, j, outer, outer_k);
+    return ok;
+}
+
+/* Each item in exactly one leaf of at most max_leaf items, and inside the
+ * box of every slot above it. */
+static int tree_ok(const accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count, uint32_t max_leaf)
+{
+    int ok = bvh->item_count == count;
+    char *seen = calloc(count, 1);
+    if (!seen) return 0;
+    for (uint32_t nidx = 0; nidx < bvh->node_count; nidx++) {
+        const accel_bvh4_node *n = &bvh->nodes[nidx];
+        for (int k = 0; k < 4; k++) {
+            ok &= items_within(bvh, boxes, n, k, n, k);
+            if (n->count[k] == 0) continue;
+            ok &= n->count[k] <= max_leaf;
+            for (uint32_t i = n->ref[k]; i < n->ref[k] + n->count[k]; i++) ok &= !seen[bvh->items[i]]++;
+        }
+    }
+    for (uint32_t i = 0; i < count; i++) ok &= seen[i] == 1;
+    free(seen);
+    return ok;
+}
+
+static void test_build(void)
+{
+    enum { N = 20000 };
+    hr_bounds *boxes = malloc(N * sizeof *boxes);
+    const accel_bvh4_options opt = {.max_leaf = 4, .traversal_cost = 0.5};
+    accel_bvh4 bvh;
+
+    /* Boxes at x = 1.5^i with size 0.3 x: binned SAH puts all but the
+     * largest few in the lowest bin, level after level. */
+    enum { GEOMETRIC = 1500 };
+    double x = 1;
+    for (int i = 0; i < GEOMETRIC; i++, x *= 1.5)
+        boxes[i] = (hr_bounds){{x - 0.3 * x, -0.3 * x, -0.3 * x}, {x + 0.3 * x, 0.3 * x, 0.3 * x}};
+    CHECK(accel_bvh4_build(&bvh, boxes, GEOMETRIC, &opt) == 0);
+    uint32_t d = depth_below(&bvh, 0);
+    fprintf(stderr, "geometric spacing: depth %u (bound %d)\n", (unsigned)d, ACCEL_BVH_MAX_DEPTH);
+    CHECK_MSG(d <= ACCEL_BVH_MAX_DEPTH && d == bvh.depth, "geometric: depth %u (recorded %u)",
+              (unsigned)d, (unsigned)bvh.depth);
+    CHECK(tree_ok(&bvh, boxes, GEOMETRIC, opt.max_leaf));
+    accel_bvh4_release(&bvh);
+
+    /* Random boxes of many sizes: the usual case, with leaves of 1 and 8. */
+    for (int i = 0; i < N; i++) {
+        double cx = between(-100, 100), cy = between(-100, 100), cz = between(-100, 100);
+        double r = pow(10.0, between(-6, 1));
+        boxes[i] = (hr_bounds){{cx - r, cy - r, cz - r}, {cx + r, cy + r, cz + r}};
+    }
+    for (uint32_t leaf = 1; leaf <= 8; leaf *= 8) {
+        const accel_bvh4_options o = {.max_leaf = leaf, .traversal_cost = 1.0};
+        CHECK(accel_bvh4_build(&bvh, boxes, N, &o) == 0);
+        CHECK(tree_ok(&bvh, boxes, N, leaf));
+        CHECK(bvh.depth == depth_below(&bvh, 0));
+        accel_bvh4_release(&bvh);
+    }
+
+    /* Boxes near the ends of the double range: centroids must not overflow,
+     * and their float boxes reach to infinity. */
+    for (int i = 0; i < 64; i++) {
+        double s = i % 2 ? 1.0 : -1.0;
+        boxes[i] = (hr_bounds){{s * 1e308, i, 0}, {s * 1.7e308, i + 1.0, 1}};
+    }
+    CHECK(accel_bvh4_build(&bvh, boxes, 64, &opt) == 0);
+    CHECK(tree_ok(&bvh, boxes, 64, opt.max_leaf));
+    accel_bvh4_release(&bvh);
+
+    /* A subnormal spread of centroids (no binning scale), and all at one
+     * point: halving keeps the depth bounded. */
+    for (int i = 0; i < 64; i++) boxes[i] = (hr_bounds){{i * 1e-320, 0, 0}, {i * 1e-320, 0, 0}};
+    CHECK(accel_bvh4_build(&bvh, boxes, 64, &opt) == 0);
+    CHECK(tree_ok(&bvh, boxes, 64, opt.max_leaf));
+    accel_bvh4_release(&bvh);
+    for (int i = 0; i < N; i++) boxes[i] = (hr_bounds){{1, 2, 3}, {1, 2, 3}};
+    CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
+    CHECK(tree_ok(&bvh, boxes, N, opt.max_leaf));
+    CHECK(depth_below(&bvh, 0) <= ACCEL_BVH_MAX_DEPTH);
+    accel_bvh4_release(&bvh);
+
+    /* One box: a root with a single leaf slot; none: no nodes. */
+    CHECK(accel_bvh4_build(&bvh, boxes, 1, &opt) == 0);
+    CHECK(bvh.node_count == 1 && bvh.nodes[0].count[0] == 1 && bvh.nodes[0].ref[1] == ACCEL_BVH4_EMPTY);
+    accel_bvh4_release(&bvh);
+    CHECK(accel_bvh4_build(&bvh, boxes, 0, &opt) == 0);
+    CHECK(bvh.nodes == NULL && bvh.node_count == 0);
+    accel_bvh4_release(&bvh);
+    free(boxes);
+}
+
+/* --- the walk ------------------------------------------------------------- */
+
+/* Exact slab test of a double ray against a double box within [tmin, tmax]. */
+static int quad_meets(const hr_ray *ray, const hr_bounds *b, double tmin, double tmax)
+{
+    const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
+    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    const double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z};
+    quad t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; a++) {
+        if (d[a] == 0) {
+            if (o[a] < lo[a] || o[a] > hi[a]) return 0;
+            continue;
+        }
+        quad n = ((quad)lo[a] - o[a]) / d[a], f = ((quad)hi[a] - o[a]) / d[a];
+        if (n > f) {
+            quad t = n;
+            n = f, f = t;
+        }
+        if (n > t0) t0 = n;
+        if (f < t1) t1 = f;
+    }
+    return t0 <= t1;
+}
+
+typedef struct walk_record {
+    char *visited; /* per item */
+    const accel_bvh4 *bvh;
+} walk_record;
+
+static int record_leaf(void *user, uint32_t first, uint32_t count)
+{
+    walk_record *w = user;
+    for (uint32_t i = first; i < first + count; i++) w->visited[w->bvh->items[i]] = 1;
+    return ACCEL_WALK_GO_ON;
+}
+
+static long missed_boxes(const accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t n, const hr_ray *ray,
+                         double tmin, double tmax, char *visited)
+{
+    memset(visited, 0, n);
+    walk_record w = {visited, bvh};
+    double t = tmax;
+    accel_bvh4_walk(bvh, ray, tmin, &t, record_leaf, &w);
+    long missed = 0;
+    for (uint32_t i = 0; i < n; i++) missed += quad_meets(ray, &boxes[i], tmin, tmax) && !visited[i];
+    return missed;
+}
+
+static hr_vec3 random_dir(void)
+{
+    for (;;) {
+        hr_vec3 v = {between(-1, 1), between(-1, 1), between(-1, 1)};
+        if (v.x * v.x + v.y * v.y + v.z * v.z > 1e-4) return v;
+    }
+}
+
+static void test_walk(void)
+{
+    enum { N = 2000 };
+    hr_bounds *boxes = malloc(N * sizeof *boxes);
+    char *visited = malloc(N);
+    const accel_bvh4_options opt = {.max_leaf = 2, .traversal_cost = 0.5};
+    accel_bvh4 bvh;
+    long missed = 0, met = 0, rays = 0;
+
+    /* Boxes at several scales and distances; box coordinates that are not
+     * floats, so rounding to float matters. */
+    const double scales[] = {1e-6, 1.0, 1e6};
+    for (int s = 0; s < 3; s++) {
+        double L = scales[s];
+        for (int i = 0; i < N; i++) {
+            double cx = between(-L, L), cy = between(-L, L), cz = between(-L, L);
+            double r = L * pow(10.0, between(-7, -0.5));
+            boxes[i] = (hr_bounds){{cx - r, cy - r * 0.5, cz - r * 2}, {cx + r, cy + r * 0.7, cz + r}};
+        }
+        CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
+        for (int k = 0; k < 3000; k++) {
+            /* Aimed at a point of a random box, so rays meet many boxes. */
+            const hr_bounds *aim = &boxes[(k * 7919) % N];
+            hr_vec3 target = {between(aim->lo.x, aim->hi.x), between(aim->lo.y, aim->hi.y),
+                              between(aim->lo.z, aim->hi.z)};
+            hr_ray ray = {{between(-2 * L, 2 * L), between(-2 * L, 2 * L), between(-2 * L, 2 * L)}, {0, 0, 0}};
+            int kind = k % 6;
+            if (kind == 1) ray.origin.x = target.x;                      /* parallel to a slab */
+            if (kind == 2) ray.origin.y = target.y, ray.origin.z = target.z; /* along an axis */
+            ray.dir = (hr_vec3){target.x - ray.origin.x, target.y - ray.origin.y, target.z - ray.origin.z};
+            if (kind == 3) ray.dir.x *= 1e-40;                           /* 1/d overflows float */
+            if (kind == 4) ray.origin.x = boxes[k % N].lo.x;             /* on a slab plane */
+            if (kind == 5) {                                    /* touching a face or edge */
+                const hr_bounds *b = &boxes[k % N];
+                hr_vec3 touch = {b->hi.x, between(b->lo.y, b->hi.y), k % 12 < 6 ? b->lo.z : b->hi.z};
+                ray.dir = (hr_vec3){0, between(-1, 1), between(-1, 1)};
+                ray.origin = (hr_vec3){touch.x, touch.y - ray.dir.y, touch.z - ray.dir.z};
+            }
+            double tmin = k % 3 == 0 ? 0.0 : k % 3 == 1 ? between(0, 0.5) : -between(0, 2), tmax = k % 4 == 0 ? INFINITY : between(0.5, 4);
+            missed += missed_boxes(&bvh, boxes, N, &ray, tmin, tmax, visited);
+            for (int i = 0; i < N; i++) met += quad_meets(&ray, &boxes[i], tmin, tmax);
+            rays++;
+        }
+        accel_bvh4_release(&bvh);
+    }
+
+    /* Far origins: beyond float's range, and far enough that float
+     * rounding of the origin is many box sizes. */
+    for (int i = 0; i < N; i++) {
+        double cx = between(-1, 1), cy = between(-1, 1), cz = between(-1, 1);
+        boxes[i] = (hr_bounds){{cx - 1e-3, cy - 1e-3, cz - 1e-3}, {cx + 1e-3, cy + 1e-3, cz + 1e-3}};
+    }
+    CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
+    const double far[] = {1e7, 1e30, 1e200};
+    for (int f = 0; f < 3; f++) {
+        for (int k = 0; k < 1000; k++) {
+            const hr_bounds *b = &boxes[k % N];
+            hr_vec3 target = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
+            hr_vec3 from = random_dir();
+            hr_ray ray = {{target.x + from.x * far[f], target.y + from.y * far[f], target.z + from.z * far[f]},
+                          {-from.x, -from.y, -from.z}};
+            missed += missed_boxes(&bvh, boxes, N, &ray, 0, INFINITY, visited);
+            for (int i = 0; i < N; i++) met += quad_meets(&ray, &boxes[i], 0, INFINITY);
+            rays++;
+        }
+    }
+    accel_bvh4_release(&bvh);
+    fprintf(stderr, "walk: %ld rays, %ld box meetings, %ld missed\n", rays, met, missed);
+    CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
+    CHECK(met > 20000);
+    free(boxes);
+    free(visited);
+}
+
+int main(void)
+{
+    test_build();
+    test_walk();
+    return hr_test_end();
+}
