@@ -262,6 +262,19 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         collapse(&c, 0, 0, 1);
     }
     dealloc(b.nodes);
+    /* The collapse used fewer nodes than the bound it was given room for
+     * (about half): keep only those. */
+    if (c.node_count < inner) {
+        accel_bvh4_node *exact = alloc((size_t)c.node_count * sizeof *exact);
+        if (!exact) {
+            dealloc(c.nodes);
+            b.nodes = NULL;
+            goto out_of_memory;
+        }
+        memcpy(exact, c.nodes, (size_t)c.node_count * sizeof *exact);
+        dealloc(c.nodes);
+        c.nodes = exact;
+    }
     bvh->nodes = c.nodes;
     bvh->node_count = c.node_count;
     bvh->items = b.items;
