@@ -141,7 +141,7 @@ void mesh_destroy(mesh *m)
     host->free(m->normals);
     host->free(m->corners);
     host->free(m->corner_normals);
-    host->free(m->nodes);
+    accel_bvh4_release(&m->bvh);
     host->free(m);
 }
 
@@ -165,6 +165,11 @@ hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t e
     if (b->triangle_count == 0) {
         snprintf(error, error_size, "the mesh has no triangle with area (%zu skipped)",
                  b->degenerate_count);
+        return HR_ERROR_PARAMETER;
+    }
+    if (b->triangle_count > ACCEL_BVH4_MAX_ITEMS) {
+        snprintf(error, error_size, "the mesh has %zu triangles, more than its BVH takes (%lu)",
+                 b->triangle_count, (unsigned long)ACCEL_BVH4_MAX_ITEMS);
         return HR_ERROR_PARAMETER;
     }
     const hr_host *host = b->host;

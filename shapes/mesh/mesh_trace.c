@@ -1,5 +1,5 @@
-/* Tracing a mesh: iterative BVH traversal with a fixed stack, front to back
- * (the child on the ray's near side of the split axis first), with the
+/* Tracing a mesh: accel/'s walk of the 4-wide BVH, nearest box first (a
+ * conservative float test: it never skips a box the ray meets), with the
  * three modes of the shape ABI:
  * - first hit: the best t so far prunes every box beyond it;
  * - any hit: stops at the first triangle hit (shadow rays);
@@ -22,65 +22,9 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "mesh.h"
 #include "mesh_triangle.h"
-
-/* The slab test of a box over [tmin, tmax]; the box's coordinates are
- * lo[a * stride], hi[a * stride] (a child's box in a node has stride 2).
- * The box is conservative (outward-rounded float, one ulp more), and each
- * slab time is widened by 2 gamma(3) of itself to cover its own rounding
- * (pbrt's argument). A NaN time ((lo - o) * inf with lo == o, for a ray in
- * a slab's plane) leaves the interval as it was: conservative. */
-static int box_hit(const float *lo, const float *hi, size_t stride, const mesh_ray *r, double tmin,
-                   double tmax)
-{
-    const double pad = 2.0 * MESH_GAMMA(3);
-    double t0 = tmin, t1 = tmax;
-    for (int a = 0; a < 3; a++) {
-        const size_t i = (size_t)a * stride;
-        double near = ((r->neg[a] ? hi[i] : lo[i]) - r->o[a]) * r->inv_d[a];
-        double far = ((r->neg[a] ? lo[i] : hi[i]) - r->o[a]) * r->inv_d[a];
-        near -= pad * fabs(near);
-        far += pad * fabs(far);
-        if (near > t0) t0 = near;
-        if (far < t1) t1 = far;
-    }
-    return t0 <= t1;
-}
-
-/* Both children's boxes of a node at once: bit k set when child k's box is
- * met. The SSE2 form does box_hit's arithmetic in two lanes, operation for
- * operation (max and min take the interval's side on a NaN, as box_hit's
- * comparisons do), so the two give the same answers. */
-static int box_hit_pair(const mesh_bvh_node *n, const mesh_ray *r, double tmin, double tmax)
-{
-#if defined(__SSE2__)
-    const __m128d pad = _mm_set1_pd(2.0 * MESH_GAMMA(3));
-    const __m128d sign = _mm_set1_pd(-0.0);
-    __m128d t0 = _mm_set1_pd(tmin), t1 = _mm_set1_pd(tmax);
-    for (int a = 0; a < 3; a++) {
-        const float *near_f = r->neg[a] ? n->hi[a] : n->lo[a];
-        const float *far_f = r->neg[a] ? n->lo[a] : n->hi[a];
-        const __m128d o = _mm_set1_pd(r->o[a]), inv = _mm_set1_pd(r->inv_d[a]);
-        const __m128 near_2 = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)near_f));
-        const __m128 far_2 = _mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)(const void *)far_f));
-        __m128d near = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(near_2), o), inv);
-        __m128d far = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(far_2), o), inv);
-        near = _mm_sub_pd(near, _mm_mul_pd(pad, _mm_andnot_pd(sign, near)));
-        far = _mm_add_pd(far, _mm_mul_pd(pad, _mm_andnot_pd(sign, far)));
-        t0 = _mm_max_pd(near, t0);
-        t1 = _mm_min_pd(far, t1);
-    }
-    return _mm_movemask_pd(_mm_cmple_pd(t0, t1));
-#else
-    return box_hit(&n->lo[0][0], &n->hi[0][0], 2, r, tmin, tmax) |
-           box_hit(&n->lo[0][1], &n->hi[0][1], 2, r, tmin, tmax) << 1;
-#endif
-}
 
 /* (B - A) x (C - A) with the edges scaled by a power of two first, so tiny
  * or huge triangles neither underflow nor overflow. */
@@ -265,6 +209,7 @@ typedef struct query {
     double tie_error;
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
+    int phase;         /* see walk: 0, or the sign of the t this walk keeps */
     hr_status status;
     int found;
     mesh_triangle_hit best;
@@ -285,6 +230,8 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
         if (!mesh_triangle_test(&q->r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
                                 q->tie_check ? -INFINITY : q->tmin, q->tmax, &th))
             continue;
+        /* A hit the walk of the other half of the line finds (walk). */
+        if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
         if (q->mode == HR_TRACE_ALL) {
             hr_status st = make_room(args, m->host);
             if (st) {
@@ -334,55 +281,38 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
     return 0;
 }
 
-/* The BVH walk: every leaf whose box the ray meets over the query's
- * interval, which leaves may narrow as they go. Both children of a node
- * are tested at once; the near one (the right one when the ray runs down
- * the node's axis) is entered first and the other pushed. A stack entry is
- * a child still to enter, node * 2 + which. */
+static int leaf_of(void *user, uint32_t first, uint32_t count)
+{
+    return visit_leaf(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
+}
+
+/* Every leaf whose box the ray may meet over the query's interval, which
+ * the leaves narrow as they find hits. accel's walk needs a finite start;
+ * a query from -inf (the whole line of a closed mesh's all-hits list, or a
+ * caller's own) walks the reversed ray from 0 for t < 0, then the ray from
+ * 0, each keeping the hits of its half so that none is reported twice. A
+ * NaN bound meets nothing, as in the triangle test. */
 static void walk(query *q)
 {
-    const mesh *m = q->m;
-    const mesh_ray *r = &q->r;
-    if (!box_hit(m->root_lo, m->root_hi, 1, r, q->tmin, q->tmax)) return;
-    if (m->root_count) {
-        visit_leaf(q, m->root_index, m->root_index + m->root_count);
+    const accel_bvh4 *bvh = &q->m->bvh;
+    const hr_ray *ray = &q->args->ray;
+    if (isnan(q->tmin) || isnan(q->tmax)) return;
+    if (q->tmin > -INFINITY) {
+        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of, q);
         return;
     }
-    uint64_t stack[MESH_BVH_MAX_DEPTH + 2];
-    int top = 0;
-    uint32_t node = 0;
-    for (;;) {
-        const mesh_bvh_node *n = &m->nodes[node];
-        const int hits = box_hit_pair(n, r, q->tmin, q->tmax);
-        const int near = r->neg[n->axis], far = !near;
-        int child = -1;
-        if (hits & 1 << near) {
-            if (hits & 1 << far) stack[top++] = (uint64_t)node << 1 | (uint64_t)far;
-            child = near;
-        } else if (hits & 1 << far) {
-            child = far;
-        }
-        /* Enter the child: a node goes round the outer loop, a leaf is
-         * tested here; then the next pushed child, which in first-hit mode
-         * is skipped when its box now lies beyond the nearest hit found
-         * since it was pushed. */
-        for (;;) {
-            if (child >= 0) {
-                if (n->count[child] == 0) {
-                    node = n->index[child];
-                    break;
-                }
-                if (visit_leaf(q, n->index[child], n->index[child] + n->count[child])) return;
-            }
-            do {
-                if (top == 0) return;
-                const uint64_t entry = stack[--top];
-                n = &m->nodes[entry >> 1];
-                child = (int)(entry & 1);
-            } while (q->mode == HR_TRACE_FIRST && q->found &&
-                     !box_hit(&n->lo[0][child], &n->hi[0][child], 2, r, q->tmin, q->tmax));
-        }
-    }
+    hr_ray back = *ray;
+    back.dir.x = -ray->dir.x, back.dir.y = -ray->dir.y, back.dir.z = -ray->dir.z;
+    /* Along the reversed ray, the hits t < tmax are at s = -t > -tmax; a
+     * nearer hit found there bounds nothing ahead of it. */
+    double unbounded = INFINITY;
+    q->phase = -1;
+    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &unbounded, leaf_of, q) ==
+        ACCEL_WALK_STOP)
+        return;
+    if (!(q->tmax >= 0.0)) return;
+    q->phase = 1;
+    accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of, q);
 }
 
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
@@ -393,6 +323,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     q.m = m;
     q.args = args;
     q.status = HR_OK;
+    q.phase = 0;
     q.found = 0;
     q.best_tri = 0;
     q.seen_count = q.seen_overflow = 0;
