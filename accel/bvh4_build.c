@@ -61,6 +61,10 @@ typedef struct builder {
     double *centroids; /* 3 per input box; halves first: lo + hi overflows near DBL_MAX */
     uint32_t max_leaf;
     double traversal_cost;
+    /* One node's bins, used before build_binary recurses: here rather than
+     * in its frame, which the recursion would multiply. */
+    hr_bounds bin_box[3][BINS], right_box[BINS];
+    uint32_t bin_count[3][BINS];
 } builder;
 
 static inline int bin_of(double c, double lo, double scale)
@@ -69,59 +73,109 @@ static inline int bin_of(double c, double lo, double scale)
     return i < 0 ? 0 : i >= BINS ? BINS - 1 : i;
 }
 
-static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth)
+/* The union of items[first, first + count)'s boxes and the bounds of their
+ * centroids: the root's, and the halves of a split the bins did not make. */
+static void gather(const builder *b, uint32_t first, uint32_t count, hr_bounds *box,
+                   hr_bounds *cbox)
+{
+    *box = empty_box(), *cbox = empty_box();
+    for (uint32_t i = first; i < first + count; i++) {
+        grow(box, &b->boxes[b->items[i]]);
+        const double *c = b->centroids + 3 * (size_t)b->items[i];
+        hr_bounds cb = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
+        grow(cbox, &cb);
+    }
+}
+
+static inline void grow_point(hr_bounds *b, const double c[3])
+{
+    const hr_bounds p = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
+    grow(b, &p);
+}
+
+/* Node `node` over items[first, first + count), whose boxes' union is box
+ * and whose centroids' bounds are cbox. One pass bins the items on all
+ * three axes; the sweep over the bins gives each side's box of the best
+ * split, and the partition gathers each side's centroid bounds, so a
+ * child's bounds cost no pass of their own. An empty bin is skipped in the
+ * sweeps: its boundary splits the items as the one before it does, at the
+ * same cost, so the choice is the one a sweep over every boundary makes. */
+static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth,
+                         const hr_bounds *box, const hr_bounds *cbox)
 {
     uint32_t *items = b->items;
-    hr_bounds box = empty_box(), cbox = empty_box();
-    for (uint32_t i = first; i < first + count; i++) {
-        grow(&box, &b->boxes[items[i]]);
-        const double *c = b->centroids + 3 * (size_t)items[i];
-        hr_bounds cb = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
-        grow(&cbox, &cb);
-    }
-    b->nodes[node].box = box;
+    b->nodes[node].box = *box;
     b->nodes[node].first = first;
     b->nodes[node].count = count;
     if (count <= 1) return;
 
+    double lo[3], scale[3];
+    int binned[3];
+    for (int axis = 0; axis < 3; axis++) {
+        double l = axis_of(&cbox->lo, axis), h = axis_of(&cbox->hi, axis);
+        lo[axis] = l, scale[axis] = BINS / (h - l);
+        /* A subnormal spread gives an infinite scale: no binning possible. */
+        binned[axis] = h > l && isfinite(scale[axis]);
+    }
+    hr_bounds (*bin_box)[BINS] = b->bin_box;
+    uint32_t (*bin_count)[BINS] = b->bin_count;
+    memset(b->bin_count, 0, sizeof b->bin_count);
+    for (int axis = 0; axis < 3; axis++)
+        for (int k = 0; k < BINS; k++) bin_box[axis][k] = empty_box();
+    if (binned[0] || binned[1] || binned[2]) {
+        for (uint32_t i = first; i < first + count; i++) {
+            const double *c = b->centroids + 3 * (size_t)items[i];
+            const hr_bounds *ib = &b->boxes[items[i]];
+            for (int axis = 0; axis < 3; axis++) {
+                if (!binned[axis]) continue;
+                int k = bin_of(c[axis], lo[axis], scale[axis]);
+                bin_count[axis][k]++;
+                grow(&bin_box[axis][k], ib);
+            }
+        }
+    }
     double best_cost = DBL_MAX;
     int best_axis = -1, best_split = 0;
+    hr_bounds best_left = empty_box(), best_right = empty_box();
     for (int axis = 0; axis < 3; axis++) {
-        double lo = axis_of(&cbox.lo, axis), hi = axis_of(&cbox.hi, axis);
-        double scale = BINS / (hi - lo);
-        /* A subnormal spread gives an infinite scale: no binning possible. */
-        if (!(hi > lo) || !isfinite(scale)) continue;
-        hr_bounds bin_box[BINS];
-        uint32_t bin_count[BINS] = {0};
-        for (int k = 0; k < BINS; k++) bin_box[k] = empty_box();
-        for (uint32_t i = first; i < first + count; i++) {
-            int k = bin_of(b->centroids[3 * (size_t)items[i] + (size_t)axis], lo, scale);
-            bin_count[k]++;
-            grow(&bin_box[k], &b->boxes[items[i]]);
-        }
+        if (!binned[axis]) continue;
+        const hr_bounds *bins = bin_box[axis];
+        const uint32_t *counts = bin_count[axis];
+        hr_bounds *right_box = b->right_box;
         double right_area[BINS];
         uint32_t right_count[BINS];
         hr_bounds acc = empty_box();
+        double acc_area = 0.0;
         uint32_t n = 0;
         for (int k = BINS - 1; k > 0; k--) {
-            grow(&acc, &bin_box[k]);
-            n += bin_count[k];
-            right_area[k] = area(&acc);
+            if (counts[k]) {
+                grow(&acc, &bins[k]);
+                n += counts[k];
+                acc_area = area(&acc);
+            }
+            right_box[k] = acc;
+            right_area[k] = acc_area;
             right_count[k] = n;
         }
         acc = empty_box();
         n = 0;
         for (int k = 0; k < BINS - 1; k++) {
-            grow(&acc, &bin_box[k]);
-            n += bin_count[k];
-            if (n == 0 || right_count[k + 1] == 0) continue;
+            if (!counts[k]) continue;
+            grow(&acc, &bins[k]);
+            n += counts[k];
+            if (right_count[k + 1] == 0) break;
             double cost = area(&acc) * n + right_area[k + 1] * right_count[k + 1];
-            if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = k;
+            if (cost < best_cost) {
+                best_cost = cost, best_axis = axis, best_split = k;
+                best_left = acc, best_right = right_box[k + 1];
+            }
         }
     }
-    double parent_area = area(&box);
+    double parent_area = area(box);
     double split_cost = parent_area > 0 ? b->traversal_cost + best_cost / parent_area : DBL_MAX;
     uint32_t mid;
+    hr_bounds left_box, right_box, left_cbox = empty_box(), right_cbox = empty_box();
+    int gathered = 0;
     if (best_axis < 0 || depth >= ACCEL_BVH_SAH_DEPTH) {
         /* All centroids coincide, or SAH has gone deep (geometric spacing
          * can make it peel one item off per level): halve the range, which
@@ -131,28 +185,36 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
         mid = first + count / 2;
     } else {
         if (count <= b->max_leaf && (double)count <= split_cost) return;
-        double lo = axis_of(&cbox.lo, best_axis), hi = axis_of(&cbox.hi, best_axis);
-        double scale = BINS / (hi - lo);
+        const int axis = best_axis;
         uint32_t i = first, j = first + count; /* [i, j) not yet placed */
         while (i < j) {
-            if (bin_of(b->centroids[3 * (size_t)items[i] + (size_t)best_axis], lo, scale) <= best_split) {
+            const double *c = b->centroids + 3 * (size_t)items[i];
+            if (bin_of(c[axis], lo[axis], scale[axis]) <= best_split) {
+                grow_point(&left_cbox, c);
                 i++;
             } else {
+                grow_point(&right_cbox, c);
                 uint32_t t = items[i];
                 items[i] = items[--j];
                 items[j] = t;
             }
         }
         mid = i;
-        if (mid == first || mid == first + count) mid = first + count / 2;
+        gathered = mid > first && mid < first + count;
+        if (!gathered) mid = first + count / 2;
+        left_box = best_left, right_box = best_right;
+    }
+    if (!gathered) {
+        gather(b, first, mid - first, &left_box, &left_cbox);
+        gather(b, mid, first + count - mid, &right_box, &right_cbox);
     }
     /* Capacity is 2 count - 1 nodes: a binary tree with count leaves at most. */
     uint32_t left = b->node_count;
     b->node_count += 2;
     b->nodes[node].first = left;
     b->nodes[node].count = 0;
-    build_binary(b, left, first, mid - first, depth + 1);
-    build_binary(b, left + 1, mid, first + count - mid, depth + 1);
+    build_binary(b, left, first, mid - first, depth + 1, &left_box, &left_cbox);
+    build_binary(b, left + 1, mid, first + count - mid, depth + 1, &right_box, &right_cbox);
 }
 
 /* --- Collapsing to four children ------------------------------------------ */
@@ -245,7 +307,9 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         b.items[i] = i;
     }
     b.node_count = 1;
-    build_binary(&b, 0, 0, count, 0);
+    hr_bounds box, cbox;
+    gather(&b, 0, count, &box, &cbox);
+    build_binary(&b, 0, 0, count, 0, &box, &cbox);
     dealloc(b.centroids);
     b.centroids = NULL;
 
