@@ -67,10 +67,14 @@ typedef struct builder {
     uint32_t bin_count[3][BINS];
 } builder;
 
+/* Clamped before the conversion, which is undefined for a value past int's
+ * range: an infinite box has an infinite centroid, (c - lo) can then be
+ * infinite or NaN (inf - inf, or inf times a zero scale), and those go to
+ * the last bin and the first. The same bins as truncating first elsewhere. */
 static inline int bin_of(double c, double lo, double scale)
 {
-    int i = (int)((c - lo) * scale);
-    return i < 0 ? 0 : i >= BINS ? BINS - 1 : i;
+    const double x = (c - lo) * scale;
+    return x >= 0.0 ? (x < BINS ? (int)x : BINS - 1) : 0;
 }
 
 /* The union of items[first, first + count)'s boxes and the bounds of their
