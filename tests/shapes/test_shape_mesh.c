@@ -734,10 +734,11 @@ static int compare_doubles(const void *a, const void *b)
  * random triangles of all sizes (an open surface, so no reordering) scaled
  * by a power of two, random rays scaled with it (so t is unchanged) and
  * random intervals, a quarter of them from -inf (the walk's two halves of
- * the line); the sorted lists of t agree bit for bit with the same
- * watertight test run on each triangle in turn, the first hit is the
- * smallest of them and the any hit finds one when there is one. Scales
- * beyond float's range give the BVH infinite boxes. */
+ * the line) and some from up to 2^1000 behind the origin; the sorted lists
+ * of t agree bit for bit with the same watertight test run on each
+ * triangle in turn, the first hit is the smallest of them and the any hit
+ * finds one when there is one. Scales beyond float's range give the BVH
+ * infinite boxes. */
 static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double scale)
 {
     hr_vec3 *v = malloc(3 * (size_t)tris * sizeof *v);
@@ -783,8 +784,11 @@ static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double s
         ray.dir.x *= scale, ray.dir.y *= scale, ray.dir.z *= scale;
         double tmin, tmax;
         random_interval(&rng, &tmin, &tmax);
-        /* The first soup keeps the intervals it always had. */
+        /* The first soup keeps the intervals it always had; the others
+         * also start at -inf, or far behind the origin (accel's walk moves
+         * the origin back to a negative tmin). */
         if (scale != 1.0 && rng_chance(&rng, 0.25)) tmin = -INFINITY;
+        else if (scale != 1.0 && rng_chance(&rng, 0.25)) tmin = -exp2(rng_uniform(&rng, 0, 1000));
         mesh_ray r;
         int n = 0;
         if (mesh_ray_init(&r, &ray))
