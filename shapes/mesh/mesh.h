@@ -7,9 +7,10 @@
  * has normals, the vertices themselves (24 bytes each, shared: a closed
  * mesh has about half as many vertices as triangles) and the BVH's nodes
  * (accel/bvh4.h: 128 bytes each, four children, leaves of about five
- * triangles): some 32 bytes a triangle for a closed mesh without normals
- * (test_shape_mesh_large prints the figure). The BVH orders the triangles
- * themselves, so no index array sits between them. */
+ * triangles, some 11 bytes a triangle): some 36 bytes a triangle for a
+ * closed mesh without normals (test_shape_mesh_large prints the figure).
+ * The BVH orders the triangles themselves, so no index array sits between
+ * them. */
 #ifndef HITRAY_MESH_H
 #define HITRAY_MESH_H
 
