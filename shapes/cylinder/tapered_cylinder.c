@@ -131,7 +131,7 @@ SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, cons
 
     double roots[2];
     const int count = shape_solve_half_quadratic(qa, qb, qc, qdisc, roots);
-    for (int i = 0; i < count; i++) roots[i] = ldexp(roots[i], -exponent);
+    for (int i = 0; i < count; i++) roots[i] = shape_ldexp(roots[i], -exponent);
     if (qa > 0.0)
         return count == 2 ? shape_span_make(roots[0], SURFACE_WALL, roots[1], SURFACE_WALL)
                           : shape_span_nowhere();
@@ -219,7 +219,7 @@ static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *
     if (!shape_vec3_scale_exponent(shape_vec3(x, y, 0.0), &exponent)) return;
     const hr_vec3 q = shape_vec3_ldexp(shape_vec3(x, y, 0.0), -exponent);
     const double rho = sqrt(q.x * q.x + q.y * q.y);
-    if (!(rho > ldexp(r, -exponent))) return;
+    if (!(rho > shape_ldexp(r, -exponent))) return;
     const double scale = r / rho;
     hit->point.x = q.x * scale;
     hit->point.y = q.y * scale;
