@@ -249,6 +249,29 @@ static void tapered_bounds(const void *shape, hr_bounds *out)
     out->hi = shape_vec3(r, r, 1.0);
 }
 
+/* The box of the two end disks under m (the wall is their convex hull):
+ * a disk of radius r about c spanned by the images u, v of the x and y
+ * axes reaches c_i +- r sqrt(u_i^2 + v_i^2) along world axis i. The
+ * rounding of those few operations is far below the pad of 16 ulps of the
+ * terms' magnitudes added here. */
+static void tapered_transformed_bounds(const void *shape, const double m[16], hr_bounds *out)
+{
+    const tapered_cylinder *c = shape;
+    double lo[3], hi[3];
+    for (int i = 0; i < 3; i++) {
+        const double *row = m + 4 * i;
+        const double reach = sqrt(row[0] * row[0] + row[1] * row[1]);
+        const double base = row[3], cap = row[2] + row[3];
+        const double base_lo = base - reach, base_hi = base + reach;
+        const double cap_lo = cap - c->s * reach, cap_hi = cap + c->s * reach;
+        const double pad = 16.0 * DBL_EPSILON * (fabs(row[2]) + fabs(row[3]) + (1.0 + c->s) * reach);
+        lo[i] = (base_lo < cap_lo ? base_lo : cap_lo) - pad;
+        hi[i] = (base_hi > cap_hi ? base_hi : cap_hi) + pad;
+    }
+    out->lo = shape_vec3(lo[0], lo[1], lo[2]);
+    out->hi = shape_vec3(hi[0], hi[1], hi[2]);
+}
+
 /* --- Creation ----------------------------------------------------------------- */
 
 static hr_status tapered_make(const hr_create_args *args, double s, void **out_shape)
@@ -309,7 +332,7 @@ static const hr_param_spec tapered_params[] = {
         .help = class_help, .params = params_list, .param_count = params_count,             \
         .surface_count = 3, .create = create_fn, .destroy = tapered_destroy,                \
         .bounds = tapered_bounds, .hit = tapered_hit, .first_hit = tapered_first_hit,       \
-        .any_hit = tapered_any_hit,                                                         \
+        .any_hit = tapered_any_hit, .transformed_bounds = tapered_transformed_bounds,       \
     }
 
 static const hr_shape_class tapered_cylinder_class =
