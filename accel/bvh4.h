@@ -205,13 +205,29 @@ static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
  * for child k, with a lower bound of where it enters in entry[k]. With the
  * interval at t >= 0, only positive slab distances can decide a test, and
  * for those the slack in inv_near (inv_far) makes the entry smaller (the
- * exit larger); a negative distance stays negative. */
+ * exit larger); a negative distance stays negative.
+ *
+ * An entry of +inf is a miss: no hit lies there. That is also what keeps
+ * an empty slot (lo = +inf, hi = -inf) from ever being met, with no test
+ * of its own: along the direction's largest component 1/d is finite, and
+ * of that axis's two slab distances at least one is an infinity on the
+ * missing side (+inf entering or -inf leaving); the other may be NaN
+ * (inf - inf, an origin beyond float's range), which the max/min ignore,
+ * but both cannot be, since the origin cannot be beyond both ends. */
+#if defined(__SSE2__)
+typedef __m128 accel_f4; /* a float in every lane, for the four boxes at once */
+static inline accel_f4 accel_f4_set(float x) { return _mm_set1_ps(x); }
+#else
+typedef float accel_f4;
+static inline accel_f4 accel_f4_set(float x) { return x; }
+#endif
+
 static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_node *n,
-                                       float tmin, float tmax, float entry[4])
+                                       accel_f4 tmin, accel_f4 tmax, float entry[4])
 {
     const char *base = (const char *)n;
 #if defined(__SSE2__)
-    __m128 lo = _mm_set1_ps(tmin), hi = _mm_set1_ps(tmax);
+    __m128 lo = tmin, hi = tmax;
     for (int a = 0; a < 3; a++) {
         __m128 bn = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a]));
         __m128 bf = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));
@@ -225,7 +241,8 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
     lo = _mm_sub_ps(lo, tiny);
     hi = _mm_add_ps(hi, tiny);
     _mm_storeu_ps(entry, lo);
-    return (unsigned)_mm_movemask_ps(_mm_cmple_ps(lo, hi));
+    const __m128 met = _mm_and_ps(_mm_cmple_ps(lo, hi), _mm_cmplt_ps(lo, _mm_set1_ps(INFINITY)));
+    return (unsigned)_mm_movemask_ps(met);
 #else
     unsigned mask = 0;
     for (int k = 0; k < 4; k++) {
@@ -241,7 +258,7 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
         lo -= ACCEL_TINY;
         hi += ACCEL_TINY;
         entry[k] = lo;
-        if (lo <= hi) mask |= 1u << k;
+        if (lo <= hi && lo < INFINITY) mask |= 1u << k;
     }
     return mask;
 #endif
@@ -264,8 +281,9 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
     accel_ray4_init(&r, ray, tmin);
-    const float tmin_f = accel_ray4_tmin(&r, tmin);
+    const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
+    accel_f4 tmax4 = accel_f4_set(tmax_f);
     uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
     float stack_entry[ACCEL_BVH4_STACK];
     uint32_t top = 0;
@@ -274,28 +292,32 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
         if (count > 0) {
             double before = *tmax;
             if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
-            if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax);
+            if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
         } else {
             const accel_bvh4_node *n = &bvh->nodes[ref];
             float entry[4];
-            unsigned mask = accel_bvh4_test(&r, n, tmin_f, tmax_f, entry);
-            /* Hit children nearest first (insertion sort of at most 4). */
-            uint32_t order[4], hits = 0;
-            while (mask) {
+            unsigned mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
+            if (mask) {
                 uint32_t k = (uint32_t)__builtin_ctz(mask);
                 mask &= mask - 1;
-                if (n->count[k] == 0 && n->ref[k] == ACCEL_BVH4_EMPTY) continue;
-                uint32_t j = hits++;
-                while (j > 0 && entry[order[j - 1]] > entry[k]) order[j] = order[j - 1], j--;
-                order[j] = k;
-            }
-            if (hits > 0) {
-                for (uint32_t j = hits - 1; j > 0; j--) {
-                    uint32_t k = order[j];
-                    stack_ref[top] = n->ref[k], stack_count[top] = n->count[k];
-                    stack_entry[top++] = entry[k];
+                if (mask) {
+                    /* Two or more: stack all but the nearest, farthest
+                     * first (an insertion sort of at most four, by entry). */
+                    uint32_t kid[4] = {k}, hits = 1;
+                    float at[4] = {entry[k]};
+                    while (mask) {
+                        uint32_t c = (uint32_t)__builtin_ctz(mask), j = hits++;
+                        mask &= mask - 1;
+                        while (j > 0 && at[j - 1] > entry[c]) kid[j] = kid[j - 1], at[j] = at[j - 1], j--;
+                        kid[j] = c, at[j] = entry[c];
+                    }
+                    for (uint32_t j = hits - 1; j > 0; j--) {
+                        stack_ref[top] = n->ref[kid[j]], stack_count[top] = n->count[kid[j]];
+                        stack_entry[top++] = at[j];
+                    }
+                    k = kid[0];
                 }
-                ref = n->ref[order[0]], count = n->count[order[0]];
+                ref = n->ref[k], count = n->count[k];
                 continue;
             }
         }
