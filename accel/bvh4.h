@@ -105,6 +105,7 @@ void accel_bvh4_release(accel_bvh4 *bvh);
 typedef struct accel_ray4 {
 #if defined(__SSE2__)
     __m128 o_near[3], o_far[3], inv_near[3], inv_far[3];
+    __m128 tiny, infinity; /* the test's constants, broadcast once a ray */
 #else
     float o_near[3], o_far[3], inv_near[3], inv_far[3];
 #endif
@@ -131,6 +132,10 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
      * the moved origin is bracketed with the error of that product and sum
      * (gamma(2) of the terms' magnitudes). */
     r->t_offset = tmin < 0 ? tmin : 0.0;
+#if defined(__SSE2__)
+    r->tiny = _mm_set1_ps(ACCEL_TINY);
+    r->infinity = _mm_set1_ps(INFINITY);
+#endif
     const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
     double big = fabs(d[0]);
     if (fabs(d[1]) > big) big = fabs(d[1]);
@@ -228,20 +233,24 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
     const char *base = (const char *)n;
 #if defined(__SSE2__)
     __m128 lo = tmin, hi = tmax;
-    for (int a = 0; a < 3; a++) {
-        __m128 bn = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a]));
-        __m128 bf = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));
-        __m128 tn = _mm_mul_ps(_mm_sub_ps(bn, r->o_near[a]), r->inv_near[a]);
-        __m128 tf = _mm_mul_ps(_mm_sub_ps(bf, r->o_far[a]), r->inv_far[a]);
-        /* max(x, acc) is x > acc ? x : acc: a NaN x leaves acc as it was */
-        lo = _mm_max_ps(tn, lo);
-        hi = _mm_min_ps(tf, hi);
-    }
-    const __m128 tiny = _mm_set1_ps(ACCEL_TINY);
-    lo = _mm_sub_ps(lo, tiny);
-    hi = _mm_add_ps(hi, tiny);
+    /* Written out axis by axis (a loop kept its counter and reloaded the
+     * offsets every node). max(x, acc) is x > acc ? x : acc: a NaN x leaves
+     * acc as it was. */
+#define ACCEL_SLAB(a)                                                                   \
+    do {                                                                                \
+        const __m128 bn_ = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a])); \
+        const __m128 bf_ = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));  \
+        lo = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(bn_, r->o_near[a]), r->inv_near[a]), lo);   \
+        hi = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(bf_, r->o_far[a]), r->inv_far[a]), hi);     \
+    } while (0)
+    ACCEL_SLAB(0);
+    ACCEL_SLAB(1);
+    ACCEL_SLAB(2);
+#undef ACCEL_SLAB
+    lo = _mm_sub_ps(lo, r->tiny);
+    hi = _mm_add_ps(hi, r->tiny);
     _mm_storeu_ps(entry, lo);
-    const __m128 met = _mm_and_ps(_mm_cmple_ps(lo, hi), _mm_cmplt_ps(lo, _mm_set1_ps(INFINITY)));
+    const __m128 met = _mm_and_ps(_mm_cmple_ps(lo, hi), _mm_cmplt_ps(lo, r->infinity));
     return (unsigned)_mm_movemask_ps(met);
 #else
     unsigned mask = 0;
