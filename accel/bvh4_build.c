@@ -10,6 +10,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #define BINS 16
 
@@ -23,41 +26,61 @@ typedef struct bin_node {
     uint32_t count; /* leaf: number of items (> 0); inner: 0 */
 } bin_node;
 
-static hr_bounds empty_box(void)
+/* A box as six numbers to take minima of: lo.x, lo.y, lo.z, -hi.x, -hi.y,
+ * -hi.z (negation is exact, so min of -hi is -max of hi), so growing a box
+ * is three two-lane minima with SSE2. */
+typedef struct nbox {
+    double v[6];
+} nbox;
+
+static nbox nbox_empty(void)
 {
-    hr_bounds b = {{DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
+    nbox b = {{DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX}};
     return b;
 }
 
-/* fmin/fmax without the libm call (most of the build's time otherwise). */
-static inline double lower(double acc, double v) { return v < acc ? v : acc; }
-static inline double higher(double acc, double v) { return v > acc ? v : acc; }
-
-static inline void grow(hr_bounds *b, const hr_bounds *o)
+static nbox nbox_of(const hr_bounds *b)
 {
-    b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
-    b->lo.z = lower(b->lo.z, o->lo.z);
-    b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
-    b->hi.z = higher(b->hi.z, o->hi.z);
+    nbox n = {{b->lo.x, b->lo.y, b->lo.z, -b->hi.x, -b->hi.y, -b->hi.z}};
+    return n;
 }
 
-static double area(const hr_bounds *b)
+static hr_bounds nbox_bounds(const nbox *n)
 {
-    double dx = b->hi.x - b->lo.x, dy = b->hi.y - b->lo.y, dz = b->hi.z - b->lo.z;
+    hr_bounds b = {{n->v[0], n->v[1], n->v[2]}, {-n->v[3], -n->v[4], -n->v[5]}};
+    return b;
+}
+
+/* Lane by lane v < acc ? v : acc, as SSE2's min(v, acc) is: a NaN in `o`
+ * leaves the running box as it was. */
+static inline void grow(nbox *b, const nbox *o)
+{
+#if defined(__SSE2__)
+    for (int i = 0; i < 6; i += 2)
+        _mm_storeu_pd(b->v + i, _mm_min_pd(_mm_loadu_pd(o->v + i), _mm_loadu_pd(b->v + i)));
+#else
+    for (int i = 0; i < 6; i++) b->v[i] = o->v[i] < b->v[i] ? o->v[i] : b->v[i];
+#endif
+}
+
+static double area(const nbox *b)
+{
+    double dx = -b->v[3] - b->v[0], dy = -b->v[4] - b->v[1], dz = -b->v[5] - b->v[2];
     if (dx < 0 || dy < 0 || dz < 0) return 0.0;
     return 2.0 * (dx * dy + dy * dz + dz * dx);
 }
 
-static inline double axis_of(const hr_vec3 *v, int axis)
+static double bounds_area(const hr_bounds *b)
 {
-    return axis == 0 ? v->x : axis == 1 ? v->y : v->z;
+    const nbox n = nbox_of(b);
+    return area(&n);
 }
 
 typedef struct builder {
     bin_node *nodes;
     uint32_t node_count, node_cap;
     uint32_t *items;
-    const hr_bounds *boxes;
+    const nbox *boxes;
     double *centroids; /* 3 per input box; halves first: lo + hi overflows near DBL_MAX */
     uint32_t max_leaf;
     double traversal_cost;
@@ -72,48 +95,64 @@ static inline int bin_of(double c, double lo, double scale)
 static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth)
 {
     uint32_t *items = b->items;
-    hr_bounds box = empty_box(), cbox = empty_box();
+    nbox box = nbox_empty(), cbox = nbox_empty();
     for (uint32_t i = first; i < first + count; i++) {
         grow(&box, &b->boxes[items[i]]);
         const double *c = b->centroids + 3 * (size_t)items[i];
-        hr_bounds cb = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
+        nbox cb = {{c[0], c[1], c[2], -c[0], -c[1], -c[2]}};
         grow(&cbox, &cb);
     }
-    b->nodes[node].box = box;
+    b->nodes[node].box = nbox_bounds(&box);
     b->nodes[node].first = first;
     b->nodes[node].count = count;
     if (count <= 1) return;
 
+    /* Bin on every axis whose centroids spread (a subnormal spread gives an
+     * infinite scale: no binning possible there), in one pass. */
+    double lo[3], scale[3];
+    int binned[3], any = 0;
+    for (int axis = 0; axis < 3; axis++) {
+        lo[axis] = cbox.v[axis];
+        const double hi = -cbox.v[axis + 3];
+        scale[axis] = BINS / (hi - lo[axis]);
+        binned[axis] = hi > lo[axis] && isfinite(scale[axis]);
+        any |= binned[axis];
+    }
+    nbox bin_box[3][BINS];
+    uint32_t bin_count[3][BINS] = {{0}};
+    if (any) {
+        for (int axis = 0; axis < 3; axis++)
+            for (int k = 0; k < BINS; k++) bin_box[axis][k] = nbox_empty();
+        for (uint32_t i = first; i < first + count; i++) {
+            const double *c = b->centroids + 3 * (size_t)items[i];
+            const nbox *ib = &b->boxes[items[i]];
+            for (int axis = 0; axis < 3; axis++) {
+                if (!binned[axis]) continue;
+                int k = bin_of(c[axis], lo[axis], scale[axis]);
+                bin_count[axis][k]++;
+                grow(&bin_box[axis][k], ib);
+            }
+        }
+    }
     double best_cost = DBL_MAX;
     int best_axis = -1, best_split = 0;
     for (int axis = 0; axis < 3; axis++) {
-        double lo = axis_of(&cbox.lo, axis), hi = axis_of(&cbox.hi, axis);
-        double scale = BINS / (hi - lo);
-        /* A subnormal spread gives an infinite scale: no binning possible. */
-        if (!(hi > lo) || !isfinite(scale)) continue;
-        hr_bounds bin_box[BINS];
-        uint32_t bin_count[BINS] = {0};
-        for (int k = 0; k < BINS; k++) bin_box[k] = empty_box();
-        for (uint32_t i = first; i < first + count; i++) {
-            int k = bin_of(b->centroids[3 * (size_t)items[i] + (size_t)axis], lo, scale);
-            bin_count[k]++;
-            grow(&bin_box[k], &b->boxes[items[i]]);
-        }
+        if (!binned[axis]) continue;
         double right_area[BINS];
         uint32_t right_count[BINS];
-        hr_bounds acc = empty_box();
+        nbox acc = nbox_empty();
         uint32_t n = 0;
         for (int k = BINS - 1; k > 0; k--) {
-            grow(&acc, &bin_box[k]);
-            n += bin_count[k];
+            grow(&acc, &bin_box[axis][k]);
+            n += bin_count[axis][k];
             right_area[k] = area(&acc);
             right_count[k] = n;
         }
-        acc = empty_box();
+        acc = nbox_empty();
         n = 0;
         for (int k = 0; k < BINS - 1; k++) {
-            grow(&acc, &bin_box[k]);
-            n += bin_count[k];
+            grow(&acc, &bin_box[axis][k]);
+            n += bin_count[axis][k];
             if (n == 0 || right_count[k + 1] == 0) continue;
             double cost = area(&acc) * n + right_area[k + 1] * right_count[k + 1];
             if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = k;
@@ -131,11 +170,11 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
         mid = first + count / 2;
     } else {
         if (count <= b->max_leaf && (double)count <= split_cost) return;
-        double lo = axis_of(&cbox.lo, best_axis), hi = axis_of(&cbox.hi, best_axis);
-        double scale = BINS / (hi - lo);
+        const double axis_lo = lo[best_axis], axis_scale = scale[best_axis];
         uint32_t i = first, j = first + count; /* [i, j) not yet placed */
         while (i < j) {
-            if (bin_of(b->centroids[3 * (size_t)items[i] + (size_t)best_axis], lo, scale) <= best_split) {
+            if (bin_of(b->centroids[3 * (size_t)items[i] + (size_t)best_axis], axis_lo, axis_scale) <=
+                best_split) {
                 i++;
             } else {
                 uint32_t t = items[i];
@@ -193,7 +232,7 @@ static void collapse(collapser *c, uint32_t out, uint32_t b, uint32_t depth)
         double widest_area = -1.0;
         for (int k = 0; k < n; k++) {
             const bin_node *kid = &c->bin[kids[k]];
-            double a = area(&kid->box);
+            double a = bounds_area(&kid->box);
             if (kid->count == 0 && a > widest_area) widest = k, widest_area = a;
         }
         if (widest < 0) break;
@@ -228,16 +267,18 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     if (count == 0) return 0;
     if (count > ACCEL_BVH4_MAX_ITEMS) return -2;
     builder b = {0};
-    b.boxes = boxes;
     b.max_leaf = options->max_leaf < 1 ? 1 : options->max_leaf > 16 ? 16 : options->max_leaf;
     b.traversal_cost = options->traversal_cost;
     b.node_cap = 2 * count - 1;
     b.nodes = alloc((size_t)b.node_cap * sizeof *b.nodes);
     b.items = alloc((size_t)count * sizeof *b.items);
     b.centroids = alloc((size_t)count * 3 * sizeof *b.centroids);
-    if (!b.nodes || !b.items || !b.centroids) goto out_of_memory;
+    nbox *nboxes = alloc((size_t)count * sizeof *nboxes);
+    b.boxes = nboxes;
+    if (!b.nodes || !b.items || !b.centroids || !nboxes) goto out_of_memory;
     for (uint32_t i = 0; i < count; i++) {
         const hr_bounds *ib = &boxes[i];
+        nboxes[i] = nbox_of(ib);
         double *c = b.centroids + 3 * (size_t)i;
         c[0] = 0.5 * ib->lo.x + 0.5 * ib->hi.x;
         c[1] = 0.5 * ib->lo.y + 0.5 * ib->hi.y;
@@ -248,6 +289,8 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     build_binary(&b, 0, 0, count, 0);
     dealloc(b.centroids);
     b.centroids = NULL;
+    dealloc(nboxes);
+    nboxes = NULL;
 
     /* Each 4-wide node stands for at least one binary inner node; the root
      * exists even when the binary root is a leaf. */
@@ -270,6 +313,7 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     return 0;
 
 out_of_memory:
+    dealloc(nboxes);
     dealloc(b.nodes);
     dealloc(b.items);
     dealloc(b.centroids);
