@@ -9,6 +9,7 @@
 #include "errors.h"
 #include "scene_internal.h"
 #include "scene_params.h"
+#include "specular.h"
 #include "vec.h"
 
 /* Copy a caller's struct that starts with struct_size into a defaulted full
@@ -443,6 +444,7 @@ static void work_out_effects(hr_scene *s)
             for (int32_t k = 0; k < s->light_count; k++)
                 if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
+        o->specular_cutoff = hr_specular_cutoff(m->specular_exponent);
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;
         if (f & HR_MAT_DIFFUSE) effects |= HR_EFFECT_DIFFUSE | HR_EFFECT_SHADOWS;
