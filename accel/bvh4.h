@@ -115,6 +115,7 @@ typedef struct accel_ray4 {
      * scaling, t_offset (tmin when negative, else 0) so that the walk's
      * interval starts at 0 or later, which the slack's direction needs. */
     double t_scale, t_offset;
+    int cull; /* 0: no usable interval, every leaf is visited */
 } accel_ray4;
 
 /* Relative slack on every slab distance, folded into 1/d: far more than
@@ -124,7 +125,7 @@ typedef struct accel_ray4 {
  * float result. */
 #define ACCEL_TINY 0x1p-149f
 
-/* For a walk over [tmin, ...] (tmin finite). */
+/* For a walk over [tmin, ...]. */
 static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
 {
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
@@ -132,6 +133,13 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
      * the moved origin is bracketed with the error of that product and sum
      * (gamma(2) of the terms' magnitudes). */
     r->t_offset = tmin < 0 ? tmin : 0.0;
+    /* An infinite tmin, or one so far back that the moved origin is not
+     * finite, leaves no interval to cull by: the walk then visits every
+     * leaf (accel_bvh4_walk), which is slow but exact. */
+    r->cull = isfinite(tmin) && isfinite(ray->origin.x + r->t_offset * ray->dir.x) &&
+              isfinite(ray->origin.y + r->t_offset * ray->dir.y) &&
+              isfinite(ray->origin.z + r->t_offset * ray->dir.z);
+    if (!r->cull) r->t_offset = 0.0;
 #if defined(__SSE2__)
     r->tiny = _mm_set1_ps(ACCEL_TINY);
     r->infinity = _mm_set1_ps(INFINITY);
@@ -152,8 +160,12 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
         uint64_t bits;
         memcpy(&bits, &big, sizeof bits);
         int biased = (int)(bits >> 52); /* big >= 0: no sign bit */
-        if (biased > 1 && biased < 2046) {
-            uint64_t down_bits = (uint64_t)(2046 - biased) << 52, up_bits = (uint64_t)biased << 52;
+        if (biased >= 1 && biased <= 2046) {
+            /* 2^(1023 - biased); for the largest binade that is 2^-1023,
+             * a subnormal (still exact as a factor: the product is in
+             * [1, 2)). */
+            uint64_t down_bits = biased < 2046 ? (uint64_t)(2046 - biased) << 52 : 1ull << 51;
+            uint64_t up_bits = (uint64_t)biased << 52;
             memcpy(&down, &down_bits, sizeof down);
             memcpy(&r->t_scale, &up_bits, sizeof r->t_scale);
         }
@@ -304,8 +316,14 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
             if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
         } else {
             const accel_bvh4_node *n = &bvh->nodes[ref];
-            float entry[4];
-            unsigned mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
+            float entry[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+            unsigned mask = 0;
+            if (r.cull) {
+                mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
+            } else {
+                for (uint32_t k = 0; k < 4; k++)
+                    mask |= (uint32_t)(n->count[k] > 0 || n->ref[k] != ACCEL_BVH4_EMPTY) << k;
+            }
             if (mask) {
                 uint32_t k = (uint32_t)__builtin_ctz(mask);
                 mask &= mask - 1;

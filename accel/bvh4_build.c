@@ -10,9 +10,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #define BINS 16
 
@@ -26,64 +23,48 @@ typedef struct bin_node {
     uint32_t count; /* leaf: number of items (> 0); inner: 0 */
 } bin_node;
 
-/* A box as six numbers to take minima of: lo.x, lo.y, lo.z, -hi.x, -hi.y,
- * -hi.z (negation is exact, so min of -hi is -max of hi), so growing a box
- * is three two-lane minima with SSE2. */
-typedef struct nbox {
-    double v[6];
-} nbox;
-
-static nbox nbox_empty(void)
+static hr_bounds empty_box(void)
 {
-    nbox b = {{DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX}};
+    hr_bounds b = {{DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
     return b;
 }
 
-static nbox nbox_of(const hr_bounds *b)
+/* fmin/fmax without the libm call (most of the build's time otherwise). */
+static inline double lower(double acc, double v) { return v < acc ? v : acc; }
+static inline double higher(double acc, double v) { return v > acc ? v : acc; }
+
+static inline void grow(hr_bounds *b, const hr_bounds *o)
 {
-    nbox n = {{b->lo.x, b->lo.y, b->lo.z, -b->hi.x, -b->hi.y, -b->hi.z}};
-    return n;
+    b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
+    b->lo.z = lower(b->lo.z, o->lo.z);
+    b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
+    b->hi.z = higher(b->hi.z, o->hi.z);
 }
 
-static hr_bounds nbox_bounds(const nbox *n)
+static double area(const hr_bounds *b)
 {
-    hr_bounds b = {{n->v[0], n->v[1], n->v[2]}, {-n->v[3], -n->v[4], -n->v[5]}};
-    return b;
-}
-
-/* Lane by lane v < acc ? v : acc, as SSE2's min(v, acc) is: a NaN in `o`
- * leaves the running box as it was. */
-static inline void grow(nbox *b, const nbox *o)
-{
-#if defined(__SSE2__)
-    for (int i = 0; i < 6; i += 2)
-        _mm_storeu_pd(b->v + i, _mm_min_pd(_mm_loadu_pd(o->v + i), _mm_loadu_pd(b->v + i)));
-#else
-    for (int i = 0; i < 6; i++) b->v[i] = o->v[i] < b->v[i] ? o->v[i] : b->v[i];
-#endif
-}
-
-static double area(const nbox *b)
-{
-    double dx = -b->v[3] - b->v[0], dy = -b->v[4] - b->v[1], dz = -b->v[5] - b->v[2];
+    double dx = b->hi.x - b->lo.x, dy = b->hi.y - b->lo.y, dz = b->hi.z - b->lo.z;
     if (dx < 0 || dy < 0 || dz < 0) return 0.0;
     return 2.0 * (dx * dy + dy * dz + dz * dx);
 }
 
-static double bounds_area(const hr_bounds *b)
+static inline double axis_of(const hr_vec3 *v, int axis)
 {
-    const nbox n = nbox_of(b);
-    return area(&n);
+    return axis == 0 ? v->x : axis == 1 ? v->y : v->z;
 }
 
 typedef struct builder {
     bin_node *nodes;
     uint32_t node_count, node_cap;
     uint32_t *items;
-    const nbox *boxes;
+    const hr_bounds *boxes;
     double *centroids; /* 3 per input box; halves first: lo + hi overflows near DBL_MAX */
     uint32_t max_leaf;
     double traversal_cost;
+    /* One node's bins, used before build_binary recurses: here rather than
+     * in its frame, which the recursion would multiply. */
+    hr_bounds bin_box[3][BINS], right_box[BINS];
+    uint32_t bin_count[3][BINS];
 } builder;
 
 static inline int bin_of(double c, double lo, double scale)
@@ -92,40 +73,59 @@ static inline int bin_of(double c, double lo, double scale)
     return i < 0 ? 0 : i >= BINS ? BINS - 1 : i;
 }
 
-static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth)
+/* The union of items[first, first + count)'s boxes and the bounds of their
+ * centroids: the root's, and the halves of a split the bins did not make. */
+static void gather(const builder *b, uint32_t first, uint32_t count, hr_bounds *box,
+                   hr_bounds *cbox)
+{
+    *box = empty_box(), *cbox = empty_box();
+    for (uint32_t i = first; i < first + count; i++) {
+        grow(box, &b->boxes[b->items[i]]);
+        const double *c = b->centroids + 3 * (size_t)b->items[i];
+        hr_bounds cb = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
+        grow(cbox, &cb);
+    }
+}
+
+static inline void grow_point(hr_bounds *b, const double c[3])
+{
+    const hr_bounds p = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
+    grow(b, &p);
+}
+
+/* Node `node` over items[first, first + count), whose boxes' union is box
+ * and whose centroids' bounds are cbox. One pass bins the items on all
+ * three axes; the sweep over the bins gives each side's box of the best
+ * split, and the partition gathers each side's centroid bounds, so a
+ * child's bounds cost no pass of their own. An empty bin is skipped in the
+ * sweeps: its boundary splits the items as the one before it does, at the
+ * same cost, so the choice is the one a sweep over every boundary makes. */
+static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth,
+                         const hr_bounds *box, const hr_bounds *cbox)
 {
     uint32_t *items = b->items;
-    nbox box = nbox_empty(), cbox = nbox_empty();
-    for (uint32_t i = first; i < first + count; i++) {
-        grow(&box, &b->boxes[items[i]]);
-        const double *c = b->centroids + 3 * (size_t)items[i];
-        nbox cb = {{c[0], c[1], c[2], -c[0], -c[1], -c[2]}};
-        grow(&cbox, &cb);
-    }
-    b->nodes[node].box = nbox_bounds(&box);
+    b->nodes[node].box = *box;
     b->nodes[node].first = first;
     b->nodes[node].count = count;
     if (count <= 1) return;
 
-    /* Bin on every axis whose centroids spread (a subnormal spread gives an
-     * infinite scale: no binning possible there), in one pass. */
     double lo[3], scale[3];
-    int binned[3], any = 0;
+    int binned[3];
     for (int axis = 0; axis < 3; axis++) {
-        lo[axis] = cbox.v[axis];
-        const double hi = -cbox.v[axis + 3];
-        scale[axis] = BINS / (hi - lo[axis]);
-        binned[axis] = hi > lo[axis] && isfinite(scale[axis]);
-        any |= binned[axis];
+        double l = axis_of(&cbox->lo, axis), h = axis_of(&cbox->hi, axis);
+        lo[axis] = l, scale[axis] = BINS / (h - l);
+        /* A subnormal spread gives an infinite scale: no binning possible. */
+        binned[axis] = h > l && isfinite(scale[axis]);
     }
-    nbox bin_box[3][BINS];
-    uint32_t bin_count[3][BINS] = {{0}};
-    if (any) {
-        for (int axis = 0; axis < 3; axis++)
-            for (int k = 0; k < BINS; k++) bin_box[axis][k] = nbox_empty();
+    hr_bounds (*bin_box)[BINS] = b->bin_box;
+    uint32_t (*bin_count)[BINS] = b->bin_count;
+    memset(b->bin_count, 0, sizeof b->bin_count);
+    for (int axis = 0; axis < 3; axis++)
+        for (int k = 0; k < BINS; k++) bin_box[axis][k] = empty_box();
+    if (binned[0] || binned[1] || binned[2]) {
         for (uint32_t i = first; i < first + count; i++) {
             const double *c = b->centroids + 3 * (size_t)items[i];
-            const nbox *ib = &b->boxes[items[i]];
+            const hr_bounds *ib = &b->boxes[items[i]];
             for (int axis = 0; axis < 3; axis++) {
                 if (!binned[axis]) continue;
                 int k = bin_of(c[axis], lo[axis], scale[axis]);
@@ -136,31 +136,46 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
     }
     double best_cost = DBL_MAX;
     int best_axis = -1, best_split = 0;
+    hr_bounds best_left = empty_box(), best_right = empty_box();
     for (int axis = 0; axis < 3; axis++) {
         if (!binned[axis]) continue;
+        const hr_bounds *bins = bin_box[axis];
+        const uint32_t *counts = bin_count[axis];
+        hr_bounds *right_box = b->right_box;
         double right_area[BINS];
         uint32_t right_count[BINS];
-        nbox acc = nbox_empty();
+        hr_bounds acc = empty_box();
+        double acc_area = 0.0;
         uint32_t n = 0;
         for (int k = BINS - 1; k > 0; k--) {
-            grow(&acc, &bin_box[axis][k]);
-            n += bin_count[axis][k];
-            right_area[k] = area(&acc);
+            if (counts[k]) {
+                grow(&acc, &bins[k]);
+                n += counts[k];
+                acc_area = area(&acc);
+            }
+            right_box[k] = acc;
+            right_area[k] = acc_area;
             right_count[k] = n;
         }
-        acc = nbox_empty();
+        acc = empty_box();
         n = 0;
         for (int k = 0; k < BINS - 1; k++) {
-            grow(&acc, &bin_box[axis][k]);
-            n += bin_count[axis][k];
-            if (n == 0 || right_count[k + 1] == 0) continue;
+            if (!counts[k]) continue;
+            grow(&acc, &bins[k]);
+            n += counts[k];
+            if (right_count[k + 1] == 0) break;
             double cost = area(&acc) * n + right_area[k + 1] * right_count[k + 1];
-            if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = k;
+            if (cost < best_cost) {
+                best_cost = cost, best_axis = axis, best_split = k;
+                best_left = acc, best_right = right_box[k + 1];
+            }
         }
     }
-    double parent_area = area(&box);
+    double parent_area = area(box);
     double split_cost = parent_area > 0 ? b->traversal_cost + best_cost / parent_area : DBL_MAX;
     uint32_t mid;
+    hr_bounds left_box, right_box, left_cbox = empty_box(), right_cbox = empty_box();
+    int gathered = 0;
     if (best_axis < 0 || depth >= ACCEL_BVH_SAH_DEPTH) {
         /* All centroids coincide, or SAH has gone deep (geometric spacing
          * can make it peel one item off per level): halve the range, which
@@ -170,28 +185,36 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
         mid = first + count / 2;
     } else {
         if (count <= b->max_leaf && (double)count <= split_cost) return;
-        const double axis_lo = lo[best_axis], axis_scale = scale[best_axis];
+        const int axis = best_axis;
         uint32_t i = first, j = first + count; /* [i, j) not yet placed */
         while (i < j) {
-            if (bin_of(b->centroids[3 * (size_t)items[i] + (size_t)best_axis], axis_lo, axis_scale) <=
-                best_split) {
+            const double *c = b->centroids + 3 * (size_t)items[i];
+            if (bin_of(c[axis], lo[axis], scale[axis]) <= best_split) {
+                grow_point(&left_cbox, c);
                 i++;
             } else {
+                grow_point(&right_cbox, c);
                 uint32_t t = items[i];
                 items[i] = items[--j];
                 items[j] = t;
             }
         }
         mid = i;
-        if (mid == first || mid == first + count) mid = first + count / 2;
+        gathered = mid > first && mid < first + count;
+        if (!gathered) mid = first + count / 2;
+        left_box = best_left, right_box = best_right;
+    }
+    if (!gathered) {
+        gather(b, first, mid - first, &left_box, &left_cbox);
+        gather(b, mid, first + count - mid, &right_box, &right_cbox);
     }
     /* Capacity is 2 count - 1 nodes: a binary tree with count leaves at most. */
     uint32_t left = b->node_count;
     b->node_count += 2;
     b->nodes[node].first = left;
     b->nodes[node].count = 0;
-    build_binary(b, left, first, mid - first, depth + 1);
-    build_binary(b, left + 1, mid, first + count - mid, depth + 1);
+    build_binary(b, left, first, mid - first, depth + 1, &left_box, &left_cbox);
+    build_binary(b, left + 1, mid, first + count - mid, depth + 1, &right_box, &right_cbox);
 }
 
 /* --- Collapsing to four children ------------------------------------------ */
@@ -232,7 +255,7 @@ static void collapse(collapser *c, uint32_t out, uint32_t b, uint32_t depth)
         double widest_area = -1.0;
         for (int k = 0; k < n; k++) {
             const bin_node *kid = &c->bin[kids[k]];
-            double a = bounds_area(&kid->box);
+            double a = area(&kid->box);
             if (kid->count == 0 && a > widest_area) widest = k, widest_area = a;
         }
         if (widest < 0) break;
@@ -267,18 +290,16 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     if (count == 0) return 0;
     if (count > ACCEL_BVH4_MAX_ITEMS) return -2;
     builder b = {0};
+    b.boxes = boxes;
     b.max_leaf = options->max_leaf < 1 ? 1 : options->max_leaf > 16 ? 16 : options->max_leaf;
     b.traversal_cost = options->traversal_cost;
     b.node_cap = 2 * count - 1;
     b.nodes = alloc((size_t)b.node_cap * sizeof *b.nodes);
     b.items = alloc((size_t)count * sizeof *b.items);
     b.centroids = alloc((size_t)count * 3 * sizeof *b.centroids);
-    nbox *nboxes = alloc((size_t)count * sizeof *nboxes);
-    b.boxes = nboxes;
-    if (!b.nodes || !b.items || !b.centroids || !nboxes) goto out_of_memory;
+    if (!b.nodes || !b.items || !b.centroids) goto out_of_memory;
     for (uint32_t i = 0; i < count; i++) {
         const hr_bounds *ib = &boxes[i];
-        nboxes[i] = nbox_of(ib);
         double *c = b.centroids + 3 * (size_t)i;
         c[0] = 0.5 * ib->lo.x + 0.5 * ib->hi.x;
         c[1] = 0.5 * ib->lo.y + 0.5 * ib->hi.y;
@@ -286,11 +307,11 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         b.items[i] = i;
     }
     b.node_count = 1;
-    build_binary(&b, 0, 0, count, 0);
+    hr_bounds box, cbox;
+    gather(&b, 0, count, &box, &cbox);
+    build_binary(&b, 0, 0, count, 0, &box, &cbox);
     dealloc(b.centroids);
     b.centroids = NULL;
-    dealloc(nboxes);
-    nboxes = NULL;
 
     /* Each 4-wide node stands for at least one binary inner node; the root
      * exists even when the binary root is a leaf. */
@@ -305,6 +326,19 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         collapse(&c, 0, 0, 1);
     }
     dealloc(b.nodes);
+    /* The collapse used fewer nodes than the bound it was given room for
+     * (about half): keep only those. */
+    if (c.node_count < inner) {
+        accel_bvh4_node *exact = alloc((size_t)c.node_count * sizeof *exact);
+        if (!exact) {
+            dealloc(c.nodes);
+            b.nodes = NULL;
+            goto out_of_memory;
+        }
+        memcpy(exact, c.nodes, (size_t)c.node_count * sizeof *exact);
+        dealloc(c.nodes);
+        c.nodes = exact;
+    }
     bvh->nodes = c.nodes;
     bvh->node_count = c.node_count;
     bvh->items = b.items;
@@ -313,7 +347,6 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     return 0;
 
 out_of_memory:
-    dealloc(nboxes);
     dealloc(b.nodes);
     dealloc(b.items);
     dealloc(b.centroids);

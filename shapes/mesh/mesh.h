@@ -5,9 +5,9 @@
  *
  * Storage per triangle: 12 bytes of vertex indices, 12 more when the mesh
  * has normals, the vertices themselves (24 bytes each, shared: a closed
- * mesh has about half as many vertices as triangles) and the BVH nodes
- * (32 bytes each, about one per three triangles with leaves of about four):
- * some 36 bytes a triangle for a closed mesh without normals
+ * mesh has about half as many vertices as triangles) and the BVH's nodes
+ * (accel/bvh4.h: 128 bytes each, four children, leaves of about five
+ * triangles): some 32 bytes a triangle for a closed mesh without normals
  * (test_shape_mesh_large prints the figure). The BVH orders the triangles
  * themselves, so no index array sits between them. */
 #ifndef HITRAY_MESH_H
@@ -18,29 +18,14 @@
 
 #include <hitray/shape_module.h>
 
+#include "bvh4.h"
+
 /* A corner with no normal (OBJ faces may omit them). */
 #define MESH_NO_NORMAL UINT32_MAX
 /* Indices are 32-bit; the largest count of vertices, normals or triangles. */
 #define MESH_MAX_COUNT ((size_t)UINT32_MAX - 1u)
 
-/* One BVH node, 32 bytes. The box is in float, rounded outward and grown by
- * one float ulp, so it contains every point the double-precision triangle
- * test can accept inside it. An interior node's left child is the next
- * node; `index` is its right child. A leaf (count > 0) holds triangles
- * index .. index + count - 1. `axis` is the split axis, which orders the
- * traversal front to back. */
-typedef struct mesh_bvh_node {
-    float lo[3], hi[3];
-    uint32_t index;
-    uint16_t count;
-    uint16_t axis;
-} mesh_bvh_node;
-
-/* The deepest a BVH is built: SAH splits up to MESH_BVH_SAH_DEPTH levels,
- * then median splits, which halve the count, so 32 more levels suffice for
- * 2^32 triangles. The traversal stack is sized from this. */
-#define MESH_BVH_SAH_DEPTH 48
-#define MESH_BVH_MAX_DEPTH (MESH_BVH_SAH_DEPTH + 33)
+/* The BVH's leaves hold at most this many triangles (accel/bvh4.h). */
 #define MESH_BVH_MAX_LEAF 8
 
 typedef struct mesh {
@@ -50,8 +35,9 @@ typedef struct mesh {
     uint32_t *corners;     /* 3 vertex indices per triangle, in BVH order */
     uint32_t *corner_normals; /* 3 normal indices per triangle or NULL */
     uint32_t vertex_count, normal_count, triangle_count;
-    uint32_t node_count;
-    mesh_bvh_node *nodes;
+    /* accel/'s 4-wide BVH over the triangles, in leaf order (its item
+     * array is dropped once the corners are reordered). */
+    accel_bvh4 bvh;
     hr_bounds bounds;
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */
@@ -124,7 +110,7 @@ int mesh_solid_build(mesh_builder *b, int solid);
  * args->out (mesh_trace.c). */
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode);
 
-/* Orders m->corners (and m->corner_normals) and builds m->nodes. */
+/* Builds m->bvh and orders m->corners (and m->corner_normals) to match. */
 hr_status mesh_bvh_build(mesh *m);
 
 #endif

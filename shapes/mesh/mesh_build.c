@@ -141,7 +141,7 @@ void mesh_destroy(mesh *m)
     host->free(m->normals);
     host->free(m->corners);
     host->free(m->corner_normals);
-    host->free(m->nodes);
+    accel_bvh4_release(&m->bvh);
     host->free(m);
 }
 
@@ -165,6 +165,11 @@ hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t e
     if (b->triangle_count == 0) {
         snprintf(error, error_size, "the mesh has no triangle with area (%zu skipped)",
                  b->degenerate_count);
+        return HR_ERROR_PARAMETER;
+    }
+    if (b->triangle_count > ACCEL_BVH4_MAX_ITEMS) {
+        snprintf(error, error_size, "the mesh has %zu triangles, more than its BVH takes (%lu)",
+                 b->triangle_count, (unsigned long)ACCEL_BVH4_MAX_ITEMS);
         return HR_ERROR_PARAMETER;
     }
     const hr_host *host = b->host;
@@ -210,74 +215,91 @@ hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t e
 
 /* --- Closedness ------------------------------------------------------------ */
 
-/* In-place heapsort of 64-bit keys: O(n log n), no allocation, no recursion. */
-static void sift_down(uint64_t *a, size_t root, size_t n)
+/* Sorts keys[0, n), and vals alongside when given, by key, stably: a
+ * least-significant-digit radix sort, a byte a pass, O(n) whatever the
+ * keys, no recursion, no comparison. One pass counts every byte's values;
+ * a byte that is the same in every key (the high bytes of small indices)
+ * needs no pass. tmp_keys and tmp_vals hold n each. */
+static void radix_sort(uint64_t *keys, uint32_t *vals, uint64_t *tmp_keys, uint32_t *tmp_vals,
+                       size_t n)
 {
-    for (;;) {
-        size_t child = 2 * root + 1;
-        if (child >= n) return;
-        if (child + 1 < n && a[child + 1] > a[child]) child++;
-        if (a[root] >= a[child]) return;
-        uint64_t t = a[root];
-        a[root] = a[child], a[child] = t;
-        root = child;
+    if (n < 2) return;
+    size_t count[8][256];
+    memset(count, 0, sizeof count);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 8; d++) count[d][(keys[i] >> (8 * d)) & 0xff]++;
+    uint64_t *from_k = keys, *to_k = tmp_keys;
+    uint32_t *from_v = vals, *to_v = tmp_vals;
+    for (int d = 0; d < 8; d++) {
+        size_t *c = count[d];
+        if (c[(keys[0] >> (8 * d)) & 0xff] == n) continue;
+        for (size_t v = 0, start = 0; v < 256; v++) {
+            const size_t here = c[v];
+            c[v] = start;
+            start += here;
+        }
+        for (size_t i = 0; i < n; i++) {
+            const size_t to = c[(from_k[i] >> (8 * d)) & 0xff]++;
+            to_k[to] = from_k[i];
+            if (vals) to_v[to] = from_v[i];
+        }
+        uint64_t *k = from_k;
+        from_k = to_k, to_k = k;
+        uint32_t *v = from_v;
+        from_v = to_v, to_v = v;
+    }
+    if (from_k != keys) {
+        memcpy(keys, from_k, n * sizeof *keys);
+        if (vals) memcpy(vals, from_v, n * sizeof *vals);
     }
 }
 
-static void sort_keys(uint64_t *a, size_t n)
+/* A key whose unsigned order is the order of the coordinates, with -0 and
+ * +0 one key (as same_point has them equal). */
+static uint64_t coordinate_key(double x)
 {
-    for (size_t i = n / 2; i-- > 0;) sift_down(a, i, n);
-    for (size_t end = n; end-- > 1;) {
-        uint64_t t = a[0];
-        a[0] = a[end], a[end] = t;
-        sift_down(a, 0, end);
-    }
+    if (x == 0.0) x = 0.0;
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    return bits >> 63 ? ~bits : bits | (uint64_t)1 << 63;
 }
 
-/* Vertices ordered by position (x, then y, then z; -0 equals +0, as in
- * same_point), then by index. */
-static int vertex_before(const hr_vec3 *v, uint32_t a, uint32_t b)
-{
-    if (v[a].x != v[b].x) return v[a].x < v[b].x;
-    if (v[a].y != v[b].y) return v[a].y < v[b].y;
-    if (v[a].z != v[b].z) return v[a].z < v[b].z;
-    return a < b;
-}
-
-static void sift_vertices(const hr_vec3 *v, uint32_t *a, size_t root, size_t n)
-{
-    for (;;) {
-        size_t child = 2 * root + 1;
-        if (child >= n) return;
-        if (child + 1 < n && vertex_before(v, a[child], a[child + 1])) child++;
-        if (!vertex_before(v, a[root], a[child])) return;
-        uint32_t t = a[root];
-        a[root] = a[child], a[child] = t;
-        root = child;
-    }
-}
-
-/* weld_out[i]: the first vertex at the same position as vertex i. A
- * heapsort by position (O(n log n) whatever the coordinates, no
- * allocation beyond the index array) makes each position one run. */
+/* weld_out[i]: the first vertex at the same position as vertex i.
+ * Vertices sorted by position (x, then y, then z, then index: three stable
+ * radix sorts, z first) make each position one run. */
 static int weld(const mesh *m, uint32_t *weld_out)
 {
     const size_t n = m->vertex_count;
     const hr_vec3 *v = m->vertices;
-    uint32_t *order = m->host->alloc((n ? n : 1) * sizeof *order);
-    if (!order) return -1;
+    const hr_host *host = m->host;
+    const size_t room = n ? n : 1;
+    uint32_t *order = host->alloc(room * sizeof *order);
+    uint32_t *tmp_order = host->alloc(room * sizeof *tmp_order);
+    uint64_t *keys = host->alloc(room * sizeof *keys);
+    uint64_t *tmp_keys = host->alloc(room * sizeof *tmp_keys);
+    if (!order || !tmp_order || !keys || !tmp_keys) {
+        host->free(order);
+        host->free(tmp_order);
+        host->free(keys);
+        host->free(tmp_keys);
+        return -1;
+    }
     for (size_t i = 0; i < n; i++) order[i] = (uint32_t)i;
-    for (size_t i = n / 2; i-- > 0;) sift_vertices(v, order, i, n);
-    for (size_t end = n; end-- > 1;) {
-        uint32_t t = order[0];
-        order[0] = order[end], order[end] = t;
-        sift_vertices(v, order, 0, end);
+    for (int axis = 2; axis >= 0; axis--) {
+        for (size_t i = 0; i < n; i++) {
+            const hr_vec3 *p = &v[order[i]];
+            keys[i] = coordinate_key(axis == 0 ? p->x : axis == 1 ? p->y : p->z);
+        }
+        radix_sort(keys, order, tmp_keys, tmp_order, n);
     }
     for (size_t i = 0; i < n; i++)
         weld_out[order[i]] = i > 0 && same_point(v[order[i]], v[order[i - 1]])
                                  ? weld_out[order[i - 1]]
                                  : order[i];
-    m->host->free(order);
+    host->free(order);
+    host->free(tmp_order);
+    host->free(keys);
+    host->free(tmp_keys);
     return 0;
 }
 
@@ -287,9 +309,11 @@ int mesh_is_closed(const mesh *m)
     const size_t edges = 3 * (size_t)m->triangle_count;
     uint32_t *welded = host->alloc((m->vertex_count ? m->vertex_count : 1) * sizeof *welded);
     uint64_t *keys = host->alloc(edges * sizeof *keys);
-    if (!welded || !keys || weld(m, welded)) {
+    uint64_t *tmp_keys = host->alloc(edges * sizeof *tmp_keys);
+    if (!welded || !keys || !tmp_keys || weld(m, welded)) {
         host->free(welded);
         host->free(keys);
+        host->free(tmp_keys);
         return -1;
     }
     for (size_t t = 0; t < m->triangle_count; t++)
@@ -297,7 +321,8 @@ int mesh_is_closed(const mesh *m)
             uint64_t a = welded[m->corners[3 * t + k]], b = welded[m->corners[3 * t + (k + 1) % 3]];
             keys[3 * t + k] = a << 32 | b;
         }
-    sort_keys(keys, edges);
+    radix_sort(keys, NULL, tmp_keys, NULL, edges);
+    host->free(tmp_keys);
     /* Closed: no directed edge twice, and each one's reverse present. */
     int closed = 1;
     for (size_t i = 0; i < edges && closed; i++) {

@@ -8,8 +8,9 @@
  * line. Triangles with two corners at one point have no area and are
  * skipped; a file left with no triangle is refused.
  *
- * Hits: the watertight test of mesh_triangle.h over the module's own BVH
- * (mesh_bvh.c, mesh_trace.c). Surface ids: a mesh is one surface, 0.
+ * Hits: the watertight test of mesh_triangle.h over accel/'s 4-wide BVH,
+ * the scene's too (mesh_bvh.c, mesh_trace.c). Surface ids: a mesh is one
+ * surface, 0.
  * Entering flags come from the geometric normal (B - A) x (C - A) of each
  * triangle, so a consistently wound closed mesh (counter-clockwise seen
  * from outside, as Hill's files are) is entered and left in turn.

@@ -1,12 +1,12 @@
 /* Tokens, numbers and messages of the mesh readers (mesh_text.h). */
 #include "mesh_text.h"
 
-#include <langinfo.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
+
+#include "mesh_number.h"
 
 void mesh_text_init(mesh_text *t, const char *text, size_t length, const char *shown, char *error,
                     size_t error_size)
@@ -22,39 +22,53 @@ void mesh_text_init(mesh_text *t, const char *text, size_t length, const char *s
     t->error_size = error_size;
 }
 
+/* What a byte is to the tokenizer, looked up rather than compared five
+ * ways a byte (most of a mesh file is token bytes). */
+enum { BYTE_SPACE = 1, BYTE_NEWLINE = 2, BYTE_HASH = 4 };
+static const unsigned char byte_class[256] = {
+    [' '] = BYTE_SPACE, ['\t'] = BYTE_SPACE, ['\r'] = BYTE_SPACE, ['\f'] = BYTE_SPACE,
+    ['\v'] = BYTE_SPACE, ['\n'] = BYTE_NEWLINE, ['#'] = BYTE_HASH,
+};
+
 static int is_space(char c)
 {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+    return byte_class[(unsigned char)c] == BYTE_SPACE;
 }
 
 mesh_token mesh_text_next(mesh_text *t, int cross_lines, int comments)
 {
+    /* The position in a local: the class table is bytes, which the
+     * compiler must otherwise assume may alias t->p. */
+    const char *p = t->p, *const end = t->end;
     mesh_token tok = {NULL, 0, t->line};
     for (;;) {
-        while (t->p < t->end && is_space(*t->p)) t->p++;
-        if (t->p < t->end && comments && *t->p == '#')
-            while (t->p < t->end && *t->p != '\n') t->p++;
-        if (t->p < t->end && *t->p == '\n') {
+        while (p < end && is_space(*p)) p++;
+        if (p < end && comments && *p == '#')
+            while (p < end && *p != '\n') p++;
+        if (p < end && *p == '\n') {
             if (!cross_lines) {
+                t->p = p;
                 tok.line = t->line;
                 return tok;
             }
-            t->p++;
+            p++;
             t->line++;
             continue;
         }
         break;
     }
+    t->p = p;
     tok.line = t->line;
-    if (t->p >= t->end) {
+    if (p >= end) {
         tok.line = t->last_line;
         return tok;
     }
     t->last_line = t->line;
-    tok.start = t->p;
-    while (t->p < t->end && !is_space(*t->p) && *t->p != '\n' && !(comments && *t->p == '#'))
-        t->p++;
-    tok.length = (size_t)(t->p - tok.start);
+    tok.start = p;
+    const unsigned char stop = BYTE_SPACE | BYTE_NEWLINE | (comments ? BYTE_HASH : 0);
+    while (p < end && !(byte_class[(unsigned char)*p] & stop)) p++;
+    t->p = p;
+    tok.length = (size_t)(p - tok.start);
     return tok;
 }
 
@@ -109,7 +123,8 @@ static int is_digit(char c)
 }
 
 /* The decimal grammar: [+-] digits [. digits] [e [+-] digits], at least one
- * digit before the exponent. strtod alone would also take hex, inf and nan. */
+ * digit before the exponent. The converter alone would also take inf and nan
+ * (and strtod hex). */
 static int is_decimal(const char *s, size_t n)
 {
     size_t i = 0, digits = 0;
@@ -131,29 +146,13 @@ static int is_decimal(const char *s, size_t n)
 
 int mesh_parse_number(const mesh_token *tok, double *out)
 {
-    /* Longer numbers than this carry no more information for a double. */
-    char buffer[512];
-    if (tok->length == 0 || tok->length >= sizeof buffer - 8) return 0;
+    /* Tokens this long are refused before any conversion: no coordinate
+     * needs 500 characters, and the limit is the one the readers have
+     * always applied. */
+    if (tok->length == 0 || tok->length >= 504) return 0;
     if (!is_decimal(tok->start, tok->length)) return 0;
-    /* strtod reads the decimal point of the calling thread's locale: write
-     * that point in place of '.' (nl_langinfo reads the same locale, and
-     * unlike localeconv shares no static buffer between threads). */
-    const char *point = nl_langinfo(RADIXCHAR);
-    size_t k = 0;
-    for (size_t i = 0; i < tok->length; i++) {
-        if (tok->start[i] == '.' && point && point[0] && strcmp(point, ".") != 0) {
-            size_t np = strlen(point);
-            if (np > 4) return 0;
-            memcpy(buffer + k, point, np);
-            k += np;
-        } else {
-            buffer[k++] = tok->start[i];
-        }
-    }
-    buffer[k] = '\0';
-    char *end = NULL;
-    double value = strtod(buffer, &end);
-    if (!end || *end != '\0') return 0;
+    double value;
+    if (!mesh_decimal_to_double(tok->start, tok->length, &value)) return 0;
     if (!isfinite(value) || fabs(value) > MESH_MAX_COORDINATE) return -1;
     *out = value;
     return 1;
@@ -162,11 +161,13 @@ int mesh_parse_number(const mesh_token *tok, double *out)
 int mesh_parse_whole(const mesh_token *tok, uint64_t max, uint64_t *out)
 {
     if (tok->length == 0) return 0;
+    /* value * 10 + digit <= max, without a division a digit. */
+    const uint64_t max_tenth = max / 10, max_last = max % 10;
     uint64_t value = 0;
     for (size_t i = 0; i < tok->length; i++) {
         if (!is_digit(tok->start[i])) return 0;
         uint64_t digit = (uint64_t)(tok->start[i] - '0');
-        if (value > (max - digit) / 10) return 0;
+        if (value > max_tenth || (value == max_tenth && digit > max_last)) return 0;
         value = value * 10 + digit;
     }
     *out = value;

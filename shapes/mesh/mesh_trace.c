@@ -1,5 +1,5 @@
-/* Tracing a mesh: iterative BVH traversal with a fixed stack, front to back
- * (the child on the ray's near side of the split axis first), with the
+/* Tracing a mesh: accel/'s walk of the 4-wide BVH, nearest box first (a
+ * conservative float test: it never skips a box the ray meets), with the
  * three modes of the shape ABI:
  * - first hit: the best t so far prunes every box beyond it;
  * - any hit: stops at the first triangle hit (shadow rays);
@@ -25,26 +25,6 @@
 
 #include "mesh.h"
 #include "mesh_triangle.h"
-
-/* The slab test of a node's box over [tmin, tmax]. The box is conservative
- * (outward-rounded float, one ulp more), and each slab time is widened by
- * 2 gamma(3) of itself to cover its own rounding (pbrt's argument). A NaN
- * time ((lo - o) * inf with lo == o, for a ray in a slab's plane) leaves the
- * interval as it was: conservative. */
-static int box_hit(const mesh_bvh_node *n, const mesh_ray *r, double tmin, double tmax)
-{
-    const double pad = 2.0 * MESH_GAMMA(3);
-    double t0 = tmin, t1 = tmax;
-    for (int a = 0; a < 3; a++) {
-        double near = ((r->neg[a] ? n->hi[a] : n->lo[a]) - r->o[a]) * r->inv_d[a];
-        double far = ((r->neg[a] ? n->lo[a] : n->hi[a]) - r->o[a]) * r->inv_d[a];
-        near -= pad * fabs(near);
-        far += pad * fabs(far);
-        if (near > t0) t0 = near;
-        if (far < t1) t1 = far;
-    }
-    return t0 <= t1;
-}
 
 /* (B - A) x (C - A) with the edges scaled by a power of two first, so tiny
  * or huge triangles neither underflow nor overflow. */
@@ -216,10 +196,137 @@ static double largest_error(const mesh *m)
     return MESH_GAMMA(7) * 2.0 * big;
 }
 
+/* Crossings a closed mesh's first-hit search remembers (see mesh_trace). */
+#define TIE_SEEN 16
+
+/* One query: the ray, the caller's arguments, and what the leaves found. */
+typedef struct query {
+    const mesh *m;
+    const hr_hit_args *args;
+    mesh_ray r;
+    int32_t mode;
+    int tie_check, whole_line;
+    double tie_error;
+    double tmin, tmax; /* the interval boxes are tested over */
+    int32_t start;     /* the caller's first hit in args->out */
+    int phase;         /* see walk: 0, or the sign of the t this walk keeps */
+    hr_status status;
+    int found;
+    mesh_triangle_hit best;
+    uint32_t best_tri;
+    hr_hit seen[TIE_SEEN], best_hit;
+    int seen_count, seen_overflow;
+} query;
+
+/* Tests triangles [first, end), a leaf, in the query's mode. Returns 1
+ * when the search is over: an any hit found, or an error (in status). */
+static int visit_leaf(query *q, uint32_t first, uint32_t end)
+{
+    const mesh *m = q->m;
+    const hr_hit_args *args = q->args;
+    for (uint32_t i = first; i < end; i++) {
+        const uint32_t *c = m->corners + 3 * (size_t)i;
+        mesh_triangle_hit th;
+        if (!mesh_triangle_test(&q->r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
+                                q->tie_check ? -INFINITY : q->tmin, q->tmax, &th))
+            continue;
+        /* A hit the walk of the other half of the line finds (walk). */
+        if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
+        if (q->mode == HR_TRACE_ALL) {
+            hr_status st = make_room(args, m->host);
+            if (st) {
+                args->out->count = q->start;
+                q->status = st;
+                return 1;
+            }
+            hr_hit *hit = &args->out->hits[args->out->count++];
+            fill_hit(m, &args->ray, i, &th, hit);
+            /* The caller's interval as mesh_triangle_test applies it (so a
+             * hit is kept by the same test in every mode). */
+            if (q->whole_line)
+                hit->surface = !(th.t > args->tmin && th.t < args->tmax &&
+                                 !(th.t - args->tmin <= th.t_error));
+            continue;
+        }
+        hr_hit candidate;
+        if (q->tie_check) {
+            fill_hit(m, &args->ray, i, &th, &candidate);
+            if (q->seen_count < TIE_SEEN) q->seen[q->seen_count++] = candidate;
+            else q->seen_overflow = 1;
+            /* The caller's interval, as mesh_triangle_test applies it. */
+            if (!(th.t > q->tmin && !(th.t - q->tmin <= th.t_error))) continue;
+        }
+        /* A tie goes to the entering hit, as in the all-hits order
+         * (hit_before): a ray through a vertex or an edge where it touches
+         * the mesh meets an entering and an exiting triangle at one t, and
+         * the first hit must be the first of all hits whichever the BVH
+         * reaches first. */
+        if (q->found && !(th.t < q->best.t || (th.t == q->best.t && th.entering > q->best.entering)))
+            continue;
+        q->found = 1;
+        q->best = th;
+        q->best_tri = i;
+        if (q->mode == HR_TRACE_ANY) return 1;
+        /* Nearer hits only from here on; an exiting best still lets an
+         * entering hit at the same t in, and a closed mesh's search runs
+         * on over the slack of a near tie. */
+        q->tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
+        if (q->tie_check) {
+            q->best_hit = candidate;
+            const double window = (candidate.error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
+                                  16.0 * DBL_EPSILON * fabs(th.t);
+            q->tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
+        }
+    }
+    return 0;
+}
+
+static int leaf_of(void *user, uint32_t first, uint32_t count)
+{
+    return visit_leaf(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
+}
+
+/* Every leaf whose box the ray may meet over the query's interval, which
+ * the leaves narrow as they find hits. accel's walk needs a finite start;
+ * a query from -inf (the whole line of a closed mesh's all-hits list, or a
+ * caller's own) walks the reversed ray from 0 for t < 0, then the ray from
+ * 0, each keeping the hits of its half so that none is reported twice. A
+ * NaN bound meets nothing, as in the triangle test. */
+static void walk(query *q)
+{
+    const accel_bvh4 *bvh = &q->m->bvh;
+    const hr_ray *ray = &q->args->ray;
+    if (isnan(q->tmin) || isnan(q->tmax)) return;
+    if (q->tmin > -INFINITY) {
+        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of, q);
+        return;
+    }
+    hr_ray back = *ray;
+    back.dir.x = -ray->dir.x, back.dir.y = -ray->dir.y, back.dir.z = -ray->dir.z;
+    /* Along the reversed ray, the hits t < tmax are at s = -t > -tmax; a
+     * nearer hit found there bounds nothing ahead of it. */
+    double unbounded = INFINITY;
+    q->phase = -1;
+    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &unbounded, leaf_of, q) ==
+        ACCEL_WALK_STOP)
+        return;
+    if (!(q->tmax >= 0.0)) return;
+    q->phase = 1;
+    accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of, q);
+}
+
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
-    mesh_ray r;
-    if (!mesh_ray_init(&r, &args->ray)) return HR_OK;
+    /* Field by field: the crossings' array stays unwritten until used. */
+    query q;
+    if (!mesh_ray_init(&q.r, &args->ray)) return HR_OK;
+    q.m = m;
+    q.args = args;
+    q.status = HR_OK;
+    q.phase = 0;
+    q.found = 0;
+    q.best_tri = 0;
+    q.seen_count = q.seen_overflow = 0;
     /* A closed mesh's any hit is its first hit: the all-hits repair (see
      * alternate_closed and the first-hit search below) may drop a touch at
      * a vertex whose crossings come out a rounding apart, and a shadow ray
@@ -228,6 +335,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
      * solids are closed and small; large meshes from files are mostly open
      * surfaces and keep the cheaper search.) */
     if (mode == HR_TRACE_ANY && m->closed) mode = HR_TRACE_FIRST;
+    q.mode = mode;
     /* A closed mesh's first hit must be the first of its all-hits list,
      * which alternate_closed may have reordered where an entering and an
      * exiting crossing lie within rounding of each other (a ray through a
@@ -242,109 +350,21 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
      * reach, and when one of them forms a near tie with the best, or there
      * were too many to remember, takes the answer from the all-hits list
      * itself (rare: rays through vertices and edges). */
-    const int tie_check = mode == HR_TRACE_FIRST && m->closed;
-    const double tie_error = tie_check ? largest_error(m) : 0.0;
-    enum { TIE_SEEN = 16 };
-    hr_hit seen[TIE_SEEN], best_hit;
-    int seen_count = 0, seen_overflow = 0, near_tie = 0;
-    memset(&best_hit, 0, sizeof best_hit);
+    q.tie_check = mode == HR_TRACE_FIRST && m->closed;
+    q.tie_error = q.tie_check ? largest_error(m) : 0.0;
     /* A closed mesh's list is put in order over the whole line (see
      * alternate_closed); hits outside (tmin, tmax) are dropped after. */
-    const int whole_line = mode == HR_TRACE_ALL && m->closed;
-    const double tmin = whole_line ? -INFINITY : args->tmin;
-    double tmax = whole_line ? INFINITY : args->tmax;
-    const int32_t start = args->out->count;
-    uint32_t stack[MESH_BVH_MAX_DEPTH + 2];
-    int top = 0;
-    uint32_t node = 0;
-    int found = 0;
-    mesh_triangle_hit best;
-    uint32_t best_tri = 0;
-    if (!box_hit(&m->nodes[0], &r, tmin, tmax)) return HR_OK;
-    for (;;) {
-        const mesh_bvh_node *n = &m->nodes[node];
-        if (n->count > 0) {
-            for (uint32_t i = n->index; i < n->index + n->count; i++) {
-                const uint32_t *c = m->corners + 3 * (size_t)i;
-                mesh_triangle_hit th;
-                if (!mesh_triangle_test(&r, &m->vertices[c[0]], &m->vertices[c[1]],
-                                        &m->vertices[c[2]], tie_check ? -INFINITY : tmin, tmax,
-                                        &th))
-                    continue;
-                if (mode == HR_TRACE_ALL) {
-                    hr_status st = make_room(args, m->host);
-                    if (st) {
-                        args->out->count = start;
-                        return st;
-                    }
-                    hr_hit *hit = &args->out->hits[args->out->count++];
-                    fill_hit(m, &args->ray, i, &th, hit);
-                    /* The caller's interval as mesh_triangle_test applies it
-                     * (so a hit is kept by the same test in every mode). */
-                    if (whole_line)
-                        hit->surface = !(th.t > args->tmin && th.t < args->tmax &&
-                                         !(th.t - args->tmin <= th.t_error));
-                    continue;
-                }
-                hr_hit candidate;
-                if (tie_check) {
-                    fill_hit(m, &args->ray, i, &th, &candidate);
-                    if (seen_count < TIE_SEEN) seen[seen_count++] = candidate;
-                    else seen_overflow = 1;
-                    /* The caller's interval, as mesh_triangle_test applies it. */
-                    if (!(th.t > tmin && !(th.t - tmin <= th.t_error))) continue;
-                }
-                /* A tie goes to the entering hit, as in the all-hits order
-                 * (hit_before): a ray through a vertex or an edge where it
-                 * touches the mesh meets an entering and an exiting
-                 * triangle at one t, and the first hit must be the first
-                 * of all hits whichever the BVH reaches first. */
-                if (found && !(th.t < best.t || (th.t == best.t && th.entering > best.entering)))
-                    continue;
-                found = 1;
-                best = th;
-                best_tri = i;
-                if (mode == HR_TRACE_ANY) goto done;
-                /* Nearer hits only from here on; an exiting best still lets
-                 * an entering hit at the same t in, and a closed mesh's
-                 * search runs on over the slack of a near tie. */
-                tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
-                if (tie_check) {
-                    best_hit = candidate;
-                    const double window =
-                        (candidate.error + tie_error) / ray_speed(&args->ray) * 4.0 +
-                        16.0 * DBL_EPSILON * fabs(th.t);
-                    tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
-                }
-            }
-        } else {
-            /* Near child first: the right one when the ray runs down the axis. */
-            uint32_t first = node + 1, second = n->index;
-            if (r.neg[n->axis]) first = n->index, second = node + 1;
-            int hit_first = box_hit(&m->nodes[first], &r, tmin, tmax);
-            int hit_second = box_hit(&m->nodes[second], &r, tmin, tmax);
-            if (hit_first && hit_second) {
-                stack[top++] = second;
-                node = first;
-                continue;
-            }
-            if (hit_first || hit_second) {
-                node = hit_first ? first : second;
-                continue;
-            }
-        }
-        /* Next pushed box; in first-hit mode skip those now beyond the
-         * nearest hit found since they were pushed. */
-        do {
-            if (top == 0) goto done;
-            node = stack[--top];
-        } while (mode == HR_TRACE_FIRST && found && !box_hit(&m->nodes[node], &r, tmin, tmax));
-    }
-done:
-    near_tie = found && seen_overflow;
-    for (int k = 0; found && k < seen_count; k++)
-        if (seen[k].entering != best_hit.entering &&
-            fabs(seen[k].t - best_hit.t) <= closed_slack(&args->ray, &seen[k], &best_hit))
+    q.whole_line = mode == HR_TRACE_ALL && m->closed;
+    q.tmin = q.whole_line ? -INFINITY : args->tmin;
+    q.tmax = q.whole_line ? INFINITY : args->tmax;
+    q.start = args->out->count;
+    walk(&q);
+    if (q.status) return q.status;
+    const int32_t start = q.start;
+    int near_tie = q.found && q.seen_overflow;
+    for (int k = 0; q.found && k < q.seen_count; k++)
+        if (q.seen[k].entering != q.best_hit.entering &&
+            fabs(q.seen[k].t - q.best_hit.t) <= closed_slack(&args->ray, &q.seen[k], &q.best_hit))
             near_tie = 1;
     if (near_tie) {
         const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
@@ -352,14 +372,14 @@ done:
         return st;
     }
     if (mode != HR_TRACE_ALL) {
-        if (!found) return HR_OK;
-        fill_hit(m, &args->ray, best_tri, &best, &args->out->hits[args->out->count++]);
+        if (!q.found) return HR_OK;
+        fill_hit(m, &args->ray, q.best_tri, &q.best, &args->out->hits[args->out->count++]);
         return HR_OK;
     }
     hr_hit *hits = args->out->hits + start;
     const size_t count = (size_t)(args->out->count - start);
     sort_hits(hits, count);
-    if (whole_line) {
+    if (q.whole_line) {
         alternate_closed(&args->ray, hits, count);
         int32_t kept = start;
         for (size_t i = 0; i < count; i++) {

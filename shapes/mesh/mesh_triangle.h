@@ -73,13 +73,19 @@ static inline int mesh_ray_init(mesh_ray *r, const hr_ray *ray)
     return 1;
 }
 
-/* A vertex in the ray's sheared space. */
+/* A vertex in the ray's sheared space: x and y, and p[kz] in out[2], which
+ * mesh_shear_z turns into z (needed only once the edges agree). */
 static inline void mesh_shear(const mesh_ray *r, const hr_vec3 *v, double out[3])
 {
     const double p[3] = {v->x - r->o[0], v->y - r->o[1], v->z - r->o[2]};
     out[0] = p[r->kx] - r->sx * p[r->kz];
     out[1] = p[r->ky] - r->sy * p[r->kz];
-    out[2] = r->sz * p[r->kz];
+    out[2] = p[r->kz];
+}
+
+static inline void mesh_shear_z(const mesh_ray *r, double out[3])
+{
+    out[2] = r->sz * out[2];
 }
 
 static inline double mesh_two_sum(double a, double b, double *error)
@@ -94,8 +100,11 @@ static inline double mesh_two_sum(double a, double b, double *error)
  * exactly (FMA), and the four terms are summed into a non-overlapping
  * expansion h0..h3 of increasing magnitude (Shewchuk's Grow-Expansion).
  * The value returned has the sign of the largest non-zero component, which
- * is the sign of the exact sum, and is zero only when that sum is. */
-static inline double mesh_exact_difference(double a, double b, double c, double d)
+ * is the sign of the exact sum, and is zero only when that sum is. Kept
+ * out of line: it is the rare path, and inlined it kept the common one
+ * (mesh_edge_function) from being inlined into the triangle test. */
+static __attribute__((noinline, unused)) double mesh_exact_difference(double a, double b,
+                                                                      double c, double d)
 {
     const double p1 = a * b, e1 = fma(a, b, -p1);
     const double p2 = c * d, e2 = fma(c, d, -p2);
@@ -188,16 +197,23 @@ static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const 
                                      const hr_vec3 *c, double tmin, double tmax,
                                      mesh_triangle_hit *out)
 {
+    /* Each corner and edge function only when the edges before agree
+     * (most triangles a ray is tested against lie beside it); the edge
+     * signs need x and y alone. */
     double A[3], B[3], C[3];
-    mesh_shear(r, a, A);
     mesh_shear(r, b, B);
     mesh_shear(r, c, C);
     const double U = mesh_edge_function(C[0], B[1], C[1], B[0]);
-    const double V = mesh_edge_function(A[0], C[1], A[1], C[0]);
-    const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
     const int su = mesh_sign_of(U, C, B);
     if (su == 0) return 0;
-    if (mesh_sign_of(V, A, C) != su || mesh_sign_of(W, B, A) != su) return 0;
+    mesh_shear(r, a, A);
+    const double V = mesh_edge_function(A[0], C[1], A[1], C[0]);
+    if (mesh_sign_of(V, A, C) != su) return 0;
+    const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
+    if (mesh_sign_of(W, B, A) != su) return 0;
+    mesh_shear_z(r, A);
+    mesh_shear_z(r, B);
+    mesh_shear_z(r, C);
     /* Same signs (zeros count as either): the sum is zero only when all
      * three are, a triangle seen edge on. */
     const double det = U + V + W;

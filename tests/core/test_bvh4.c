@@ -280,6 +280,17 @@ static void test_walk(void)
             rays++;
         }
     }
+    /* No finite interval to cull by (tmin -inf, or so far back that the
+     * moved origin overflows), and directions in the largest binade. */
+    for (int k = 0; k < 300; k++) {
+        hr_ray ray = {{between(-1, 1), between(-1, 1), between(-1, 1)}, random_dir()};
+        double tmin = k % 3 == 0 ? -INFINITY : k % 3 == 1 ? -1e308 : 0.0;
+        if (k % 3 == 1) ray.dir.x = 1e10;
+        if (k % 3 == 2) ray.dir = (hr_vec3){1.5e308 * ray.dir.x, -1.7e308, 0.5e308 * ray.dir.z};
+        missed += missed_boxes(&bvh, boxes, N, &ray, tmin, INFINITY, visited);
+        rays++;
+    }
+
     accel_bvh4_release(&bvh);
 
     /* Trees of one to three boxes have empty slots, which no ray may enter

@@ -5,7 +5,9 @@
  * signs; interpolated normals from OBJ and .3vn files; the regular solids
  * against long-double clipping (t, points within their error bounds, no
  * self-hits from spawned rays); more hits than the host's free space;
- * meshes that defeat the SAH; closed meshes thinner than rounding. */
+ * meshes that defeat the SAH; closed meshes thinner than rounding; the
+ * BVH against every triangle on triangle soups from 2^-70 to past float's
+ * range, over intervals from -inf. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -728,49 +730,65 @@ static int compare_doubles(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-/* The BVH finds exactly what testing every triangle finds: a soup of 3000
- * random triangles of all sizes (an open surface, so no reordering), 3000
- * random rays with random intervals; the sorted lists of t agree bit for
- * bit with the same watertight test run on each triangle in turn, and the
- * first hit is the smallest of them. */
-static void test_bvh_matches_brute_force(void)
+/* The BVH finds exactly what testing every triangle finds: a soup of
+ * random triangles of all sizes (an open surface, so no reordering) scaled
+ * by a power of two, random rays scaled with it (so t is unchanged) and
+ * random intervals, a quarter of them from -inf (the walk's two halves of
+ * the line); the sorted lists of t agree bit for bit with the same
+ * watertight test run on each triangle in turn, the first hit is the
+ * smallest of them and the any hit finds one when there is one. Scales
+ * beyond float's range give the BVH infinite boxes. */
+static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double scale)
 {
-    enum { TRIS = 3000 };
-    static hr_vec3 v[3 * TRIS];
+    hr_vec3 *v = malloc(3 * (size_t)tris * sizeof *v);
+    double *want = malloc((size_t)tris * sizeof *want);
     char path[1024];
     mesh_build_path("mesh_soup.obj", path, sizeof path);
     FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (!f) return;
+    CHECK(f != NULL && v != NULL && want != NULL);
+    if (!f || !v || !want) {
+        if (f) fclose(f);
+        free(v);
+        free(want);
+        return;
+    }
     ray_rng rng;
-    rng_seed(&rng, 31);
-    for (int t = 0; t < TRIS; t++) {
+    rng_seed(&rng, seed);
+    for (int t = 0; t < tris; t++) {
         hr_vec3 c = harness_vec(rng_uniform(&rng, -10, 10), rng_uniform(&rng, -10, 10),
                                 rng_uniform(&rng, -10, 10));
         const double size = exp2(rng_uniform(&rng, -8, 3));
         for (int k = 0; k < 3; k++) {
             hr_vec3 w = rng_unit_vector(&rng);
-            v[3 * t + k] = harness_vec(c.x + size * w.x, c.y + size * w.y, c.z + size * w.z);
+            v[3 * t + k] = harness_vec(scale * (c.x + size * w.x), scale * (c.y + size * w.y),
+                                       scale * (c.z + size * w.z));
             fprintf(f, "v %.17g %.17g %.17g\n", v[3 * t + k].x, v[3 * t + k].y, v[3 * t + k].z);
         }
         fprintf(f, "f -3 -2 -1\n");
     }
     fclose(f);
     harness_shape soup;
-    if (!mesh_open_file(&soup, path)) return;
+    if (!mesh_open_file(&soup, path)) {
+        free(v);
+        free(want);
+        return;
+    }
     hr_intersection list = {NULL, 0, 0};
     CHECK_OK(harness_host()->reserve(NULL, &list, HR_MIN_HIT_CAPACITY));
     hr_bounds b = {{-10, -10, -10}, {10, 10, 10}};
-    static double want[TRIS];
-    int hits = 0;
-    for (int i = 0; i < 3000; i++) {
+    int hits = 0, failures = 0;
+    for (int i = 0; i < rays; i++) {
         hr_ray ray = random_ray_near(&rng, &b);
+        ray.origin.x *= scale, ray.origin.y *= scale, ray.origin.z *= scale;
+        ray.dir.x *= scale, ray.dir.y *= scale, ray.dir.z *= scale;
         double tmin, tmax;
         random_interval(&rng, &tmin, &tmax);
+        /* The first soup keeps the intervals it always had. */
+        if (scale != 1.0 && rng_chance(&rng, 0.25)) tmin = -INFINITY;
         mesh_ray r;
         int n = 0;
         if (mesh_ray_init(&r, &ray))
-            for (int t = 0; t < TRIS; t++) {
+            for (int t = 0; t < tris; t++) {
                 mesh_triangle_hit th;
                 if (mesh_triangle_test(&r, &v[3 * t], &v[3 * t + 1], &v[3 * t + 2], tmin, tmax, &th))
                     want[n++] = th.t;
@@ -784,20 +802,33 @@ static void test_bvh_matches_brute_force(void)
         args.tmax = tmax;
         args.out = &list;
         list.count = 0;
-        CHECK_OK(soup.cls->hit(&args));
-        CHECK_MSG(list.count == n, "ray %d: BVH %d hits, every triangle %d", i, (int)list.count, n);
-        for (int k = 0; k < n && k < list.count; k++) CHECK(list.hits[k].t == want[k]);
+        int ok = soup.cls->hit(&args) == HR_OK && list.count == n;
+        for (int k = 0; k < n && k < list.count; k++) ok &= list.hits[k].t == want[k];
         list.count = 0;
-        CHECK_OK(soup.cls->first_hit(&args));
-        CHECK(list.count == (n > 0) && (n == 0 || list.hits[0].t == want[0]));
+        ok &= soup.cls->first_hit(&args) == HR_OK && list.count == (n > 0) &&
+              (n == 0 || list.hits[0].t == want[0]);
         list.count = 0;
-        CHECK_OK(soup.cls->any_hit(&args));
-        CHECK(list.count == (n > 0));
+        ok &= soup.cls->any_hit(&args) == HR_OK && list.count == (n > 0);
+        if (!ok && failures++ < 10)
+            CHECK_MSG(0, "scale %g, ray %d (interval %g, %g): the BVH's hits differ from every "
+                         "triangle's %d", scale, i, tmin, tmax, n);
         hits += n;
     }
-    CHECK_MSG(hits > 1000, "only %d hits in all", hits);
+    CHECK_MSG(failures == 0, "scale %g: %d of %d rays differ", scale, failures, rays);
+    CHECK_MSG(hits > rays / 3, "scale %g: only %d hits in all", scale, hits);
     free(list.hits);
+    free(v);
+    free(want);
     harness_close(&soup);
+}
+
+static void test_bvh_matches_brute_force(void)
+{
+    soup_matches_brute_force(31, 3000, 3000, 1.0);
+    /* Tiny, huge, and past float's range (infinite float boxes). */
+    const double scales[] = {0x1p-70, 0x1p70, 0x1p130};
+    for (size_t k = 0; k < sizeof scales / sizeof *scales; k++)
+        soup_matches_brute_force(77 + k, 1000, HR_TEST_SANITIZED ? 3000 : 30000, scales[k]);
 }
 
 int main(void)

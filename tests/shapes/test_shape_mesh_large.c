@@ -23,20 +23,9 @@
 #include "module_harness.h"
 #include "random_rays.h"
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define SANITIZED 1
-#endif
-#endif
-#ifndef SANITIZED
-#define SANITIZED 0
-#endif
-
 /* 2 slices (stacks - 1) triangles: 1000 x 500 x 2 = 1,000,000. */
-#define SLICES (SANITIZED ? 200 : 1000)
-#define STACKS (SANITIZED ? 101 : 501)
+#define SLICES (HR_TEST_SANITIZED ? 200 : 1000)
+#define STACKS (HR_TEST_SANITIZED ? 101 : 501)
 
 /* --- A host that counts the bytes it hands out ------------------------------ */
 

@@ -7,6 +7,20 @@
 #include <math.h>
 #include <stdio.h>
 
+/* 1 under AddressSanitizer or ThreadSanitizer (gcc or clang), which make
+ * every load and allocation several times slower: the large tests scale
+ * down there. */
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define HR_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define HR_TEST_SANITIZED 1
+#endif
+#endif
+#ifndef HR_TEST_SANITIZED
+#define HR_TEST_SANITIZED 0
+#endif
+
 extern int hr_test_failures;
 extern int hr_test_checks;
 
