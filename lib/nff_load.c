@@ -92,9 +92,10 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
         size_t want = capacity - used;
         if (want > (1u << 30)) want = 1u << 30; /* gzread takes an unsigned count */
         int n = gzread(f, data + used, (unsigned)want);
-        if (n < 0) {
-            int code = 0;
-            const char *why = gzerror(f, &code);
+        int code = Z_OK;
+        const char *why = n <= 0 ? gzerror(f, &code) : "";
+        /* A stream cut short reads as an end with Z_BUF_ERROR set. */
+        if (n < 0 || (code != Z_OK && code != Z_STREAM_END)) {
             st = hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the scene file: %s",
                              path, code == Z_ERRNO ? strerror(errno) : why);
             break;
