@@ -66,7 +66,7 @@ def test_load_nff_reads_plain_and_gzip_files_alike(tmp_path):
 def test_an_nff_scene_can_be_changed_and_rendered_again():
     scene, camera = hitray.parse_nff(SCENE)
     before = np.asarray(hitray.render(scene, camera, size=(16, 12), progress=False)).copy()
-    scene.add(hitray.Sphere(), translate=(1.5, 0, 0.5), diffuse=(0, 0, 1))
+    scene.add(hitray.Sphere().translate(1.5, 0, 0.5), diffuse=(0, 0, 1))
     after = np.asarray(hitray.render(scene, camera, size=(16, 12), progress=False))
     assert len(scene.objects) == 3
     assert not np.array_equal(before, after)
