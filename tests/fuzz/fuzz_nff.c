@@ -10,9 +10,6 @@
  * through Hill's queries, with fuzz_sdl.c's checks (fuzz_scene.c). Polygon
  * and vertex counts are bounded by the text, so no input may allocate much
  * more than its own size (-rss_limit_mb), nor hang (-timeout). */
-#include <stdlib.h>
-#include <string.h>
-
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
@@ -34,20 +31,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 1);
-    if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
-    hr_sdl_result r = {.struct_size = sizeof r};
-    const hr_status st = hr_nff_load_string(ctx, text, SCENE_NAME, &r);
-    if (st != HR_OK) {
-        fuzz_scene_check_error(ctx, "nff", SCENE_NAME, st, &r, strlen(text));
-        free(text);
-        return 0;
-    }
-    free(text);
-    if (!r.scene) fuzz_fail("nff: HR_OK and no scene");
-    fuzz_scene_check_rays(ctx, "nff", &r);
-    hr_scene_destroy(r.scene);
+    fuzz_scene_input(ctx, "nff", SCENE_NAME, hr_nff_load_string, data, size);
     return 0;
 }

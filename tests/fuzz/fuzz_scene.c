@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fuzz_input.h"
@@ -97,4 +98,24 @@ void fuzz_scene_check_rays(hr_context *ctx, const char *tag, const hr_sdl_result
         if (k == 4) ray.dir.z += spread;
         cast(tag, r->scene, ray);
     }
+}
+
+void fuzz_scene_input(hr_context *ctx, const char *tag, const char *name,
+                      fuzz_scene_reader read, const uint8_t *data, size_t size)
+{
+    char *text = malloc(size + 1);
+    if (!text) return;
+    memcpy(text, data, size);
+    text[size] = '\0';
+    hr_sdl_result r = {.struct_size = sizeof r};
+    const hr_status st = read(ctx, text, name, &r);
+    const size_t length = strlen(text);
+    free(text);
+    if (st != HR_OK) {
+        fuzz_scene_check_error(ctx, tag, name, st, &r, length);
+        return;
+    }
+    if (!r.scene) fuzz_fail("%s: HR_OK and no scene", tag);
+    fuzz_scene_check_rays(ctx, tag, &r);
+    hr_scene_destroy(r.scene);
 }

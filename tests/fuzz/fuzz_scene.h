@@ -5,6 +5,7 @@
 #define HITRAY_FUZZ_SCENE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include <hitray/hitray.h>
 
@@ -18,5 +19,13 @@ void fuzz_scene_check_error(hr_context *ctx, const char *tag, const char *name, 
  * through the look point and around it, each through hr_scene_first_hit,
  * hr_scene_all_hits and hr_scene_shade. */
 void fuzz_scene_check_rays(hr_context *ctx, const char *tag, const hr_sdl_result *r);
+
+/* A reader under test: the text (a C string) read as `name`. */
+typedef hr_status (*fuzz_scene_reader)(hr_context *ctx, const char *text, const char *name,
+                                       hr_sdl_result *out);
+/* One input: the bytes up to the first NUL read as scene text by `read`,
+ * then the checks above on its answer. */
+void fuzz_scene_input(hr_context *ctx, const char *tag, const char *name,
+                      fuzz_scene_reader read, const uint8_t *data, size_t size);
 
 #endif

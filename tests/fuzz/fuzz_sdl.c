@@ -15,10 +15,6 @@
  * colour is finite. Relative mesh names resolve in
  * tests/data/meshes, so `mesh cube.obj` works. Never a crash, a hang
  * (-timeout) or a leak (the leak checker). */
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
@@ -39,23 +35,14 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     return 0;
 }
 
+/* Relative mesh names resolve in tests/data/meshes. */
+static hr_status read_sdl(hr_context *c, const char *text, const char *name, hr_sdl_result *out)
+{
+    return hr_sdl_load_string(c, text, name, HR_TEST_SOURCE_DIR "/tests/data/meshes", out);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 1);
-    if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
-    hr_sdl_result r = {.struct_size = sizeof r};
-    const hr_status st = hr_sdl_load_string(ctx, text, SCENE_NAME,
-                                            HR_TEST_SOURCE_DIR "/tests/data/meshes", &r);
-    if (st != HR_OK) {
-        fuzz_scene_check_error(ctx, "sdl", SCENE_NAME, st, &r, strlen(text));
-        free(text);
-        return 0;
-    }
-    free(text);
-    if (!r.scene) fuzz_fail("sdl: HR_OK and no scene");
-    fuzz_scene_check_rays(ctx, "sdl", &r);
-    hr_scene_destroy(r.scene);
+    fuzz_scene_input(ctx, "sdl", SCENE_NAME, read_sdl, data, size);
     return 0;
 }

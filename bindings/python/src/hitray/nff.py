@@ -12,6 +12,7 @@ from . import _convert
 from .camera import Camera
 from .errors import NFFError, SDLError
 from .scene import Scene, _SDLSource
+from .sdl import _file_text, _refuse_nul
 
 __all__ = ["load_nff", "parse_nff"]
 
@@ -40,11 +41,7 @@ def load_nff(path: _convert.PathLike) -> Tuple[Scene, Optional[Camera]]:
     reach it.
     """
     raw = _convert.path_bytes(path)
-    try:
-        with open(raw, "rb") as f:
-            text: Optional[bytes] = f.read()
-    except OSError:
-        text = None  # the library reads it and says why it cannot
+    text = _file_text(raw)
     if text is not None and text.startswith(_GZIP_MAGIC):
         try:
             text = gzip.decompress(text)
@@ -64,10 +61,5 @@ def parse_nff(text: str, name: str = "<string>") -> Tuple[Scene, Optional[Camera
         data = text.encode("utf-8", "surrogateescape")
     else:
         raise TypeError(f"parse_nff: expected str, got {type(text).__name__}")
-    if b"\0" in data:
-        at = data.index(b"\0")
-        line = data.count(b"\n", 0, at) + 1
-        column = at - (data.rfind(b"\n", 0, at) + 1) + 1
-        raise NFFError(f"{name}:{line}:{column}: unexpected NUL byte (is this a text file?)",
-                       6, name, line, column)
+    _refuse_nul(data, name, NFFError)
     return _result(_SDLSource(data, os.fsencode(name), None, None, nff=True))
