@@ -14,6 +14,11 @@
  * quadrilateral is cut along its better diagonal, a convex polygon into
  * rounded triangles rather than a fan. Each cut is O(n) (the ear test of
  * the two neighbours and the choice of the next ear), O(n^2) in all.
+ * Past NFF_BEST_EAR_VERTICES vertices (no SPD polygon comes near) a convex
+ * polygon is cut as a zigzag strip instead, O(n), whose triangles are as
+ * round as a strip's can be; a concave one keeps ear clipping, whose
+ * O(n^2) bounds how many vertices it may have (NFF_MAX_CONCAVE_VERTICES:
+ * seconds at most, never a hang).
  * A vertex in line with its neighbours is dropped without a triangle (the
  * triangle has no area). A polygon that is not simple (no ear left, which
  * only a self-crossing polygon or rounding can cause) has its remaining
@@ -33,6 +38,8 @@
 
 /* Vertex indices of one mesh are 32-bit (the mesh module's limit). */
 #define NFF_MAX_MESH_VERTICES 4294967294.0
+#define NFF_BEST_EAR_VERTICES 1024
+#define NFF_MAX_CONCAVE_VERTICES 16384
 
 typedef struct pt2 {
     double x, y;
@@ -123,6 +130,34 @@ static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx
     if (orient(p[a], p[start], p[b]) != 0.0) {
         tris[3 * count] = (uint32_t)a, tris[3 * count + 1] = (uint32_t)start;
         tris[3 * count + 2] = (uint32_t)b;
+        count++;
+    }
+    return count;
+}
+
+/* 1 if no corner of the counter-clockwise polygon turns clockwise. */
+static int is_convex(const pt2 *p, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) < 0.0) return 0;
+    return 1;
+}
+
+/* A convex polygon as a zigzag strip: (0, 1, n-1), (1, n-2, n-1),
+ * (1, 2, n-2), ... taking corners from both ends in turn. Triangles with no
+ * area (corners in line) are left out. */
+static size_t zigzag(const pt2 *p, size_t n, uint32_t *tris)
+{
+    size_t lo = 0, hi = n - 1, count = 0;
+    int from_low = 1;
+    while (hi - lo >= 2) {
+        size_t a, b, c;
+        if (from_low) a = lo, b = lo + 1, c = hi, lo++;
+        else a = lo, b = hi - 1, c = hi, hi--;
+        from_low = !from_low;
+        if (orient(p[a], p[b], p[c]) == 0.0) continue;
+        tris[3 * count] = (uint32_t)a, tris[3 * count + 1] = (uint32_t)b;
+        tris[3 * count + 2] = (uint32_t)c;
         count++;
     }
     return count;
@@ -249,7 +284,16 @@ hr_status nff_read_polygon(nff_reader *r, nff_word p, int smooth)
         if (smooth) normals[i] = (hr_vec3){x[3], x[4], x[5]};
     }
     if (!st && project(v, count, plane)) {
-        const size_t made = clip_ears(plane, count, tris, idx, quality);
+        const int strip = count > NFF_BEST_EAR_VERTICES && is_convex(plane, count);
+        if (!strip && count > NFF_MAX_CONCAVE_VERTICES) {
+            free(block);
+            return nff_error(r, HR_ERROR_SDL, p,
+                             "'%.*s %zu' is a concave polygon of more than %d vertices, which "
+                             "ear clipping would take too long over: split it",
+                             (int)p.length, p.text, count, NFF_MAX_CONCAVE_VERTICES);
+        }
+        const size_t made =
+            strip ? zigzag(plane, count, tris) : clip_ears(plane, count, tris, idx, quality);
         if (made) st = append(r, p, smooth ? &r->smooth : &r->flat, v, normals, count, tris, made);
     }
     free(block);

@@ -53,8 +53,7 @@ hr_status nff_error(const nff_reader *r, hr_status status, nff_word at, const ch
                        (int)at.line, (int)at.column, what);
 }
 
-/* A word for "found ...": 'word' (long words shortened) or "end of file". */
-static const char *describe(nff_word w, char *buf, size_t size)
+const char *nff_describe(nff_word w, char *buf, size_t size)
 {
     enum { SHOWN_CHARS = 40 };
     if (w.length == 0) snprintf(buf, size, "end of file");
@@ -84,7 +83,7 @@ hr_status nff_read_numbers(nff_reader *r, nff_word entity, const char *what, int
         int parsed = parse_number(w, &out[i]);
         if (parsed == SDL_NUMBER_OK) continue;
         char found[96];
-        describe(w, found, sizeof found);
+        nff_describe(w, found, sizeof found);
         if (parsed == SDL_NUMBER_TOO_LARGE)
             return nff_error(r, HR_ERROR_SDL, w,
                              "number %s after '%.*s' is beyond the range of a double", found,
@@ -103,11 +102,13 @@ hr_status nff_read_count(nff_reader *r, nff_word entity, const char *what, doubl
     nff_word at;
     hr_status st = nff_read_numbers(r, entity, what, 1, &v, &at);
     if (st) return st;
-    if (v != floor(v) || v < min || v > max)
+    if (v != floor(v) || v < min || v > max) {
+        char found[96];
         return nff_error(r, HR_ERROR_SDL, at,
-                         "expected a whole number in [%.0f, %.0f] after '%.*s' (%s), found '%.*s'",
-                         min, max, (int)entity.length, entity.text, what, (int)at.length,
-                         at.text);
+                         "expected a whole number in [%.0f, %.0f] after '%.*s' (%s), found %s",
+                         min, max, (int)entity.length, entity.text, what,
+                         nff_describe(at, found, sizeof found));
+    }
     *out = (int64_t)v;
     return HR_OK;
 }
@@ -145,7 +146,7 @@ static hr_status read_entity(nff_reader *r, nff_word w)
     char found[96];
     return nff_error(r, HR_ERROR_SDL, w,
                      "expected an NFF entity (v, b, l, f, c, s, p, pp or a # comment), found %s",
-                     describe(w, found, sizeof found));
+                     nff_describe(w, found, sizeof found));
 }
 
 hr_status nff_reader_run(nff_reader *r)

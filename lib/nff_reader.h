@@ -62,6 +62,9 @@ hr_status nff_error(const nff_reader *r, hr_status status, nff_word at, const ch
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+/* A word for "found ...": 'word' (long words shortened), "end of file" or
+ * a NUL byte. Writes into buf and returns it. */
+const char *nff_describe(nff_word w, char *buf, size_t size);
 /* `count` numbers after the entity `entity` ("expected 4 numbers after 's',
  * found 'x'"); `what` lists them for the message ("x y z radius"). `at`
  * (may be NULL) receives the word of each number. */

@@ -26,8 +26,7 @@ static hr_status view_line(nff_reader *r, nff_word v, const char *keyword, const
     nff_word w = nff_next(&r->lx);
     if (!nff_word_is(w, keyword)) {
         char found[96];
-        if (w.length == 0) snprintf(found, sizeof found, "end of file");
-        else snprintf(found, sizeof found, "'%.*s'", (int)(w.length > 40 ? 40 : w.length), w.text);
+        nff_describe(w, found, sizeof found);
         return nff_error(r, HR_ERROR_SDL, w.length ? w : v,
                          "expected '%s' in the 'v' block begun at line %d (from, at, up, angle, "
                          "hither, resolution, in that order), found %s",

@@ -19,6 +19,8 @@
 
 static hr_context *ctx;
 
+static const double PI = 3.14159265358979323846;
+
 static hr_scene *load(const char *path, hr_sdl_result *r)
 {
     memset(r, 0, sizeof *r);
@@ -271,6 +273,49 @@ static void test_render(const hr_sdl_result *r)
     hr_image_destroy(img);
 }
 
+/* A polygon of `n` vertices round the origin in the plane z = 0, radius 1,
+ * every other vertex pulled in to `inner` (1: convex). */
+static char *ring_polygon(int n, double inner)
+{
+    const size_t size = 64 + (size_t)n * 64;
+    char *text = malloc(size);
+    if (!text) return NULL;
+    size_t used = (size_t)snprintf(text, size, "f 1 1 1 1 0 1 0 0\np %d\n", n);
+    for (int i = 0; i < n && used < size; i++) {
+        const double a = 2.0 * PI * i / n, r = i % 2 ? inner : 1.0;
+        used += (size_t)snprintf(text + used, size - used, "%.17g %.17g 0\n", r * cos(a),
+                                 r * sin(a));
+    }
+    return text;
+}
+
+/* Past 1024 vertices a convex polygon is cut as a strip (O(n)): it covers
+ * the disk and nothing outside it. */
+static void test_large_convex_polygon(void)
+{
+    const int n = 3000;
+    char *text = ring_polygon(n, 1.0);
+    if (!text) return;
+    hr_sdl_result r = {0};
+    r.struct_size = sizeof r;
+    CHECK_OK(hr_nff_load_string(ctx, text, "ring", &r));
+    free(text);
+    if (!r.scene) return;
+    CHECK_OK(hr_scene_commit(r.scene));
+    const hr_vec3 down = {0, 0, -1};
+    /* The inscribed radius is cos(pi / n); a point inside it is covered,
+     * one outside the circumscribed circle is not. */
+    for (int k = 0; k < 16; k++) {
+        const double a = 2.0 * PI * (k + 0.3) / 16, inside = 0.9999 * cos(PI / n);
+        expect_hit(r.scene, (hr_vec3){inside * cos(a), inside * sin(a), 1}, down, 0, 1.0,
+                   "inside a 3000-gon");
+        expect_miss(r.scene, (hr_vec3){1.0001 * cos(a), 1.0001 * sin(a), 1}, down,
+                    "outside a 3000-gon");
+    }
+    expect_hit(r.scene, (hr_vec3){0, 0, 1}, down, 0, 1.0, "a 3000-gon's centre");
+    hr_scene_destroy(r.scene);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -282,6 +327,7 @@ int main(void)
     }
     test_string_and_gzip();
     test_no_view();
+    test_large_convex_polygon();
     hr_context_destroy(ctx);
     return hr_test_end();
 }

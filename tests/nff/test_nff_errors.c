@@ -1,6 +1,9 @@
 /* Every error of the NFF reader: the status, the message (file:line:col
  * and what was expected), the place kept for hr_context_last_error_info,
  * and no scene. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
@@ -173,12 +176,40 @@ static void test_truncated_gzip(void)
     remove(path);
 }
 
+/* A concave polygon of more vertices than ear clipping is given time for
+ * is refused, naming its line, before it is cut. */
+static void test_huge_concave_polygon(void)
+{
+    const int n = 20000;
+    const size_t size = 64 + (size_t)n * 48;
+    char *text = malloc(size);
+    CHECK(text != NULL);
+    if (!text) return;
+    size_t used = (size_t)snprintf(text, size, "f 1 1 1 1 0 1 0 0\np %d\n", n);
+    for (int i = 0; i < n && used < size; i++) {
+        const double a = 6.283185307179586 * i / n, r = i % 2 ? 0.5 : 1.0;
+        used += (size_t)snprintf(text + used, size - used, "%.9f %.9f 0\n", r * cos(a),
+                                 r * sin(a));
+    }
+    hr_sdl_result r;
+    memset(&r, 0, sizeof r);
+    r.struct_size = sizeof r;
+    CHECK(hr_nff_load_string(ctx, text, "star.nff", &r) == HR_ERROR_SDL);
+    CHECK_MSG(strcmp(hr_context_last_error(ctx),
+                     "star.nff:2:1: 'p 20000' is a concave polygon of more than 16384 vertices, "
+                     "which ear clipping would take too long over: split it") == 0,
+              "%s", hr_context_last_error(ctx));
+    CHECK(r.scene == NULL);
+    free(text);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_case(&cases[i]);
     test_arguments();
     test_truncated_gzip();
+    test_huge_concave_polygon();
     hr_context_destroy(ctx);
     return hr_test_end();
 }
