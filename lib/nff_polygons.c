@@ -100,8 +100,8 @@ static size_t choose(const clipper *c, size_t start)
 }
 
 /* Triangles of the polygon p[0, n) (counter-clockwise) as index triples
- * into `tris`; returns how many (at most n - 2). `work` holds 3 n size_t
- * and n doubles. */
+ * into `tris`; returns how many (at most n - 2). `work_idx` holds 2 n
+ * indices (the lists' links), `work_q` n qualities. */
 static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx, double *work_q)
 {
     clipper c = {p, work_idx, work_idx + n, work_q};
