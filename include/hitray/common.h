@@ -114,7 +114,8 @@ typedef struct hr_intersection {
 #define HR_PARAM_STRING 2 /* uses hr_param.string (e.g. a mesh file) */
 #define HR_PARAM_OBJECT 3 /* uses hr_param.object: another object of the
                              same scene, consumed by a composite (CSG) */
-/* Added within ABI 1 (a host that predates it refuses the type by name):
+/* Added within ABI 1 (a host that predates it refuses a class declaring
+ * one, as a malformed parameter, rather than misread it):
  * uses hr_param.numbers and hr_param.count, an array of `count` doubles,
  * for shapes made from data rather than a file (a triangle mesh's vertices
  * and corner indices). The host checks every element as it checks a number
