@@ -393,31 +393,15 @@ def main():
     if ARGS.note:
         L.append("")
         L.append(ARGS.note)
-    L.append("")
-    L.append(f"## Scenes ({ARGS.size}, 1 sample per pixel, median of {ARGS.runs} alternating runs)")
-    L.append("")
-    L.append("Time is the whole process (parse + render + write a PPM); render-only in brackets "
-             "(hitray: its render statistics; POV-Ray: its Trace Time). Ratio = hitray / POV-Ray "
-             "(target: at most 0.5). Memory is peak resident. Mask = pixels whose object agrees "
-             "in the flat id-colour renders (see bench/previews/).")
-    L.append("")
-    L.append("| scene | threads | hitray time | POV-Ray time | ratio | hitray memory | POV-Ray memory | mask |")
-    L.append("|---|---|---|---|---|---|---|---|")
-    for name, res, agree in scene_rows:
-        for t in ARGS.threads:
-            r = res[t]
-            hr, pv = median(r["hr"]), median(r["pov"])
-            L.append(f"| {name} | {t} | {hr:.2f} s ({median(r['hr_render']):.2f}) | "
-                     f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
-                     f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem'] or [float('nan')]))} | "
-                     f"{agree:.2f}% |")
-    for name, missing in skipped:
-        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
+    sdl_skipped = [(n, m) for n, m in skipped if n not in SPD_SCENES]
+    spd_skipped = [(n, m) for n, m in skipped if n in SPD_SCENES]
+    if scene_rows or sdl_skipped:
+        L += scenes_table(scene_rows, sdl_skipped)
+    if spd_rows or spd_skipped:
+        L += spd_tables(spd_rows, spd_skipped)
     if not HAVE_POV:
         L.append("")
         L.append("POV-Ray is not installed: its columns are empty (`make bench` installs it).")
-    if spd_rows:
-        L += spd_tables(spd_rows)
     if ray is None:
         L.append("")
         L.append("bench/raycast is not built: no raw intersection runs.")
@@ -480,7 +464,30 @@ def main():
     update_readme(L, cmdline)
 
 
-def spd_tables(rows):
+def scenes_table(rows, skipped):
+    """The bench scenes' table: times, memory, mask agreement."""
+    L = ["", f"## Scenes ({ARGS.size}, 1 sample per pixel, median of {ARGS.runs} alternating runs)",
+         "",
+         "Time is the whole process (parse + render + write a PPM); render-only in brackets "
+         "(hitray: its render statistics; POV-Ray: its Trace Time). Ratio = hitray / POV-Ray "
+         "(target: at most 0.5). Memory is peak resident. Mask = pixels whose object agrees "
+         "in the flat id-colour renders (see bench/previews/).", "",
+         "| scene | threads | hitray time | POV-Ray time | ratio | hitray memory | POV-Ray memory | mask |",
+         "|---|---|---|---|---|---|---|---|"]
+    for name, res, agree in rows:
+        for t in ARGS.threads:
+            r = res[t]
+            hr, pv = median(r["hr"]), median(r["pov"])
+            L.append(f"| {name} | {t} | {hr:.2f} s ({median(r['hr_render']):.2f}) | "
+                     f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
+                     f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem'] or [float('nan')]))} | "
+                     f"{agree:.2f}% |")
+    for name, missing in skipped:
+        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
+    return L
+
+
+def spd_tables(rows, skipped):
     """The SPD scenes' times (both ratios) and their rays by kind."""
     L = ["", f"## SPD scenes ({ARGS.spd_size}, NFF for hitray, the SPD's POV-Ray twins, median of "
          f"{ARGS.runs} alternating runs)", "",
@@ -509,12 +516,14 @@ def spd_tables(rows):
         cells += [fmt_count(p.get(k, float("nan")))
                   for k in ("rays", "shadow", "reflected", "refracted", "transmitted")]
         L.append(f"| {name} | " + " | ".join(cells) + " |")
+    for name, missing in skipped:
+        L.append(f"| {name} | not run: needs {', '.join(missing)} | | | | | | | | |")
     return L
 
 
 def update_readme(lines, cmdline):
-    """Put the machine line and the two main tables (scenes, raw intersection)
-    between the README's markers."""
+    """Put the machine line and the main tables (the scenes, the raw intersection, the SPD
+    scenes' times) between the README's markers."""
     if not ARGS.readme or not os.path.exists(ARGS.readme):
         return
     with open(ARGS.readme) as f:
@@ -534,8 +543,13 @@ def update_readme(lines, cmdline):
     notes = [x for x in lines if x == ARGS.note and x]
     body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
             "runs, is in [bench/RESULTS.md](bench/RESULTS.md).", ""] + machine + [""] + notes
-    for table in tables[:2]:
-        body += [""] + table
+    # The bench scenes, the raw intersection and the SPD scenes' times.
+    wanted = ("| scene | threads | hitray time | POV-Ray time | ratio", "| threads | hitray rays/s",
+              "| scene | threads | hitray time | POV-Ray time | whole")
+    for head in wanted:
+        for table in tables:
+            if table[0].startswith(head):
+                body += [""] + table
     body += ["", README_END]
     start = text.index(README_BEGIN)
     end = text.index(README_END) + len(README_END)
