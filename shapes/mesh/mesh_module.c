@@ -24,23 +24,37 @@
 #include <string.h>
 
 #include <float.h>
+#include <math.h>
 
 #include "mesh.h"
 #include "mesh_arrays.h"
 #include "mesh_file.h"
 
+/* A ray with an infinite or NaN component has no finite point but its
+ * origin (o + t d is infinite or NaN in that coordinate for every t != 0),
+ * so it has no hit the contract lets a shape report: it is answered with
+ * none before the triangle test, whose shear would divide by it. */
+static int ray_is_finite(const hr_ray *r)
+{
+    return isfinite(r->origin.x) && isfinite(r->origin.y) && isfinite(r->origin.z) &&
+           isfinite(r->dir.x) && isfinite(r->dir.y) && isfinite(r->dir.z);
+}
+
 static hr_status mesh_hit(const hr_hit_args *args)
 {
+    if (!ray_is_finite(&args->ray)) return HR_OK;
     return mesh_trace(args->shape, args, HR_TRACE_ALL);
 }
 
 static hr_status mesh_first_hit(const hr_hit_args *args)
 {
+    if (!ray_is_finite(&args->ray)) return HR_OK;
     return mesh_trace(args->shape, args, HR_TRACE_FIRST);
 }
 
 static hr_status mesh_any_hit(const hr_hit_args *args)
 {
+    if (!ray_is_finite(&args->ray)) return HR_OK;
     return mesh_trace(args->shape, args, HR_TRACE_ANY);
 }
 

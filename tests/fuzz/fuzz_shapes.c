@@ -260,7 +260,7 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
                 if (k == 1) valid = 0;
             } else {
                 if (!spec->required && fuzz_choice(in, 2) == 0) p->count = 0;
-                for (int j = 0; j < 12; j++) {
+                for (int j = 0; j < p->count; j++) {
                     a[j] = fuzz_double(in);
                     if (!isfinite(a[j]) || (spec->min <= spec->max &&
                                             !(a[j] >= spec->min && a[j] <= spec->max)))
