@@ -2,6 +2,9 @@
  *   taperedCylinder s   radius 1 at z = 0, radius s at z = 1 (s >= 0)
  *   cylinder            s = 1
  *   cone                s = 0 (the apex at (0, 0, 1))
+ * and the wall alone, open at both ends, as NFF's cones and cylinders are:
+ *   openTaperedCylinder s   the same wall, no disks; no solid (see
+ *                           open_crossings below)
  * A closed solid: the wall x^2 + y^2 = (1 + (s-1) z)^2 for 0 <= z <= 1
  * (surface 0), the base disk z = 0, radius 1 (surface 1), and the cap disk
  * z = 1, radius s (surface 2; absent when s = 0, where it is the apex, a
@@ -161,6 +164,33 @@ static int tapered_crossings(const tapered_cylinder *shape, const hr_ray *ray,
     return count;
 }
 
+/* The open wall: where the ray crosses the quadric (each finite end of
+ * its span in our nappe) at a height within the slab 0 <= z <= 1. A ray
+ * entering the quadric's inside is entering; the two crossings need not
+ * alternate with anything else, since no disk closes the tube (a ray along
+ * the axis of an open cylinder crosses nothing). The slab test is on the
+ * height of the crossing point, z = o.z + t d.z, which is the wall's own
+ * reading of the rim: wall_fill clamps that same z into [0, 1]. */
+static int open_crossings(const tapered_cylinder *shape, const hr_ray *ray,
+                          shape_crossing out[2])
+{
+    const shape_span span = wall_span(shape, ray);
+    if (shape_span_is_empty(span)) return 0;
+    const double t[2] = {span.t_in, span.t_out};
+    const int32_t surface[2] = {span.surface_in, span.surface_out};
+    int count = 0;
+    for (int i = 0; i < 2; i++) {
+        if (surface[i] != SURFACE_WALL || !isfinite(t[i])) continue;
+        const double z = ray->origin.z + t[i] * ray->dir.z;
+        if (!(z >= 0.0 && z <= 1.0)) continue;
+        out[count].t = t[i];
+        out[count].surface = SURFACE_WALL;
+        out[count].entering = i == 0;
+        count++;
+    }
+    return count;
+}
+
 SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
 {
     const double k = shape->slope;
@@ -240,6 +270,20 @@ static hr_status tapered_trace(const hr_hit_args *args, int32_t mode)
 }
 
 SHAPE_DEFINE_HIT_MODES(tapered, tapered_trace)
+
+static void open_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    wall_fill(shape, ray, hit);
+}
+
+static hr_status open_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossings[2];
+    const int count = open_crossings(args->shape, &args->ray, crossings);
+    return shape_report(args, mode, crossings, count, open_fill);
+}
+
+SHAPE_DEFINE_HIT_MODES(open, open_trace)
 
 static void tapered_bounds(const void *shape, hr_bounds *out)
 {
@@ -346,16 +390,35 @@ static const hr_shape_class cone_class =
     TAPERED_CLASS("cone", "taperedCylinder with s = 0, apex (0, 0, 1); surfaces wall, base",
                   NULL, 0, cone_create);
 
-static const hr_shape_class *const tapered_classes[] = {&tapered_cylinder_class,
-                                                        &cylinder_class, &cone_class};
+/* Not HR_SHAPE_CLOSED: an open tube bounds no solid, so CSG refuses it. */
+static const hr_shape_class open_tapered_cylinder_class = {
+    .struct_size = sizeof(hr_shape_class),
+    .flags = 0,
+    .name = "openTaperedCylinder",
+    .help = "the wall of taperedCylinder alone, open at both ends (NFF's cones and cylinders); "
+            "one surface",
+    .params = tapered_params,
+    .param_count = 1,
+    .surface_count = 1,
+    .create = tapered_cylinder_create,
+    .destroy = tapered_destroy,
+    .bounds = tapered_bounds,
+    .transformed_bounds = tapered_transformed_bounds,
+    .hit = open_hit,
+    .first_hit = open_first_hit,
+    .any_hit = open_any_hit,
+};
+
+static const hr_shape_class *const tapered_classes[] = {
+    &tapered_cylinder_class, &cylinder_class, &cone_class, &open_tapered_cylinder_class};
 
 static const hr_module_info tapered_module = {
     .struct_size = sizeof(hr_module_info),
     .abi_version = HR_SHAPE_ABI_VERSION,
     .name = "cylinder",
-    .description = "Hill's tapered cylinder, cylinder and cone",
+    .description = "Hill's tapered cylinder, cylinder and cone, and the open tapered wall",
     .classes = tapered_classes,
-    .class_count = 3,
+    .class_count = (int32_t)(sizeof tapered_classes / sizeof tapered_classes[0]),
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -32,6 +32,10 @@ PIN_SIZE(hr_param, 40);
 PIN_OFF(hr_param, number, 16);
 PIN_OFF(hr_param, string, 24);
 PIN_OFF(hr_param, object, 32);
+/* HR_PARAM_NUMBERS (added within ABI 1) shares the places of string and
+ * object, so the struct keeps its first size. */
+PIN_OFF(hr_param, numbers, 24);
+PIN_OFF(hr_param, count, 32);
 PIN_SIZE(hr_param_spec, 48);
 PIN_OFF(hr_param_spec, default_number, 16);
 PIN_OFF(hr_param_spec, help, 40);

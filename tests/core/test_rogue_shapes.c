@@ -126,7 +126,7 @@ static hr_scene *rogue_scene(int mode, const hr_transform *t)
 {
     hr_scene *s;
     CHECK_OK(hr_scene_create(ctx, &s));
-    hr_param p = {"mode", HR_PARAM_NUMBER, 0, mode, NULL, 0};
+    hr_param p = {.name = "mode", .type = HR_PARAM_NUMBER, .number = mode, .string = NULL, .object = 0};
     hr_object_desc d = {0};
     d.struct_size = sizeof d;
     d.shape = "rogue";

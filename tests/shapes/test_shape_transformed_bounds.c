@@ -1,6 +1,7 @@
 /* transformed_bounds, the class entry that bounds a shape under an affine
  * map tighter than the map of its object-space box, for the classes that
- * have it (sphere, cylinder, cone, taperedCylinder): under random
+ * have it (sphere, cylinder, cone, taperedCylinder, openTaperedCylinder):
+ * under random
  * rotations, non-uniform scales and shears, at scales from 1e-6 to 1e6 and
  * a million units away,
  * - the box holds the mapped shape: points sampled densely on the surface
@@ -141,6 +142,7 @@ int main(void)
         run_class(&cylinder, "cone", 0, 0.0);
         run_class(&cylinder, "taperedCylinder", 0, 0.3);
         run_class(&cylinder, "taperedCylinder", 0, 4.0);
+        run_class(&cylinder, "openTaperedCylinder", 0, 0.5);
         harness_unload(&cylinder);
     }
     return hr_test_end();
