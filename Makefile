@@ -99,9 +99,9 @@ test-python-asan: build
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-# hitray against POV-Ray 3.7 and Embree 3 (bench/run_bench.py writes
-# bench/RESULTS.md); never part of `make test`. BENCH_FLAGS passes options
-# (--runs, --scenes, --note, ...).
+# hitray against POV-Ray 3.7 and Embree 3, on the bench scenes and the SPD's
+# (bench/run_bench.py writes bench/RESULTS.md); never part of `make test`.
+# BENCH_FLAGS passes options (--runs, --scenes, --spd-size, --note, ...).
 BENCH_FLAGS ?=
 bench: build
 	@scripts/bootstrap.sh --bench

@@ -105,6 +105,7 @@ void accel_bvh4_release(accel_bvh4 *bvh);
 typedef struct accel_ray4 {
 #if defined(__SSE2__)
     __m128 o_near[3], o_far[3], inv_near[3], inv_far[3];
+    __m128 tiny, infinity; /* the test's constants, broadcast once a ray */
 #else
     float o_near[3], o_far[3], inv_near[3], inv_far[3];
 #endif
@@ -114,6 +115,7 @@ typedef struct accel_ray4 {
      * scaling, t_offset (tmin when negative, else 0) so that the walk's
      * interval starts at 0 or later, which the slack's direction needs. */
     double t_scale, t_offset;
+    int cull; /* 0: no usable interval, every leaf is visited */
 } accel_ray4;
 
 /* Relative slack on every slab distance, folded into 1/d: far more than
@@ -123,7 +125,7 @@ typedef struct accel_ray4 {
  * float result. */
 #define ACCEL_TINY 0x1p-149f
 
-/* For a walk over [tmin, ...] (tmin finite). */
+/* For a walk over [tmin, ...]. */
 static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
 {
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
@@ -131,6 +133,17 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
      * the moved origin is bracketed with the error of that product and sum
      * (gamma(2) of the terms' magnitudes). */
     r->t_offset = tmin < 0 ? tmin : 0.0;
+    /* An infinite tmin, or one so far back that the moved origin is not
+     * finite, leaves no interval to cull by: the walk then visits every
+     * leaf (accel_bvh4_walk), which is slow but exact. */
+    r->cull = isfinite(tmin) && isfinite(ray->origin.x + r->t_offset * ray->dir.x) &&
+              isfinite(ray->origin.y + r->t_offset * ray->dir.y) &&
+              isfinite(ray->origin.z + r->t_offset * ray->dir.z);
+    if (!r->cull) r->t_offset = 0.0;
+#if defined(__SSE2__)
+    r->tiny = _mm_set1_ps(ACCEL_TINY);
+    r->infinity = _mm_set1_ps(INFINITY);
+#endif
     const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
     double big = fabs(d[0]);
     if (fabs(d[1]) > big) big = fabs(d[1]);
@@ -147,8 +160,12 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
         uint64_t bits;
         memcpy(&bits, &big, sizeof bits);
         int biased = (int)(bits >> 52); /* big >= 0: no sign bit */
-        if (biased > 1 && biased < 2046) {
-            uint64_t down_bits = (uint64_t)(2046 - biased) << 52, up_bits = (uint64_t)biased << 52;
+        if (biased >= 1 && biased <= 2046) {
+            /* 2^(1023 - biased); for the largest binade that is 2^-1023,
+             * a subnormal (still exact as a factor: the product is in
+             * [1, 2)). */
+            uint64_t down_bits = biased < 2046 ? (uint64_t)(2046 - biased) << 52 : 1ull << 51;
+            uint64_t up_bits = (uint64_t)biased << 52;
             memcpy(&down, &down_bits, sizeof down);
             memcpy(&r->t_scale, &up_bits, sizeof r->t_scale);
         }
@@ -205,27 +222,48 @@ static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
  * for child k, with a lower bound of where it enters in entry[k]. With the
  * interval at t >= 0, only positive slab distances can decide a test, and
  * for those the slack in inv_near (inv_far) makes the entry smaller (the
- * exit larger); a negative distance stays negative. */
+ * exit larger); a negative distance stays negative.
+ *
+ * An entry of +inf is a miss: no hit lies there. That is also what keeps
+ * an empty slot (lo = +inf, hi = -inf) from ever being met, with no test
+ * of its own: along the direction's largest component 1/d is finite, and
+ * of that axis's two slab distances at least one is an infinity on the
+ * missing side (+inf entering or -inf leaving); the other may be NaN
+ * (inf - inf, an origin beyond float's range), which the max/min ignore,
+ * but both cannot be, since the origin cannot be beyond both ends. */
+#if defined(__SSE2__)
+typedef __m128 accel_f4; /* a float in every lane, for the four boxes at once */
+static inline accel_f4 accel_f4_set(float x) { return _mm_set1_ps(x); }
+#else
+typedef float accel_f4;
+static inline accel_f4 accel_f4_set(float x) { return x; }
+#endif
+
 static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_node *n,
-                                       float tmin, float tmax, float entry[4])
+                                       accel_f4 tmin, accel_f4 tmax, float entry[4])
 {
     const char *base = (const char *)n;
 #if defined(__SSE2__)
-    __m128 lo = _mm_set1_ps(tmin), hi = _mm_set1_ps(tmax);
-    for (int a = 0; a < 3; a++) {
-        __m128 bn = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a]));
-        __m128 bf = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));
-        __m128 tn = _mm_mul_ps(_mm_sub_ps(bn, r->o_near[a]), r->inv_near[a]);
-        __m128 tf = _mm_mul_ps(_mm_sub_ps(bf, r->o_far[a]), r->inv_far[a]);
-        /* max(x, acc) is x > acc ? x : acc: a NaN x leaves acc as it was */
-        lo = _mm_max_ps(tn, lo);
-        hi = _mm_min_ps(tf, hi);
-    }
-    const __m128 tiny = _mm_set1_ps(ACCEL_TINY);
-    lo = _mm_sub_ps(lo, tiny);
-    hi = _mm_add_ps(hi, tiny);
+    __m128 lo = tmin, hi = tmax;
+    /* Written out axis by axis (a loop kept its counter and reloaded the
+     * offsets every node). max(x, acc) is x > acc ? x : acc: a NaN x leaves
+     * acc as it was. */
+#define ACCEL_SLAB(a)                                                                   \
+    do {                                                                                \
+        const __m128 bn_ = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a])); \
+        const __m128 bf_ = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));  \
+        lo = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(bn_, r->o_near[a]), r->inv_near[a]), lo);   \
+        hi = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(bf_, r->o_far[a]), r->inv_far[a]), hi);     \
+    } while (0)
+    ACCEL_SLAB(0);
+    ACCEL_SLAB(1);
+    ACCEL_SLAB(2);
+#undef ACCEL_SLAB
+    lo = _mm_sub_ps(lo, r->tiny);
+    hi = _mm_add_ps(hi, r->tiny);
     _mm_storeu_ps(entry, lo);
-    return (unsigned)_mm_movemask_ps(_mm_cmple_ps(lo, hi));
+    const __m128 met = _mm_and_ps(_mm_cmple_ps(lo, hi), _mm_cmplt_ps(lo, r->infinity));
+    return (unsigned)_mm_movemask_ps(met);
 #else
     unsigned mask = 0;
     for (int k = 0; k < 4; k++) {
@@ -241,7 +279,7 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
         lo -= ACCEL_TINY;
         hi += ACCEL_TINY;
         entry[k] = lo;
-        if (lo <= hi) mask |= 1u << k;
+        if (lo <= hi && lo < INFINITY) mask |= 1u << k;
     }
     return mask;
 #endif
@@ -264,8 +302,9 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
     accel_ray4_init(&r, ray, tmin);
-    const float tmin_f = accel_ray4_tmin(&r, tmin);
+    const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
+    accel_f4 tmax4 = accel_f4_set(tmax_f);
     uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
     float stack_entry[ACCEL_BVH4_STACK];
     uint32_t top = 0;
@@ -274,28 +313,38 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
         if (count > 0) {
             double before = *tmax;
             if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
-            if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax);
+            if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
         } else {
             const accel_bvh4_node *n = &bvh->nodes[ref];
-            float entry[4];
-            unsigned mask = accel_bvh4_test(&r, n, tmin_f, tmax_f, entry);
-            /* Hit children nearest first (insertion sort of at most 4). */
-            uint32_t order[4], hits = 0;
-            while (mask) {
+            float entry[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+            unsigned mask = 0;
+            if (r.cull) {
+                mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
+            } else {
+                for (uint32_t k = 0; k < 4; k++)
+                    mask |= (uint32_t)(n->count[k] > 0 || n->ref[k] != ACCEL_BVH4_EMPTY) << k;
+            }
+            if (mask) {
                 uint32_t k = (uint32_t)__builtin_ctz(mask);
                 mask &= mask - 1;
-                if (n->count[k] == 0 && n->ref[k] == ACCEL_BVH4_EMPTY) continue;
-                uint32_t j = hits++;
-                while (j > 0 && entry[order[j - 1]] > entry[k]) order[j] = order[j - 1], j--;
-                order[j] = k;
-            }
-            if (hits > 0) {
-                for (uint32_t j = hits - 1; j > 0; j--) {
-                    uint32_t k = order[j];
-                    stack_ref[top] = n->ref[k], stack_count[top] = n->count[k];
-                    stack_entry[top++] = entry[k];
+                if (mask) {
+                    /* Two or more: stack all but the nearest, farthest
+                     * first (an insertion sort of at most four, by entry). */
+                    uint32_t kid[4] = {k}, hits = 1;
+                    float at[4] = {entry[k]};
+                    while (mask) {
+                        uint32_t c = (uint32_t)__builtin_ctz(mask), j = hits++;
+                        mask &= mask - 1;
+                        while (j > 0 && at[j - 1] > entry[c]) kid[j] = kid[j - 1], at[j] = at[j - 1], j--;
+                        kid[j] = c, at[j] = entry[c];
+                    }
+                    for (uint32_t j = hits - 1; j > 0; j--) {
+                        stack_ref[top] = n->ref[kid[j]], stack_count[top] = n->count[kid[j]];
+                        stack_entry[top++] = at[j];
+                    }
+                    k = kid[0];
                 }
-                ref = n->ref[order[0]], count = n->count[order[0]];
+                ref = n->ref[k], count = n->count[k];
                 continue;
             }
         }

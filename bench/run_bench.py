@@ -2,8 +2,9 @@
 """hitray against POV-Ray 3.7 (whole renders) and Embree 3 (raw first hits).
 
     bench/run_bench.py [--runs 5] [--scaling-runs 3] [--build build]
-                       [--scenes spheres,torus_csg,sphere_grid,terrain,village]
-                       [--size 1920x1080] [--output bench/RESULTS.md]
+                       [--scenes spheres,torus_csg,sphere_grid,terrain,village,balls,...]
+                       [--size 1920x1080] [--spd-size 1024x1024] [--output bench/RESULTS.md]
+    bench/run_bench.py --quick --output FILE   (every step once, tiny: a test runs it)
 
 Run by `make bench` (which builds hitray and bench/raycast and installs
 povray and libembree-dev first). Writes bench/RESULTS.md and
@@ -26,12 +27,28 @@ Matching content: every scene is also rendered by both at 480x270 as a flat
 id-colour mask (sdl2pov.py --mask); the table gives the share of pixels whose
 object agrees (bench/compare_images.py).
 
+SPD scenes: the seven Standard Procedural Databases of ../shared/scenes/spd
+(balls, gears, mount, rings, teapot, tetra, tree; skipped where that folder
+is absent), read by hitray as NFF (docs/nff.md) and by POV-Ray as the
+*.pov.gz twins the SPD's generators wrote beside them, at --spd-size (square,
+as their cameras are). Their table gives both ratios, whole process and
+render only, and the rays of each kind both renderers count (hitray: its
+render statistics; POV-Ray: its statistics block). They have no id-colour
+mask: the twins come from the SPD, not from sdl2pov.py.
+
+--quick runs every step once at a tiny size (one run, one thread, no
+profile, the raycast with 1,000 spheres), writes to --output and to a
+previews folder in the work directory, and leaves README.md alone; without
+POV-Ray (or bench/raycast) it runs hitray's side and says what it left
+out. tests/python/test_bench_tools.py runs it, so the script cannot rot.
+
 Raw intersection: bench/raycast (see its header) with 100,000 random spheres
 and 1M primary rays, hitray's hr_scene_first_hit against Embree's native
 spheres, 1 and 2 threads, alternating; then the scaling runs (1k, 10k, 100k,
 1M spheres) with --scaling-runs runs each."""
 import argparse
 import datetime
+import gzip
 import os
 import platform
 import re
@@ -54,8 +71,13 @@ SCENES = {
     "terrain": ("bench/scenes/terrain.sdl", None, ["mesh"]),
     "village": ("tests/scenes/hill/village.dat", "9,7,24,0,0,2,0,1,0,40", []),
 }
+# The SPD scenes: NFF (gzip) and their POV-Ray twins, beside the repository.
+SPD_DIR = os.path.join(os.path.dirname(ROOT), "shared", "scenes", "spd")
+SPD_SCENES = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 MASK_SIZE = "480x270"
 WORK = None  # build/bench-work: scenes, renders, logs
+HAVE_POV = True
+PREVIEWS = os.path.join(BENCH, "previews")
 README_BEGIN = "<!-- bench-results: written by bench/run_bench.py -->"
 README_END = "<!-- /bench-results -->"
 
@@ -89,6 +111,17 @@ def pov_seconds(text, label):
 def hitray_classes(hitray):
     out = subprocess.run([hitray, "shapes"], capture_output=True, text=True).stdout
     return set(re.findall(r"^\s+(\w+) - ", out, re.M))
+
+
+def prepare_spd(name, work):
+    """The NFF file as it is; the POV-Ray twin unpacked into the work
+    directory (POV-Ray reads no gzip)."""
+    d = os.path.join(work, name)
+    os.makedirs(d, exist_ok=True)
+    with gzip.open(os.path.join(SPD_DIR, name + ".pov.gz"), "rb") as f, \
+            open(os.path.join(d, name + ".pov"), "wb") as out:
+        shutil.copyfileobj(f, out)
+    return d
 
 
 def prepare_scene(name, work, hitray_known):
@@ -128,10 +161,33 @@ def median(xs):
     return statistics.median(xs) if xs else float("nan")
 
 
-def bench_scene(name, d, camera, hitray):
-    """Alternating timed runs; returns rows per thread count."""
+def fmt_count(x):
+    return "-" if x != x else f"{x:,.0f}"  # NaN: not printed by that renderer
+
+
+def json_number(text, key):
+    m = re.search(r'"' + key + r'":\s*([0-9.eE+-]+)', text)
+    return float(m.group(1)) if m else float("nan")
+
+
+def pov_rays(text):
+    """The rays of each kind in POV-Ray's statistics block (absent: NaN)."""
+    def count(label):
+        m = re.search(label + r":\s+([0-9,]+)", text)
+        return float(m.group(1).replace(",", "")) if m else float("nan")
+    return {"rays": count(r"\bRays"), "shadow": count("Shadow Ray Tests"),
+            "reflected": count("Reflected Rays"), "refracted": count("Refracted Rays"),
+            "transmitted": count("Transmitted Rays")}
+
+
+def bench_scene(name, d, camera, hitray, scene_file=None, size=None):
+    """Alternating timed runs; returns rows per thread count, and the rays
+    of each kind of the last run of each renderer."""
+    scene_file = scene_file or name + ".sdl"
+    size = size or ARGS.size
     res = {t: {"hr": [], "hr_render": [], "hr_mem": [], "pov": [], "pov_render": [], "pov_mem": []}
            for t in ARGS.threads}
+    rays = {"hitray": {}, "pov": {}}
     for rnd in range(ARGS.runs):
         for t in ARGS.threads:
             order = ("hr", "pov") if rnd % 2 == 0 else ("pov", "hr")
@@ -139,29 +195,33 @@ def bench_scene(name, d, camera, hitray):
                 if who == "hr":
                     stats = os.path.join(d, "stats.json")
                     wall, mem, _, _ = run_measured(
-                        hitray_cmd(hitray, name + ".sdl", "hitray.ppm", ARGS.size, t, camera, stats), d)
+                        hitray_cmd(hitray, scene_file, "hitray.ppm", size, t, camera, stats), d)
                     with open(stats) as f:
-                        m = re.search(r'"seconds":\s*([0-9.eE+-]+)', f.read())
+                        text = f.read()
                     res[t]["hr"].append(wall)
-                    res[t]["hr_render"].append(float(m.group(1)) if m else float("nan"))
+                    res[t]["hr_render"].append(json_number(text, "seconds"))
                     res[t]["hr_mem"].append(mem)
-                else:
-                    wall, mem, out, err = run_measured(pov_cmd(name + ".pov", "pov.ppm", ARGS.size, t), d)
+                    rays["hitray"] = {k: json_number(text, k)
+                                      for k in ("primary", "shadow", "reflected", "refracted")}
+                elif HAVE_POV:
+                    wall, mem, out, err = run_measured(pov_cmd(name + ".pov", "pov.ppm", size, t), d)
                     res[t]["pov"].append(wall)
                     res[t]["pov_render"].append(pov_seconds(out + err, "Trace"))
                     res[t]["pov_mem"].append(mem)
+                    rays["pov"] = pov_rays(out + err)
+            pov_time = f"{res[t]['pov'][-1]:.2f} s" if res[t]["pov"] else "not run"
             print(f"  {name} round {rnd + 1}/{ARGS.runs} threads {t}: hitray {res[t]['hr'][-1]:.2f} s, "
-                  f"POV-Ray {res[t]['pov'][-1]:.2f} s", flush=True)
-    return res
+                  f"POV-Ray {pov_time}", flush=True)
+    return res, rays
 
 
 def mask_agreement(name, d, camera, hitray):
     run_measured(hitray_cmd(hitray, name + ".mask.sdl", "hitray.mask.ppm", MASK_SIZE, 2, None), d)
     run_measured(pov_cmd(name + ".mask.pov", "pov.mask.ppm", MASK_SIZE, 2), d)
-    os.makedirs(os.path.join(BENCH, "previews"), exist_ok=True)
+    os.makedirs(PREVIEWS, exist_ok=True)
     out = subprocess.run([sys.executable, os.path.join(BENCH, "compare_images.py"),
                           "hitray.mask.ppm", "pov.mask.ppm", "hitray.ppm", "pov.ppm",
-                          os.path.join(BENCH, "previews", name + ".png")],
+                          os.path.join(PREVIEWS, name + ".png")],
                          cwd=d, capture_output=True, text=True, check=True).stdout
     return float(out.strip())
 
@@ -222,7 +282,10 @@ def main():
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--scaling-runs", type=int, default=3)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--scenes", default=",".join(list(SCENES) + SPD_SCENES))
+    ap.add_argument("--spd-size", default="1024x1024", help="image size of the SPD scenes")
+    ap.add_argument("--quick", action="store_true",
+                    help="every step once, tiny, into --output (a test of the script)")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--size", default="1920x1080")
     ap.add_argument("--scaling", default="1000,10000,100000,1000000")
@@ -232,24 +295,51 @@ def main():
     ap.add_argument("--readme", default=os.path.join(ROOT, "README.md"),
                     help="README whose results block is replaced ('' leaves it alone)")
     ARGS = ap.parse_args()
+    if ARGS.quick:
+        if ARGS.output == os.path.join(BENCH, "RESULTS.md"):
+            sys.exit("run_bench: --quick needs --output (it must not replace bench/RESULTS.md)")
+        ARGS.runs, ARGS.scaling_runs, ARGS.threads = 1, 1, "1"
+        ARGS.size, ARGS.spd_size, ARGS.scaling = "64x36", "32x32", "1000"
+        ARGS.no_profile, ARGS.readme = True, ""
     ARGS.build = os.path.abspath(ARGS.build)
     ARGS.threads = [int(x) for x in ARGS.threads.split(",")]
     hitray = os.path.join(ARGS.build, "bin", "hitray")
     raycast = os.path.join(ARGS.build, "bin", "raycast")
-    for tool in (hitray, raycast):
-        if not os.access(tool, os.X_OK):
-            sys.exit(f"run_bench: {tool} is missing: build first (make build)")
-    if not shutil.which("povray"):
+    global WORK, HAVE_POV, PREVIEWS
+    HAVE_POV = shutil.which("povray") is not None
+    have_raycast = os.access(raycast, os.X_OK)
+    if not os.access(hitray, os.X_OK) or (not have_raycast and not ARGS.quick):
+        sys.exit(f"run_bench: {hitray if not os.access(hitray, os.X_OK) else raycast} is missing: "
+                 "build first (make build)")
+    if not HAVE_POV and not ARGS.quick:
         sys.exit("run_bench: povray is not installed (make bench installs it)")
-    global WORK
-    work = WORK = os.path.join(ARGS.build, "bench-work")
+    work = WORK = os.path.join(ARGS.build, "bench-quick" if ARGS.quick else "bench-work")
     os.makedirs(work, exist_ok=True)
+    PREVIEWS = os.path.join(work, "previews") if ARGS.quick else os.path.join(BENCH, "previews")
     known = hitray_classes(hitray)
     load_before = os.getloadavg()
     started = datetime.datetime.now(datetime.timezone.utc)
 
-    scene_rows, skipped = [], []
+    scene_rows, spd_rows, skipped = [], [], []
     for name in ARGS.scenes.split(","):
+        if name in SPD_SCENES:
+            if not os.path.exists(os.path.join(SPD_DIR, name + ".nff.gz")):
+                print(f"{name}: skipped, the SPD scenes are not in {SPD_DIR}", flush=True)
+                skipped.append((name, ["the SPD scenes beside the repository (shared/scenes/spd)"]))
+                continue
+            d = prepare_spd(name, work)
+            print(f"{name}: timing", flush=True)
+            try:
+                res, rays = bench_scene(name, d, None, hitray,
+                                        os.path.join(SPD_DIR, name + ".nff.gz"), ARGS.spd_size)
+            except RuntimeError as e:
+                print(f"{name}: failed: {e}", flush=True)
+                skipped.append((name, ["a working render (" + str(e).split(chr(10))[0][:80] + ")"]))
+                continue
+            spd_rows.append((name, res, rays))
+            continue
+        if name not in SCENES:
+            sys.exit(f"run_bench: no scene '{name}' (there are {', '.join(list(SCENES) + SPD_SCENES)})")
         d, camera, missing = prepare_scene(name, work, known)
         if missing:
             skipped.append((name, missing))
@@ -258,29 +348,30 @@ def main():
             continue
         print(f"{name}: timing", flush=True)
         try:
-            res = bench_scene(name, d, camera, hitray)
-            agree = mask_agreement(name, d, camera, hitray)
+            res, _ = bench_scene(name, d, camera, hitray)
+            agree = mask_agreement(name, d, camera, hitray) if HAVE_POV else float("nan")
         except RuntimeError as e:  # one scene failing does not lose the others
             print(f"{name}: failed: {e}", flush=True)
             skipped.append((name, ["a working render (" + str(e).split(chr(10))[0][:80] + ")"]))
             continue
         scene_rows.append((name, res, agree))
 
-    embree = "embree" in subprocess.run([raycast, "--engine", "embree", "--spheres", "10",
-                                         "--rays-side", "4"], capture_output=True,
-                                        text=True).stdout
+    embree = have_raycast and "embree" in subprocess.run(
+        [raycast, "--engine", "embree", "--spheres", "10", "--rays-side", "4"],
+        capture_output=True, text=True).stdout
     engines = ["hitray", "embree"] if embree else ["hitray"]
-    print("raycast: 100,000 spheres", flush=True)
-    ray = raycast_runs(raycast, 100000, ARGS.threads, ARGS.runs, engines)
-    check = None
-    if embree:
-        out = subprocess.run([raycast, "--engine", "both", "--spheres", "100000"],
-                             capture_output=True, text=True, check=True).stdout
-        check = dict(x.split("=", 1) for x in out.split())
-    scaling = {}
-    for n in [int(x) for x in ARGS.scaling.split(",")]:
-        print(f"raycast scaling: {n} spheres", flush=True)
-        scaling[n] = raycast_runs(raycast, n, ARGS.threads, ARGS.scaling_runs, engines)
+    raw_spheres = 1000 if ARGS.quick else 100000
+    ray, check, scaling = None, None, {}
+    if have_raycast:
+        print(f"raycast: {raw_spheres:,} spheres", flush=True)
+        ray = raycast_runs(raycast, raw_spheres, ARGS.threads, ARGS.runs, engines)
+        if embree:
+            out = subprocess.run([raycast, "--engine", "both", "--spheres", str(raw_spheres)],
+                                 capture_output=True, text=True, check=True).stdout
+            check = dict(x.split("=", 1) for x in out.split())
+        for n in [int(x) for x in ARGS.scaling.split(",")]:
+            print(f"raycast scaling: {n} spheres", flush=True)
+            scaling[n] = raycast_runs(raycast, n, ARGS.threads, ARGS.scaling_runs, engines)
     load_after = os.getloadavg()
     profile = ""
     if shutil.which("valgrind") and not ARGS.no_profile:
@@ -302,27 +393,24 @@ def main():
     if ARGS.note:
         L.append("")
         L.append(ARGS.note)
+    sdl_skipped = [(n, m) for n, m in skipped if n not in SPD_SCENES]
+    spd_skipped = [(n, m) for n, m in skipped if n in SPD_SCENES]
+    if scene_rows or sdl_skipped:
+        L += scenes_table(scene_rows, sdl_skipped)
+    if spd_rows or spd_skipped:
+        L += spd_tables(spd_rows, spd_skipped)
+    if not HAVE_POV:
+        L.append("")
+        L.append("POV-Ray is not installed: its columns are empty (`make bench` installs it).")
+    if ray is None:
+        L.append("")
+        L.append("bench/raycast is not built: no raw intersection runs.")
+        with open(ARGS.output, "w") as f:
+            f.write("\n".join(L) + "\n")
+        print("\n".join(L))
+        return
     L.append("")
-    L.append(f"## Scenes ({ARGS.size}, 1 sample per pixel, median of {ARGS.runs} alternating runs)")
-    L.append("")
-    L.append("Time is the whole process (parse + render + write a PPM); render-only in brackets "
-             "(hitray: its render statistics; POV-Ray: its Trace Time). Ratio = hitray / POV-Ray "
-             "(target: at most 0.5). Memory is peak resident. Mask = pixels whose object agrees "
-             "in the flat id-colour renders (see bench/previews/).")
-    L.append("")
-    L.append("| scene | threads | hitray time | POV-Ray time | ratio | hitray memory | POV-Ray memory | mask |")
-    L.append("|---|---|---|---|---|---|---|---|")
-    for name, res, agree in scene_rows:
-        for t in ARGS.threads:
-            r = res[t]
-            hr, pv = median(r["hr"]), median(r["pov"])
-            L.append(f"| {name} | {t} | {hr:.2f} s ({median(r['hr_render']):.2f}) | "
-                     f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
-                     f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem']))} | {agree:.2f}% |")
-    for name, missing in skipped:
-        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
-    L.append("")
-    L.append(f"## Raw intersection: 1M primary rays, 100,000 random spheres (median of {ARGS.runs})")
+    L.append(f"## Raw intersection: 1M primary rays, {raw_spheres:,} random spheres (median of {ARGS.runs})")
     L.append("")
     L.append("bench/raycast: hitray's `hr_scene_first_hit` (double precision) against Embree's "
              "native spheres (`rtcIntersect1`, float); trace time only, the build apart. "
@@ -376,9 +464,66 @@ def main():
     update_readme(L, cmdline)
 
 
+def scenes_table(rows, skipped):
+    """The bench scenes' table: times, memory, mask agreement."""
+    L = ["", f"## Scenes ({ARGS.size}, 1 sample per pixel, median of {ARGS.runs} alternating runs)",
+         "",
+         "Time is the whole process (parse + render + write a PPM); render-only in brackets "
+         "(hitray: its render statistics; POV-Ray: its Trace Time). Ratio = hitray / POV-Ray "
+         "(target: at most 0.5). Memory is peak resident. Mask = pixels whose object agrees "
+         "in the flat id-colour renders (see bench/previews/).", "",
+         "| scene | threads | hitray time | POV-Ray time | ratio | hitray memory | POV-Ray memory | mask |",
+         "|---|---|---|---|---|---|---|---|"]
+    for name, res, agree in rows:
+        for t in ARGS.threads:
+            r = res[t]
+            hr, pv = median(r["hr"]), median(r["pov"])
+            L.append(f"| {name} | {t} | {hr:.2f} s ({median(r['hr_render']):.2f}) | "
+                     f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
+                     f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem'] or [float('nan')]))} | "
+                     f"{agree:.2f}% |")
+    for name, missing in skipped:
+        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
+    return L
+
+
+def spd_tables(rows, skipped):
+    """The SPD scenes' times (both ratios) and their rays by kind."""
+    L = ["", f"## SPD scenes ({ARGS.spd_size}, NFF for hitray, the SPD's POV-Ray twins, median of "
+         f"{ARGS.runs} alternating runs)", "",
+         "The Standard Procedural Databases as their generators wrote them (docs/nff.md). Time "
+         "is the whole process, render-only in brackets; whole = whole-process ratio, render = "
+         "render-only ratio (hitray / POV-Ray).", "",
+         "| scene | threads | hitray time | POV-Ray time | whole | render | hitray memory | POV-Ray memory |",
+         "|---|---|---|---|---|---|---|---|"]
+    for name, res, _ in rows:
+        for t in ARGS.threads:
+            r = res[t]
+            hr, pv = median(r["hr"]), median(r["pov"])
+            hrr, pvr = median(r["hr_render"]), median(r["pov_render"])
+            pov_mem = fmt_mem(max(r["pov_mem"] or [float("nan")]))
+            L.append(f"| {name} | {t} | {hr:.2f} s ({hrr:.2f}) | {pv:.2f} s ({pvr:.2f}) | "
+                     f"{hr / pv:.2f} | {hrr / pvr:.2f} | {fmt_mem(max(r['hr_mem']))} | {pov_mem} |")
+    L += ["", "Rays by kind, as each renderer counts them (the last run; POV-Ray's `Rays` is "
+          "every ray it traced, its eye rays among them; '-' where it prints none):", "",
+          "| scene | hitray eye | hitray shadow | hitray reflected | hitray refracted | "
+          "POV-Ray rays | POV-Ray shadow tests | POV-Ray reflected | POV-Ray refracted | "
+          "POV-Ray transmitted |",
+          "|---|---|---|---|---|---|---|---|---|---|"]
+    for name, _, rays in rows:
+        h, p = rays["hitray"], rays["pov"]
+        cells = [fmt_count(h.get(k, float("nan"))) for k in ("primary", "shadow", "reflected", "refracted")]
+        cells += [fmt_count(p.get(k, float("nan")))
+                  for k in ("rays", "shadow", "reflected", "refracted", "transmitted")]
+        L.append(f"| {name} | " + " | ".join(cells) + " |")
+    for name, missing in skipped:
+        L.append(f"| {name} | not run: needs {', '.join(missing)} | | | | | | | | |")
+    return L
+
+
 def update_readme(lines, cmdline):
-    """Put the machine line and the two main tables (scenes, raw intersection)
-    between the README's markers."""
+    """Put the machine line and the main tables (the scenes, the raw intersection, the SPD
+    scenes' times) between the README's markers."""
     if not ARGS.readme or not os.path.exists(ARGS.readme):
         return
     with open(ARGS.readme) as f:
@@ -398,8 +543,13 @@ def update_readme(lines, cmdline):
     notes = [x for x in lines if x == ARGS.note and x]
     body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
             "runs, is in [bench/RESULTS.md](bench/RESULTS.md).", ""] + machine + [""] + notes
-    for table in tables[:2]:
-        body += [""] + table
+    # The bench scenes, the raw intersection and the SPD scenes' times.
+    wanted = ("| scene | threads | hitray time | POV-Ray time | ratio", "| threads | hitray rays/s",
+              "| scene | threads | hitray time | POV-Ray time | whole")
+    for head in wanted:
+        for table in tables:
+            if table[0].startswith(head):
+                body += [""] + table
     body += ["", README_END]
     start = text.index(README_BEGIN)
     end = text.index(README_END) + len(README_END)

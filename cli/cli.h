@@ -105,8 +105,11 @@ typedef struct cli_scene {
     hr_context *ctx;
     hr_sdl_result sdl;
 } cli_scene;
-/* 0 on success; on failure the error is reported and everything freed. */
+/* 0 on success; on failure the error is reported and everything freed.
+ * A name ending in .nff or .nff.gz (any case) is read as NFF, any other as
+ * Hill's SDL. */
 int cli_scene_load(cli_scene *s, const char *path);
+int cli_is_nff(const char *path);
 int cli_scene_commit(cli_scene *s);
 /* The scene file's camera at width x height, or, for a file that sets none,
  * one that frames what is there (Hill's default at (0,0,5) may see nothing

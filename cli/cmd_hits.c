@@ -8,9 +8,9 @@
 static const char hits_help[] =
     "usage: hitray hits SCENE --origin X,Y,Z --dir X,Y,Z [--all]\n"
     "\n"
-    "Shoot the ray origin + t * dir (t > 0) into the SDL scene SCENE and print\n"
-    "the first hit, or with --all every hit sorted by t, one JSON object per\n"
-    "line:\n"
+    "Shoot the ray origin + t * dir (t > 0) into the scene SCENE (SDL, or NFF\n"
+    "if it ends in .nff or .nff.gz) and print the first hit, or with --all\n"
+    "every hit sorted by t, one JSON object per line:\n"
     "  {\"t\": ..., \"point\": [x, y, z], \"normal\": [x, y, z], \"entering\": true,\n"
     "   \"surface\": 0, \"object\": 0, \"shape\": \"sphere\"}\n"
     "Numbers are printed with 17 significant digits, so they read back exactly.\n"

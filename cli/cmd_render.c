@@ -16,14 +16,16 @@
 static const char render_help[] =
     "usage: hitray render SCENE -o OUT [options]\n"
     "\n"
-    "Render the SDL scene file SCENE and write the image to OUT; its extension\n"
-    "picks the format: .png (8-bit sRGB), .exr (float), .ppm, .pfm.\n"
+    "Render the scene file SCENE (Hill's SDL, or NFF if it ends in .nff or\n"
+    ".nff.gz) and write the image to OUT; its extension picks the format:\n"
+    ".png (8-bit sRGB), .exr (float), .ppm, .pfm.\n"
     "Prints one summary line: size, time, rays cast, rays per second.\n"
     "\n"
     "options:\n"
     "  -o, --output FILE     the image to write (required)\n"
     "  --exr FILE            also write the linear image as OpenEXR\n"
-    "  --size WxH            image size in pixels (default 640x480)\n"
+    "  --size WxH            image size in pixels (default: an NFF file's\n"
+    "                        resolution, else 640x480)\n"
     "  --spp N               samples per pixel (default 1: the pixel centre)\n"
     "  --threads N           threads (default 0: every core); the image is the\n"
     "                        same whatever the count\n"
@@ -130,7 +132,7 @@ static int parse_effects(const char *option, const char *text, int32_t *out)
 static int parse_request(int argc, char **argv, render_request *r)
 {
     memset(r, 0, sizeof *r);
-    r->width = 640, r->height = 480;
+    r->width = 0, r->height = 0; /* the scene file's size unless --size */
     r->spp = 1, r->threads = 0, r->depth = -1, r->block = 1;
     cli_parser p;
     cli_parser_init(&p, argc, argv, render_options);
@@ -370,6 +372,7 @@ int cmd_render(int argc, char **argv)
     if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
+    if (r.width == 0) r.width = s.sdl.camera.width, r.height = s.sdl.camera.height;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : render_and_write(&r, &s);
     cli_interrupt_release();
     cli_scene_free(&s);

@@ -25,6 +25,7 @@ static const char *type_name(int32_t type)
     case HR_PARAM_NUMBER: return "number";
     case HR_PARAM_STRING: return "string";
     case HR_PARAM_OBJECT: return "object";
+    case HR_PARAM_NUMBERS: return "numbers";
     default: return "?";
     }
 }

@@ -10,7 +10,7 @@ static const char usage[] =
     "A ray tracer after F.S. Hill's Computer Graphics Using OpenGL, chapter 12.\n"
     "\n"
     "commands:\n"
-    "  render SCENE -o OUT   render an SDL scene file to an image (.png .exr .ppm .pfm)\n"
+    "  render SCENE -o OUT   render an SDL or NFF scene file to an image (.png .exr .ppm .pfm)\n"
     "  hits SCENE --origin X,Y,Z --dir X,Y,Z [--all]\n"
     "                        where a ray meets the scene, as JSON lines\n"
     "  shapes                list the shape modules found and their parameters\n"

@@ -1,7 +1,15 @@
 /* Loading a scene file for the verbs that need one (cli.h). */
 #include <string.h>
+#include <strings.h>
 
 #include "cli.h"
+
+int cli_is_nff(const char *path)
+{
+    size_t n = strlen(path);
+    return (n >= 4 && strcasecmp(path + n - 4, ".nff") == 0) ||
+           (n >= 7 && strcasecmp(path + n - 7, ".nff.gz") == 0);
+}
 
 int cli_scene_load(cli_scene *s, const char *path)
 {
@@ -9,7 +17,8 @@ int cli_scene_load(cli_scene *s, const char *path)
     hr_status st = hr_context_create(&s->ctx);
     if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
     s->sdl.struct_size = sizeof s->sdl;
-    st = hr_sdl_load_file(s->ctx, path, &s->sdl);
+    st = cli_is_nff(path) ? hr_nff_load_file(s->ctx, path, &s->sdl)
+                          : hr_sdl_load_file(s->ctx, path, &s->sdl);
     if (st != HR_OK) {
         int rc = cli_library_error(s->ctx, st);
         cli_scene_free(s);

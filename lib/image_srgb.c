@@ -2,6 +2,8 @@
 #include "image_srgb.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <string.h>
 
 static double clamp01(double v)
 {
@@ -21,9 +23,88 @@ double hr_srgb_encode(double linear)
     return 1.055 * pow(v, 1.0 / 2.4) - 0.055;
 }
 
-uint32_t hr_code_value(float linear, int srgb, uint32_t max_code)
+/* The code value by the formula: what the table below reproduces. */
+static uint32_t code_by_formula(float linear, int srgb, uint32_t max_code)
 {
     double v = srgb ? hr_srgb_encode(linear) : clamp01(linear);
     /* v is in [0, 1], so the sum is in [0.5, max_code + 0.5]: no overflow. */
     return (uint32_t)floor(v * (double)max_code + 0.5);
+}
+
+/* 8-bit sRGB, the common case (every PNG and PPM by default), without a pow
+ * call per channel: the code is a non-decreasing step function of the
+ * float input. step[c - 1] is the smallest float whose code is c or more,
+ * found once by bisecting over the floats of [0, 1] in bit order with the
+ * formula itself, so the steps give the formula's answer for every float.
+ * (Non-decreasing: the formula is monotone, and pow's error, under an ulp
+ * of a double, is far below the 2^-25 by which the encoded values of
+ * neighbouring floats differ.) To find the steps below a value fast, the
+ * floats from the first step to 1 are cut into buckets by their top 16 bits
+ * (exponent and 7 bits of mantissa), each knowing the code at its start; a
+ * bucket is narrower than the gap between two steps, so at most one step
+ * lies past its start. */
+#define SRGB8_BUCKET_SHIFT 16
+static float srgb8_step[256]; /* [255]: +inf, a step never met */
+static uint8_t srgb8_buckets[(0x3f800000u >> SRGB8_BUCKET_SHIFT) + 1]; /* by top bits, to 1.0f */
+static uint32_t srgb8_first_bucket;
+static pthread_once_t srgb8_once = PTHREAD_ONCE_INIT;
+
+static uint32_t float_bits(float f)
+{
+    uint32_t b;
+    memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+static float bits_float(uint32_t b)
+{
+    float f;
+    memcpy(&f, &b, sizeof f);
+    return f;
+}
+
+static void srgb8_build(void)
+{
+    for (uint32_t c = 1; c <= 255; c++) {
+        /* The smallest bit pattern in (0, 1.0f] whose code is >= c. */
+        uint32_t lo = 0, hi = float_bits(1.0f);
+        while (lo < hi) {
+            uint32_t mid = lo + (hi - lo) / 2;
+            if (code_by_formula(bits_float(mid), 1, 255) >= c) hi = mid;
+            else lo = mid + 1;
+        }
+        srgb8_step[c - 1] = bits_float(lo);
+    }
+    srgb8_step[255] = INFINITY;
+    srgb8_first_bucket = float_bits(srgb8_step[0]) >> SRGB8_BUCKET_SHIFT;
+    uint32_t code = 0;
+    for (uint32_t k = srgb8_first_bucket; k <= float_bits(1.0f) >> SRGB8_BUCKET_SHIFT; k++) {
+        const float start = bits_float(k << SRGB8_BUCKET_SHIFT);
+        while (code < 255 && srgb8_step[code] <= start) code++;
+        srgb8_buckets[k] = (uint8_t)code;
+    }
+}
+
+static uint32_t srgb8_code(float linear)
+{
+    /* NaN, zero and below: 0; 1 and above: 255. */
+    if (!(linear > 0.0f)) return 0;
+    if (linear >= 1.0f) return 255;
+    pthread_once(&srgb8_once, srgb8_build);
+    const uint32_t bucket = float_bits(linear) >> SRGB8_BUCKET_SHIFT;
+    if (bucket < srgb8_first_bucket) return 0;
+    uint32_t code = srgb8_buckets[bucket];
+    while (srgb8_step[code] <= linear) code++;
+    return code;
+}
+
+uint32_t hr_code_value(float linear, int srgb, uint32_t max_code)
+{
+    if (srgb && max_code == 255) return srgb8_code(linear);
+    return code_by_formula(linear, srgb, max_code);
+}
+
+uint32_t hr_code_value_by_formula(float linear, int srgb, uint32_t max_code)
+{
+    return code_by_formula(linear, srgb, max_code);
 }

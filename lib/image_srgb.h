@@ -12,5 +12,8 @@ double hr_srgb_encode(double linear);
 /* `linear` as a code value in 0..max_code (255 or 65535), rounded to
  * nearest: sRGB-encoded if `srgb`, else only clamped (NaN gives 0). */
 uint32_t hr_code_value(float linear, int srgb, uint32_t max_code);
+/* The same by the formula alone (hr_code_value answers 8-bit sRGB from a
+ * table built with it); for the test that the two agree. */
+uint32_t hr_code_value_by_formula(float linear, int srgb, uint32_t max_code);
 
 #endif

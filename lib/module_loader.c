@@ -73,7 +73,7 @@ static int copy_class(hr_module *m, const hr_shape_class *src, hr_shape_class *d
     }
     for (int32_t i = 0; i < dst->param_count; i++) {
         const hr_param_spec *p = &dst->params[i];
-        if (!p->name || !*p->name || p->type < HR_PARAM_NUMBER || p->type > HR_PARAM_OBJECT) {
+        if (!p->name || !*p->name || p->type < HR_PARAM_NUMBER || p->type > HR_PARAM_NUMBERS) {
             refuse(m, "shape module '%s': class '%s' has a malformed parameter %d", m->path,
                    name, (int)i);
             return 0;

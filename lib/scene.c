@@ -9,6 +9,7 @@
 #include "errors.h"
 #include "scene_internal.h"
 #include "scene_params.h"
+#include "specular.h"
 #include "vec.h"
 
 /* Copy a caller's struct that starts with struct_size into a defaulted full
@@ -178,6 +179,25 @@ static int transform_bounds(const double m[16], const hr_bounds *in, hr_bounds *
     return v3_is_finite(out->lo) && v3_is_finite(out->hi);
 }
 
+/* The class's own box of the mapped shape, where it is tighter than the
+ * mapped corners of its object-space box (both hold the shape, so their
+ * intersection does), padded as transform_bounds pads. A box the class gets
+ * wrong (NaN, inverted, or empty against the corners' box) is ignored. */
+static void tighten_bounds(hr_object *o)
+{
+    hr_bounds t;
+    o->cls->transformed_bounds(o->shape, o->m, &t);
+    if (!v3_is_finite(t.lo) || !v3_is_finite(t.hi)) return;
+    hr_bounds *w = &o->world_bounds;
+    double mag = fmax(fmax(fabs(t.lo.x), fabs(t.hi.x)),
+                      fmax(fmax(fabs(t.lo.y), fabs(t.hi.y)), fmax(fabs(t.lo.z), fabs(t.hi.z))));
+    double pad = 4.0 * DBL_EPSILON * mag;
+    hr_bounds n = {v3(fmax(w->lo.x, t.lo.x - pad), fmax(w->lo.y, t.lo.y - pad), fmax(w->lo.z, t.lo.z - pad)),
+                   v3(fmin(w->hi.x, t.hi.x + pad), fmin(w->hi.y, t.hi.y + pad), fmin(w->hi.z, t.hi.z + pad))};
+    if (!(n.lo.x <= n.hi.x && n.lo.y <= n.hi.y && n.lo.z <= n.hi.z)) return;
+    *w = n;
+}
+
 static hr_status grow_objects(hr_scene *s)
 {
     if (s->object_count < s->object_cap) return HR_OK;
@@ -328,6 +348,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     }
     cls->bounds(o->shape, &o->local_bounds);
     o->bounded = transform_bounds(o->m, &o->local_bounds, &o->world_bounds);
+    if (o->bounded && cls->transformed_bounds) tighten_bounds(o);
     s->objects[s->object_count++] = o;
     if (out_index) *out_index = o->index;
     return HR_OK;
@@ -423,6 +444,7 @@ static void work_out_effects(hr_scene *s)
             for (int32_t k = 0; k < s->light_count; k++)
                 if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
+        o->specular_cutoff = hr_specular_cutoff(m->specular_exponent);
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;
         if (f & HR_MAT_DIFFUSE) effects |= HR_EFFECT_DIFFUSE | HR_EFFECT_SHADOWS;

@@ -30,6 +30,7 @@ typedef struct hr_object {
     int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
     uint32_t mat_flags;       /* HR_MAT_* */
+    double specular_cutoff;   /* hr_specular_cutoff of the material's exponent */
     hr_bounds local_bounds;   /* object space */
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
 } hr_object;

@@ -12,6 +12,7 @@ static const char *type_name(int32_t type)
     case HR_PARAM_NUMBER: return "a number";
     case HR_PARAM_STRING: return "a string";
     case HR_PARAM_OBJECT: return "an object";
+    case HR_PARAM_NUMBERS: return "an array of numbers";
     default: return "an unknown type";
     }
 }
@@ -39,11 +40,42 @@ static void format_range(double v, char *buf, size_t size)
     else snprintf(buf, size, "%g", v);
 }
 
+/* An array parameter: a sane count, a pointer when there are elements, and
+ * every element a number the spec accepts (the message names the first one
+ * that is not). */
+static hr_status check_numbers(hr_context *ctx, const hr_shape_class *cls, const char *module_path,
+                               const hr_param_spec *spec, const hr_param *p)
+{
+    if (p->count < 0 || (p->count > 0 && !p->numbers))
+        return hr_error(ctx, HR_ERROR_PARAMETER,
+                        "shape '%s': parameter '%s' has count %lld and %s pointer", cls->name,
+                        p->name, (long long)p->count, p->numbers ? "a" : "a NULL");
+    for (int64_t i = 0; i < p->count; i++) {
+        double v = p->numbers[i];
+        if (!isfinite(v))
+            return hr_error(ctx, HR_ERROR_PARAMETER,
+                            "shape '%s': element %lld of parameter '%s' must be a finite "
+                            "number, not %g",
+                            cls->name, (long long)i, p->name, v);
+        if (spec->min <= spec->max && (v < spec->min || v > spec->max)) {
+            char lo[32], hi[32];
+            format_range(spec->min, lo, sizeof lo);
+            format_range(spec->max, hi, sizeof hi);
+            return hr_error(ctx, HR_ERROR_PARAMETER,
+                            "shape '%s' (module '%s'): element %lld of parameter '%s' = %g is "
+                            "outside [%s, %s]",
+                            cls->name, module_path, (long long)i, p->name, v, lo, hi);
+        }
+    }
+    return HR_OK;
+}
+
 hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const char *module_path,
                             const hr_param *given, int32_t given_count, hr_param *full,
                             const void **objects)
 {
     hr_context *ctx = scene->ctx;
+    hr_status st;
     int32_t seen[256] = {0};
     if (cls->param_count > 256)
         return hr_error(ctx, HR_ERROR_MODULE, "shape '%s' (module '%s') declares too many parameters",
@@ -54,8 +86,15 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
         full[i].name = spec->name;
         full[i].type = spec->type;
         full[i].number = spec->default_number;
-        full[i].string = "";
-        full[i].object = -1;
+        /* string/numbers and object/count share their places: the type says
+         * which one the default fills. */
+        if (spec->type == HR_PARAM_NUMBERS) {
+            full[i].numbers = NULL;
+            full[i].count = 0;
+        } else {
+            full[i].string = "";
+            full[i].object = -1;
+        }
         objects[i] = NULL;
     }
     for (int32_t g = 0; g < given_count; g++) {
@@ -99,6 +138,10 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
                 return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' is NULL",
                                 cls->name, p->name);
             full[k].string = p->string;
+        } else if (spec->type == HR_PARAM_NUMBERS) {
+            if ((st = check_numbers(ctx, cls, module_path, spec, p))) return st;
+            full[k].numbers = p->count ? p->numbers : NULL;
+            full[k].count = p->count;
         } else {
             if (!(cls->flags & HR_SHAPE_COMPOSITE))
                 return hr_error(ctx, HR_ERROR_MODULE,

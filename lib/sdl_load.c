@@ -9,41 +9,10 @@
 #include <string.h>
 
 #include "errors.h"
+#include "load_result.h"
 #include "sdl_lexer.h"
 #include "sdl_reader.h"
 #include "sdl_source.h"
-
-/* The caller's struct may be older (shorter) than ours; it must at least
- * reach the scene pointer. */
-#define RESULT_MIN_SIZE (offsetof(hr_sdl_result, scene) + sizeof(hr_scene *))
-
-/* Copy the bytes the caller's struct has, keeping its struct_size. */
-static void give_result(hr_sdl_result *out, const hr_sdl_result *full)
-{
-    uint32_t size = out->struct_size;
-    memcpy(out, full, size < sizeof *full ? size : sizeof *full);
-    out->struct_size = size;
-}
-
-static void empty_result(hr_sdl_result *r)
-{
-    memset(r, 0, sizeof *r);
-    r->struct_size = sizeof *r;
-    hr_camera_default(&r->camera);
-}
-
-/* Also empties the result, so that every failure leaves out->scene NULL. */
-static hr_status check_arguments(hr_context *ctx, hr_sdl_result *out)
-{
-    if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
-    if (!out || out->struct_size < RESULT_MIN_SIZE)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "SDL: the result is NULL or its struct_size is not set");
-    hr_sdl_result empty;
-    empty_result(&empty);
-    give_result(out, &empty);
-    return HR_OK;
-}
 
 static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const char *name,
                             const char *base_dir, hr_sdl_result *result)
@@ -71,7 +40,7 @@ static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const
     sdl_source_release(&src);
     if (st) {
         hr_scene_destroy(scene);
-        empty_result(result);
+        hr_load_result_empty(result);
     }
     return st;
 }
@@ -80,7 +49,7 @@ static hr_status load_text(hr_context *ctx, const char *text, size_t length, con
                            const char *base_dir, hr_sdl_result *out)
 {
     hr_sdl_result result;
-    empty_result(&result);
+    hr_load_result_empty(&result);
     sdl_token_list tokens;
     int32_t bad_line = 0, bad_column = 0;
     hr_status st = sdl_lex(text, length, &tokens, &bad_line, &bad_column);
@@ -93,14 +62,14 @@ static hr_status load_text(hr_context *ctx, const char *text, size_t length, con
     else
         st = read_scene(ctx, &tokens, name, base_dir, &result);
     sdl_token_list_release(&tokens);
-    give_result(out, &result);
+    hr_load_result_give(out, &result);
     return st;
 }
 
 HR_API hr_status hr_sdl_load_string(hr_context *ctx, const char *text, const char *name,
                                     const char *base_dir, hr_sdl_result *out)
 {
-    hr_status st = check_arguments(ctx, out);
+    hr_status st = hr_load_result_begin(ctx, out, "SDL");
     if (st) return st;
     if (!text) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_string: NULL text");
     return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, out);
@@ -166,7 +135,7 @@ static char *directory_of(const char *path)
 
 HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)
 {
-    hr_status st = check_arguments(ctx, out);
+    hr_status st = hr_load_result_begin(ctx, out, "SDL");
     if (st) return st;
     if (!path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_file: NULL path");
     char *text;

@@ -126,8 +126,9 @@ static hr_status read_module_params(sdl_reader *r, sdl_located keyword, hr_param
             p->string = word.token->text;
         } else {
             return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
-                             "shape '%s' takes object parameters ('%s'), which SDL cannot give",
-                             keyword.token->text, spec->name);
+                             "shape '%s' takes %s parameters ('%s'), which SDL cannot give",
+                             keyword.token->text,
+                             spec->type == HR_PARAM_NUMBERS ? "array" : "object", spec->name);
         }
     }
     *count = cls->param_count;

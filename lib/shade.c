@@ -70,7 +70,9 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
         if (flags & HR_MAT_SPECULAR) {
             hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
             double phong = v3_dot(half, m);
-            if (phong > 0.0) c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
+            /* At or below the cut-off pow would give exactly 0 (specular.h). */
+            if (phong > o->specular_cutoff)
+                c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
             tc->effects_ran |= HR_EFFECT_SPECULAR;
         }
         sum = rgb_add(sum, rgb_mul(L->color, c));

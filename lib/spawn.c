@@ -3,6 +3,8 @@
  * (and the self-intersection tests) leave surfaces the same way. */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "scene_internal.h"
 #include "vec.h"
@@ -19,14 +21,29 @@
  * origin, hiding surfaces closer than that (tests/numerics, P-cases).
  * Each coordinate is then rounded one ulp further away from the surface, so
  * the offset survives the addition's own rounding. */
+/* nextafter(x, copysign(INFINITY, dir)) for dir != 0, x itself for dir 0,
+ * from x's bits: nextafter is a libm call, and this runs for every spawned
+ * ray. Infinite and NaN x stay as they are, as nextafter leaves them. */
+static double step_towards(double x, double dir)
+{
+    if (dir == 0 || !isfinite(x)) return dir == 0 || isnan(x) ? x : nextafter(x, dir * INFINITY);
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    if (x == 0) bits = dir > 0 ? 1u : 0x8000000000000001ull; /* the smallest subnormal */
+    else if ((x > 0) == (dir > 0)) bits++; /* away from zero */
+    else bits--;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
 HR_API hr_vec3 hr_hit_spawn_origin(const hr_hit *hit, hr_vec3 side)
 {
     hr_vec3 p = hit->point;
     double err = hit->error > 0.0 ? hit->error : 8.0 * DBL_EPSILON * v3_max_abs(p);
     double d = err * (fabs(side.x) + fabs(side.y) + fabs(side.z));
     hr_vec3 o = v3_madd(p, side, d);
-    o.x = side.x > 0 ? nextafter(o.x, INFINITY) : side.x < 0 ? nextafter(o.x, -INFINITY) : o.x;
-    o.y = side.y > 0 ? nextafter(o.y, INFINITY) : side.y < 0 ? nextafter(o.y, -INFINITY) : o.y;
-    o.z = side.z > 0 ? nextafter(o.z, INFINITY) : side.z < 0 ? nextafter(o.z, -INFINITY) : o.z;
+    o.x = step_towards(o.x, side.x);
+    o.y = step_towards(o.y, side.y);
+    o.z = step_towards(o.z, side.z);
     return o;
 }

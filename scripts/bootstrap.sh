@@ -11,7 +11,7 @@ bench_pkgs=""
 # clang, its runtimes (libFuzzer, the sanitizers) and llvm (the symbolizer)
 # build and run the fuzz harnesses in tests/fuzz.
 need_pkgs=""
-for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev libopenexr-dev libfast-float-dev \
+for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev \
            python3 python3-venv python3-dev \
            clang libclang-rt-14-dev llvm $bench_pkgs; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||

@@ -114,15 +114,32 @@ typedef struct hr_intersection {
 #define HR_PARAM_STRING 2 /* uses hr_param.string (e.g. a mesh file) */
 #define HR_PARAM_OBJECT 3 /* uses hr_param.object: another object of the
                              same scene, consumed by a composite (CSG) */
+/* Added within ABI 1 (a host that predates it refuses a class declaring
+ * one, as a malformed parameter, rather than misread it):
+ * uses hr_param.numbers and hr_param.count, an array of `count` doubles,
+ * for shapes made from data rather than a file (a triangle mesh's vertices
+ * and corner indices). The host checks every element as it checks a number
+ * (finite, within the spec's [min, max]) and hands the caller's pointer to
+ * the shape's create: the array need only live through the call that makes
+ * the object. Its default is the empty array (numbers NULL, count 0). */
+#define HR_PARAM_NUMBERS 4
 
-/* One named parameter given to a shape when an object is made. */
+/* One named parameter given to a shape when an object is made. The unions
+ * keep ABI 1's layout: `numbers` shares the place of `string`, `count` that
+ * of `object`, and which one a parameter uses follows from its type. */
 typedef struct hr_param {
     const char *name;
     int32_t type;         /* HR_PARAM_* */
     int32_t reserved;     /* set to 0 */
     double number;
-    const char *string;
-    int64_t object;       /* object index as returned by hr_scene_add_object */
+    union {
+        const char *string;
+        const double *numbers; /* HR_PARAM_NUMBERS */
+    };
+    union {
+        int64_t object;   /* object index as returned by hr_scene_add_object */
+        int64_t count;    /* HR_PARAM_NUMBERS: elements of `numbers` */
+    };
 } hr_param;
 
 #ifdef __cplusplus

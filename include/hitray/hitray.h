@@ -12,5 +12,6 @@
 #include "render.h"
 #include "image.h"
 #include "sdl.h"
+#include "nff.h"
 
 #endif

@@ -157,7 +157,24 @@ struct hr_shape_class {
     hr_hit_fn hit;       /* required: every hit in (tmin, tmax), sorted */
     hr_hit_fn first_hit; /* optional: at most the nearest hit */
     hr_hit_fn any_hit;   /* optional: count 0 or 1; for shadow rays */
+    /* --- Added within ABI 1. The host copies struct_size bytes of a class
+     * and zeroes the rest, so a class built against an older header reads
+     * as not having these (HR_CLASS_HAS). --- */
+    /* Optional: bounds of the shape under the affine map m (object to
+     * parent space, row-major 4x4 as in hr_transform, last row 0 0 0 1),
+     * for a class that can bound it tighter than the map of its object-space
+     * box (a rotated cylinder: the box of its two end disks). The box must
+     * hold the mapped shape including the rounding of its own computation.
+     * The host keeps the tighter of it and the mapped box, per axis. NULL:
+     * the host maps the corners of `bounds`. */
+    void (*transformed_bounds)(const void *shape, const double m[16], hr_bounds *out);
 };
+
+/* Whether a class declared with `struct_size` has `field`. The host's copy
+ * of every class is full-size, missing fields zero, so on a class the host
+ * hands out (hr_host.child_class) the field itself can be tested. */
+#define HR_CLASS_HAS(cls, field)                                               \
+    ((cls)->struct_size >= offsetof(hr_shape_class, field) + sizeof((cls)->field))
 
 /* What a module's entry point returns. */
 typedef struct hr_module_info {

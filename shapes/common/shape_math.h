@@ -38,6 +38,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include <hitray/common.h>
 
@@ -90,14 +92,38 @@ static inline int shape_vec3_scale_exponent(hr_vec3 v, int *exponent)
 {
     const double big = shape_max3(fabs(v.x), fabs(v.y), fabs(v.z));
     if (!(big > 0.0) || !isfinite(big)) return 0;
-    frexp(big, exponent);
+    /* frexp's answer read off the exponent bits (frexp is a libm call, and
+     * this runs for every ray into a cylinder or torus); subnormals, which
+     * have no exponent bits to read, go to frexp. */
+    uint64_t bits;
+    memcpy(&bits, &big, sizeof bits);
+    const int biased = (int)(bits >> 52);
+    if (biased == 0) frexp(big, exponent);
+    else *exponent = biased - 1022;
     return 1;
+}
+
+/* 2^e as a double, for |e| <= 1022 (a normal number), from its bits. */
+static inline double shape_pow2(int e)
+{
+    const uint64_t bits = (uint64_t)(e + 1023) << 52;
+    double p;
+    memcpy(&p, &bits, sizeof p);
+    return p;
+}
+
+/* x 2^e, as ldexp gives it: for |e| <= 1022 the product with the exact
+ * power of two, which is rounded once, as ldexp's result is (on overflow
+ * and into the subnormals alike); beyond, ldexp itself. */
+static inline double shape_ldexp(double x, int e)
+{
+    return e >= -1022 && e <= 1022 ? x * shape_pow2(e) : ldexp(x, e);
 }
 
 /* v 2^e, exact barring overflow or underflow. */
 static inline hr_vec3 shape_vec3_ldexp(hr_vec3 v, int e)
 {
-    return shape_vec3(ldexp(v.x, e), ldexp(v.y, e), ldexp(v.z, e));
+    return shape_vec3(shape_ldexp(v.x, e), shape_ldexp(v.y, e), shape_ldexp(v.z, e));
 }
 
 /* v scaled by a power of two (exactly) to a largest component in

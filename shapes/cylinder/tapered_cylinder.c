@@ -2,6 +2,9 @@
  *   taperedCylinder s   radius 1 at z = 0, radius s at z = 1 (s >= 0)
  *   cylinder            s = 1
  *   cone                s = 0 (the apex at (0, 0, 1))
+ * and the wall alone, open at both ends, as NFF's cones and cylinders are:
+ *   openTaperedCylinder s   the same wall, no disks; no solid (see
+ *                           open_crossings below)
  * A closed solid: the wall x^2 + y^2 = (1 + (s-1) z)^2 for 0 <= z <= 1
  * (surface 0), the base disk z = 0, radius 1 (surface 1), and the cap disk
  * z = 1, radius s (surface 2; absent when s = 0, where it is the apex, a
@@ -131,7 +134,7 @@ SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, cons
 
     double roots[2];
     const int count = shape_solve_half_quadratic(qa, qb, qc, qdisc, roots);
-    for (int i = 0; i < count; i++) roots[i] = ldexp(roots[i], -exponent);
+    for (int i = 0; i < count; i++) roots[i] = shape_ldexp(roots[i], -exponent);
     if (qa > 0.0)
         return count == 2 ? shape_span_make(roots[0], SURFACE_WALL, roots[1], SURFACE_WALL)
                           : shape_span_nowhere();
@@ -158,6 +161,33 @@ static int tapered_crossings(const tapered_cylinder *shape, const hr_ray *ray,
     if (shape->s == 0.0)
         for (int i = 0; i < count; i++)
             if (out[i].surface == SURFACE_CAP) out[i].surface = SURFACE_WALL;
+    return count;
+}
+
+/* The open wall: where the ray crosses the quadric (each finite end of
+ * its span in our nappe) at a height within the slab 0 <= z <= 1. A ray
+ * entering the quadric's inside is entering; the two crossings need not
+ * alternate with anything else, since no disk closes the tube (a ray along
+ * the axis of an open cylinder crosses nothing). The slab test is on the
+ * height of the crossing point, z = o.z + t d.z, which is the wall's own
+ * reading of the rim: wall_fill clamps that same z into [0, 1]. */
+static int open_crossings(const tapered_cylinder *shape, const hr_ray *ray,
+                          shape_crossing out[2])
+{
+    const shape_span span = wall_span(shape, ray);
+    if (shape_span_is_empty(span)) return 0;
+    const double t[2] = {span.t_in, span.t_out};
+    const int32_t surface[2] = {span.surface_in, span.surface_out};
+    int count = 0;
+    for (int i = 0; i < 2; i++) {
+        if (surface[i] != SURFACE_WALL || !isfinite(t[i])) continue;
+        const double z = ray->origin.z + t[i] * ray->dir.z;
+        if (!(z >= 0.0 && z <= 1.0)) continue;
+        out[count].t = t[i];
+        out[count].surface = SURFACE_WALL;
+        out[count].entering = i == 0;
+        count++;
+    }
     return count;
 }
 
@@ -219,7 +249,7 @@ static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *
     if (!shape_vec3_scale_exponent(shape_vec3(x, y, 0.0), &exponent)) return;
     const hr_vec3 q = shape_vec3_ldexp(shape_vec3(x, y, 0.0), -exponent);
     const double rho = sqrt(q.x * q.x + q.y * q.y);
-    if (!(rho > ldexp(r, -exponent))) return;
+    if (!(rho > shape_ldexp(r, -exponent))) return;
     const double scale = r / rho;
     hit->point.x = q.x * scale;
     hit->point.y = q.y * scale;
@@ -241,12 +271,49 @@ static hr_status tapered_trace(const hr_hit_args *args, int32_t mode)
 
 SHAPE_DEFINE_HIT_MODES(tapered, tapered_trace)
 
+static void open_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    wall_fill(shape, ray, hit);
+}
+
+static hr_status open_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossings[2];
+    const int count = open_crossings(args->shape, &args->ray, crossings);
+    return shape_report(args, mode, crossings, count, open_fill);
+}
+
+SHAPE_DEFINE_HIT_MODES(open, open_trace)
+
 static void tapered_bounds(const void *shape, hr_bounds *out)
 {
     const tapered_cylinder *c = shape;
     const double r = c->s > 1.0 ? c->s : 1.0;
     out->lo = shape_vec3(-r, -r, 0.0);
     out->hi = shape_vec3(r, r, 1.0);
+}
+
+/* The box of the two end disks under m (the wall is their convex hull):
+ * a disk of radius r about c spanned by the images u, v of the x and y
+ * axes reaches c_i +- r sqrt(u_i^2 + v_i^2) along world axis i. The
+ * rounding of those few operations is far below the pad of 16 ulps of the
+ * terms' magnitudes added here. */
+static void tapered_transformed_bounds(const void *shape, const double m[16], hr_bounds *out)
+{
+    const tapered_cylinder *c = shape;
+    double lo[3], hi[3];
+    for (int i = 0; i < 3; i++) {
+        const double *row = m + 4 * i;
+        const double reach = sqrt(row[0] * row[0] + row[1] * row[1]);
+        const double base = row[3], cap = row[2] + row[3];
+        const double base_lo = base - reach, base_hi = base + reach;
+        const double cap_lo = cap - c->s * reach, cap_hi = cap + c->s * reach;
+        const double pad = 16.0 * DBL_EPSILON * (fabs(row[2]) + fabs(row[3]) + (1.0 + c->s) * reach);
+        lo[i] = (base_lo < cap_lo ? base_lo : cap_lo) - pad;
+        hi[i] = (base_hi > cap_hi ? base_hi : cap_hi) + pad;
+    }
+    out->lo = shape_vec3(lo[0], lo[1], lo[2]);
+    out->hi = shape_vec3(hi[0], hi[1], hi[2]);
 }
 
 /* --- Creation ----------------------------------------------------------------- */
@@ -309,7 +376,7 @@ static const hr_param_spec tapered_params[] = {
         .help = class_help, .params = params_list, .param_count = params_count,             \
         .surface_count = 3, .create = create_fn, .destroy = tapered_destroy,                \
         .bounds = tapered_bounds, .hit = tapered_hit, .first_hit = tapered_first_hit,       \
-        .any_hit = tapered_any_hit,                                                         \
+        .any_hit = tapered_any_hit, .transformed_bounds = tapered_transformed_bounds,       \
     }
 
 static const hr_shape_class tapered_cylinder_class =
@@ -323,16 +390,35 @@ static const hr_shape_class cone_class =
     TAPERED_CLASS("cone", "taperedCylinder with s = 0, apex (0, 0, 1); surfaces wall, base",
                   NULL, 0, cone_create);
 
-static const hr_shape_class *const tapered_classes[] = {&tapered_cylinder_class,
-                                                        &cylinder_class, &cone_class};
+/* Not HR_SHAPE_CLOSED: an open tube bounds no solid, so CSG refuses it. */
+static const hr_shape_class open_tapered_cylinder_class = {
+    .struct_size = sizeof(hr_shape_class),
+    .flags = 0,
+    .name = "openTaperedCylinder",
+    .help = "the wall of taperedCylinder alone, open at both ends (NFF's cones and cylinders); "
+            "one surface",
+    .params = tapered_params,
+    .param_count = 1,
+    .surface_count = 1,
+    .create = tapered_cylinder_create,
+    .destroy = tapered_destroy,
+    .bounds = tapered_bounds,
+    .transformed_bounds = tapered_transformed_bounds,
+    .hit = open_hit,
+    .first_hit = open_first_hit,
+    .any_hit = open_any_hit,
+};
+
+static const hr_shape_class *const tapered_classes[] = {
+    &tapered_cylinder_class, &cylinder_class, &cone_class, &open_tapered_cylinder_class};
 
 static const hr_module_info tapered_module = {
     .struct_size = sizeof(hr_module_info),
     .abi_version = HR_SHAPE_ABI_VERSION,
     .name = "cylinder",
-    .description = "Hill's tapered cylinder, cylinder and cone",
+    .description = "Hill's tapered cylinder, cylinder and cone, and the open tapered wall",
     .classes = tapered_classes,
-    .class_count = 3,
+    .class_count = (int32_t)(sizeof tapered_classes / sizeof tapered_classes[0]),
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -1,5 +1,6 @@
 /* The mesh module: triangle and polygon meshes read from files (class
- * `mesh`, parameter `file`) and Hill's regular solids built in code
+ * `mesh`, parameter `file`), meshes handed over as arrays (class
+ * `triangleMesh`, mesh_arrays.c) and Hill's regular solids built in code
  * (`tetrahedron`, `octahedron`, `dodecahedron`, `icosahedron`).
  *
  * Files: Hill's chapter-6 format (.3vn) or Wavefront OBJ (.obj), see
@@ -23,21 +24,38 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <float.h>
+#include <math.h>
+
 #include "mesh.h"
+#include "mesh_arrays.h"
 #include "mesh_file.h"
+
+/* A ray with an infinite or NaN component has no finite point but its
+ * origin (o + t d is infinite or NaN in that coordinate for every t != 0),
+ * so it has no hit the contract lets a shape report: it is answered with
+ * none before the triangle test, whose shear would divide by it. */
+static int ray_is_finite(const hr_ray *r)
+{
+    return isfinite(r->origin.x) && isfinite(r->origin.y) && isfinite(r->origin.z) &&
+           isfinite(r->dir.x) && isfinite(r->dir.y) && isfinite(r->dir.z);
+}
 
 static hr_status mesh_hit(const hr_hit_args *args)
 {
+    if (!ray_is_finite(&args->ray)) return HR_OK;
     return mesh_trace(args->shape, args, HR_TRACE_ALL);
 }
 
 static hr_status mesh_first_hit(const hr_hit_args *args)
 {
+    if (!ray_is_finite(&args->ray)) return HR_OK;
     return mesh_trace(args->shape, args, HR_TRACE_FIRST);
 }
 
 static hr_status mesh_any_hit(const hr_hit_args *args)
 {
+    if (!ray_is_finite(&args->ray)) return HR_OK;
     return mesh_trace(args->shape, args, HR_TRACE_ANY);
 }
 
@@ -65,6 +83,14 @@ static hr_status mesh_create(const hr_create_args *args, void **out_shape)
     if (st) return st;
     *out_shape = m;
     return HR_OK;
+}
+
+static hr_status triangle_mesh_create(const hr_create_args *args, void **out_shape)
+{
+    mesh *m = NULL;
+    hr_status st = mesh_arrays_create(args, &m);
+    *out_shape = m;
+    return st;
 }
 
 static hr_status solid_create(const hr_create_args *args, void **out_shape, int solid)
@@ -98,6 +124,14 @@ static const hr_param_spec mesh_params[] = {
      "relative to the scene file"},
 };
 
+static const hr_param_spec triangle_mesh_params[] = {
+    {"points", HR_PARAM_NUMBERS, 1, 0.0, -DBL_MAX, DBL_MAX, "x y z of each vertex"},
+    {"triangles", HR_PARAM_NUMBERS, 1, 0.0, 0.0, (double)MESH_MAX_COUNT,
+     "three vertex indices (from 0) per triangle, counter-clockwise seen from outside"},
+    {"normals", HR_PARAM_NUMBERS, 0, 0.0, -DBL_MAX, DBL_MAX,
+     "optional: x y z per vertex, shading normals interpolated across each triangle"},
+};
+
 #define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
     {                                                                          \
         .struct_size = sizeof(hr_shape_class), .flags = flags_, .name = name_, \
@@ -111,6 +145,11 @@ static const hr_shape_class mesh_class =
     MESH_CLASS("mesh", 0,
                "triangle or polygon mesh from a file (Hill's .3vn, or OBJ); one surface",
                mesh_params, 1, mesh_create);
+static const hr_shape_class triangle_mesh_class =
+    MESH_CLASS("triangleMesh", 0,
+               "triangle mesh from arrays given by the caller (points, triangles, normals); "
+               "one surface",
+               triangle_mesh_params, 3, triangle_mesh_create);
 static const hr_shape_class tetrahedron_class =
     MESH_CLASS("tetrahedron", HR_SHAPE_CLOSED, "regular tetrahedron, vertices on the unit sphere",
                NULL, 0, tetrahedron_create);
@@ -126,13 +165,14 @@ static const hr_shape_class icosahedron_class =
 
 static const hr_shape_class *const mesh_classes[] = {
     &mesh_class, &tetrahedron_class, &octahedron_class, &dodecahedron_class, &icosahedron_class,
+    &triangle_mesh_class,
 };
 
 static const hr_module_info mesh_module = {
     .struct_size = sizeof(hr_module_info),
     .abi_version = HR_SHAPE_ABI_VERSION,
     .name = "mesh",
-    .description = "triangle meshes from Hill's .3vn and OBJ files, and the regular solids",
+    .description = "triangle meshes from Hill's .3vn and OBJ files or from arrays, and the regular solids",
     .classes = mesh_classes,
     .class_count = (int32_t)(sizeof mesh_classes / sizeof mesh_classes[0]),
 };

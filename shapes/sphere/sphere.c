@@ -108,6 +108,23 @@ static void sphere_bounds(const void *shape, hr_bounds *out)
     shape_set_bounds(out, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0);
 }
 
+/* The box of the ellipsoid the unit sphere maps to: along world axis i it
+ * reaches c_i +- |row i of the linear part|. Padded by 16 ulps of the
+ * terms' magnitudes, far above the rounding of these few operations. */
+static void sphere_transformed_bounds(const void *shape, const double m[16], hr_bounds *out)
+{
+    (void)shape;
+    double lo[3], hi[3];
+    for (int i = 0; i < 3; i++) {
+        const double *row = m + 4 * i;
+        const double reach = sqrt(row[0] * row[0] + row[1] * row[1] + row[2] * row[2]);
+        const double pad = 16.0 * DBL_EPSILON * (fabs(row[3]) + reach);
+        lo[i] = row[3] - reach - pad;
+        hi[i] = row[3] + reach + pad;
+    }
+    shape_set_bounds(out, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+}
+
 static const hr_shape_class sphere_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -122,6 +139,7 @@ static const hr_shape_class sphere_class = {
     .hit = sphere_hit,
     .first_hit = sphere_first_hit,
     .any_hit = sphere_any_hit,
+    .transformed_bounds = sphere_transformed_bounds,
 };
 
 static const hr_shape_class *const sphere_classes[] = {&sphere_class};

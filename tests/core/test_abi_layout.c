@@ -32,6 +32,10 @@ PIN_SIZE(hr_param, 40);
 PIN_OFF(hr_param, number, 16);
 PIN_OFF(hr_param, string, 24);
 PIN_OFF(hr_param, object, 32);
+/* HR_PARAM_NUMBERS (added within ABI 1) shares the places of string and
+ * object, so the struct keeps its first size. */
+PIN_OFF(hr_param, numbers, 24);
+PIN_OFF(hr_param, count, 32);
 PIN_SIZE(hr_param_spec, 48);
 PIN_OFF(hr_param_spec, default_number, 16);
 PIN_OFF(hr_param_spec, help, 40);
@@ -52,13 +56,14 @@ PIN_OFF(hr_hit_args, ray, 8);
 PIN_OFF(hr_hit_args, tmin, 56);
 PIN_OFF(hr_hit_args, out, 72);
 PIN_OFF(hr_hit_args, call, 80);
-PIN_SIZE(hr_shape_class, 88);
+PIN_SIZE(hr_shape_class, 96);
 PIN_OFF(hr_shape_class, name, 8);
 PIN_OFF(hr_shape_class, params, 24);
 PIN_OFF(hr_shape_class, create, 40);
 PIN_OFF(hr_shape_class, hit, 64);
 PIN_OFF(hr_shape_class, first_hit, 72);
 PIN_OFF(hr_shape_class, any_hit, 80);
+PIN_OFF(hr_shape_class, transformed_bounds, 88);
 PIN_SIZE(hr_module_info, 40);
 PIN_OFF(hr_module_info, classes, 24);
 PIN_OFF(hr_module_info, class_count, 32);

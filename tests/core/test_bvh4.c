@@ -280,7 +280,34 @@ static void test_walk(void)
             rays++;
         }
     }
+    /* No finite interval to cull by (tmin -inf, or so far back that the
+     * moved origin overflows), and directions in the largest binade. */
+    for (int k = 0; k < 300; k++) {
+        hr_ray ray = {{between(-1, 1), between(-1, 1), between(-1, 1)}, random_dir()};
+        double tmin = k % 3 == 0 ? -INFINITY : k % 3 == 1 ? -1e308 : 0.0;
+        if (k % 3 == 1) ray.dir.x = 1e10;
+        if (k % 3 == 2) ray.dir = (hr_vec3){1.5e308 * ray.dir.x, -1.7e308, 0.5e308 * ray.dir.z};
+        missed += missed_boxes(&bvh, boxes, N, &ray, tmin, INFINITY, visited);
+        rays++;
+    }
+
     accel_bvh4_release(&bvh);
+
+    /* Trees of one to three boxes have empty slots, which no ray may enter
+     * (the walk would read a node that is not there): origins beyond
+     * float's range on every side, with tmax infinite. */
+    for (uint32_t count = 1; count <= 3; count++) {
+        CHECK(accel_bvh4_build(&bvh, boxes, count, &opt) == 0);
+        for (int k = 0; k < 600; k++) {
+            const double big = k % 3 == 0 ? 1e39 : k % 3 == 1 ? 1e200 : 3.5e38;
+            hr_vec3 from = random_dir();
+            hr_ray ray = {{from.x * big, from.y * big, from.z * big}, random_dir()};
+            if (k % 2) ray.dir = (hr_vec3){-from.x, -from.y, -from.z};
+            missed += missed_boxes(&bvh, boxes, count, &ray, 0, INFINITY, visited);
+            rays++;
+        }
+        accel_bvh4_release(&bvh);
+    }
     fprintf(stderr, "walk: %ld rays, %ld box meetings, %ld missed\n", rays, met, missed);
     CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
     CHECK(met > 20000);

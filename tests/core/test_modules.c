@@ -39,24 +39,24 @@ static void test_load_and_params(void)
 
     hr_scene *s;
     CHECK_OK(hr_scene_create(ctx, &s));
-    hr_param radius = {"radius", HR_PARAM_NUMBER, 0, 2.0, NULL, 0};
+    hr_param radius = {.name = "radius", .type = HR_PARAM_NUMBER, .number = 2.0, .string = NULL, .object = 0};
     CHECK_OK(add_probe(ctx, s, &radius, 1));
 
-    hr_param bogus = {"bogus", HR_PARAM_NUMBER, 0, 1.0, NULL, 0};
+    hr_param bogus = {.name = "bogus", .type = HR_PARAM_NUMBER, .number = 1.0, .string = NULL, .object = 0};
     CHECK(add_probe(ctx, s, &bogus, 1) == HR_ERROR_PARAMETER);
     CHECK(contains(hr_context_last_error(ctx), "has no parameter 'bogus'"));
     CHECK(contains(hr_context_last_error(ctx), "radius, refuse, label"));
     CHECK(contains(hr_context_last_error(ctx), PROBE));
 
-    hr_param big = {"radius", HR_PARAM_NUMBER, 0, 1000.0, NULL, 0};
+    hr_param big = {.name = "radius", .type = HR_PARAM_NUMBER, .number = 1000.0, .string = NULL, .object = 0};
     CHECK(add_probe(ctx, s, &big, 1) == HR_ERROR_PARAMETER);
     CHECK(contains(hr_context_last_error(ctx), "parameter 'radius' = 1000 is outside [1e-06, 100]"));
 
-    hr_param nan_radius = {"radius", HR_PARAM_NUMBER, 0, NAN, NULL, 0};
+    hr_param nan_radius = {.name = "radius", .type = HR_PARAM_NUMBER, .number = NAN, .string = NULL, .object = 0};
     CHECK(add_probe(ctx, s, &nan_radius, 1) == HR_ERROR_PARAMETER);
     CHECK(contains(hr_context_last_error(ctx), "finite"));
 
-    hr_param as_string = {"radius", HR_PARAM_STRING, 0, 0, "two", 0};
+    hr_param as_string = {.name = "radius", .type = HR_PARAM_STRING, .number = 0, .string = "two", .object = 0};
     CHECK(add_probe(ctx, s, &as_string, 1) == HR_ERROR_PARAMETER);
     CHECK(contains(hr_context_last_error(ctx), "parameter 'radius' must be a number, not a string"));
 
@@ -64,7 +64,7 @@ static void test_load_and_params(void)
     CHECK(add_probe(ctx, s, twice, 2) == HR_ERROR_PARAMETER);
     CHECK(contains(hr_context_last_error(ctx), "given twice"));
 
-    hr_param refuse = {"refuse", HR_PARAM_NUMBER, 0, 1.0, NULL, 0};
+    hr_param refuse = {.name = "refuse", .type = HR_PARAM_NUMBER, .number = 1.0, .string = NULL, .object = 0};
     CHECK(add_probe(ctx, s, &refuse, 1) == HR_ERROR_PARAMETER);
     CHECK(contains(hr_context_last_error(ctx), "shape 'probeSphere' (module '" PROBE "')"));
     CHECK(contains(hr_context_last_error(ctx), "parameter 'refuse' is 1"));
@@ -207,7 +207,7 @@ static void test_registered(void)
 {
     static const hr_shape_class cls = {sizeof(hr_shape_class), 0, "memDisc", "in-process test",
                                        NULL, 0, 1, mem_create, mem_destroy, mem_bounds, mem_hit,
-                                       NULL, NULL};
+                                       NULL, NULL, NULL};
     hr_context *ctx;
     CHECK_OK(hr_context_create(&ctx));
     CHECK_OK(hr_context_register_shape_class(ctx, &cls, "test_modules.c"));

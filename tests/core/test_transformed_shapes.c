@@ -133,10 +133,10 @@ int main(void)
     CHECK_OK(hr_context_create(&ctx));
     const char *plain[] = {"sphere", "cube", "square", "plane", "cylinder", "cone"};
     for (size_t i = 0; i < sizeof plain / sizeof plain[0]; i++) check_shape(plain[i], NULL, 0);
-    hr_param s = {"s", HR_PARAM_NUMBER, 0, 0.4, NULL, 0};
+    hr_param s = {.name = "s", .type = HR_PARAM_NUMBER, .number = 0.4, .string = NULL, .object = 0};
     check_shape("taperedCylinder", &s, 1);
     check_shape("torus", NULL, 0);
-    hr_param thin = {"tube", HR_PARAM_NUMBER, 0, 0.05, NULL, 0};
+    hr_param thin = {.name = "tube", .type = HR_PARAM_NUMBER, .number = 0.05, .string = NULL, .object = 0};
     check_shape("torus", &thin, 1);
     hr_context_destroy(ctx);
     return hr_test_end();

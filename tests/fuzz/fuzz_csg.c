@@ -89,7 +89,7 @@ static int add_leaf(fuzz_input *in, tree *t, node *n)
     n->leaf = (int)fuzz_choice(in, LEAF_COUNT);
     /* Open surfaces rarely: each one ends the tree. */
     if (n->leaf >= LEAF_PLANE && fuzz_choice(in, 4) != 0) n->leaf = LEAF_SPHERE;
-    hr_param param = {NULL, HR_PARAM_NUMBER, 0, 0.0, NULL, 0};
+    hr_param param = {.name = NULL, .type = HR_PARAM_NUMBER, .number = 0.0, .string = NULL, .object = 0};
     if (n->leaf == LEAF_TAPERED) {
         param.name = "s";
         n->param = param.number = grid_or_any(in, 0.0, 3.0);
@@ -141,8 +141,8 @@ static int build(fuzz_input *in, tree *t, int depth, int root)
     n = &t->nodes[me];
     n->a = a;
     n->b = b;
-    const hr_param params[2] = {{"a", HR_PARAM_OBJECT, 0, 0.0, NULL, t->nodes[a].index},
-                                {"b", HR_PARAM_OBJECT, 0, 0.0, NULL, t->nodes[b].index}};
+    const hr_param params[2] = {{.name = "a", .type = HR_PARAM_OBJECT, .number = 0.0, .string = NULL, .object = t->nodes[a].index},
+                                {.name = "b", .type = HR_PARAM_OBJECT, .number = 0.0, .string = NULL, .object = t->nodes[b].index}};
     hr_object_desc desc = {.struct_size = sizeof desc};
     desc.shape = op_names[n->op];
     desc.params = params;

@@ -15,14 +15,10 @@
  * colour is finite. Relative mesh names resolve in
  * tests/data/meshes, so `mesh cube.obj` works. Never a crash, a hang
  * (-timeout) or a leak (the leak checker). */
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
+#include "fuzz_scene.h"
 
 #define SCENE_NAME "fuzz.sdl"
 
@@ -39,109 +35,14 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     return 0;
 }
 
-static int hit_finite(const hr_hit *h)
+/* Relative mesh names resolve in tests/data/meshes. */
+static hr_status read_sdl(hr_context *c, const char *text, const char *name, hr_sdl_result *out)
 {
-    return isfinite(h->t) && isfinite(h->point.x) && isfinite(h->point.y) &&
-           isfinite(h->point.z) && isfinite(h->normal.x) && isfinite(h->normal.y) &&
-           isfinite(h->normal.z) && isfinite(h->error) && h->error >= 0;
-}
-
-static void check_error(hr_status st, const hr_sdl_result *r, size_t length)
-{
-    if (r->scene) fuzz_fail("sdl: status %d and still a scene", (int)st);
-    if (st == HR_ERROR_OUT_OF_MEMORY) return;
-    const char *message = hr_context_last_error(ctx);
-    int line = 0, column = 0, used = 0;
-    if (strncmp(message, SCENE_NAME ":", sizeof SCENE_NAME) != 0 ||
-        sscanf(message + sizeof SCENE_NAME, "%d:%d: %n", &line, &column, &used) != 2 || !used)
-        fuzz_fail("sdl: status %d, the message does not start with '" SCENE_NAME
-                  ":<line>:<col>: ': %s",
-                  (int)st, message);
-    hr_error_info info = {.struct_size = sizeof info};
-    hr_context_last_error_info(ctx, &info);
-    if (info.status != st || strcmp(info.file, SCENE_NAME) != 0 || info.line < 1 ||
-        info.column < 1 || (size_t)info.line > length + 1 || (size_t)info.column > length + 1)
-        fuzz_fail("sdl: error info status %d file '%s' line %d column %d for status %d: %s",
-                  (int)info.status, info.file, (int)info.line, (int)info.column, (int)st,
-                  message);
-}
-
-/* Whether the first hit is the first of all hits, or another of them
- * within 1e-6 of its t (relative): the first-hit query skips objects whose
- * world box the ray misses, while each object intersects the ray carried
- * into its own space, rounded; for an eye 4e18 away that rounding moves the
- * line more than the boxes are widened, and a crossing one ulp nearer than
- * the first hit, in a box the world ray misses, is seen by the all-hits
- * query only. */
-static int first_among(const hr_hit *first, const hr_intersection *all)
-{
-    if (first->t == all->hits[0].t) return 1;
-    if (!(first->t - all->hits[0].t <= 1e-6 * fabs(all->hits[0].t))) return 0;
-    for (int32_t i = 1; i < all->count; i++)
-        if (all->hits[i].t == first->t && all->hits[i].object == first->object) return 1;
-    return 0;
-}
-
-static void cast(const hr_scene *scene, hr_ray ray)
-{
-    hr_hit first;
-    int32_t found = 0;
-    if (hr_scene_first_hit(scene, &ray, 0.0, INFINITY, &first, &found) != HR_OK) return;
-    hr_intersection all;
-    hr_intersection_init(&all);
-    if (hr_scene_all_hits(scene, &ray, 0.0, INFINITY, &all) == HR_OK) {
-        for (int32_t i = 0; i < all.count; i++) {
-            const hr_hit *h = &all.hits[i];
-            if (!hit_finite(h) || !(h->t > 0.0) || (i > 0 && h[-1].t > h->t))
-                fuzz_fail("sdl: all hits: hit %d of %d at t = %g is not finite, sorted and "
-                          "after 0",
-                          (int)i, (int)all.count, h->t);
-        }
-        if (found != (all.count > 0) || (found && !hit_finite(&first)))
-            fuzz_fail("sdl: first hit found %d, all hits %d", (int)found, (int)all.count);
-        if (found && !first_among(&first, &all))
-            fuzz_fail("sdl: first hit t = %a (object %d), first of all hits t = %a (object %d)",
-                      first.t, (int)first.object, all.hits[0].t, (int)all.hits[0].object);
-    }
-    hr_intersection_release(&all);
-    hr_color colour;
-    if (hr_scene_shade(scene, &ray, 3, &colour) == HR_OK &&
-        !(isfinite(colour.r) && isfinite(colour.g) && isfinite(colour.b)))
-        fuzz_fail("sdl: shade gave (%g, %g, %g)", colour.r, colour.g, colour.b);
+    return hr_sdl_load_string(c, text, name, HR_TEST_SOURCE_DIR "/tests/data/meshes", out);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 1);
-    if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
-    hr_sdl_result r = {.struct_size = sizeof r};
-    const hr_status st = hr_sdl_load_string(ctx, text, SCENE_NAME,
-                                            HR_TEST_SOURCE_DIR "/tests/data/meshes", &r);
-    if (st != HR_OK) {
-        check_error(st, &r, strlen(text));
-        free(text);
-        return 0;
-    }
-    free(text);
-    if (!r.scene) fuzz_fail("sdl: HR_OK and no scene");
-    if (hr_scene_commit(r.scene) == HR_OK) {
-        const hr_vec3 e = r.camera.eye, l = r.camera.look;
-        const hr_vec3 d = {l.x - e.x, l.y - e.y, l.z - e.z};
-        const double n = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-        const double spread = n > 0 && isfinite(n) ? 0.2 * n : 1.0;
-        for (int k = 0; k < 5; k++) {
-            hr_ray ray = {e, d};
-            if (k == 1) ray.dir.x += spread;
-            if (k == 2) ray.dir.y += spread;
-            if (k == 3) ray.dir.x -= spread, ray.dir.y -= spread;
-            if (k == 4) ray.dir.z += spread;
-            cast(r.scene, ray);
-        }
-    } else if (!hr_context_last_error(ctx)[0]) {
-        fuzz_fail("sdl: commit failed without a message");
-    }
-    hr_scene_destroy(r.scene);
+    fuzz_scene_input(ctx, "sdl", SCENE_NAME, read_sdl, data, size);
     return 0;
 }

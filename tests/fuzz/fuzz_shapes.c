@@ -215,6 +215,8 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
     memset(given, 0, sizeof given);
     int count = 0, valid = 1, known = 1;
     char path[600];
+    double arrays[4][12];
+    int array_count = 0;
     for (int32_t i = 0; i < cls->param_count && count < 16; i++) {
         const hr_param_spec *spec = &cls->params[i];
         hr_param *p = &given[count++];
@@ -242,6 +244,30 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
             }
             if ((solver || file) && k == n - 1) valid = 0;
             if (!solver && !file) known = 0;
+        } else if (spec->type == HR_PARAM_NUMBERS && array_count < 4) {
+            /* A tetrahedron's worth from the input: 12 doubles for points or
+             * normals (or none), its faces as corner indices, the last choice
+             * naming a vertex it lacks. Points may coincide, so a refusal
+             * ("no triangle with area") is as right as a mesh: not known. */
+            double *a = arrays[array_count++];
+            static const double faces[2][12] = {{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3},
+                                                {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 4}};
+            p->numbers = a;
+            p->count = 12;
+            if (strcmp(spec->name, "triangles") == 0) {
+                const unsigned k = fuzz_choice(in, 2);
+                memcpy(a, faces[k], sizeof faces[k]);
+                if (k == 1) valid = 0;
+            } else {
+                if (!spec->required && fuzz_choice(in, 2) == 0) p->count = 0;
+                for (int j = 0; j < p->count; j++) {
+                    a[j] = fuzz_double(in);
+                    if (!isfinite(a[j]) || (spec->min <= spec->max &&
+                                            !(a[j] >= spec->min && a[j] <= spec->max)))
+                        valid = 0;
+                }
+            }
+            known = 0;
         }
     }
     if (!fc->builtin && !valid) return 0; /* the host refuses it, create never sees it */

@@ -5,7 +5,7 @@
 #   run_fuzzers.sh [--build DIR] [--seconds N] [--runs N] [--replay] [--seed S] [--jobs N]
 #                  [HARNESS...]
 #
-# Each harness (all of them when none is named: shapes csg sdl mesh) runs
+# Each harness (all of them when none is named: shapes csg sdl nff mesh) runs
 # for N seconds (default 60) starting from its committed seeds in
 # tests/fuzz/corpus/<harness>/. New inputs go to DIR/corpus/<harness>/ and
 # crashes to DIR/artifacts/<harness>/, so the source tree is never written
@@ -41,7 +41,7 @@ while [ $# -gt 0 ]; do
     *) harnesses="$harnesses $1"; shift ;;
     esac
 done
-[ -n "$harnesses" ] || harnesses="shapes csg sdl mesh"
+[ -n "$harnesses" ] || harnesses="shapes csg sdl nff mesh"
 case "$build" in /*) ;; *) build="$root/$build" ;; esac
 
 # Per input: a hang is a bug (the readers must never hang), and so is a

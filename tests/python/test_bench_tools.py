@@ -1,15 +1,19 @@
 """Tests of the benchmark's own tools (they decide whether the POV-Ray renders
 are the same scenes as hitray's): bench/sdl2pov.py, the SDL to POV-Ray
-translator, and bench/compare_images.py, the object-mask comparison. Neither
-needs POV-Ray or a build of hitray."""
+translator, and bench/compare_images.py, the object-mask comparison, which need
+neither POV-Ray nor a build of hitray; and bench/run_bench.py --quick, every step
+of the benchmark once (skipped without a build)."""
 
 import importlib.util
 import math
+import os
 import pathlib
 import re
 import struct
 import subprocess
 import sys
+
+import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SDL2POV = ROOT / "bench" / "sdl2pov.py"
@@ -160,3 +164,26 @@ def test_id_colours_survive_srgb(tmp_path):
         pixel = bytes(encode(c) for c in rgb)
         seen.add(compare_mod.ids(pixel)[0])
     assert len(seen) == 63 and 0 not in seen  # 63 ids, none read as the black background
+
+
+def test_run_bench_quick_runs_every_step(tmp_path):
+    # The whole benchmark once, tiny (bench/run_bench.py --quick): the SDL
+    # scenes, the SPD scenes where shared/scenes/spd is beside the
+    # repository, the raycast; without POV-Ray it runs hitray's side alone.
+    build = pathlib.Path(os.environ.get("HITRAY_BUILD_DIR", ROOT / "build"))
+    if not (build / "bin" / "hitray").exists():
+        pytest.skip(f"no hitray build in {build}")
+    out = tmp_path / "RESULTS.md"
+    result = subprocess.run([sys.executable, str(ROOT / "bench" / "run_bench.py"), "--quick",
+                             "--build", str(build), "--output", str(out)],
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+    text = out.read_text()
+    assert "| spheres | 1 |" in text and "| village | 1 |" in text
+    if (ROOT.parent / "shared" / "scenes" / "spd" / "balls.nff.gz").exists():
+        assert "## SPD scenes" in text
+        for scene in ("balls", "gears", "mount", "rings", "teapot", "tetra", "tree"):
+            assert f"| {scene} | 1 |" in text
+        # hitray's rays by kind: balls reflects and casts shadows, refracts nothing.
+        row = re.search(r"^\| balls \| ([0-9,]+) \| ([0-9,]+) \| ([0-9,]+) \| 0 \|", text, re.M)
+        assert row and all(int(x.replace(",", "")) > 0 for x in row.groups())

@@ -111,6 +111,57 @@ def test_render_default_size_is_640x480(scene, tmp_path):
     assert png_header(out)[:2] == (640, 480)
 
 
+NFF_SCENE = """\
+v
+from 0 -6 2
+at 0 0 0.5
+up 0 0 1
+angle 40
+hither 1
+resolution 24 16
+l 4 -4 6
+f 1 0.5 0.25 0.8 0.3 20 0 1
+s 0 0 1 1
+c 2 0 0 0.5 2 0 2 0.25
+p 3
+-3 -3 0
+3 -3 0
+0 3 0
+"""
+
+
+def test_render_reads_nff_and_nff_gz_by_name_at_their_resolution(tmp_path):
+    import gzip
+
+    plain = tmp_path / "scene.NFF"
+    plain.write_text(NFF_SCENE)
+    packed = tmp_path / "scene.nff.gz"
+    packed.write_bytes(gzip.compress(NFF_SCENE.encode()))
+    for path in (plain, packed):
+        out = tmp_path / (path.name + ".png")
+        stats = tmp_path / (path.name + ".json")
+        r = run("render", path, "-o", out, "--stats-json", stats)
+        assert r.returncode == 0, r.stderr
+        assert png_header(out)[:2] == (24, 16)  # the file's resolution
+        assert json.loads(stats.read_text())["primary"] == 24 * 16
+    r = run("render", packed, "-o", tmp_path / "sized.png", "--size", "10x8")
+    assert r.returncode == 0, r.stderr
+    assert png_header(tmp_path / "sized.png")[:2] == (10, 8)
+    r = run("hits", plain, "--origin", "0,-5,1", "--dir", "0,1,0")
+    assert r.returncode == 0 and '"shape": "sphere"' in r.stdout
+
+
+def test_a_bad_nff_file_names_its_place_and_writes_nothing(tmp_path):
+    path = tmp_path / "bad.nff"
+    path.write_text("f 1 1 1 1 0 1 0 0\ns 0 0 x 1\n")
+    out = tmp_path / "out.png"
+    r = run("render", path, "-o", out)
+    assert r.returncode == 1
+    assert r.stderr.strip().splitlines() == [
+        f"hitray: {path}:2:7: expected 4 numbers after 's' (x y z radius), found 'x'"]
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("flags, bits, has_srgb", [([], 8, True), (["--png16"], 16, True),
                                                    (["--linear-png"], 8, False),
                                                    (["--png16", "--linear-png"], 16, False)])

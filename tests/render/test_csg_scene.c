@@ -170,8 +170,8 @@ static void test_depth_limit(hr_context *ctx)
         d.transform = m;
         int64_t sphere;
         CHECK_OK(hr_scene_add_object(s, &d, &sphere));
-        hr_param p[2] = {{"a", HR_PARAM_OBJECT, 0, 0, NULL, chain},
-                         {"b", HR_PARAM_OBJECT, 0, 0, NULL, sphere}};
+        hr_param p[2] = {{.name = "a", .type = HR_PARAM_OBJECT, .number = 0, .string = NULL, .object = chain},
+                         {.name = "b", .type = HR_PARAM_OBJECT, .number = 0, .string = NULL, .object = sphere}};
         hr_object_desc u = {0};
         u.struct_size = sizeof u;
         u.shape = "union";

@@ -192,8 +192,13 @@ static int default_params(const hr_shape_class *cls, hr_param params[16])
         params[i].name = cls->params[i].name;
         params[i].type = cls->params[i].type;
         params[i].number = cls->params[i].default_number;
-        params[i].string = "";
-        params[i].object = -1;
+        if (cls->params[i].type == HR_PARAM_NUMBERS) {
+            params[i].numbers = NULL; /* the host's default: the empty array */
+            params[i].count = 0;
+        } else {
+            params[i].string = "";
+            params[i].object = -1;
+        }
     }
     return 1;
 }
@@ -240,7 +245,11 @@ hr_status harness_create_params(const hr_shape_class *cls, const hr_param *given
     if (!default_params(cls, params)) return HR_ERROR_INVALID_ARGUMENT;
     for (int g = 0; g < count; g++)
         for (int32_t i = 0; i < cls->param_count; i++)
-            if (strcmp(cls->params[i].name, given[g].name) == 0) {
+            if (strcmp(cls->params[i].name, given[g].name) == 0 &&
+                cls->params[i].type == HR_PARAM_NUMBERS) {
+                params[i].numbers = given[g].count ? given[g].numbers : NULL;
+                params[i].count = given[g].count;
+            } else if (strcmp(cls->params[i].name, given[g].name) == 0) {
                 params[i].number = given[g].number;
                 params[i].string = given[g].string ? given[g].string : "";
             }

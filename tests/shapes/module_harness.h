@@ -47,8 +47,8 @@ hr_status harness_create(const hr_shape_class *cls, const char *const *names,
                          size_t error_size);
 
 /* Calls cls->create with every parameter of the class at its default, then
- * the parameters in `given` (count of them; number or string, matched by
- * name) overriding. Returns create's status; `error` receives create's
+ * the parameters in `given` (count of them; number, string or array,
+ * matched by name) overriding. Returns create's status; `error` receives create's
  * message. */
 hr_status harness_create_params(const hr_shape_class *cls, const hr_param *given, int count,
                                 void **out_shape, char *error, size_t error_size);

@@ -1,5 +1,5 @@
-/* The cylinder module: cylinder (s = 1), cone (s = 0) and taperedCylinder,
- * against hits worked out by hand, rays along the axis, rays through the
+/* The cylinder module: cylinder (s = 1), cone (s = 0), taperedCylinder and
+ * openTaperedCylinder (the wall alone), against hits worked out by hand, rays along the axis, rays through the
  * cone's apex, rays parallel to a generator line, the wall/disk seams swept
  * in 1e-7 steps, and create with s = 0, 1 and 1e6.
  * Surfaces: 0 wall, 1 base (z = 0, normal -z), 2 cap (z = 1, normal +z).
@@ -268,6 +268,51 @@ static void test_tapered(void)
     }
 }
 
+/* openTaperedCylinder: the same wall with no disks. Across it, the two
+ * wall crossings of the closed cylinder; along the axis (where the closed
+ * one is entered at the cap and left at the base) nothing; from inside
+ * the tube, out through the wall once; a ray whose quadric crossings lie
+ * above and below the slab, nothing. s = 0.5: the wall crossing at
+ * z = 0.5, radius 0.75, as taperedCylinder's; s = 0, the open cone: along
+ * the axis only the apex, one point of the wall. */
+static void test_open(void)
+{
+    harness_shape open1, open05, open0;
+    hr_hit h[HARNESS_MAX_HITS];
+    if (harness_open(&open1, "cylinder", "openTaperedCylinder", 1.0)) {
+        CHECK(harness_hits(&open1, harness_ray(5, 0, 0.5, -1, 0, 0), h) == 2);
+        harness_expect_hit("open side in", &h[0], 4, WALL, 1, harness_vec(1, 0, 0.5),
+                           harness_vec(1, 0, 0));
+        harness_expect_hit("open side out", &h[1], 6, WALL, 0, harness_vec(-1, 0, 0.5),
+                           harness_vec(-1, 0, 0));
+        CHECK(harness_hits(&open1, harness_ray(0, 0, 5, 0, 0, -1), h) == 0);
+        CHECK(harness_hits(&open1, harness_ray(0.3, 0.2, -3, 0, 0, 1), h) == 0);
+        CHECK(harness_hits(&open1, harness_ray(0, 0, 0.5, 1, 0, 0), h) == 1);
+        harness_expect_hit("open from inside", &h[0], 1, WALL, 0, harness_vec(1, 0, 0.5),
+                           harness_vec(1, 0, 0));
+        /* (0, 0, 2) toward (3, 0, -4): crosses x = 1 at z = 0, x = -1 never. */
+        CHECK(harness_hits(&open1, harness_ray(0, 0, 2, 1, 0, -2), h) == 1);
+        harness_expect_hit("open through the base ring", &h[0], 1, WALL, 0, harness_vec(1, 0, 0),
+                           harness_vec(1, 0, 0));
+        CHECK(harness_hits(&open1, harness_ray(0, 0, 3, 2, 0, -0.1), h) == 0);
+        harness_close(&open1);
+    }
+    if (harness_open(&open05, "cylinder", "openTaperedCylinder", 0.5)) {
+        CHECK(harness_hits(&open05, harness_ray(2, 0, 0.5, -1, 0, 0), h) == 2);
+        harness_expect_hit("open s=0.5 in", &h[0], 1.25, WALL, 1, harness_vec(0.75, 0, 0.5),
+                           harness_vec(1, 0, 0.5));
+        CHECK(harness_hits(&open05, harness_ray(0, 0, 5, 0, 0, -1), h) == 0);
+        harness_close(&open05);
+    }
+    if (harness_open(&open0, "cylinder", "openTaperedCylinder", 0.0)) {
+        CHECK(harness_hits(&open0, harness_ray(2, 0, 0.5, -1, 0, 0), h) == 2);
+        harness_expect_hit("open cone in", &h[0], 1.5, WALL, 1, harness_vec(0.5, 0, 0.5),
+                           harness_vec(1, 0, 1));
+        CHECK(harness_hits(&open0, harness_ray(0, 0, -5, 0, 0, 1), h) <= 1);
+        harness_close(&open0);
+    }
+}
+
 /* create with s = 0, 1 and 1e6 (the ends of the range and the cylinder),
  * with the bounds that follow; s outside the range is the host's to refuse,
  * but the module refuses it too, naming the parameter. The cylinder and
@@ -327,6 +372,7 @@ int main(void)
     test_cone_apex();
     test_cone_side_and_generator();
     test_tapered();
+    test_open();
     test_create();
     harness_close(&cone);
     harness_close(&cylinder);

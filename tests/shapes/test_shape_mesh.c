@@ -595,28 +595,37 @@ static void test_exact_signs(void)
     CHECK_MSG(wrong_plain > 1000, "only %d plain signs wrong: the inputs do not cancel", wrong_plain);
 }
 
-/* The module's table: five classes, complete vtables, one surface each;
+/* The module's table: six classes, complete vtables, one surface each;
  * the solids closed and without parameters; `mesh` takes one required
- * string `file` (the name the SDL reader and the Python binding use). */
+ * string `file` (the name the SDL reader and the Python binding use);
+ * `triangleMesh`, last, takes the arrays points, triangles (required) and
+ * normals. */
 static void test_classes(void)
 {
     const hr_module_info *info = cube_mesh.module.info;
     CHECK(info->abi_version == HR_SHAPE_ABI_VERSION && strcmp(info->name, "mesh") == 0);
-    CHECK(info->class_count == 5);
-    static const char *const names[5] = {"mesh", "tetrahedron", "octahedron", "dodecahedron",
-                                         "icosahedron"};
-    for (int i = 0; i < 5 && i < info->class_count; i++) {
+    CHECK(info->class_count == 6);
+    static const char *const names[6] = {"mesh",         "tetrahedron", "octahedron",
+                                         "dodecahedron", "icosahedron", "triangleMesh"};
+    static const int32_t param_counts[6] = {1, 0, 0, 0, 0, 3};
+    for (int i = 0; i < 6 && i < info->class_count; i++) {
         const hr_shape_class *c = info->classes[i];
         CHECK(strcmp(c->name, names[i]) == 0);
         CHECK(c->struct_size == sizeof(hr_shape_class) && c->surface_count == 1);
         CHECK(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit);
         CHECK(c->help && c->help[0]);
-        CHECK(c->flags == (i == 0 ? 0 : HR_SHAPE_CLOSED));
-        CHECK(c->param_count == (i == 0 ? 1 : 0));
+        CHECK(c->flags == (i == 0 || i == 5 ? 0 : HR_SHAPE_CLOSED));
+        CHECK(c->param_count == param_counts[i]);
     }
     const hr_shape_class *m = info->classes[0];
     CHECK(strcmp(m->params[0].name, "file") == 0 && m->params[0].type == HR_PARAM_STRING &&
           m->params[0].required == 1);
+    if (info->class_count < 6) return;
+    const hr_shape_class *t = info->classes[5];
+    static const char *const arrays[3] = {"points", "triangles", "normals"};
+    for (int i = 0; i < 3; i++)
+        CHECK(strcmp(t->params[i].name, arrays[i]) == 0 &&
+              t->params[i].type == HR_PARAM_NUMBERS && t->params[i].required == (i < 2));
 }
 
 /* Every hit of `ray` over (0, inf), through the class's hit function with a

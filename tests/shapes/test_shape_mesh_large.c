@@ -194,7 +194,7 @@ int main(void)
     hr_host host = *harness_host();
     host.alloc = counting_alloc;
     host.free = counting_free;
-    hr_param param = {"file", HR_PARAM_STRING, 0, 0.0, path, 0};
+    hr_param param = {.name = "file", .type = HR_PARAM_STRING, .number = 0.0, .string = path, .object = 0};
     const void *objects[1] = {NULL};
     char error[512] = "";
     hr_create_args args;

@@ -12,7 +12,8 @@ chapter 12, from Python.
     image.save("out.png")
 
 Scenes come from code (Scene, the shape classes, Camera) or from Hill's SDL
-(load_sdl, parse_sdl). Hill's queries are Scene.first_hit (getFirstHit),
+(load_sdl, parse_sdl) or NFF, the format of the SPD benchmark scenes
+(load_nff, parse_nff). Hill's queries are Scene.first_hit (getFirstHit),
 Scene.hits (the Intersection of every hit) and Scene.trace (many rays as
 numpy arrays). Every failure of the library raises a hitray.Error subclass.
 The library, its shape modules and the extension all live inside this
@@ -24,7 +25,7 @@ from __future__ import annotations
 from . import _core
 from .camera import Camera
 from .errors import (ArgumentError, Error, FileError, ModuleError, NumericError, ParameterError,
-                     SDLError, StateError, UnsupportedError)
+                     NFFError, SDLError, StateError, UnsupportedError)
 from .image import Image, RenderStats
 from .modules import (ModuleInfo, ShapeClass, ShapeParam, add_shape_dir, load_module, modules,
                       shape_classes)
@@ -32,6 +33,7 @@ from .queries import HitInfo, Light, TraceResult
 from .render import render
 from .scene import Scene, SceneObject
 from .sdl import load_sdl, parse_sdl
+from .nff import load_nff, parse_nff
 from .shapes import (Cone, Cube, Cylinder, Difference, Dodecahedron, Icosahedron, Intersection,
                      Mesh, Octahedron, Plane, Shape, Sphere, Square, TaperedCylinder, Tetrahedron,
                      Torus, Union)
@@ -40,7 +42,7 @@ __version__ = "%d.%d.%d" % _core.version()
 
 __all__ = [
     "Scene", "SceneObject", "Camera", "render", "Image", "RenderStats",
-    "load_sdl", "parse_sdl",
+    "load_sdl", "parse_sdl", "load_nff", "parse_nff",
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
     "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Union", "Intersection",
     "Difference",
@@ -48,5 +50,5 @@ __all__ = [
     "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
     "ModuleInfo",
     "Error", "ArgumentError", "FileError", "ModuleError", "ParameterError", "SDLError",
-    "StateError", "UnsupportedError", "NumericError",
+    "NFFError", "StateError", "UnsupportedError", "NumericError",
 ]

@@ -19,6 +19,7 @@ __all__ = [
     "ModuleError",
     "ParameterError",
     "SDLError",
+    "NFFError",
     "StateError",
     "UnsupportedError",
     "NumericError",
@@ -79,6 +80,13 @@ class SDLError(Error):
         self.filename = filename
         self.line = line
         self.column = column
+
+
+class NFFError(SDLError):
+    """An error in an NFF scene file (:func:`hitray.load_nff`). It is an
+    :class:`SDLError` too, so one ``except SDLError`` catches an error in a
+    scene file of either format; ``filename``, ``line`` and ``column`` are
+    the same."""
 
 
 class StateError(Error):

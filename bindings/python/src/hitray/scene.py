@@ -47,15 +47,22 @@ def _global_value(name: str, value: Any) -> Any:
 
 
 class _SDLSource:
-    """The SDL text a scene started from, kept to rebuild it."""
+    """The scene file text (SDL, or NFF when `nff`) a scene started from,
+    kept to rebuild it."""
 
-    __slots__ = ("text", "name", "base_dir", "path")
+    __slots__ = ("text", "name", "base_dir", "path", "nff")
 
     def __init__(self, text: Optional[bytes], name: Optional[bytes], base_dir: Optional[bytes],
-                 path: Optional[bytes]) -> None:
+                 path: Optional[bytes], nff: bool = False) -> None:
         self.text, self.name, self.base_dir, self.path = text, name, base_dir, path
+        self.nff = nff
 
     def load(self) -> Tuple[Any, Any]:
+        if self.nff:
+            if self.text is None:
+                assert self.path is not None
+                return _core.load_nff_file(self.path)
+            return _core.load_nff_string(self.text, self.name)
         if self.text is None:
             assert self.path is not None
             return _core.load_sdl_file(self.path)

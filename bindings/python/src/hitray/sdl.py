@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import Optional, Tuple
+from typing import Optional, Tuple, Type
 
 from . import _convert, _core
 from .camera import Camera
@@ -11,6 +11,28 @@ from .errors import SDLError
 from .scene import Scene, _SDLSource
 
 __all__ = ["load_sdl", "parse_sdl"]
+
+
+def _file_text(raw: bytes) -> Optional[bytes]:
+    """The file's bytes, read now; None if it cannot be read (the library
+    then reads it and says why)."""
+    try:
+        with open(raw, "rb") as f:
+            return f.read()
+    except OSError:
+        return None
+
+
+def _refuse_nul(data: bytes, name: str, error: Type[SDLError]) -> None:
+    """Scene text is handed to the library as a C string: a NUL byte in it is
+    refused here, at its place, as the library's readers refuse one."""
+    if b"\0" not in data:
+        return
+    at = data.index(b"\0")
+    line = data.count(b"\n", 0, at) + 1
+    column = at - (data.rfind(b"\n", 0, at) + 1) + 1
+    raise error(f"{name}:{line}:{column}: unexpected NUL byte (is this a text file?)",
+                6, name, line, column)
 
 
 def _result(source: _SDLSource) -> Tuple[Scene, Optional[Camera]]:
@@ -30,11 +52,7 @@ def load_sdl(path: _convert.PathLike) -> Tuple[Scene, Optional[Camera]]:
     read now, so later changes to the file do not reach it.
     """
     raw = _convert.path_bytes(path)
-    try:
-        with open(raw, "rb") as f:
-            text: Optional[bytes] = f.read()
-    except OSError:
-        text = None  # the library reads it and says why it cannot
+    text = _file_text(raw)
     if text is not None and b"\0" in text:
         text = None  # the library's reader names the NUL byte's place
     base_dir = os.path.abspath(os.path.dirname(raw) or b".")
@@ -53,12 +71,7 @@ def parse_sdl(text: str, name: str = "<string>",
     else:
         raise TypeError(f"parse_sdl: expected str, got {type(text).__name__}")
     name_bytes = os.fsencode(name)
-    if b"\0" in data:
-        at = data.index(b"\0")
-        line = data.count(b"\n", 0, at) + 1
-        column = at - (data.rfind(b"\n", 0, at) + 1) + 1
-        raise SDLError(f"{name}:{line}:{column}: unexpected NUL byte (is this a text file?)",
-                       6, name, line, column)
+    _refuse_nul(data, name, SDLError)
     base = os.path.abspath(_convert.path_bytes(base_dir, "base_dir") if base_dir is not None
                            else os.fsencode(os.getcwd()))
     return _result(_SDLSource(data, name_bytes, base, None))

@@ -1,0 +1,202 @@
+/* The scene's BVH walk against a brute-force loop over every object, on
+ * 10^6 random rays (10^5 in the sanitizer builds, which run ten times
+ * slower) over varied scenes: spheres, cubes, cylinders, cones and tori
+ * under random rotations and non-uniform scales; regular solids and a mesh
+ * file (the mesh module); CSG booleans; and the first scene again at the
+ * extremes of scale (1e-6 of the size, 1e6 away, and 1e5 times the size).
+ *
+ * The brute force is hr_scene_all_hits, which traces every top-level object
+ * without the BVH and sorts the hits by (t, object). The float boxes and
+ * the float walk are only allowed to cost time, never a hit, so the first
+ * hit must be that list's first: the same t, bit for bit, and the same
+ * object. Two objects crossed at exactly the same t are a tie the walk may
+ * break either way (it keeps the first it finds): then any object of that
+ * t is accepted. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <hitray/hitray.h>
+
+#include "hr_test.h"
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define RAYS_PER_SCENE 20000
+#else
+#define RAYS_PER_SCENE 200000
+#endif
+
+static uint64_t seed = 0x2545f4914f6cdd1dull;
+static double uniform(void)
+{
+    seed ^= seed >> 12, seed ^= seed << 25, seed ^= seed >> 27;
+    return (double)((seed * 2685821657736338717ull) >> 11) * 0x1p-53;
+}
+static double between(double a, double b) { return a + (b - a) * uniform(); }
+
+typedef struct text {
+    char *s;
+    size_t len, cap;
+} text;
+
+static void add(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void add(text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(t->s + t->len, t->cap - t->len, fmt, ap);
+        va_end(ap);
+        if (n >= 0 && (size_t)n < t->cap - t->len) {
+            t->len += (size_t)n;
+            return;
+        }
+        t->cap = t->cap * 2 + (size_t)n + 256;
+        t->s = realloc(t->s, t->cap);
+        if (!t->s) abort();
+    }
+}
+
+/* A random placement: rotation about a random axis, a non-uniform scale,
+ * inside a cube of side 2 `extent` about `centre` (SDL applies the last
+ * transform first: scale, rotate, then translate). */
+static void place(text *t, double centre, double extent, double size)
+{
+    add(t, "push translate %.17g %.17g %.17g rotate %.17g %.17g %.17g %.17g scale %.17g %.17g %.17g\n",
+        centre + between(-extent, extent), centre + between(-extent, extent),
+        centre + between(-extent, extent), between(0, 360), between(-1, 1), between(-1, 1),
+        between(0.1, 1), size * between(0.3, 1.5), size * between(0.3, 1.5), size * between(0.3, 1.5));
+}
+
+static void quadrics(text *t, double centre, double extent, double size)
+{
+    static const char *shapes[] = {"sphere", "cube", "cylinder", "cone", "taperedCylinder 0.5",
+                                   "torus"};
+    for (int i = 0; i < 60; i++) {
+        place(t, centre, extent, size);
+        add(t, "%s\npop\n", shapes[i % 6]);
+    }
+}
+
+static void meshes(text *t)
+{
+    static const char *shapes[] = {"tetrahedron", "octahedron", "dodecahedron", "icosahedron",
+                                   "mesh cube.obj", "mesh tetra_hill.3vn"};
+    for (int i = 0; i < 60; i++) {
+        place(t, 0, 10, 2);
+        add(t, "%s\npop\n", shapes[i % 6]);
+    }
+}
+
+static void booleans(text *t)
+{
+    static const char *ops[] = {"union", "intersection", "difference"};
+    for (int i = 0; i < 40; i++) {
+        place(t, 0, 10, 1.5);
+        add(t, "%s\n  push translate %.17g 0 0 sphere pop\n  push rotate %.17g 0 1 0 cube pop\npop\n",
+            ops[i % 3], between(-0.8, 0.8), between(0, 90));
+    }
+}
+
+typedef struct scene_case {
+    const char *name;
+    double centre, extent; /* where rays start and aim */
+} scene_case;
+
+/* Rays from a random point of a cube twice the scene's size towards a
+ * random point inside the scene (most meet several objects), a few of
+ * them axis-parallel. */
+static hr_ray random_ray(double centre, double extent, int k)
+{
+    hr_ray r;
+    hr_vec3 from = {centre + between(-2, 2) * extent, centre + between(-2, 2) * extent,
+                    centre + between(-2, 2) * extent};
+    hr_vec3 to = {centre + between(-1, 1) * extent, centre + between(-1, 1) * extent,
+                  centre + between(-1, 1) * extent};
+    if (k % 17 == 0) to.y = from.y;
+    if (k % 29 == 0) to.x = from.x, to.z = from.z;
+    r.origin = from;
+    r.dir = (hr_vec3){to.x - from.x, to.y - from.y, to.z - from.z};
+    if (r.dir.x == 0 && r.dir.y == 0 && r.dir.z == 0) r.dir.x = 1;
+    return r;
+}
+
+static void run_case(hr_context *ctx, const char *name, const char *sdl, double centre, double extent)
+{
+    hr_sdl_result res = {.struct_size = sizeof res};
+    if (hr_sdl_load_string(ctx, sdl, name, HR_TEST_SOURCE_DIR "/tests/data/meshes", &res) != HR_OK) {
+        CHECK_MSG(0, "%s: %s", name, hr_context_last_error(ctx));
+        return;
+    }
+    CHECK(hr_scene_commit(res.scene) == HR_OK);
+    hr_intersection all;
+    hr_intersection_init(&all);
+    long hits = 0, ties = 0, wrong = 0;
+    for (int k = 0; k < RAYS_PER_SCENE; k++) {
+        hr_ray r = random_ray(centre, extent, k);
+        double tmin = k % 5 == 0 ? 0.25 : 0.0;
+        hr_hit first;
+        int32_t found = 0;
+        if (hr_scene_first_hit(res.scene, &r, tmin, INFINITY, &first, &found) != HR_OK ||
+            hr_scene_all_hits(res.scene, &r, tmin, INFINITY, &all) != HR_OK) {
+            CHECK_MSG(0, "%s: %s", name, hr_context_last_error(ctx));
+            break;
+        }
+        if (found != (all.count > 0)) {
+            if (wrong++ < 5)
+                fprintf(stderr, "%s ray %d: first hit found %d, brute force %d hits\n", name, k,
+                        (int)found, (int)all.count);
+            continue;
+        }
+        if (!found) continue;
+        hits++;
+        int same = first.t == all.hits[0].t && first.object == all.hits[0].object;
+        if (!same && first.t == all.hits[0].t) {
+            for (int32_t i = 1; i < all.count && all.hits[i].t == first.t; i++)
+                same |= all.hits[i].object == first.object;
+            ties += same;
+        }
+        if (!same && wrong++ < 5)
+            fprintf(stderr, "%s ray %d: first hit t = %.17g object %lld, brute force t = %.17g object %lld\n",
+                    name, k, first.t, (long long)first.object, all.hits[0].t,
+                    (long long)all.hits[0].object);
+    }
+    fprintf(stderr, "%s: %d rays, %ld hits, %ld exact ties, %ld wrong\n", name, RAYS_PER_SCENE, hits,
+            ties, wrong);
+    CHECK_MSG(wrong == 0, "%s: %ld of %d rays disagree with the brute force", name, wrong, RAYS_PER_SCENE);
+    CHECK_MSG(hits > RAYS_PER_SCENE / 5, "%s: only %ld hits", name, hits);
+    hr_intersection_release(&all);
+    hr_scene_destroy(res.scene);
+}
+
+int main(void)
+{
+    hr_context *ctx;
+    CHECK(hr_context_create(&ctx) == HR_OK);
+    text t = {0};
+
+    seed = 11;
+    quadrics(&t, 0, 10, 2);
+    run_case(ctx, "quadrics", t.s, 0, 10);
+    t.len = 0;
+    seed = 11; /* the same scene again, tiny and far away */
+    quadrics(&t, 1e6, 1e-5, 2e-6);
+    run_case(ctx, "quadrics at 1e-6, 1e6 away", t.s, 1e6, 1e-5);
+    t.len = 0;
+    seed = 11;
+    quadrics(&t, 0, 1e6, 2e5);
+    run_case(ctx, "quadrics at 1e5", t.s, 0, 1e6);
+    t.len = 0;
+    meshes(&t);
+    run_case(ctx, "meshes", t.s, 0, 10);
+    t.len = 0;
+    booleans(&t);
+    run_case(ctx, "booleans", t.s, 0, 10);
+
+    free(t.s);
+    hr_context_destroy(ctx);
+    return hr_test_end();
+}
