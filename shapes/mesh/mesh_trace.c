@@ -287,27 +287,31 @@ static int leaf_of(void *user, uint32_t first, uint32_t count)
 }
 
 /* Every leaf whose box the ray may meet over the query's interval, which
- * the leaves narrow as they find hits. accel's walk needs a finite start;
- * a query from -inf (the whole line of a closed mesh's all-hits list, or a
- * caller's own) walks the reversed ray from 0 for t < 0, then the ray from
- * 0, each keeping the hits of its half so that none is reported twice. A
- * NaN bound meets nothing, as in the triangle test. */
+ * the leaves narrow as they find hits. An interval from 0 or later is one
+ * walk. One that starts before 0 (the whole line of a closed mesh's
+ * all-hits list, or a caller's own) is walked in two halves, each from 0:
+ * the reversed ray for t < 0, then the ray, each keeping the hits of its
+ * half so that none is reported twice. accel's walk would take a negative
+ * start by moving the origin back, but an origin moved far (tmin = -1e80)
+ * loses hits there (test_shape_mesh's soups), and from -inf it visits
+ * every leaf. A NaN bound meets nothing, as in the triangle test. */
 static void walk(query *q)
 {
     const accel_bvh4 *bvh = &q->m->bvh;
     const hr_ray *ray = &q->args->ray;
     if (isnan(q->tmin) || isnan(q->tmax)) return;
-    if (q->tmin > -INFINITY) {
+    if (q->tmin >= 0.0) {
         accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of, q);
         return;
     }
     hr_ray back = *ray;
     back.dir.x = -ray->dir.x, back.dir.y = -ray->dir.y, back.dir.z = -ray->dir.z;
-    /* Along the reversed ray, the hits t < tmax are at s = -t > -tmax; a
-     * nearer hit found there bounds nothing ahead of it. */
-    double unbounded = INFINITY;
+    /* Along the reversed ray, the hits tmin < t < tmax are at s = -t, from
+     * -tmax (or 0) to -tmin; a nearer hit found there bounds nothing
+     * ahead of it, so the walk's end stays put. */
+    double back_end = -q->tmin;
     q->phase = -1;
-    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &unbounded, leaf_of, q) ==
+    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &back_end, leaf_of, q) ==
         ACCEL_WALK_STOP)
         return;
     if (!(q->tmax >= 0.0)) return;
