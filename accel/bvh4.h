@@ -170,6 +170,11 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
             memcpy(&r->t_scale, &up_bits, sizeof r->t_scale);
         }
     }
+    /* Whether some axis has a usable 1/d: the test's "an entry of +inf is a
+     * miss" (accel_bvh4_test) needs one. A direction whose largest
+     * component is subnormal has none (every 1/d overflows), and would
+     * otherwise meet every box, empty slots included. */
+    int usable = 0;
     for (int a = 0; a < 3; a++) {
         double da = d[a] * down;
         int neg = signbit(da) != 0;
@@ -179,6 +184,7 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
         double i = 1.0 / da;
         float inv_near = (float)(i * (1.0 - ACCEL_SLACK)), inv_far = (float)(i * (1.0 + ACCEL_SLACK));
         if (!(fabs(i) <= 0x1p100) && da != 0) inv_near = inv_far = NAN;
+        usable |= fabs(i) <= 0x1p100;
         float up, dn;
         if (r->t_offset == 0) {
             accel_float_bracket(o[a], &dn, &up);
@@ -205,6 +211,7 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
         r->inv_far[a] = inv_far;
 #endif
     }
+    if (!usable) r->cull = 0;
 }
 
 /* The float bounds of a ray's interval, in the walk's t. */
