@@ -253,7 +253,8 @@ static void traverse(first_state *fs)
     const hr_scene *s = fs->tc->scene;
     for (int32_t i = 0; i < s->unbounded_count; i++)
         if (visit_object(fs, s->unbounded[i])) return;
-    accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    if (fs->any) accel_bvh4_walk_any(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    else accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
 }
 
 static hr_intersection *host_scratch_acquire(void *call);
