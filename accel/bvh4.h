@@ -296,15 +296,12 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
 #define ACCEL_WALK_GO_ON 0
 #define ACCEL_WALK_STOP 1
 
-/* Front-to-back walk: calls leaf(user, first, count) for each leaf the ray
- * may meet, nearest entry first, skipping what lies beyond *tmax. The
- * callback may lower *tmax (a nearer hit); the walk reads it after each
- * call. Returns ACCEL_WALK_STOP if a callback did. Inline, so the callback
- * and the ray stay in registers in the caller's loop. */
-static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
-                                  double *tmax,
-                                  int (*leaf)(void *user, uint32_t first, uint32_t count),
-                                  void *user)
+/* The walk of accel_bvh4_walk (ordered: nearest entry first) and of
+ * accel_bvh4_walk_any (children in slot order). */
+static inline int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                     double *tmax,
+                                     int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                     void *user, int ordered)
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
@@ -334,7 +331,14 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
             if (mask) {
                 uint32_t k = (uint32_t)__builtin_ctz(mask);
                 mask &= mask - 1;
-                if (mask) {
+                if (mask && !ordered) {
+                    /* Two or more, any order: stack all but the first. */
+                    for (unsigned rest = mask; rest; rest &= rest - 1) {
+                        uint32_t c = (uint32_t)__builtin_ctz(rest);
+                        stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
+                        stack_entry[top++] = entry[c];
+                    }
+                } else if (mask) {
                     /* Two or more: stack all but the nearest, farthest
                      * first (an insertion sort of at most four, by entry). */
                     uint32_t kid[4] = {k}, hits = 1;
@@ -363,6 +367,31 @@ static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, doub
         } while (stack_entry[top] > tmax_f);
         ref = stack_ref[top], count = stack_count[top];
     }
+}
+
+/* Front-to-back walk: calls leaf(user, first, count) for each leaf the ray
+ * may meet, nearest entry first, skipping what lies beyond *tmax. The
+ * callback may lower *tmax (a nearer hit); the walk reads it after each
+ * call. Returns ACCEL_WALK_STOP if a callback did. Inline, so the callback
+ * and the ray stay in registers in the caller's loop. */
+static inline int accel_bvh4_walk(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                  double *tmax,
+                                  int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                  void *user)
+{
+    return accel_bvh4_walk_as(bvh, ray, tmin, tmax, leaf, user, 1);
+}
+
+/* The same walk with the children of a node in slot order, for a question
+ * whose answer does not depend on the order leaves are asked in (is
+ * anything hit at all: shadow rays), where sorting them costs more than it
+ * saves. */
+static inline int accel_bvh4_walk_any(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                      double *tmax,
+                                      int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                      void *user)
+{
+    return accel_bvh4_walk_as(bvh, ray, tmin, tmax, leaf, user, 0);
 }
 
 #endif

@@ -56,6 +56,7 @@ struct hr_scene {
 /* Per-thread state of tracing: what hr_hit_args.call points to. Scratch
  * lists are reused across rays, so tracing allocates only while they grow. */
 #define HR_SCRATCH_MAX 64
+#define HR_OCCLUDER_SLOTS 8
 typedef struct hr_trace_ctx {
     const hr_scene *scene;
     hr_intersection scratch[HR_SCRATCH_MAX];
@@ -83,6 +84,13 @@ typedef struct hr_trace_ctx {
     double min_weight;
     uint64_t rays_cut;
     uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
+    /* The object that blocked the last shadow ray towards each light (by
+     * light index modulo the slots; NULL: it was not blocked), asked first
+     * by the next one (hr_scene_trace_shadow), and what the last any-hit
+     * walk stopped at. Per thread, so no two threads share them; they
+     * change how fast a shadow ray is answered, never the answer. */
+    const hr_object *occluder[HR_OCCLUDER_SLOTS];
+    const hr_object *last_occluder;
 } hr_trace_ctx;
 
 #define HR_POLL_INTERVAL 65536u
@@ -103,8 +111,11 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
 /* Hill's getFirstHit over the scene; returns 1 on a hit. */
 int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                          hr_hit *out);
-/* Any hit in (tmin, tmax) (shadow rays); returns 1 on a hit. */
-int hr_scene_trace_any(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax);
+/* Any hit in (tmin, tmax) of a shadow ray towards light number `light`
+ * (>= 0); returns 1 on a hit. Asks first the object that blocked the last
+ * shadow ray towards that light. */
+int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                          int32_t light);
 
 /* Hill's shade (lib/shade.c). */
 /* 1 if light L can add nothing to a material with these HR_MAT_* flags. */

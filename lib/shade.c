@@ -59,7 +59,7 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
             tc->rays_shadow++;
             tc->effects_ran |= HR_EFFECT_SHADOWS;
             /* The light sits at t = 1 along this ray. */
-            if (hr_scene_trace_any(tc, &shadow, 0.0, 1.0)) continue;
+            if (hr_scene_trace_shadow(tc, &shadow, 0.0, 1.0, i)) continue;
         }
         if (!(lambert > 0.0)) continue;
         hr_color c = rgb(0, 0, 0);

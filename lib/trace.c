@@ -214,6 +214,7 @@ typedef struct first_state {
     hr_intersection *tmp;
     int found;
     int any; /* stop at the first hit (shadow rays) */
+    const hr_object *hit_object; /* whose hit ended an any-hit walk */
 } first_state;
 
 /* Test one object; returns 1 to stop (any-hit found one). */
@@ -225,7 +226,10 @@ static int visit_object(first_state *fs, const hr_object *o)
         return 0;
     if (fs->tmp->count == 0) return 0;
     fs->found = 1;
-    if (fs->any) return 1;
+    if (fs->any) {
+        fs->hit_object = o;
+        return 1;
+    }
     fs->best = fs->tmp->hits[0].t;
     *fs->out = fs->tmp->hits[0];
     return 0;
@@ -249,7 +253,8 @@ static void traverse(first_state *fs)
     const hr_scene *s = fs->tc->scene;
     for (int32_t i = 0; i < s->unbounded_count; i++)
         if (visit_object(fs, s->unbounded[i])) return;
-    accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    if (fs->any) accel_bvh4_walk_any(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    else accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
 }
 
 static hr_intersection *host_scratch_acquire(void *call);
@@ -259,8 +264,9 @@ static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, 
                               hr_hit *out, int any, hr_intersection *tmp)
 {
     hr_hit dummy;
-    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any};
+    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any, NULL};
     traverse(&fs);
+    if (any) tc->last_occluder = fs.hit_object;
     return fs.found;
 }
 
@@ -282,9 +288,30 @@ int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
     return trace_nearest(tc, ray, tmin, tmax, out, 0);
 }
 
-int hr_scene_trace_any(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax)
+/* A shadow ray asks first the object that blocked the last shadow ray
+ * towards the same light (the shadow cache of Haines and Greenberg): a
+ * shadow falls across many neighbouring pixels, so that object often
+ * blocks this ray too, and one object test replaces the walk. The answer
+ * is the same either way: the ray is blocked if any object has a hit in
+ * (tmin, tmax), whichever is asked first. */
+int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                          int32_t light)
 {
-    return trace_nearest(tc, ray, tmin, tmax, NULL, 1);
+    const hr_object **slot = &tc->occluder[(uint32_t)light % HR_OCCLUDER_SLOTS];
+    if (*slot) {
+        hr_intersection *tmp = host_scratch_acquire(tc);
+        if (!tmp) {
+            tc->status = HR_ERROR_OUT_OF_MEMORY;
+            return 0;
+        }
+        int blocked = hr_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK &&
+                      tmp->count > 0;
+        host_scratch_release(tc, tmp);
+        if (blocked) return 1;
+    }
+    int blocked = trace_nearest(tc, ray, tmin, tmax, NULL, 1);
+    *slot = tc->last_occluder;
+    return blocked;
 }
 
 /* --- Public queries ------------------------------------------------------ */

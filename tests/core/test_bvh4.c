@@ -4,7 +4,7 @@
  *   depth within ACCEL_BVH_MAX_DEPTH (the walk's stack is sized from it) on
  *   SAH's worst case, every float child box containing the double boxes of
  *   everything below it, and no overflow or NaN near the ends of the range;
- * - the walk: conservative. For random and hard rays (axis-parallel, tiny
+ * - the walk (nearest first, and in slot order): conservative. For random and hard rays (axis-parallel, tiny
  *   direction components, origins on slab planes, far origins, origins
  *   beyond float's range, rays that just touch a box's face or edge) every
  *   box that the ray meets within [tmin, tmax] by an exact slab test must
@@ -197,12 +197,16 @@ static int record_leaf(void *user, uint32_t first, uint32_t count)
 static long missed_boxes(const accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t n, const hr_ray *ray,
                          double tmin, double tmax, char *visited)
 {
-    memset(visited, 0, n);
-    walk_record w = {visited, bvh};
-    double t = tmax;
-    accel_bvh4_walk(bvh, ray, tmin, &t, record_leaf, &w);
+    /* Both walks: nearest first, and in slot order (shadow rays). */
     long missed = 0;
-    for (uint32_t i = 0; i < n; i++) missed += quad_meets(ray, &boxes[i], tmin, tmax) && !visited[i];
+    for (int ordered = 0; ordered < 2; ordered++) {
+        memset(visited, 0, n);
+        walk_record w = {visited, bvh};
+        double t = tmax;
+        if (ordered) accel_bvh4_walk(bvh, ray, tmin, &t, record_leaf, &w);
+        else accel_bvh4_walk_any(bvh, ray, tmin, &t, record_leaf, &w);
+        for (uint32_t i = 0; i < n; i++) missed += quad_meets(ray, &boxes[i], tmin, tmax) && !visited[i];
+    }
     return missed;
 }
 

@@ -7,13 +7,13 @@
  * error is located, those a library call raised too; only running out of
  * memory is not) and whose error info names the file and a line and column
  * of the input. A scene read is committed and five rays from its camera go
- * through Hill's queries, with fuzz_sdl.c's checks (fuzz_scene.c). Polygon
+ * through Hill's queries, with fuzz_sdl.c's checks (fuzz_reader_checks.c). Polygon
  * and vertex counts are bounded by the text, so no input may allocate much
  * more than its own size (-rss_limit_mb), nor hang (-timeout). */
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
-#include "fuzz_scene.h"
+#include "fuzz_reader_checks.h"
 
 #define SCENE_NAME "fuzz.nff"
 
@@ -31,6 +31,6 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    fuzz_scene_input(ctx, "nff", SCENE_NAME, hr_nff_load_string, data, size);
+    fuzz_reader_input(ctx, "nff", SCENE_NAME, hr_nff_load_string, data, size);
     return 0;
 }

@@ -18,7 +18,7 @@
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
-#include "fuzz_scene.h"
+#include "fuzz_reader_checks.h"
 
 #define SCENE_NAME "fuzz.sdl"
 
@@ -43,6 +43,6 @@ static hr_status read_sdl(hr_context *c, const char *text, const char *name, hr_
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    fuzz_scene_input(ctx, "sdl", SCENE_NAME, read_sdl, data, size);
+    fuzz_reader_input(ctx, "sdl", SCENE_NAME, read_sdl, data, size);
     return 0;
 }

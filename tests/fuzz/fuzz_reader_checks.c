@@ -1,5 +1,5 @@
-/* The checks of a scene file reader's answer (fuzz_scene.h). */
-#include "fuzz_scene.h"
+/* The checks of a scene file reader's answer (fuzz_reader_checks.h). */
+#include "fuzz_reader_checks.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,7 +15,7 @@ static int hit_finite(const hr_hit *h)
            isfinite(h->normal.z) && isfinite(h->error) && h->error >= 0;
 }
 
-void fuzz_scene_check_error(hr_context *ctx, const char *tag, const char *name, hr_status st,
+void fuzz_reader_check_error(hr_context *ctx, const char *tag, const char *name, hr_status st,
                             const hr_sdl_result *r, size_t length)
 {
     if (r->scene) fuzz_fail("%s: status %d and still a scene", tag, (int)st);
@@ -80,7 +80,7 @@ static void cast(const char *tag, const hr_scene *scene, hr_ray ray)
         fuzz_fail("%s: shade gave (%g, %g, %g)", tag, colour.r, colour.g, colour.b);
 }
 
-void fuzz_scene_check_rays(hr_context *ctx, const char *tag, const hr_sdl_result *r)
+void fuzz_reader_check_rays(hr_context *ctx, const char *tag, const hr_sdl_result *r)
 {
     if (hr_scene_commit(r->scene) != HR_OK) {
         if (!hr_context_last_error(ctx)[0]) fuzz_fail("%s: commit failed without a message", tag);
@@ -100,8 +100,8 @@ void fuzz_scene_check_rays(hr_context *ctx, const char *tag, const hr_sdl_result
     }
 }
 
-void fuzz_scene_input(hr_context *ctx, const char *tag, const char *name,
-                      fuzz_scene_reader read, const uint8_t *data, size_t size)
+void fuzz_reader_input(hr_context *ctx, const char *tag, const char *name,
+                      fuzz_reader_fn read, const uint8_t *data, size_t size)
 {
     char *text = malloc(size + 1);
     if (!text) return;
@@ -112,10 +112,10 @@ void fuzz_scene_input(hr_context *ctx, const char *tag, const char *name,
     const size_t length = strlen(text);
     free(text);
     if (st != HR_OK) {
-        fuzz_scene_check_error(ctx, tag, name, st, &r, length);
+        fuzz_reader_check_error(ctx, tag, name, st, &r, length);
         return;
     }
     if (!r.scene) fuzz_fail("%s: HR_OK and no scene", tag);
-    fuzz_scene_check_rays(ctx, tag, &r);
+    fuzz_reader_check_rays(ctx, tag, &r);
     hr_scene_destroy(r.scene);
 }
