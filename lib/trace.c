@@ -133,6 +133,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
      * ways, so every shape sees a well-scaled ray and no shape needs its own
      * guard. Normal rays skip this with one comparison. */
     int t_exp = v3_rescale_exponent(args.ray.dir);
+    const double ray_tmin = tmin, ray_tmax = tmax; /* the caller's window */
     if (t_exp) {
         args.ray.dir = v3_ldexp(args.ray.dir, -t_exp);
         tmin = ldexp(tmin, t_exp);
@@ -167,7 +168,13 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
          * answers carry only t. */
         if (!(h.t > tmin && h.t < tmax)) continue;
-        if (t_exp) h.t = ldexp(h.t, -t_exp); /* ldexp by 0 is the identity */
+        /* Scaling back may overflow to infinity or round onto an end of the
+         * window (the scaled window's ends were rounded too): the hit must be
+         * inside the caller's window, checked on the t it will be given. */
+        if (t_exp) {
+            h.t = ldexp(h.t, -t_exp);
+            if (!(h.t > ray_tmin && h.t < ray_tmax && isfinite(h.t))) continue;
+        }
         if (mode == HR_TRACE_ANY) {
             out->hits[start] = h;
             out->count = start + 1;
