@@ -18,6 +18,7 @@
 
 #include "errors.h"
 #include "image_srgb.h"
+#include "query_nesting.h"
 #include "scene_internal.h"
 #include "vec.h"
 
@@ -46,6 +47,7 @@ typedef struct render_job {
     atomic_llong next_tile;
     atomic_llong tiles_done;
     atomic_int cancelled;
+    int32_t query_level; /* every render thread's query nesting (query_nesting.h) */
     pthread_mutex_t progress_lock;
     hr_status failure; /* first shape failure (guarded by progress_lock) */
 } render_job;
@@ -223,6 +225,8 @@ static void *worker_main(void *arg)
 {
     worker *w = arg;
     render_job *job = w->job;
+    int32_t outer_level = hr_query_nesting();
+    hr_query_set_nesting(job->query_level);
     for (;;) {
         if (atomic_load(&job->cancelled)) break;
         int64_t tile = atomic_fetch_add(&job->next_tile, 1);
@@ -237,6 +241,7 @@ static void *worker_main(void *arg)
             pthread_mutex_unlock(&job->progress_lock);
         }
     }
+    hr_query_set_nesting(outer_level);
     return NULL;
 }
 
@@ -307,9 +312,17 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         return hr_error(ctx, HR_ERROR_STATE, "render: the scene is not committed (call hr_scene_commit)");
     if (!camera || camera->struct_size < sizeof(uint32_t))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: NULL camera or struct_size not set");
+    /* The render's threads trace one level deeper than the caller: a shape
+     * that renders its own scene from its hit is stopped like one that
+     * queries it. */
+    hr_status nesting = hr_query_enter(ctx, "render");
+    if (nesting) return nesting;
+    int32_t query_level = hr_query_nesting();
+    hr_query_leave();
     render_job *job = calloc(1, sizeof *job);
     if (!job) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     job->scene = scene;
+    job->query_level = query_level;
     hr_camera_default(&job->camera);
     memcpy(&job->camera, camera,
            camera->struct_size < sizeof job->camera ? camera->struct_size : sizeof job->camera);

@@ -10,6 +10,7 @@
 
 #include "context_internal.h"
 #include "errors.h"
+#include "query_nesting.h"
 #include "scene_internal.h"
 #include "transform_inline.h"
 #include "vec.h"
@@ -347,8 +348,10 @@ static hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, 
     return HR_OK;
 }
 
+/* Ends a query begun with hr_query_enter. */
 static hr_status finish_query(hr_trace_ctx *tc)
 {
+    hr_query_leave();
     hr_status st = tc->status;
     hr_trace_ctx_release(tc);
     if (st) return hr_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
@@ -361,6 +364,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     hr_status st = check_query(s, ray, tmin, tmax);
     if (st) return st;
     if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
+    if ((st = hr_query_enter(s->ctx, "first hit"))) return st;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
     /* One ray: the list of candidate hits lives on the stack, so the query
@@ -398,6 +402,7 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     if (st) return st;
     if (!out || out->count < 0 || out->capacity < 0 || out->count > out->capacity)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "intersection: NULL or not initialised");
+    if ((st = hr_query_enter(s->ctx, "all hits"))) return st;
     out->count = 0;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
@@ -417,11 +422,12 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
     hr_status st = check_query(s, ray, 0, INFINITY);
     if (st) return st;
     if (!out) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: NULL output");
-    hr_trace_ctx tc;
-    hr_trace_ctx_init(&tc, s);
     if (max_depth > HR_MAX_RECURSION_DEPTH)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
                         (int)max_depth, HR_MAX_RECURSION_DEPTH);
+    if ((st = hr_query_enter(s->ctx, "shade"))) return st;
+    hr_trace_ctx tc;
+    hr_trace_ctx_init(&tc, s);
     int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
     /* The colour does not depend on the direction's length, but shapes and
      * shade's normalising square it: bring it near 1 (exactly, by a power

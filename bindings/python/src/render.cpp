@@ -28,6 +28,7 @@ struct RenderRun {
     hr_camera camera{};
     hr_render_options options{};
     // Out: filled by the render thread.
+    int32_t query_nesting = 0;  // the calling thread's (hr_query_nesting)
     hr_image *image = nullptr;
     hr_render_stats stats{};
     hr_status status = HR_OK;
@@ -51,6 +52,9 @@ int32_t on_progress(void *user, double fraction)
 void render_thread(RenderRun *run)
 {
     run->stats.struct_size = sizeof run->stats;
+    // This thread renders for the caller: a render from inside a shape's
+    // hit nests as deep as that hit is.
+    hr_query_set_nesting(run->query_nesting);
     hr_status st = hr_render(run->scene, &run->camera, &run->options, &run->image, &run->stats);
     if (st != HR_OK) run->failure = capture_error(st);  // this thread's error slot
     std::lock_guard<std::mutex> guard(run->lock);
@@ -100,6 +104,7 @@ py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_
     run->options.effects = all_effects ? HR_EFFECTS_ALL : HR_EFFECTS_AUTO;
     run->options.progress = on_progress;
     run->options.progress_user = run.get();
+    run->query_nesting = hr_query_nesting();
 
     double reported = -1.0;
     bool interrupted = false;
