@@ -204,23 +204,6 @@ static hr_camera choose_camera(const render_request *r, const cli_scene *s)
     return cam;
 }
 
-static int write_images(const render_request *r, hr_context *ctx, const hr_image *image)
-{
-    hr_image_write_options o;
-    hr_image_write_options_default(&o);
-    o.png_bits = r->png16 ? 16 : 8;
-    o.png_linear = r->linear_png;
-    o.exr_half = r->exr_half;
-    hr_status st = hr_image_write(ctx, image, r->output, &o);
-    if (st != HR_OK) return cli_library_error(ctx, st);
-    if (r->exr_output) {
-        o.format = HR_FORMAT_EXR;
-        st = hr_image_write(ctx, image, r->exr_output, &o);
-        if (st != HR_OK) return cli_library_error(ctx, st);
-    }
-    return 0;
-}
-
 static uint64_t total_rays(const hr_render_stats *s) { return s->primary + s->shadow + s->reflected + s->refracted; }
 
 /* "2.41 M": rays per second at a glance. */
@@ -268,29 +251,12 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
     }
 }
 
-/* The statistics go to a temporary file beside the target that is renamed
- * over it only once complete, as hr_image_write does with images: a failed
- * write leaves whatever file was there before. check_writable has made sure
- * the directory part is shorter than 4096 bytes. */
-static int write_stats_json(const render_request *r, const hr_render_stats *s)
+/* The statistics as JSON, in a malloc'd buffer (NULL if out of memory). */
+static char *stats_json(const render_request *r, const hr_render_stats *s, size_t *size)
 {
-    const char *slash = strrchr(r->stats_json, '/');
-    int dir_len = slash ? (int)(slash - r->stats_json) + 1 : 0;
-    char temp[4096 + 256];
-    snprintf(temp, sizeof temp, "%.*s.%.200s.XXXXXX", dir_len, r->stats_json, r->stats_json + dir_len);
-    struct stat st;
-    mode_t mask = umask(0); /* read it (nothing else runs now) */
-    umask(mask);
-    mode_t mode = stat(r->stats_json, &st) == 0 && S_ISREG(st.st_mode) ? st.st_mode & 07777 : 0666 & ~mask;
-    int fd = mkstemp(temp);
-    if (fd < 0) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
-    FILE *f = fchmod(fd, mode) == 0 ? fdopen(fd, "w") : NULL;
-    if (!f) {
-        int err = errno;
-        close(fd);
-        unlink(temp);
-        return cli_error("cannot write '%s': %s", r->stats_json, strerror(err));
-    }
+    char *text = NULL;
+    FILE *f = open_memstream(&text, size);
+    if (!f) return NULL;
     fprintf(f,
             "{\"primary\": %" PRIu64 ", \"shadow\": %" PRIu64 ", \"reflected\": %" PRIu64
             ", \"refracted\": %" PRIu64 ", \"seconds\": ",
@@ -302,15 +268,47 @@ static int write_stats_json(const render_request *r, const hr_render_stats *s)
             "], \"pixels_refined\": %" PRIu64 ", \"samples_saved\": %" PRId64 ", \"rays_cut\": %" PRIu64
             ", \"threads\": %d, \"width\": %d, \"height\": %d}\n",
             s->pixels_refined, s->samples_saved, s->rays_cut, (int)s->threads, (int)r->width, (int)r->height);
-    int failed = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
-    int err = errno;
-    if (fclose(f) != 0 && !failed) failed = 1, err = errno;
-    if (!failed && rename(temp, r->stats_json) != 0) failed = 1, err = errno;
-    if (failed) {
-        unlink(temp);
-        return cli_error("cannot write '%s': %s", r->stats_json, strerror(err));
+    if (ferror(f)) {
+        fclose(f);
+        free(text);
+        return NULL;
     }
-    return 0;
+    fclose(f);
+    return text;
+}
+
+/* Every output of the command or none (hr_file_batch): the PNG, the EXR and
+ * the statistics are each written in full beside their targets before any
+ * is put in place, so a full disk while writing the last leaves the old
+ * files as they were. */
+static int write_outputs(const render_request *r, hr_context *ctx, const hr_image *image,
+                         const hr_render_stats *stats)
+{
+    hr_image_write_options o;
+    hr_image_write_options_default(&o);
+    o.png_bits = r->png16 ? 16 : 8;
+    o.png_linear = r->linear_png;
+    o.exr_half = r->exr_half;
+    hr_file_batch *batch = NULL;
+    hr_status st = hr_file_batch_create(ctx, &batch);
+    if (st == HR_OK) st = hr_file_batch_add_image(batch, image, r->output, &o);
+    if (st == HR_OK && r->exr_output) {
+        o.format = HR_FORMAT_EXR;
+        st = hr_file_batch_add_image(batch, image, r->exr_output, &o);
+    }
+    if (st == HR_OK && r->stats_json) {
+        size_t size = 0;
+        char *json = stats_json(r, stats, &size);
+        if (!json) {
+            hr_file_batch_destroy(batch);
+            return cli_error("cannot write '%s': out of memory", r->stats_json);
+        }
+        st = hr_file_batch_add_bytes(batch, r->stats_json, json, size);
+        free(json);
+    }
+    if (st == HR_OK) st = hr_file_batch_commit(batch);
+    hr_file_batch_destroy(batch);
+    return st == HR_OK ? 0 : cli_library_error(ctx, st);
 }
 
 static int render_and_write(const render_request *r, cli_scene *s)
@@ -354,9 +352,8 @@ static int render_and_write(const render_request *r, cli_scene *s)
         cli_release_signals(&held);
         return cli_library_error(s->ctx, st);
     }
-    int rc = write_images(r, s->ctx, image);
+    int rc = write_outputs(r, s->ctx, image, &stats);
     hr_image_destroy(image);
-    if (!rc && r->stats_json && write_stats_json(r, &stats)) rc = CLI_EXIT_ERROR;
     cli_release_signals(&held);
     if (rc) return rc;
     print_summary(r, &stats);
