@@ -45,6 +45,9 @@ static const char render_help[] =
     "                        corners differ by more than T (0..1, sRGB-encoded)\n"
     "  --min-weight W        trace no reflected or refracted ray whose weight\n"
     "                        (product of the coefficients on its path) is below W\n"
+    "                        (default 2^-24, which changes no pixel of a normal\n"
+    "                        scene and bounds the rays of a deep one)\n"
+    "  --exact               trace every contribution, however small (no cut-off)\n"
     "  --stats               also print rays by kind and the effects that ran\n"
     "  --stats-json FILE     write the statistics as one JSON object\n"
     "  -h, --help            this help\n";
@@ -58,7 +61,7 @@ typedef struct render_request {
     int32_t spp, threads, depth, block;
     int has_camera;
     double camera[10];
-    int png16, linear_png, exr_half, stats;
+    int png16, linear_png, exr_half, stats, exact;
     int32_t effects;
     double adaptive, min_weight;
 } render_request;
@@ -68,6 +71,7 @@ static const cli_option render_options[] = {
     {"--threads", NULL, 1}, {"--depth", NULL, 1},     {"--block", NULL, 1},      {"--camera", NULL, 1},
     {"--png16", NULL, 0},  {"--linear-png", NULL, 0}, {"--exr-half", NULL, 0},   {"--stats", NULL, 0},
     {"--stats-json", NULL, 1}, {"--effects", NULL, 1}, {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1},
+    {"--exact", NULL, 0},
     {"--help", "-h", 0},   {NULL, NULL, 0},
 };
 
@@ -161,6 +165,7 @@ static int parse_request(int argc, char **argv, render_request *r)
         else if (!strcmp(name, "--linear-png")) r->linear_png = 1;
         else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
         else if (!strcmp(name, "--stats")) r->stats = 1;
+        else if (!strcmp(name, "--exact")) r->exact = 1;
         else if (!strcmp(name, "--effects")) ok = parse_effects(name, value, &r->effects);
         else if (!strcmp(name, "--adaptive")) ok = cli_parse_fraction(name, value, &r->adaptive);
         else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
@@ -171,6 +176,7 @@ static int parse_request(int argc, char **argv, render_request *r)
     if (r->adaptive > 0 && r->spp < 2)
         return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
     if (r->adaptive > 0 && r->block > 1) return cli_error("--adaptive: cannot be combined with --block");
+    if (r->exact && r->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
     if (!has_image_extension(r->output))
         return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          r->output);
@@ -247,7 +253,7 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
         if (r->adaptive > 0)
             printf("adaptive: %" PRIu64 " of %" PRIu64 " pixels refined, %" PRId64 " camera rays saved\n",
                    s->pixels_refined, (uint64_t)r->width * (uint64_t)r->height, s->samples_saved);
-        if (r->min_weight > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
+        if (r->min_weight > 0 || s->rays_cut > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
     }
 }
 
@@ -325,6 +331,7 @@ static int render_and_write(const render_request *r, cli_scene *s)
     o.effects = r->effects;
     o.adaptive_threshold = r->adaptive;
     o.min_weight = r->min_weight;
+    o.exact = r->exact;
     cli_progress progress;
     o.progress = cli_progress_update;
     o.progress_user = &progress;

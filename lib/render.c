@@ -295,7 +295,13 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: adaptive supersampling works on single pixels: block size must be 1");
     if (!(o->min_weight >= 0.0 && o->min_weight <= 1.0))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: minimum weight %g must be within 0..1 (0: off)",
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: minimum weight %g must be within 0..1 (0: the default, 2^-24)", o->min_weight);
+    if (o->exact != 0 && o->exact != 1)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: exact must be 0 or 1, not %d", (int)o->exact);
+    if (o->exact && o->min_weight > 0.0)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: exact (trace every contribution) and a minimum weight %g exclude each other",
                         o->min_weight);
     return HR_OK;
 }
@@ -364,7 +370,8 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->job = job;
         hr_trace_ctx_init(&w->tc, scene);
         w->tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
-        w->tc.min_weight = job->opt.min_weight;
+        w->tc.min_weight = job->opt.exact ? 0.0 : job->opt.min_weight > 0.0 ? job->opt.min_weight
+                                                                            : HR_DEFAULT_MIN_WEIGHT;
         w->tc.cancelled = &job->cancelled;
         w->tc.poll = poll_progress;
         w->tc.poll_user = job;
