@@ -221,6 +221,12 @@ static void render_tile(worker *w, int64_t tile)
     }
 }
 
+/* The caller's own flag (hr_render_options.cancel). */
+static int caller_cancelled(const render_job *job)
+{
+    return job->opt.cancel && __atomic_load_n(job->opt.cancel, __ATOMIC_RELAXED);
+}
+
 static void *worker_main(void *arg)
 {
     worker *w = arg;
@@ -228,7 +234,7 @@ static void *worker_main(void *arg)
     int32_t outer_level = hr_query_nesting();
     hr_query_set_nesting(job->query_level);
     for (;;) {
-        if (atomic_load(&job->cancelled)) break;
+        if (atomic_load(&job->cancelled) || caller_cancelled(job)) break;
         int64_t tile = atomic_fetch_add(&job->next_tile, 1);
         if (tile >= job->tile_count) break;
         render_tile(w, tile);
@@ -373,6 +379,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->tc.min_weight = job->opt.exact ? 0.0 : job->opt.min_weight > 0.0 ? job->opt.min_weight
                                                                             : HR_DEFAULT_MIN_WEIGHT;
         w->tc.cancelled = &job->cancelled;
+        w->tc.cancel_flag = job->opt.cancel;
         w->tc.poll = poll_progress;
         w->tc.poll_user = job;
         if (adaptive) {
@@ -393,7 +400,8 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     if (!ready) st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     else if (job->failure) st = hr_error(ctx, job->failure, "render: a shape failed while tracing: %s",
                                          hr_status_name(job->failure));
-    else if (atomic_load(&job->cancelled)) st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
+    else if (atomic_load(&job->cancelled) || caller_cancelled(job))
+        st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
     if (st == HR_OK && stats && stats->struct_size >= sizeof(uint32_t)) {
         hr_render_stats s = {0};
         s.struct_size = stats->struct_size < sizeof s ? stats->struct_size : (uint32_t)sizeof s;

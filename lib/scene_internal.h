@@ -73,6 +73,7 @@ typedef struct hr_trace_ctx {
      * HR_POLL_INTERVAL shade calls the renderer's `poll` runs (it may call
      * the progress callback); shade returns at once while `*cancelled`. */
     const atomic_int *cancelled; /* NULL: nothing can cancel (public queries) */
+    const int32_t *cancel_flag;  /* hr_render_options.cancel (may be NULL) */
     void (*poll)(void *user);
     void *poll_user;
     uint32_t shade_calls;

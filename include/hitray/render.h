@@ -67,6 +67,13 @@ typedef struct hr_render_options {
                                   exponential in the depth. 0 (default): the
                                   cut-off above. */
     int32_t reserved2;
+    const int32_t *cancel;     /* may be NULL. A flag the caller may set to
+                                  non-zero from any thread (an atomic store)
+                                  to cancel: read before every ray, so the
+                                  render stops within one ray of each thread,
+                                  however slow its shapes (the progress
+                                  callback is asked only every 65536 rays).
+                                  hr_render then returns HR_ERROR_CANCELLED. */
 } hr_render_options;
 
 /* The cut-off a render applies by default, POV-Ray's adc_bailout made
