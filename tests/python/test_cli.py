@@ -766,3 +766,23 @@ def test_render_summary_that_cannot_be_written_is_an_error(scene, tmp_path):
                            stdout=full, stderr=subprocess.PIPE, text=True, timeout=120)
     assert r.returncode == 1
     assert len(r.stderr.splitlines()) == 1 and r.stderr.startswith("hitray: ")
+
+
+def test_subnormal_numbers_are_numbers_as_in_sdl(tmp_path):
+    """Issue 16: strtod's ERANGE on underflow made the CLI call 1e-310 "not
+    3 comma-separated numbers"; the SDL reader takes it."""
+    scene = write_sdl(tmp_path, "s.sdl", "sphere\n")
+    r = run("hits", scene, "--origin", "0,0,7", "--dir", "0,1e-310,-1")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["t"] == 6.0
+    r = run("hits", scene, "--origin", "0,0,7", "--dir", "0,1e400,-1")
+    assert r.returncode == 1 and "--dir" in r.stderr
+
+
+def test_framing_a_scene_too_far_names_the_object(tmp_path):
+    """Issue 16: `translate 1e308 0 0 sphere` with no camera said only that
+    the camera's numbers were not finite; the user wrote no camera."""
+    scene = write_sdl(tmp_path, "far.sdl", "sphere\ntranslate 1e308 0 0 cube\n")
+    r = run("render", scene, "-o", tmp_path / "o.png", "--size", "4x4")
+    assert r.returncode == 1 and len(r.stderr.splitlines()) == 1
+    assert "object 1 (a 'cube')" in r.stderr and "give the scene a camera" in r.stderr, r.stderr
