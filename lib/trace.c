@@ -184,8 +184,10 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
         /* A composite's hit names its leaf; one naming no object of the scene
          * is taken as the composite's own, so shading never indexes past the
-         * object list. */
-        if (!composite || h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
+         * object list. Any other shape leaves `object` unset: it is not read
+         * (not even by a branch the compiler may merge, which memcheck flags). */
+        if (!composite) h.object = obj->index;
+        else if (h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
         /* Normals may have any non-zero length: bring them to a safe scale
          * (exactly, by a power of two) before and after the transform, so
          * neither M^-T nor normalising overflows or underflows. */
