@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "errors.h"
+#include "sdl_diag.h"
 #include "sdl_lexer.h"
 #include "sdl_reader.h"
 #include "sdl_source.h"
@@ -64,6 +65,13 @@ static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const
         } else {
             hr_camera_default(&result->camera);
             st = hr_scene_frame_camera(scene, &result->camera);
+            if (st) {
+                /* Framing happens after the last command: the message
+                 * names the object, the place is the end of the file. */
+                sdl_located end;
+                sdl_source_next(&src, &end);
+                st = sdl_error(&src, st, end, "%s", hr_context_last_error(ctx));
+            }
         }
     }
     sdl_reader_release(&reader);
