@@ -13,14 +13,12 @@
  * second render on one thread must give the same bits). Relative mesh names
  * resolve in tests/data/meshes. Never a crash, a hang (-timeout) or a leak. */
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
-
-#define SCENE_NAME "fuzz.sdl"
+#include "fuzz_sdl_text.h"
 #define WIDTH 4
 #define HEIGHT 3
 #define MAX_DEPTH 8
@@ -59,13 +57,10 @@ static hr_image *render(const hr_scene *scene, const hr_camera *camera, int32_t 
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 1);
-    if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
-    hr_sdl_result r = {.struct_size = sizeof r};
-    hr_status st = hr_sdl_load_string(ctx, text, SCENE_NAME, HR_TEST_SOURCE_DIR "/tests/data/meshes", &r);
-    free(text);
+    hr_sdl_result r;
+    size_t length;
+    hr_status st = fuzz_load_sdl(ctx, data, size, &r, &length);
+    if (st == HR_ERROR_OUT_OF_MEMORY && !r.scene) return 0;
     if (st != HR_OK) {
         if (r.scene) fuzz_fail("scene: load failed (status %d) and still a scene", (int)st);
         require_message("load", st);

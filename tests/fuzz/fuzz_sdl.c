@@ -17,14 +17,14 @@
  * (-timeout) or a leak (the leak checker). */
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
 
 #include "fuzz_input.h"
+#include "fuzz_sdl_text.h"
 
-#define SCENE_NAME "fuzz.sdl"
+#define SCENE_NAME FUZZ_SCENE_NAME
 
 static hr_context *ctx;
 
@@ -112,19 +112,13 @@ static void cast(const hr_scene *scene, hr_ray ray)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    char *text = malloc(size + 1);
-    if (!text) return 0;
-    memcpy(text, data, size);
-    text[size] = '\0';
-    hr_sdl_result r = {.struct_size = sizeof r};
-    const hr_status st = hr_sdl_load_string(ctx, text, SCENE_NAME,
-                                            HR_TEST_SOURCE_DIR "/tests/data/meshes", &r);
+    hr_sdl_result r;
+    size_t length;
+    const hr_status st = fuzz_load_sdl(ctx, data, size, &r, &length);
     if (st != HR_OK) {
-        check_error(st, &r, strlen(text));
-        free(text);
+        check_error(st, &r, length);
         return 0;
     }
-    free(text);
     if (!r.scene) fuzz_fail("sdl: HR_OK and no scene");
     if (hr_scene_commit(r.scene) == HR_OK) {
         const hr_vec3 e = r.camera.eye, l = r.camera.look;
