@@ -377,7 +377,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         hr_trace_ctx_init(&w->tc, scene);
         w->tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
         w->tc.min_weight = job->opt.exact ? 0.0 : job->opt.min_weight > 0.0 ? job->opt.min_weight
-                                                                            : HR_DEFAULT_MIN_WEIGHT;
+                                                                            : hr_default_min_weight();
         w->tc.cancelled = &job->cancelled;
         w->tc.cancel_flag = job->opt.cancel;
         w->tc.poll = poll_progress;

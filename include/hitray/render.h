@@ -59,7 +59,8 @@ typedef struct hr_render_options {
                                   of the reflectivities and transparencies
                                   along its path) is below this is not
                                   traced. Within [0, 1]; 0 (the default):
-                                  HR_DEFAULT_MIN_WEIGHT, unless `exact`. */
+                                  2^-HR_DEFAULT_MIN_WEIGHT_BITS, unless
+                                  `exact`. */
     /* Added with the default cut-off (issue 16). */
     int32_t exact;             /* 1: trace every contribution, however small
                                   (min_weight must be 0): a deep scene of
@@ -76,7 +77,7 @@ typedef struct hr_render_options {
                                   hr_render then returns HR_ERROR_CANCELLED. */
 } hr_render_options;
 
-/* The cut-off a render applies by default, POV-Ray's adc_bailout made
+/* The cut-off a render applies by default, 2^-24: POV-Ray's adc_bailout made
  * small enough to be invisible: a ray of weight below 2^-24 brings back at
  * most 2^-24 of its colour, under half a unit in the last place of a float
  * pixel of the same brightness (and 1/16384 of one 8-bit step). Depth
@@ -85,7 +86,8 @@ typedef struct hr_render_options {
  * transparency 0.5 everywhere casts at most about 2^24 rays per pixel
  * instead of 2^1000. The shipped and benchmark scenes never come near it:
  * no ray of theirs is cut (docs/limits.md). */
-#define HR_DEFAULT_MIN_WEIGHT 0x1p-24
+#define HR_DEFAULT_MIN_WEIGHT_BITS 24 /* the cut-off is 2^-24 (an integer, so
+                                        every binding can read it) */
 HR_API void hr_render_options_default(hr_render_options *o);
 
 typedef struct hr_render_stats {

@@ -1,4 +1,4 @@
-/* The default contribution cut-off (HR_DEFAULT_MIN_WEIGHT, issue 16 defect
+/* The default contribution cut-off (2^-HR_DEFAULT_MIN_WEIGHT_BITS, issue 16 defect
  * 5): the camera inside a glass cube whose walls reflect half and transmit
  * half, at depth 1000 with Hill's thresholds at 0, casts rays that multiply
  * by about 1.9 per level; traced exactly it would never end. With the
