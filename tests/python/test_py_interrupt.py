@@ -66,16 +66,27 @@ def test_ctrl_c_stops_a_long_trace():
     assert calls < n // 10, f"{calls} of {n} rays traced before the trace stopped"
 
 
+class SlowEverywhere(Slow):
+    """Unbounded, so every camera ray calls its hit."""
+
+    def bounds(self):
+        return None
+
+
+abi.register_shape("slow_everywhere", SlowEverywhere)
+
+
 def test_ctrl_c_stops_a_render_in_a_slow_shape():
-    """Before: the render was cancelled only when a tile (1024 rays of 1 ms
-    each per thread) ended."""
-    scene = slow_scene()
+    """Before: the render was cancelled only when a tile (32 x 32 = 1024
+    rays of 1 ms each) ended, about a second after Ctrl-C; now within a ray
+    (about 300 rays have been traced when the signal comes)."""
+    scene = hitray.Scene()
+    scene.add(hitray.Shape("slow_everywhere"))
     Slow.calls = 0
     timer = interrupt_soon()
     try:
         with pytest.raises(KeyboardInterrupt):
-            hitray.render(scene, hitray.Camera(), size=(64, 64),
-                          threads=2, progress=False)
+            hitray.render(scene, hitray.Camera(), size=(64, 64), threads=1, progress=False)
     finally:
         timer.cancel()
     assert Slow.calls < 1024, f"{Slow.calls} rays traced before the render stopped"
