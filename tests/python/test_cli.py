@@ -553,6 +553,7 @@ def error_cases(tmp_path, scene):
         "adaptive at 1 spp": ["render", scene, "-o", out, "--adaptive", "0.1"],
         "adaptive with blocks": ["render", scene, "-o", out, "--spp", "4", "--adaptive", "0.1", "--block", "2"],
         "min-weight negative": ["render", scene, "-o", out, "--min-weight", "-0.1"],
+        "exact with a min-weight": ["render", scene, "-o", out, "--exact", "--min-weight", "0.1"],
         "savings without scene": ["savings", "--size", "4x4"],
         "savings at 1 spp": ["savings", scene, "--spp", "1"],
         "savings bad threshold": ["savings", scene, "--adaptive", "x"],
@@ -786,3 +787,19 @@ def test_framing_a_scene_too_far_names_the_object(tmp_path):
     r = run("render", scene, "-o", tmp_path / "o.png", "--size", "4x4")
     assert r.returncode == 1 and len(r.stderr.splitlines()) == 1
     assert "object 1 (a 'cube')" in r.stderr and "give the scene a camera" in r.stderr, r.stderr
+
+
+def test_exact_renders_the_same_image_as_the_default_cut_off(tmp_path):
+    """On a scene whose paths never get fainter than 2^-24, --exact (no
+    cut-off) and the default cut-off give the same pixels and rays."""
+    scene = write_sdl(tmp_path, "mirror.sdl", "maxRecursionDepth 5 minReflectivity 0\n"
+                      "light 4 6 5 1 1 1\nreflectivity 0.3 diffuse .2 .2 .2 sphere\n"
+                      "push translate 2 0 0 reflectivity 0.3 cube pop\n")
+    a, b = tmp_path / "a.pfm", tmp_path / "b.pfm"
+    ra = run("render", scene, "-o", a, "--size", "16x12", "--stats-json", tmp_path / "a.json")
+    rb = run("render", scene, "-o", b, "--size", "16x12", "--exact", "--stats-json", tmp_path / "b.json")
+    assert ra.returncode == 0 and rb.returncode == 0, ra.stderr + rb.stderr
+    assert a.read_bytes() == b.read_bytes()
+    sa, sb = (json.loads((tmp_path / n).read_text()) for n in ("a.json", "b.json"))
+    assert sa["rays_cut"] == sb["rays_cut"] == 0
+    assert [sa[k] for k in ("primary", "shadow", "reflected")] == [sb[k] for k in ("primary", "shadow", "reflected")]
