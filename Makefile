@@ -12,7 +12,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
 .PHONY: all deps build demo test test-c test-asan test-tsan test-fuzz test-python test-python-asan \
-        install clean bench bench-accuracy fuzz
+        test-memcheck install clean bench bench-accuracy fuzz fuzz-long
 
 all: build
 
@@ -32,9 +32,10 @@ demo: build
 # Every test: the C suite (ctest, with the numerical hard cases of
 # tests/numerics and the fuzz corpora replayed), the same suite under
 # AddressSanitizer and UndefinedBehaviorSanitizer and again under
-# ThreadSanitizer, each libFuzzer harness for a short bounded time, and the
-# Python tests (the command line, and the package installed into .venv).
-test: test-c test-asan test-tsan test-fuzz test-python
+# ThreadSanitizer, the fast tests under valgrind's memcheck, each libFuzzer
+# harness for a short bounded time, and the Python tests (the command line,
+# and the package installed into .venv).
+test: test-c test-asan test-tsan test-memcheck test-fuzz test-python
 
 test-c: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -46,6 +47,15 @@ test-asan: deps $(ASAN_BUILD)/build.ninja
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+
+# The tests labelled memcheck (tests/CMakeLists.txt: the fast ones) under
+# valgrind's memcheck on the plain build: what the sanitizers do not see
+# (conditions on uninitialised memory in optimised code). Any error fails.
+MEMCHECK_OPTIONS ?= --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite --track-origins=yes
+test-memcheck: build
+	ctest --test-dir $(BUILD) -T memcheck -L memcheck -j $(JOBS) --output-on-failure \
+	    --overwrite MemoryCheckCommand=$$(command -v valgrind) \
+	    --overwrite "MemoryCheckCommandOptions=$(MEMCHECK_OPTIONS)"
 
 $(TSAN_BUILD)/build.ninja: | deps
 	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DHITRAY_TSAN=ON $(CMAKE_FLAGS)
@@ -71,6 +81,15 @@ fuzz: deps
 test-fuzz: deps
 	tests/fuzz/run_fuzzers.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_TEST_SECONDS) --replay \
 	    --runs $(FUZZ_TEST_RUNS) --seed $(FUZZ_TEST_SEED) $(FUZZ_TARGETS)
+
+# Hours of exploring: every harness for FUZZ_LONG_SECONDS (an hour each by
+# default, five hours for the five) from a fresh seed, then what each found
+# that reaches new coverage merged into its committed corpus
+# (tests/fuzz/corpus/<harness>), ready to be reviewed and committed.
+FUZZ_LONG_SECONDS ?= 3600
+fuzz-long: deps
+	tests/fuzz/run_fuzzers.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_LONG_SECONDS) --replay --merge \
+	    $(FUZZ_TARGETS)
 
 # The package is (re)installed into .venv as a user installs it, from
 # bindings/python; its CMake build directory is kept in $(PYTHON_BUILD), so

@@ -338,11 +338,20 @@ static inline int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, d
                         stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
                         stack_entry[top++] = entry[c];
                     }
+                } else if (mask && !(mask & (mask - 1))) {
+                    /* Exactly two (the most common case): stack the farther
+                     * (the later slot on a tie, as the sort below does). */
+                    uint32_t c = (uint32_t)__builtin_ctz(mask);
+                    uint32_t far = entry[c] < entry[k] ? k : c;
+                    k = far == k ? c : k;
+                    stack_ref[top] = n->ref[far], stack_count[top] = n->count[far];
+                    stack_entry[top++] = entry[far];
                 } else if (mask) {
-                    /* Two or more: stack all but the nearest, farthest
-                     * first (an insertion sort of at most four, by entry). */
-                    uint32_t kid[4] = {k}, hits = 1;
-                    float at[4] = {entry[k]};
+                    /* Three or four: stack all but the nearest, farthest
+                     * first (an insertion sort, by entry). */
+                    uint32_t kid[4], hits = 1;
+                    float at[4];
+                    kid[0] = k, at[0] = entry[k];
                     while (mask) {
                         uint32_t c = (uint32_t)__builtin_ctz(mask), j = hits++;
                         mask &= mask - 1;

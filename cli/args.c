@@ -122,13 +122,14 @@ int cli_parse_int(const char *option, const char *text, long min, long max, int3
 static int parse_double(const char *text, const char **end, double *out)
 {
     char *stop = NULL;
-    errno = 0;
     double v = strtod(text, &stop);
     /* strtod skips leading blanks and accepts "nan", "inf" and hexadecimal
      * ("0x1p3"): none is a decimal number as the options document them. */
     int hex = strpbrk(text, "xX") != NULL && strpbrk(text, "xX") < stop;
-    if (stop == text || isspace((unsigned char)text[0]) || !isfinite(v) || errno == ERANGE || hex)
-        return 0;
+    /* ERANGE with a finite result is underflow: a subnormal or zero, the
+     * nearest double, as the SDL reader takes it too. Overflow gives an
+     * infinity, refused. */
+    if (stop == text || isspace((unsigned char)text[0]) || !isfinite(v) || hex) return 0;
     *end = stop;
     *out = v;
     return 1;

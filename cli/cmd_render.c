@@ -47,6 +47,9 @@ static const char render_help[] =
     "                        corners differ by more than T (0..1, sRGB-encoded)\n"
     "  --min-weight W        trace no reflected or refracted ray whose weight\n"
     "                        (product of the coefficients on its path) is below W\n"
+    "                        (default 2^-24, which changes no pixel of a normal\n"
+    "                        scene and bounds the rays of a deep one)\n"
+    "  --exact               trace every contribution, however small (no cut-off)\n"
     "  --stats               also print rays by kind and the effects that ran\n"
     "  --stats-json FILE     write the statistics as one JSON object\n"
     "  -h, --help            this help\n";
@@ -60,7 +63,7 @@ typedef struct render_request {
     int32_t spp, threads, depth, block;
     int has_camera;
     double camera[10];
-    int png16, linear_png, exr_half, stats;
+    int png16, linear_png, exr_half, stats, exact;
     int32_t effects;
     double adaptive, min_weight;
 } render_request;
@@ -70,6 +73,7 @@ static const cli_option render_options[] = {
     {"--threads", NULL, 1}, {"--depth", NULL, 1},     {"--block", NULL, 1},      {"--camera", NULL, 1},
     {"--png16", NULL, 0},  {"--linear-png", NULL, 0}, {"--exr-half", NULL, 0},   {"--stats", NULL, 0},
     {"--stats-json", NULL, 1}, {"--effects", NULL, 1}, {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1},
+    {"--exact", NULL, 0},
     {"--help", "-h", 0},   {NULL, NULL, 0},
 };
 
@@ -163,6 +167,7 @@ static int parse_request(int argc, char **argv, render_request *r)
         else if (!strcmp(name, "--linear-png")) r->linear_png = 1;
         else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
         else if (!strcmp(name, "--stats")) r->stats = 1;
+        else if (!strcmp(name, "--exact")) r->exact = 1;
         else if (!strcmp(name, "--effects")) ok = parse_effects(name, value, &r->effects);
         else if (!strcmp(name, "--adaptive")) ok = cli_parse_fraction(name, value, &r->adaptive);
         else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
@@ -173,6 +178,7 @@ static int parse_request(int argc, char **argv, render_request *r)
     if (r->adaptive > 0 && r->spp < 2)
         return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
     if (r->adaptive > 0 && r->block > 1) return cli_error("--adaptive: cannot be combined with --block");
+    if (r->exact && r->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
     if (!has_image_extension(r->output))
         return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          r->output);
@@ -204,23 +210,6 @@ static hr_camera choose_camera(const render_request *r, const cli_scene *s)
     cam.width = r->width;
     cam.height = r->height;
     return cam;
-}
-
-static int write_images(const render_request *r, hr_context *ctx, const hr_image *image)
-{
-    hr_image_write_options o;
-    hr_image_write_options_default(&o);
-    o.png_bits = r->png16 ? 16 : 8;
-    o.png_linear = r->linear_png;
-    o.exr_half = r->exr_half;
-    hr_status st = hr_image_write(ctx, image, r->output, &o);
-    if (st != HR_OK) return cli_library_error(ctx, st);
-    if (r->exr_output) {
-        o.format = HR_FORMAT_EXR;
-        st = hr_image_write(ctx, image, r->exr_output, &o);
-        if (st != HR_OK) return cli_library_error(ctx, st);
-    }
-    return 0;
 }
 
 static uint64_t total_rays(const hr_render_stats *s) { return s->primary + s->shadow + s->reflected + s->refracted; }
@@ -266,33 +255,16 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
         if (r->adaptive > 0)
             printf("adaptive: %" PRIu64 " of %" PRIu64 " pixels refined, %" PRId64 " camera rays saved\n",
                    s->pixels_refined, (uint64_t)r->width * (uint64_t)r->height, s->samples_saved);
-        if (r->min_weight > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
+        if (r->min_weight > 0 || s->rays_cut > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
     }
 }
 
-/* The statistics go to a temporary file beside the target that is renamed
- * over it only once complete, as hr_image_write does with images: a failed
- * write leaves whatever file was there before. check_writable has made sure
- * the directory part is shorter than 4096 bytes. */
-static int write_stats_json(const render_request *r, const hr_render_stats *s)
+/* The statistics as JSON, in a malloc'd buffer (NULL if out of memory). */
+static char *stats_json(const render_request *r, const hr_render_stats *s, size_t *size)
 {
-    const char *slash = strrchr(r->stats_json, '/');
-    int dir_len = slash ? (int)(slash - r->stats_json) + 1 : 0;
-    char temp[4096 + 256];
-    snprintf(temp, sizeof temp, "%.*s.%.200s.XXXXXX", dir_len, r->stats_json, r->stats_json + dir_len);
-    struct stat st;
-    mode_t mask = umask(0); /* read it (nothing else runs now) */
-    umask(mask);
-    mode_t mode = stat(r->stats_json, &st) == 0 && S_ISREG(st.st_mode) ? st.st_mode & 07777 : 0666 & ~mask;
-    int fd = mkstemp(temp);
-    if (fd < 0) return cli_error("cannot write '%s': %s", r->stats_json, strerror(errno));
-    FILE *f = fchmod(fd, mode) == 0 ? fdopen(fd, "w") : NULL;
-    if (!f) {
-        int err = errno;
-        close(fd);
-        unlink(temp);
-        return cli_error("cannot write '%s': %s", r->stats_json, strerror(err));
-    }
+    char *text = NULL;
+    FILE *f = open_memstream(&text, size);
+    if (!f) return NULL;
     fprintf(f,
             "{\"primary\": %" PRIu64 ", \"shadow\": %" PRIu64 ", \"reflected\": %" PRIu64
             ", \"refracted\": %" PRIu64 ", \"seconds\": ",
@@ -304,15 +276,47 @@ static int write_stats_json(const render_request *r, const hr_render_stats *s)
             "], \"pixels_refined\": %" PRIu64 ", \"samples_saved\": %" PRId64 ", \"rays_cut\": %" PRIu64
             ", \"threads\": %d, \"width\": %d, \"height\": %d}\n",
             s->pixels_refined, s->samples_saved, s->rays_cut, (int)s->threads, (int)r->width, (int)r->height);
-    int failed = ferror(f) || fflush(f) != 0 || fsync(fileno(f)) != 0;
-    int err = errno;
-    if (fclose(f) != 0 && !failed) failed = 1, err = errno;
-    if (!failed && rename(temp, r->stats_json) != 0) failed = 1, err = errno;
-    if (failed) {
-        unlink(temp);
-        return cli_error("cannot write '%s': %s", r->stats_json, strerror(err));
+    if (ferror(f)) {
+        fclose(f);
+        free(text);
+        return NULL;
     }
-    return 0;
+    fclose(f);
+    return text;
+}
+
+/* Every output of the command or none (hr_file_batch): the PNG, the EXR and
+ * the statistics are each written in full beside their targets before any
+ * is put in place, so a full disk while writing the last leaves the old
+ * files as they were. */
+static int write_outputs(const render_request *r, hr_context *ctx, const hr_image *image,
+                         const hr_render_stats *stats)
+{
+    hr_image_write_options o;
+    hr_image_write_options_default(&o);
+    o.png_bits = r->png16 ? 16 : 8;
+    o.png_linear = r->linear_png;
+    o.exr_half = r->exr_half;
+    hr_file_batch *batch = NULL;
+    hr_status st = hr_file_batch_create(ctx, &batch);
+    if (st == HR_OK) st = hr_file_batch_add_image(batch, image, r->output, &o);
+    if (st == HR_OK && r->exr_output) {
+        o.format = HR_FORMAT_EXR;
+        st = hr_file_batch_add_image(batch, image, r->exr_output, &o);
+    }
+    if (st == HR_OK && r->stats_json) {
+        size_t size = 0;
+        char *json = stats_json(r, stats, &size);
+        if (!json) {
+            hr_file_batch_destroy(batch);
+            return cli_error("cannot write '%s': out of memory", r->stats_json);
+        }
+        st = hr_file_batch_add_bytes(batch, r->stats_json, json, size);
+        free(json);
+    }
+    if (st == HR_OK) st = hr_file_batch_commit(batch);
+    hr_file_batch_destroy(batch);
+    return st == HR_OK ? 0 : cli_library_error(ctx, st);
 }
 
 static int render_and_write(const render_request *r, cli_scene *s)
@@ -329,6 +333,7 @@ static int render_and_write(const render_request *r, cli_scene *s)
     o.effects = r->effects;
     o.adaptive_threshold = r->adaptive;
     o.min_weight = r->min_weight;
+    o.exact = r->exact;
     cli_progress progress;
     o.progress = cli_progress_update;
     o.progress_user = &progress;
@@ -356,9 +361,8 @@ static int render_and_write(const render_request *r, cli_scene *s)
         cli_release_signals(&held);
         return cli_library_error(s->ctx, st);
     }
-    int rc = write_images(r, s->ctx, image);
+    int rc = write_outputs(r, s->ctx, image, &stats);
     hr_image_destroy(image);
-    if (!rc && r->stats_json && write_stats_json(r, &stats)) rc = CLI_EXIT_ERROR;
     cli_release_signals(&held);
     if (rc) return rc;
     print_summary(r, &stats);

@@ -207,6 +207,7 @@ static int render_row(const savings_request *r, cli_scene *s, const hr_camera *c
     o.effects = effects;
     o.adaptive_threshold = adaptive;
     o.min_weight = min_weight;
+    o.exact = min_weight == 0.0; /* the rows without a cut-off are the exact reference */
     memset(&w->stats, 0, sizeof w->stats);
     w->stats.struct_size = sizeof w->stats;
     hr_status st = hr_render(s->sdl.scene, cam, &o, image, &w->stats);

@@ -2,9 +2,11 @@
 #include "atomic_file.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "errors.h"
@@ -61,6 +63,44 @@ static char *temp_template(const char *target)
     return templ;
 }
 
+/* The target as it is now, links followed: absent, or a regular file the
+ * caller may write. Anything else is refused rather than replaced. */
+static hr_status check_target(const hr_context *ctx, const char *target)
+{
+    struct stat st;
+    if (stat(target, &st) != 0) return HR_OK; /* absent (or a dangling link): created */
+    if (!S_ISREG(st.st_mode))
+        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': not a regular file (%s)", target,
+                        S_ISDIR(st.st_mode)    ? "a directory"
+                        : S_ISFIFO(st.st_mode) ? "a FIFO"
+                        : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                                                                     : "a special file");
+    /* access() grants root everything; a file nobody may write is read-only
+     * for root too, as far as replacing it goes. */
+    if ((st.st_mode & 0222) == 0 || access(target, W_OK) != 0)
+        return hr_error(ctx, HR_ERROR_IO,
+                        "cannot write '%s': the file is read-only (mode %04o); make it writable "
+                        "or remove it first",
+                        target, (unsigned)(st.st_mode & 07777));
+    return HR_OK;
+}
+
+/* An unnamed file in `dir` (O_TMPFILE), or -1 where the filesystem or the
+ * kernel has none. */
+static int open_unnamed(const char *destination)
+{
+#ifdef O_TMPFILE
+    char *dir = hr_path_dirname(destination);
+    if (!dir) return -1;
+    int fd = open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
+    free(dir);
+    return fd;
+#else
+    (void)destination;
+    return -1;
+#endif
+}
+
 hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atomic_file *out)
 {
     memset(out, 0, sizeof *out);
@@ -69,6 +109,8 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
     size_t len = strlen(target);
     if (target[len - 1] == '/')
         return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': the name is a directory", target);
+    hr_status checked = check_target(ctx, target);
+    if (checked) return checked;
 
     /* Through a symbolic link to the file it names, so the rename replaces
      * that file and the link survives. */
@@ -76,12 +118,17 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
     char *destination = NULL;
     if (lstat(target, &link_st) == 0 && S_ISLNK(link_st.st_mode)) destination = realpath(target, NULL);
     if (!destination) destination = hr_strdup(target);
-    char *templ = destination ? temp_template(destination) : NULL;
-    if (!templ) {
-        free(destination);
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+    if (!destination) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+    char *templ = NULL;
+    int fd = open_unnamed(destination);
+    if (fd < 0) {
+        templ = temp_template(destination);
+        if (!templ) {
+            free(destination);
+            return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+        }
+        fd = mkstemp(templ);
     }
-    int fd = mkstemp(templ);
     if (fd < 0) {
         int err = errno;
         free(templ);
@@ -92,7 +139,7 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
     if (fchmod(fd, mode_for(destination)) != 0 || !(fp = fdopen(fd, "wb"))) {
         int err = errno;
         close(fd);
-        unlink(templ);
+        if (templ) unlink(templ);
         free(templ);
         free(destination);
         return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
@@ -106,33 +153,83 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
 
 static void release(hr_atomic_file *f)
 {
+    if (f->fp) fclose(f->fp);
     free(f->temp_path);
     free(f->destination);
     memset(f, 0, sizeof *f);
 }
 
-hr_status hr_atomic_file_commit(const hr_context *ctx, hr_atomic_file *f)
+static hr_status fail(const hr_context *ctx, hr_atomic_file *f, int err)
+{
+    hr_status st = hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err));
+    hr_atomic_file_abort(f);
+    return st;
+}
+
+hr_status hr_atomic_file_finish(const hr_context *ctx, hr_atomic_file *f)
 {
     /* Everything must reach the disk before the rename publishes the file:
      * a crash after the rename must not leave an empty or partial image. */
-    int err = 0;
-    if (fflush(f->fp) != 0 || fsync(fileno(f->fp)) != 0) err = errno;
-    if (fclose(f->fp) != 0 && !err) err = errno;
-    f->fp = NULL;
-    if (!err && rename(f->temp_path, f->destination) != 0) err = errno;
-    if (err) {
-        unlink(f->temp_path);
-        hr_status st = hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err));
-        release(f);
-        return st;
-    }
-    release(f);
+    if (fflush(f->fp) != 0 || fsync(fileno(f->fp)) != 0) return fail(ctx, f, errno);
+    f->finished = 1;
     return HR_OK;
+}
+
+/* Give the unnamed file a name beside its target: a hidden one no other
+ * file has, made through /proc/self/fd (linkat with AT_EMPTY_PATH needs a
+ * privilege). It exists only until the rename that follows. */
+static int name_unnamed(hr_atomic_file *f)
+{
+    char *templ = temp_template(f->destination);
+    if (!templ) return ENOMEM;
+    size_t n = strlen(templ);
+    char proc[64];
+    snprintf(proc, sizeof proc, "/proc/self/fd/%d", fileno(f->fp));
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    unsigned long long seed = (unsigned long long)ts.tv_nsec ^ ((unsigned long long)getpid() << 20);
+    static const char letters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+    int err = EEXIST;
+    for (int attempt = 0; attempt < 100 && err == EEXIST; attempt++) {
+        for (size_t i = n - 6; i < n; i++) {
+            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+            templ[i] = letters[(seed >> 33) % (sizeof letters - 1)];
+        }
+        err = linkat(AT_FDCWD, proc, AT_FDCWD, templ, AT_SYMLINK_FOLLOW) == 0 ? 0 : errno;
+    }
+    if (err) {
+        free(templ);
+        return err;
+    }
+    f->temp_path = templ;
+    return 0;
+}
+
+hr_status hr_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f)
+{
+    int err = 0;
+    if (!f->temp_path) err = name_unnamed(f);
+    if (!err && rename(f->temp_path, f->destination) != 0) err = errno;
+    if (err) return fail(ctx, f, err);
+    free(f->temp_path);
+    f->temp_path = NULL; /* in place: nothing to remove */
+    if (fclose(f->fp) != 0) err = errno; /* the data is synced: only report */
+    f->fp = NULL;
+    hr_status st = err ? hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err)) : HR_OK;
+    release(f);
+    return st;
+}
+
+hr_status hr_atomic_file_commit(const hr_context *ctx, hr_atomic_file *f)
+{
+    hr_status st = hr_atomic_file_finish(ctx, f);
+    return st ? st : hr_atomic_file_publish(ctx, f);
 }
 
 void hr_atomic_file_abort(hr_atomic_file *f)
 {
-    if (f->fp) fclose(f->fp);
+    if (f->fp) fclose(f->fp); /* an unnamed file goes with its last descriptor */
+    f->fp = NULL;
     if (f->temp_path) unlink(f->temp_path);
     release(f);
 }

@@ -114,8 +114,10 @@ static hr_status read_options(const hr_context *ctx, const hr_image_write_option
     return HR_OK;
 }
 
-HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const char *path,
-                                const hr_image_write_options *options)
+/* Write `image` to `out`'s temporary file and finish it (image_writers.h):
+ * on success only publishing is left; on failure `out` is released. */
+hr_status hr_image_write_unpublished(const hr_context *ctx, const hr_image *image, const char *path,
+                                     const hr_image_write_options *options, hr_atomic_file *out)
 {
     if (!image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: NULL image");
     if (!path || !*path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: empty file name");
@@ -124,18 +126,25 @@ HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const ch
     if (st) return st;
 
     hr_pixels px = {image->width, image->height, image->channels, image->pixels};
-    hr_atomic_file out;
-    st = hr_atomic_file_open(ctx, path, &out);
+    st = hr_atomic_file_open(ctx, path, out);
     if (st) return st;
     switch (o.format) {
-    case HR_FORMAT_PNG: st = hr_write_png(ctx, &px, &o, &out); break;
-    case HR_FORMAT_EXR: st = hr_write_exr(ctx, &px, &o, &out); break;
-    case HR_FORMAT_PPM: st = hr_write_ppm(ctx, &px, &out); break;
-    default: st = hr_write_pfm(ctx, &px, &out); break;
+    case HR_FORMAT_PNG: st = hr_write_png(ctx, &px, &o, out); break;
+    case HR_FORMAT_EXR: st = hr_write_exr(ctx, &px, &o, out); break;
+    case HR_FORMAT_PPM: st = hr_write_ppm(ctx, &px, out); break;
+    default: st = hr_write_pfm(ctx, &px, out); break;
     }
     if (st) {
-        hr_atomic_file_abort(&out);
+        hr_atomic_file_abort(out);
         return st;
     }
-    return hr_atomic_file_commit(ctx, &out);
+    return hr_atomic_file_finish(ctx, out);
+}
+
+HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const char *path,
+                                const hr_image_write_options *options)
+{
+    hr_atomic_file out;
+    hr_status st = hr_image_write_unpublished(ctx, image, path, options, &out);
+    return st ? st : hr_atomic_file_publish(ctx, &out);
 }

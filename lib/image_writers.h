@@ -16,6 +16,12 @@ typedef struct hr_pixels {
     const float *data;
 } hr_pixels;
 
+/* hr_image_write up to the last step: the image written to `out`'s
+ * temporary file and synced; hr_atomic_file_publish puts it in place. On
+ * failure `out` is released. */
+hr_status hr_image_write_unpublished(const hr_context *ctx, const hr_image *image, const char *path,
+                                     const hr_image_write_options *options, hr_atomic_file *out);
+
 hr_status hr_write_png(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out);
 hr_status hr_write_exr(const hr_context *ctx, const hr_pixels *px,

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "errors.h"
 #include "module_loader.h"
@@ -176,12 +177,31 @@ static int compare_names(const void *a, const void *b)
     return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
+/* A module found in a directory anyone may write to is not loaded: anyone
+ * could have put it there, and loading it runs their code. It is listed as
+ * refused (hr_context_module, `hitray shapes`), so the refusal is seen. */
+static hr_module *refused_insecure(const char *path, const char *dir)
+{
+    hr_module *m = calloc(1, sizeof *m);
+    if (!m) return NULL;
+    if (!(m->path = hr_strdup(path))) {
+        free(m);
+        return NULL;
+    }
+    refuse(m, "shape module '%s' not loaded: its directory '%s' is writable by every user (anyone "
+              "could have put code there); make it writable by its owner only",
+           path, dir);
+    return m;
+}
+
 /* Load every *.so in dir, in name order so the result never depends on the
  * file system's listing order. A missing directory is not an error. */
 static void scan_dir(hr_context *ctx, const char *dir)
 {
     DIR *d = opendir(dir);
     if (!d) return;
+    struct stat st;
+    const int insecure = fstat(dirfd(d), &st) == 0 && (st.st_mode & S_IWOTH);
     char **names = NULL;
     size_t count = 0, cap = 0;
     struct dirent *e;
@@ -204,7 +224,7 @@ static void scan_dir(hr_context *ctx, const char *dir)
     for (size_t i = 0; i < count; i++) {
         char *path = hr_path_join(dir, names[i]);
         if (path && !known_path(ctx, path)) {
-            hr_module *m = load_file(ctx, path);
+            hr_module *m = insecure ? refused_insecure(path, dir) : load_file(ctx, path);
             if (m && !append_module(ctx, m)) module_free(m);
         }
         free(path);

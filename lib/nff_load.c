@@ -5,16 +5,13 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "errors.h"
 #include "load_result.h"
 #include "nff_reader.h"
-
-/* The largest text read: far above the SPD's largest (a few MiB at size
- * factor 4, hundreds at the largest factors), and a bound on what a small
- * gzip file can inflate to. */
-#define NFF_MAX_TEXT ((size_t)1 << 32)
+#include "text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const char *text, size_t length, const char *name,
                             hr_sdl_result *result)
@@ -31,7 +28,12 @@ static hr_status read_scene(hr_context *ctx, const char *text, size_t length, co
         result->scene = scene;
         result->has_camera = reader.has_camera;
         result->camera = reader.camera;
-        if (!reader.has_camera) st = hr_scene_frame_camera(scene, &result->camera);
+        if (!reader.has_camera) {
+            st = hr_scene_frame_camera(scene, &result->camera);
+            /* Framing happens after the last entity: the message names the
+             * object, the place is the end of the file. */
+            if (st) st = nff_error(&reader, st, nff_peek(&reader.lx), "%s", hr_context_last_error(ctx));
+        }
     }
     nff_reader_release(&reader);
     if (st) {
@@ -60,30 +62,39 @@ HR_API hr_status hr_nff_load_string(hr_context *ctx, const char *text, const cha
     return load_text(ctx, text, strlen(text), name ? name : "<string>", out);
 }
 
-/* The whole file, inflated if it is gzip, read in pieces: its size is not
- * asked first, so pipes work too. */
+/* The whole file, inflated if it is gzip, read in pieces. Only a regular
+ * file is read (text_file.h: a device or a FIFO would never end), and the
+ * inflated text is held to the scene size limit too, so a small gzip bomb
+ * is refused rather than inflated into memory. */
 static hr_status read_file(hr_context *ctx, const char *path, char **text, size_t *length)
 {
     *text = NULL;
     *length = 0;
+    int fd;
+    size_t file_size, limit;
+    hr_status st = hr_scene_file_open(ctx, path, "scene file", &fd, &file_size, &limit);
+    if (st) return st;
+    (void)file_size;
     errno = 0;
-    gzFile f = gzopen(path, "rb");
-    if (!f)
+    gzFile f = gzdopen(fd, "rb");
+    if (!f) {
+        close(fd);
         return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the scene file: %s",
                            path, errno ? strerror(errno) : "out of memory");
+    }
     size_t capacity = 0, used = 0;
     char *data = NULL;
-    hr_status st = HR_OK;
     for (;;) {
         if (used == capacity) {
+            if (capacity > limit) {
+                st = hr_scene_file_too_large(ctx, path, "scene file", limit);
+                break;
+            }
             size_t grown_capacity = capacity ? 2 * capacity : 256 * 1024;
-            char *grown = grown_capacity <= NFF_MAX_TEXT ? realloc(data, grown_capacity) : NULL;
+            if (grown_capacity > limit + 1) grown_capacity = limit + 1;
+            char *grown = realloc(data, grown_capacity);
             if (!grown) {
-                st = grown_capacity <= NFF_MAX_TEXT
-                         ? hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path)
-                         : hr_error_at(ctx, HR_ERROR_IO, path, 0, 0,
-                                       "%s: the scene is larger than %zu bytes", path,
-                                       NFF_MAX_TEXT);
+                st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
                 break;
             }
             data = grown;
@@ -102,8 +113,12 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
         }
         if (n == 0) break;
         used += (size_t)n;
+        if (used > limit) {
+            st = hr_scene_file_too_large(ctx, path, "scene file", limit);
+            break;
+        }
     }
-    gzclose(f);
+    gzclose(f); /* closes fd */
     if (st) {
         free(data);
         return st;

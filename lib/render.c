@@ -18,6 +18,7 @@
 
 #include "errors.h"
 #include "image_srgb.h"
+#include "query_nesting.h"
 #include "scene_internal.h"
 #include "vec.h"
 
@@ -46,6 +47,7 @@ typedef struct render_job {
     atomic_llong next_tile;
     atomic_llong tiles_done;
     atomic_int cancelled;
+    int32_t query_level; /* every render thread's query nesting (query_nesting.h) */
     pthread_mutex_t progress_lock;
     hr_status failure; /* first shape failure (guarded by progress_lock) */
 } render_job;
@@ -219,12 +221,20 @@ static void render_tile(worker *w, int64_t tile)
     }
 }
 
+/* The caller's own flag (hr_render_options.cancel). */
+static int caller_cancelled(const render_job *job)
+{
+    return job->opt.cancel && __atomic_load_n(job->opt.cancel, __ATOMIC_RELAXED);
+}
+
 static void *worker_main(void *arg)
 {
     worker *w = arg;
     render_job *job = w->job;
+    int32_t outer_level = hr_query_nesting();
+    hr_query_set_nesting(job->query_level);
     for (;;) {
-        if (atomic_load(&job->cancelled)) break;
+        if (atomic_load(&job->cancelled) || caller_cancelled(job)) break;
         int64_t tile = atomic_fetch_add(&job->next_tile, 1);
         if (tile >= job->tile_count) break;
         render_tile(w, tile);
@@ -237,6 +247,7 @@ static void *worker_main(void *arg)
             pthread_mutex_unlock(&job->progress_lock);
         }
     }
+    hr_query_set_nesting(outer_level);
     return NULL;
 }
 
@@ -290,7 +301,13 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: adaptive supersampling works on single pixels: block size must be 1");
     if (!(o->min_weight >= 0.0 && o->min_weight <= 1.0))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: minimum weight %g must be within 0..1 (0: off)",
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: minimum weight %g must be within 0..1 (0: the default, 2^-24)", o->min_weight);
+    if (o->exact != 0 && o->exact != 1)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: exact must be 0 or 1, not %d", (int)o->exact);
+    if (o->exact && o->min_weight > 0.0)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: exact (trace every contribution) and a minimum weight %g exclude each other",
                         o->min_weight);
     return HR_OK;
 }
@@ -307,9 +324,17 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         return hr_error(ctx, HR_ERROR_STATE, "render: the scene is not committed (call hr_scene_commit)");
     if (!camera || camera->struct_size < sizeof(uint32_t))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: NULL camera or struct_size not set");
+    /* The render's threads trace one level deeper than the caller: a shape
+     * that renders its own scene from its hit is stopped like one that
+     * queries it. */
+    hr_status nesting = hr_query_enter(ctx, "render");
+    if (nesting) return nesting;
+    int32_t query_level = hr_query_nesting();
+    hr_query_leave();
     render_job *job = calloc(1, sizeof *job);
     if (!job) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     job->scene = scene;
+    job->query_level = query_level;
     hr_camera_default(&job->camera);
     memcpy(&job->camera, camera,
            camera->struct_size < sizeof job->camera ? camera->struct_size : sizeof job->camera);
@@ -351,8 +376,10 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->job = job;
         hr_trace_ctx_init(&w->tc, scene);
         w->tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
-        w->tc.min_weight = job->opt.min_weight;
+        w->tc.min_weight = job->opt.exact ? 0.0 : job->opt.min_weight > 0.0 ? job->opt.min_weight
+                                                                            : hr_default_min_weight();
         w->tc.cancelled = &job->cancelled;
+        w->tc.cancel_flag = job->opt.cancel;
         w->tc.poll = poll_progress;
         w->tc.poll_user = job;
         if (adaptive) {
@@ -373,7 +400,8 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     if (!ready) st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     else if (job->failure) st = hr_error(ctx, job->failure, "render: a shape failed while tracing: %s",
                                          hr_status_name(job->failure));
-    else if (atomic_load(&job->cancelled)) st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
+    else if (atomic_load(&job->cancelled) || caller_cancelled(job))
+        st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
     if (st == HR_OK && stats && stats->struct_size >= sizeof(uint32_t)) {
         hr_render_stats s = {0};
         s.struct_size = stats->struct_size < sizeof s ? stats->struct_size : (uint32_t)sizeof s;

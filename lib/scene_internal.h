@@ -76,6 +76,7 @@ typedef struct hr_trace_ctx {
      * HR_POLL_INTERVAL shade calls the renderer's `poll` runs (it may call
      * the progress callback); shade returns at once while `*cancelled`. */
     const atomic_int *cancelled; /* NULL: nothing can cancel (public queries) */
+    const int32_t *cancel_flag;  /* hr_render_options.cancel (may be NULL) */
     void (*poll)(void *user);
     void *poll_user;
     uint32_t shade_calls;
@@ -121,5 +122,8 @@ int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doub
 /* 1 if light L can add nothing to a material with these HR_MAT_* flags. */
 int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags);
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
+/* 2^-HR_DEFAULT_MIN_WEIGHT_BITS: the cut-off renders and hr_scene_shade
+ * apply unless told otherwise (render.h). */
+static inline double hr_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }
 
 #endif

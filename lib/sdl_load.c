@@ -2,17 +2,17 @@
  * into tokens, run the reader over a new scene, frame a camera if the file
  * set none. On any error the partial scene is destroyed and out->scene is
  * NULL. */
-#include <errno.h>
 #include <stddef.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "errors.h"
 #include "load_result.h"
+#include "sdl_diag.h"
 #include "sdl_lexer.h"
 #include "sdl_reader.h"
 #include "sdl_source.h"
+#include "text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const char *name,
                             const char *base_dir, hr_sdl_result *result)
@@ -34,6 +34,13 @@ static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const
         } else {
             hr_camera_default(&result->camera);
             st = hr_scene_frame_camera(scene, &result->camera);
+            if (st) {
+                /* Framing happens after the last command: the message
+                 * names the object, the place is the end of the file. */
+                sdl_located end;
+                sdl_source_next(&src, &end);
+                st = sdl_error(&src, st, end, "%s", hr_context_last_error(ctx));
+            }
         }
     }
     sdl_reader_release(&reader);
@@ -75,49 +82,6 @@ HR_API hr_status hr_sdl_load_string(hr_context *ctx, const char *text, const cha
     return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, out);
 }
 
-/* The whole file, read in pieces: its size is not asked first, so pipes and
- * files that change size work too. */
-static hr_status read_file(hr_context *ctx, const char *path, char **text, size_t *length)
-{
-    *text = NULL;
-    *length = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the scene file: %s",
-                           path, strerror(errno));
-    size_t capacity = 0, used = 0;
-    char *data = NULL;
-    hr_status st = HR_OK;
-    for (;;) {
-        if (used == capacity) {
-            size_t grown_capacity = capacity ? 2 * capacity : 64 * 1024;
-            char *grown = grown_capacity > capacity ? realloc(data, grown_capacity) : NULL;
-            if (!grown) {
-                st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
-                break;
-            }
-            data = grown;
-            capacity = grown_capacity;
-        }
-        size_t n = fread(data + used, 1, capacity - used, f);
-        used += n;
-        if (n == 0) {
-            if (ferror(f))
-                st = hr_error_at(ctx, HR_ERROR_IO, path, 0, 0,
-                                 "%s: cannot read the scene file: %s", path, strerror(errno));
-            break;
-        }
-    }
-    fclose(f);
-    if (st) {
-        free(data);
-        return st;
-    }
-    *text = data;
-    *length = used;
-    return HR_OK;
-}
-
 /* "a/b/c.dat" -> "a/b"; "c.dat" -> "."; "/c.dat" -> "/". */
 static char *directory_of(const char *path)
 {
@@ -140,7 +104,7 @@ HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_resu
     if (!path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_file: NULL path");
     char *text;
     size_t length;
-    if ((st = read_file(ctx, path, &text, &length))) return st;
+    if ((st = hr_scene_file_read(ctx, path, "scene file", &text, &length))) return st;
     char *base_dir = directory_of(path);
     if (!base_dir)
         st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");

@@ -102,10 +102,14 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
                       double weight, int forced)
 {
     const hr_scene *s = tc->scene;
+    /* A shape failed: the render fails, so the rest of its rays are not
+     * traced (a failing shape may be slow to fail: one that renders). */
+    if (tc->status) return rgb(0, 0, 0);
     if (tc->cancelled) {
         if (tc->poll && ++tc->shade_calls % HR_POLL_INTERVAL == 0) tc->poll(tc->poll_user);
         /* The image is thrown away: unwind as fast as possible. */
         if (atomic_load_explicit(tc->cancelled, memory_order_relaxed)) return rgb(0, 0, 0);
+        if (tc->cancel_flag && __atomic_load_n(tc->cancel_flag, __ATOMIC_RELAXED)) return rgb(0, 0, 0);
     }
     hr_hit h;
     if (!hr_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;

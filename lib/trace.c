@@ -10,6 +10,7 @@
 
 #include "context_internal.h"
 #include "errors.h"
+#include "query_nesting.h"
 #include "scene_internal.h"
 #include "transform_inline.h"
 #include "vec.h"
@@ -133,6 +134,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
      * ways, so every shape sees a well-scaled ray and no shape needs its own
      * guard. Normal rays skip this with one comparison. */
     int t_exp = v3_rescale_exponent(args.ray.dir);
+    const double ray_tmin = tmin, ray_tmax = tmax; /* the caller's window */
     if (t_exp) {
         args.ray.dir = v3_ldexp(args.ray.dir, -t_exp);
         tmin = ldexp(tmin, t_exp);
@@ -167,7 +169,13 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
          * answers carry only t. */
         if (!(h.t > tmin && h.t < tmax)) continue;
-        if (t_exp) h.t = ldexp(h.t, -t_exp); /* ldexp by 0 is the identity */
+        /* Scaling back may overflow to infinity or round onto an end of the
+         * window (the scaled window's ends were rounded too): the hit must be
+         * inside the caller's window, checked on the t it will be given. */
+        if (t_exp) {
+            h.t = ldexp(h.t, -t_exp);
+            if (!(h.t > ray_tmin && h.t < ray_tmax && isfinite(h.t))) continue;
+        }
         if (mode == HR_TRACE_ANY) {
             out->hits[start] = h;
             out->count = start + 1;
@@ -176,8 +184,10 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
         if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
         /* A composite's hit names its leaf; one naming no object of the scene
          * is taken as the composite's own, so shading never indexes past the
-         * object list. */
-        if (!composite || h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
+         * object list. Any other shape leaves `object` unset: it is not read
+         * (not even by a branch the compiler may merge, which memcheck flags). */
+        if (!composite) h.object = obj->index;
+        else if (h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
         /* Normals may have any non-zero length: bring them to a safe scale
          * (exactly, by a power of two) before and after the transform, so
          * neither M^-T nor normalising overflows or underflows. */
@@ -330,8 +340,10 @@ static hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, 
     return HR_OK;
 }
 
+/* Ends a query begun with hr_query_enter. */
 static hr_status finish_query(hr_trace_ctx *tc)
 {
+    hr_query_leave();
     hr_status st = tc->status;
     hr_trace_ctx_release(tc);
     if (st) return hr_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
@@ -344,6 +356,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     hr_status st = check_query(s, ray, tmin, tmax);
     if (st) return st;
     if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
+    if ((st = hr_query_enter(s->ctx, "first hit"))) return st;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
     /* One ray: the list of candidate hits lives on the stack, so the query
@@ -381,6 +394,7 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     if (st) return st;
     if (!out || out->count < 0 || out->capacity < 0 || out->count > out->capacity)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "intersection: NULL or not initialised");
+    if ((st = hr_query_enter(s->ctx, "all hits"))) return st;
     out->count = 0;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
@@ -400,11 +414,13 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
     hr_status st = check_query(s, ray, 0, INFINITY);
     if (st) return st;
     if (!out) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: NULL output");
-    hr_trace_ctx tc;
-    hr_trace_ctx_init(&tc, s);
     if (max_depth > HR_MAX_RECURSION_DEPTH)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
                         (int)max_depth, HR_MAX_RECURSION_DEPTH);
+    if ((st = hr_query_enter(s->ctx, "shade"))) return st;
+    hr_trace_ctx tc;
+    hr_trace_ctx_init(&tc, s);
+    tc.min_weight = hr_default_min_weight(); /* as a render's default */
     int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
     /* The colour does not depend on the direction's length, but shapes and
      * shade's normalising square it: bring it near 1 (exactly, by a power

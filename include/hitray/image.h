@@ -45,6 +45,30 @@ HR_API void hr_image_write_options_default(hr_image_write_options *o);
 HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const char *path,
                                 const hr_image_write_options *options);
 
+/* Several files written all or nothing, for a program whose one command
+ * makes several outputs (an image, its EXR twin, its statistics): each file
+ * is written in full, and synced, to a temporary file beside its target as
+ * it is added, so a full disk or an unwritable place fails there, with none
+ * of the batch's files put in place. Commit then puts every file in place
+ * (one rename each, in the order added). Until commit nothing of the batch
+ * is visible; destroying an uncommitted batch removes its temporary files.
+ * Targets are checked as hr_image_write checks them (not a regular file, or
+ * read-only: refused). A rename that fails during commit (the directory
+ * removed meanwhile) is reported and the files after it are discarded;
+ * those before it stay in place. */
+typedef struct hr_file_batch hr_file_batch;
+HR_API hr_status hr_file_batch_create(hr_context *ctx, hr_file_batch **out);
+/* Write `image` as hr_image_write would write it to `path`. */
+HR_API hr_status hr_file_batch_add_image(hr_file_batch *batch, const hr_image *image, const char *path,
+                                         const hr_image_write_options *options);
+/* Write `size` bytes of `data` to `path`. */
+HR_API hr_status hr_file_batch_add_bytes(hr_file_batch *batch, const char *path, const void *data,
+                                         size_t size);
+/* Put every file in place; the batch is then empty (and may be reused). */
+HR_API hr_status hr_file_batch_commit(hr_file_batch *batch);
+/* Discard what is not committed and free the batch (NULL: nothing). */
+HR_API void hr_file_batch_destroy(hr_file_batch *batch);
+
 #ifdef __cplusplus
 }
 #endif

@@ -54,12 +54,40 @@ typedef struct hr_render_options {
                                   a full render; the others get the mean of
                                   their corners. Within [0, 1]; needs
                                   samples_per_pixel >= 2 and block_size 1. */
-    double min_weight;         /* > 0: contribution cut-off. A reflected or
+    double min_weight;         /* Contribution cut-off. A reflected or
                                   transmitted ray whose weight (the product
                                   of the reflectivities and transparencies
                                   along its path) is below this is not
-                                  traced. Within [0, 1]. */
+                                  traced. Within [0, 1]; 0 (the default):
+                                  2^-HR_DEFAULT_MIN_WEIGHT_BITS, unless
+                                  `exact`. */
+    /* Added with the default cut-off (issue 16). */
+    int32_t exact;             /* 1: trace every contribution, however small
+                                  (min_weight must be 0): a deep scene of
+                                  mirrors and glass may then take time
+                                  exponential in the depth. 0 (default): the
+                                  cut-off above. */
+    int32_t reserved2;
+    const int32_t *cancel;     /* may be NULL. A flag the caller may set to
+                                  non-zero from any thread (an atomic store)
+                                  to cancel: read before every ray, so the
+                                  render stops within one ray of each thread,
+                                  however slow its shapes (the progress
+                                  callback is asked only every 65536 rays).
+                                  hr_render then returns HR_ERROR_CANCELLED. */
 } hr_render_options;
+
+/* The cut-off a render applies by default, 2^-24: POV-Ray's adc_bailout made
+ * small enough to be invisible: a ray of weight below 2^-24 brings back at
+ * most 2^-24 of its colour, under half a unit in the last place of a float
+ * pixel of the same brightness (and 1/16384 of one 8-bit step). Depth
+ * bounds the number of rays a pixel can cast to 2^depth; this bounds it by
+ * the weights as well, so a scene of depth 1000 with reflectivity and
+ * transparency 0.5 everywhere casts at most about 2^24 rays per pixel
+ * instead of 2^1000. The shipped and benchmark scenes never come near it:
+ * no ray of theirs is cut (docs/limits.md). */
+#define HR_DEFAULT_MIN_WEIGHT_BITS 24 /* the cut-off is 2^-24 (an integer, so
+                                        every binding can read it) */
 HR_API void hr_render_options_default(hr_render_options *o);
 
 typedef struct hr_render_stats {

@@ -60,6 +60,22 @@ typedef struct hr_light {
  * balanced trees, ((a | b) | (c | d)), which are log2(leaves) deep. */
 #define HR_MAX_COMPOSITE_DEPTH 1000
 
+/* A shape's hit may itself query a scene (hr_scene_first_hit, all_hits,
+ * shade, hr_render): a shape written in Python can call back into the scene
+ * being traced. Each such query nests inside the one that called the shape,
+ * on the same thread (a render's threads carry the render's level): past this
+ * many levels a query is refused with HR_ERROR_STATE, so a shape that
+ * queries its own scene fails with an error instead of exhausting the stack
+ * and memory. */
+#define HR_MAX_QUERY_NESTING 16
+
+/* The calling thread's nesting level (0 outside any query), and setting it:
+ * for a binding that runs hr_render or a query on a thread of its own on
+ * behalf of a caller, which gives that thread the caller's level so the
+ * bound still holds. */
+HR_API int32_t hr_query_nesting(void);
+HR_API void hr_query_set_nesting(int32_t level);
+
 /* Scene-wide settings, with SDL's defaults from hr_scene_globals_default. */
 typedef struct hr_scene_globals {
     uint32_t struct_size;

@@ -4,10 +4,12 @@
  * (his files end in ".3vn"). */
 #define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "mesh.h"
 #include "mesh_file.h"
@@ -41,9 +43,14 @@ static hr_status read_all(const hr_host *host, const char *path, char **text, si
 {
     *text = NULL;
     *length = 0;
-    FILE *f = fopen(path, "rb");
+    /* O_NONBLOCK: a FIFO with no writer is refused below instead of
+     * waited on (fopen would block in open). */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    FILE *f = fd >= 0 ? fdopen(fd, "rb") : NULL;
     if (!f) {
-        snprintf(error, error_size, "cannot read mesh file '%s': %s", path, describe_errno(errno));
+        int err = errno;
+        if (fd >= 0) close(fd);
+        snprintf(error, error_size, "cannot read mesh file '%s': %s", path, describe_errno(err));
         return HR_ERROR_IO;
     }
     struct stat info;

@@ -95,14 +95,18 @@ hr_status mesh_text_error(mesh_text *t, const mesh_token *tok, const char *what,
     va_start(ap, what);
     vsnprintf(message, sizeof message, what, ap);
     va_end(ap);
-    /* The token as written, cut at 40 bytes, anything unprintable as '?'. */
-    char found[64];
+    /* The token cut at MESH_QUOTED_BYTES, anything but printable ASCII (and
+     * the quote and backslash) escaped as \xNN: the file named may be any
+     * file (`mesh /etc/shadow`), and a message must not pass on more of it
+     * than a mistyped number needs, nor bytes a terminal would act on. */
+    char found[4 * MESH_QUOTED_BYTES + 8];
     if (tok && tok->length) {
-        size_t n = tok->length < 40 ? tok->length : 40, k = 0;
+        size_t n = tok->length < MESH_QUOTED_BYTES ? tok->length : MESH_QUOTED_BYTES, k = 0;
         found[k++] = '\'';
         for (size_t i = 0; i < n; i++) {
             unsigned char c = (unsigned char)tok->start[i];
-            found[k++] = c >= 0x20 && c < 0x7f ? (char)c : '?';
+            if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\') found[k++] = (char)c;
+            else k += (size_t)snprintf(found + k, sizeof found - k, "\\x%02x", c);
         }
         if (tok->length > n) found[k++] = '.', found[k++] = '.', found[k++] = '.';
         found[k++] = '\'';

@@ -44,8 +44,12 @@ void mesh_text_skip_line(mesh_text *t);
 size_t mesh_text_remaining(const mesh_text *t);
 int mesh_token_is(const mesh_token *tok, const char *word);
 
+/* The most of a token a message quotes. */
+#define MESH_QUOTED_BYTES 12
+
 /* Writes "shown:line: <what> (found 'token')" (or "found end of file", or
- * "found end of line") and returns HR_ERROR_PARAMETER. */
+ * "found end of line") and returns HR_ERROR_PARAMETER. The token is cut at
+ * MESH_QUOTED_BYTES ("...") and escaped (\xNN). */
 hr_status mesh_text_error(mesh_text *t, const mesh_token *tok, const char *what, ...)
     __attribute__((format(printf, 3, 4)));
 

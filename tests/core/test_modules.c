@@ -1,7 +1,12 @@
 /* The module loader: loading by path, refusals naming the module's path,
  * parameter checks naming the parameter, an older (shorter) class table,
  * directory scanning, and classes registered in process. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, symlink */
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <hitray/hitray.h>
 
@@ -142,6 +147,43 @@ static void test_scan(void)
     hr_context_destroy(ctx);
 }
 
+/* A directory every user may write to is searched, but nothing in it is
+ * loaded: its modules are listed as refused, saying why (issue 16). */
+static void test_world_writable_dir(void)
+{
+    char dir[] = "/tmp/hitray_ww_XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    char link[128];
+    snprintf(link, sizeof link, "%s/probe.so", dir);
+    CHECK(symlink(PROBE, link) == 0);
+    CHECK(chmod(dir, 0777) == 0);
+    hr_context *ctx;
+    CHECK_OK(hr_context_create(&ctx));
+    CHECK_OK(hr_context_add_shape_dir(ctx, dir));
+    const hr_shape_class *cls;
+    CHECK(hr_context_find_shape_class(ctx, "probeSphere", &cls, NULL) == HR_ERROR_MODULE);
+    CHECK(contains(hr_context_last_error(ctx), "writable by every user"));
+    int found = 0;
+    for (int32_t i = 0; i < hr_context_module_count(ctx); i++) {
+        hr_module_entry e = {0};
+        e.struct_size = sizeof e;
+        CHECK_OK(hr_context_module(ctx, i, &e));
+        if (strcmp(e.path, link) != 0) continue;
+        found = 1;
+        CHECK(!e.loaded && contains(e.error, "is writable by every user"));
+    }
+    CHECK(found);
+    hr_context_destroy(ctx);
+    /* Writable by its owner only, the same directory is searched as usual. */
+    CHECK(chmod(dir, 0755) == 0);
+    CHECK_OK(hr_context_create(&ctx));
+    CHECK_OK(hr_context_add_shape_dir(ctx, dir));
+    CHECK_OK(hr_context_find_shape_class(ctx, "probeSphere", &cls, NULL));
+    hr_context_destroy(ctx);
+    remove(link);
+    rmdir(dir);
+}
+
 /* A module with a short class table (no first_hit/any_hit fields, garbage
  * after its declared size) works for every query, shadows included. */
 static void test_old_layout(void)
@@ -240,6 +282,7 @@ int main(void)
     test_load_and_params();
     test_refusals();
     test_scan();
+    test_world_writable_dir();
     test_old_layout();
     test_registered();
     return hr_test_end();

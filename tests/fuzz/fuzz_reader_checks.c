@@ -1,6 +1,7 @@
 /* The checks of a scene file reader's answer (fuzz_reader_checks.h). */
 #include "fuzz_reader_checks.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,6 +53,26 @@ static int first_among(const hr_hit *first, const hr_intersection *all)
     return 0;
 }
 
+/* Whether the ray's origin, far out, is rounded by more than the thickness
+ * of `object`: an eye 7e18 away (a scene framed around objects 1e11 apart)
+ * is known to within 1024 units, so for a torus 2e-4 thick the world-space
+ * box test (the first-hit query) and the object's own rounded copy of the
+ * ray (the all-hits query) may disagree on whether the line meets it at
+ * all, each within rounding of the line. Then which hit comes first is not
+ * checked, only the hits themselves. Origins within 1e12 of the world's
+ * centre are always checked in full (thin objects, squares, included). */
+static int origin_blurs_object(const hr_scene *scene, const hr_ray *ray, int64_t object)
+{
+    hr_object_info info;
+    memset(&info, 0, sizeof info);
+    info.struct_size = sizeof info;
+    if (hr_scene_object_info(scene, object, &info) != HR_OK) return 0;
+    const hr_bounds *b = &info.world_bounds;
+    const double thickness = fmin(fmin(b->hi.x - b->lo.x, b->hi.y - b->lo.y), b->hi.z - b->lo.z);
+    const double o = fmax(fmax(fabs(ray->origin.x), fabs(ray->origin.y)), fabs(ray->origin.z));
+    return o > 1e12 && 64.0 * DBL_EPSILON * o > thickness;
+}
+
 static void cast(const char *tag, const hr_scene *scene, hr_ray ray)
 {
     hr_hit first;
@@ -69,7 +90,8 @@ static void cast(const char *tag, const hr_scene *scene, hr_ray ray)
         }
         if (found != (all.count > 0) || (found && !hit_finite(&first)))
             fuzz_fail("%s: first hit found %d, all hits %d", tag, (int)found, (int)all.count);
-        if (found && !first_among(&first, &all))
+        if (found && !first_among(&first, &all) &&
+            !origin_blurs_object(scene, &ray, all.hits[0].object))
             fuzz_fail("%s: first hit t = %a (object %d), first of all hits t = %a (object %d)", tag,
                       first.t, (int)first.object, all.hits[0].t, (int)all.hits[0].object);
     }

@@ -3,9 +3,9 @@
 # runs them; see FUZZING.md.
 #
 #   run_fuzzers.sh [--build DIR] [--seconds N] [--runs N] [--replay] [--seed S] [--jobs N]
-#                  [HARNESS...]
+#                  [--merge] [HARNESS...]
 #
-# Each harness (all of them when none is named: shapes csg sdl nff mesh) runs
+# Each harness (all of them when none is named: shapes csg sdl nff mesh scene) runs
 # for N seconds (default 60) starting from its committed seeds in
 # tests/fuzz/corpus/<harness>/. New inputs go to DIR/corpus/<harness>/ and
 # crashes to DIR/artifacts/<harness>/, so the source tree is never written
@@ -16,7 +16,10 @@
 # first), and --runs N stops after N inputs (--seconds still caps the
 # time): together they make `make test-fuzz` walk the same inputs on every
 # machine, a slower one only stopping earlier on the same path. CI checks
-# that nothing regressed; exploring is `make fuzz`'s job.
+# that nothing regressed; exploring is `make fuzz`'s job. --merge (what
+# `make fuzz-long` uses) then merges the inputs a harness found into its
+# committed corpus, keeping only those that reach new coverage (libFuzzer's
+# -merge=1): the one mode that writes into the source tree.
 # Exits non-zero, naming the harness and the input that broke it, on any
 # crash, sanitizer report, timeout, leak or contract break.
 set -eu
@@ -24,6 +27,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 build=build-fuzz
 seconds=60
 replay=""
+merge=""
 seed=""
 runs=""
 jobs=${FUZZ_JOBS:-2}
@@ -33,15 +37,16 @@ while [ $# -gt 0 ]; do
     --build) build=$2; shift 2 ;;
     --seconds) seconds=$2; shift 2 ;;
     --replay) replay=1; shift ;;
+    --merge) merge=1; shift ;;
     --seed) seed=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
-    -h | --help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h | --help) sed -n '2,26p' "$0"; exit 0 ;;
     -*) echo "run_fuzzers.sh: unknown option $1" >&2; exit 2 ;;
     *) harnesses="$harnesses $1"; shift ;;
     esac
 done
-[ -n "$harnesses" ] || harnesses="shapes csg sdl nff mesh"
+[ -n "$harnesses" ] || harnesses="shapes csg sdl nff mesh scene"
 case "$build" in /*) ;; *) build="$root/$build" ;; esac
 
 # Per input: a hang is a bug (the readers must never hang), and so is a
@@ -81,6 +86,7 @@ for h in $harnesses; do
     mkdir -p "$found" "$artifacts"
     common="-timeout=$timeout_s -rss_limit_mb=$rss_mb -artifact_prefix=$artifacts/"
     dict="$root/tests/fuzz/$h.dict"
+    [ "$h" = scene ] && dict="$root/tests/fuzz/sdl.dict" # the same language
     [ -f "$dict" ] && common="$common -dict=$dict"
     [ -n "$seed" ] && common="$common -seed=$seed"
     if [ -n "$replay" ]; then
@@ -101,6 +107,17 @@ for h in $harnesses; do
         >"$log" 2>&1; then
         grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|stat::new_units_added" "$log" |
             sed "s/^/run_fuzzers: $h: /"
+        if [ -n "$merge" ]; then
+            before=$(ls "$seeds" | wc -l)
+            # shellcheck disable=SC2086
+            "$binary" $common -merge=1 "$seeds" "$found" >"$log.merge" 2>&1 || {
+                tail -n 20 "$log.merge" >&2
+                echo "run_fuzzers: $h: FAILED merging into $seeds (log $log.merge)" >&2
+                failed="$failed $h"
+                continue
+            }
+            echo "run_fuzzers: $h: merged $(($(ls "$seeds" | wc -l) - before)) new inputs into tests/fuzz/corpus/$h"
+        fi
     else
         tail -n 60 "$log" >&2
         artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -n 1)

@@ -1,10 +1,14 @@
 /* Every error of the NFF reader: the status, the message (file:line:col
  * and what was expected), the place kept for hr_context_last_error_info,
  * and no scene. */
+#define _POSIX_C_SOURCE 200809L
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <zlib.h>
 
 #include <hitray/hitray.h>
 
@@ -176,6 +180,48 @@ static void test_truncated_gzip(void)
     remove(path);
 }
 
+/* Files are read as SDL files are (lib/text_file.h): a device or a FIFO is
+ * refused at once, not read for ever, and a gzip file whose text inflates
+ * past the scene size limit is refused rather than inflated into memory. */
+static void test_file_limits(void)
+{
+    hr_sdl_result r;
+    memset(&r, 0, sizeof r);
+    r.struct_size = sizeof r;
+    CHECK(hr_nff_load_file(ctx, "/dev/zero", &r) == HR_ERROR_IO);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), "not a regular file (a device)") != NULL, "%s",
+              hr_context_last_error(ctx));
+    const char *fifo = HR_TEST_BINARY_DIR "/tests/fifo.nff";
+    remove(fifo);
+    if (mkfifo(fifo, 0600) == 0) {
+        CHECK(hr_nff_load_file(ctx, fifo, &r) == HR_ERROR_IO);
+        CHECK_MSG(strstr(hr_context_last_error(ctx), "not a regular file (a FIFO)") != NULL, "%s",
+                  hr_context_last_error(ctx));
+        remove(fifo);
+    }
+    /* 200,000 comment bytes in a gzip of about a kilobyte, under a limit
+     * of 100,000. */
+    const char *path = HR_TEST_BINARY_DIR "/tests/bomb.nff.gz";
+    gzFile g = gzopen(path, "wb9");
+    CHECK(g != NULL);
+    if (!g) return;
+    char line[1001];
+    memset(line, '#', sizeof line - 1);
+    line[sizeof line - 2] = '\n';
+    line[sizeof line - 1] = '\0';
+    for (int i = 0; i < 200; i++) gzputs(g, line);
+    gzclose(g);
+    setenv("HITRAY_MAX_SCENE_BYTES", "100000", 1);
+    CHECK(hr_nff_load_file(ctx, path, &r) == HR_ERROR_IO);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), "larger than 100000 bytes, the scene size limit") !=
+                  NULL,
+              "%s", hr_context_last_error(ctx));
+    unsetenv("HITRAY_MAX_SCENE_BYTES");
+    CHECK(hr_nff_load_file(ctx, path, &r) == HR_OK && r.scene != NULL);
+    hr_scene_destroy(r.scene);
+    remove(path);
+}
+
 /* A concave polygon of more vertices than ear clipping is given time for
  * is refused, naming its line, before it is cut. */
 static void test_huge_concave_polygon(void)
@@ -208,6 +254,7 @@ int main(void)
     CHECK_OK(hr_context_create(&ctx));
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) check_case(&cases[i]);
     test_arguments();
+    test_file_limits();
     test_truncated_gzip();
     test_huge_concave_polygon();
     hr_context_destroy(ctx);

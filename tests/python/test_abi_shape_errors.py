@@ -67,6 +67,13 @@ def test_an_exception_in_hit_is_an_error_with_its_message(ctx):
     ([(2.0, (0, 1), True)], "hit 0 must be (t, (nx, ny, nz), entering)"),
     ([(2.0,)], "hit 0 must be (t, (nx, ny, nz), entering)"),
     ([("soon", (0, 0, 1), True)], "hit 0 must be (t, (nx, ny, nz), entering)"),
+    # Issue 16: float() and truth values would take these.
+    ([("4", (0, 0, 1), True)], "hit 0 must be (t, (nx, ny, nz), entering), not ('4'"),
+    ([(True, (0, 0, 1), True)], "hit 0 must be (t, (nx, ny, nz), entering)"),
+    ([(2.0, (0, "1", 1), True)], "hit 0 must be (t, (nx, ny, nz), entering)"),
+    ([(2.0, (0, 0, 1), "yes")], "hit 0 must be (t, (nx, ny, nz), entering), not (2.0"),
+    ([(2.0, (0, 0, 1), None)], "hit 0 must be (t, (nx, ny, nz), entering)"),
+    ([(2.0, (0, 0, 1), 2)], "hit 0 must be (t, (nx, ny, nz), entering)"),
     ([(2.0, (0, 0, 1), True, 1)], "hit 0 names surface 1; the class has 0..0"),
     ([(2.0, (0, 0, 1), True, 0.0)], "hit 0 names surface 0.0"),
     ([(1e308, (0, 0, 1), True)], "is beyond double's range"),
@@ -78,9 +85,9 @@ def test_broken_hits_are_refused_by_name(ctx, hits, complaint):
     assert complaint in str(e)
 
 
-def test_hits_may_be_any_sequence_and_entering_any_truth_value(ctx):
+def test_hits_may_be_any_sequence_and_entering_a_bool_or_0_or_1(ctx):
     abi.register_shape("loose", shape_returning(
-        lambda o, d, tmin, tmax: ([1.0, [0, 0, 2], 1], (2, (0, 0, -1), None))), context=ctx)
+        lambda o, d, tmin, tmax: ([1.0, [0, 0, 2], 1], (2, (0, 0, -1), False))), context=ctx)
     scene, _ = load_sdl(ctx, "loose\n")
     assert all_hits(ctx, scene, (0, 0, 5), (0, 0, -1)) == [(1.0, 1, 0), (2.0, 0, 0)]
     destroy(scene)

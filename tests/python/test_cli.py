@@ -13,6 +13,7 @@ import pathlib
 import pty
 import select
 import signal
+import stat
 import struct
 import subprocess
 import time
@@ -603,6 +604,7 @@ def error_cases(tmp_path, scene):
         "adaptive at 1 spp": ["render", scene, "-o", out, "--adaptive", "0.1"],
         "adaptive with blocks": ["render", scene, "-o", out, "--spp", "4", "--adaptive", "0.1", "--block", "2"],
         "min-weight negative": ["render", scene, "-o", out, "--min-weight", "-0.1"],
+        "exact with a min-weight": ["render", scene, "-o", out, "--exact", "--min-weight", "0.1"],
         "savings without scene": ["savings", "--size", "4x4"],
         "savings at 1 spp": ["savings", scene, "--spp", "1"],
         "savings bad threshold": ["savings", scene, "--adaptive", "x"],
@@ -655,7 +657,64 @@ def test_stats_json_write_failure_keeps_the_old_file(scene, tmp_path):
     assert r.returncode == 1, r.stderr
     assert len(r.stderr.splitlines()) == 1 and str(stats) in r.stderr
     assert stats.read_text() == '{"old": true}\n'
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["o.ppm", "scene.sdl", "stats.json"]
+    # All outputs of one command or none: the image that did fit is not left.
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.sdl", "stats.json"]
+
+
+def test_an_exr_that_fails_on_a_full_disk_leaves_no_png(scene, tmp_path):
+    """Issue 16, defect 8: the PNG was written, then the EXR failed, and
+    the command exited 1 leaving the new PNG beside the old EXR."""
+    import resource
+
+    probe = run("render", scene, "-o", tmp_path / "probe.png", "--exr", tmp_path / "probe.exr",
+                "--size", "32x24")
+    assert probe.returncode == 0, probe.stderr
+    png_size = (tmp_path / "probe.png").stat().st_size
+    exr_size = (tmp_path / "probe.exr").stat().st_size
+    assert png_size < exr_size
+    for name in ("probe.png", "probe.exr"):
+        (tmp_path / name).unlink()
+    (tmp_path / "o.png").write_bytes(b"old png")
+
+    def small_files():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # write() fails with EFBIG instead
+        resource.setrlimit(resource.RLIMIT_FSIZE, (png_size, png_size))  # the PNG fits, the EXR not
+
+    r = subprocess.run([str(HITRAY), "render", str(scene), "-o", str(tmp_path / "o.png"), "--exr",
+                        str(tmp_path / "o.exr"), "--size", "32x24"], capture_output=True, text=True,
+                       preexec_fn=small_files, timeout=120)
+    assert r.returncode == 1, r.stderr
+    assert len(r.stderr.splitlines()) == 1 and "o.exr" in r.stderr
+    assert (tmp_path / "o.png").read_bytes() == b"old png"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["o.png", "scene.sdl"]
+
+
+def test_a_link_to_a_special_file_is_not_replaced(scene, tmp_path):
+    """Issue 16, defect 4: a link to /dev/full was followed and the device
+    replaced by a regular PNG file. The test links to a FIFO of its own
+    instead (replacing a real device is what an unfixed build would do)."""
+    fifo = tmp_path / "fifo.png"
+    link = tmp_path / "out.png"
+    os.mkfifo(fifo)
+    os.symlink(fifo, link)
+    for target in (link, fifo):
+        r = run("render", scene, "-o", target, "--size", "4x4")
+        assert r.returncode == 1
+        assert r.stderr.strip().endswith("not a regular file (a FIFO)"), r.stderr
+        assert len(r.stderr.splitlines()) == 1
+    assert os.path.islink(link) and stat.S_ISFIFO(os.stat(fifo).st_mode)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fifo.png", "out.png", "scene.sdl"]
+
+
+def test_a_read_only_target_is_refused(scene, tmp_path):
+    out = tmp_path / "out.png"
+    out.write_bytes(b"keep me")
+    out.chmod(0o444)
+    r = run("render", scene, "-o", out, "--size", "4x4")
+    assert r.returncode == 1
+    assert "read-only (mode 0444)" in r.stderr and len(r.stderr.splitlines()) == 1
+    assert out.read_bytes() == b"keep me"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.png", "scene.sdl"]
 
 
 def signal_while_writing(tmp_path, signo):
@@ -698,6 +757,17 @@ def test_ctrl_c_while_writing_leaves_no_temporary_file(tmp_path):
     assert returncode == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["big.png", "one.sdl"]
     assert png_header(out)[:3] == (4096, 4096, 16)
+
+
+def test_sigkill_while_writing_leaves_no_temporary_file(tmp_path):
+    """Issue 16, defect 9: SIGKILL cannot be held, and killed mid-write the
+    process left its '.big.png.XXXXXX' beside the target. The file being
+    written has no name (O_TMPFILE) until it is complete, so nothing is left
+    where the filesystem has O_TMPFILE (tmpfs, ext4, xfs, btrfs do)."""
+    returncode, out = signal_while_writing(tmp_path, signal.SIGKILL)
+    assert returncode == -signal.SIGKILL
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names in (["one.sdl"], ["big.png", "one.sdl"]), names
 
 
 def test_sigterm_while_writing_waits_for_the_file(tmp_path):
@@ -748,3 +818,39 @@ def test_render_summary_that_cannot_be_written_is_an_error(scene, tmp_path):
                            stdout=full, stderr=subprocess.PIPE, text=True, timeout=120)
     assert r.returncode == 1
     assert len(r.stderr.splitlines()) == 1 and r.stderr.startswith("hitray: ")
+
+
+def test_subnormal_numbers_are_numbers_as_in_sdl(tmp_path):
+    """Issue 16: strtod's ERANGE on underflow made the CLI call 1e-310 "not
+    3 comma-separated numbers"; the SDL reader takes it."""
+    scene = write_sdl(tmp_path, "s.sdl", "sphere\n")
+    r = run("hits", scene, "--origin", "0,0,7", "--dir", "0,1e-310,-1")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["t"] == 6.0
+    r = run("hits", scene, "--origin", "0,0,7", "--dir", "0,1e400,-1")
+    assert r.returncode == 1 and "--dir" in r.stderr
+
+
+def test_framing_a_scene_too_far_names_the_object(tmp_path):
+    """Issue 16: `translate 1e308 0 0 sphere` with no camera said only that
+    the camera's numbers were not finite; the user wrote no camera."""
+    scene = write_sdl(tmp_path, "far.sdl", "sphere\ntranslate 1e308 0 0 cube\n")
+    r = run("render", scene, "-o", tmp_path / "o.png", "--size", "4x4")
+    assert r.returncode == 1 and len(r.stderr.splitlines()) == 1
+    assert "object 1 (a 'cube')" in r.stderr and "give the scene a camera" in r.stderr, r.stderr
+
+
+def test_exact_renders_the_same_image_as_the_default_cut_off(tmp_path):
+    """On a scene whose paths never get fainter than 2^-24, --exact (no
+    cut-off) and the default cut-off give the same pixels and rays."""
+    scene = write_sdl(tmp_path, "mirror.sdl", "maxRecursionDepth 5 minReflectivity 0\n"
+                      "light 4 6 5 1 1 1\nreflectivity 0.3 diffuse .2 .2 .2 sphere\n"
+                      "push translate 2 0 0 reflectivity 0.3 cube pop\n")
+    a, b = tmp_path / "a.pfm", tmp_path / "b.pfm"
+    ra = run("render", scene, "-o", a, "--size", "16x12", "--stats-json", tmp_path / "a.json")
+    rb = run("render", scene, "-o", b, "--size", "16x12", "--exact", "--stats-json", tmp_path / "b.json")
+    assert ra.returncode == 0 and rb.returncode == 0, ra.stderr + rb.stderr
+    assert a.read_bytes() == b.read_bytes()
+    sa, sb = (json.loads((tmp_path / n).read_text()) for n in ("a.json", "b.json"))
+    assert sa["rays_cut"] == sb["rays_cut"] == 0
+    assert [sa[k] for k in ("primary", "shadow", "reflected")] == [sb[k] for k in ("primary", "shadow", "reflected")]

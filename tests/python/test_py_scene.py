@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import hitray
-from conftest import TWO_SPHERES_SDL
+from conftest import TWO_SPHERES_SDL, require_classes
 
 
 def two_spheres_in_python():
@@ -213,3 +213,20 @@ def test_a_refused_boolean_leaves_no_operand_behind():
         scene.add(hitray.Shape("nosuchboolean", a=hitray.Sphere(), b=hitray.Cube()))
     assert [o.shape for o in scene.objects] == ["sphere"]
     assert len(scene.hits((0, 0, 5), (0, 0, -1))) == 2
+
+
+def test_a_deep_boolean_chain_meets_the_library_depth_limit_not_pythons():
+    """Issue 16: a 2000-deep `a | b` chain raised RecursionError while being
+    added; the library's own limit on composite depth must answer."""
+    require_classes("union")
+    chain = hitray.Sphere()
+    for _ in range(2000):
+        chain = chain | hitray.Sphere()
+    with pytest.raises(hitray.ParameterError, match="nest composites 1001 deep, beyond the limit of 1000"):
+        hitray.Scene().add(chain)
+    within = hitray.Sphere()
+    for _ in range(999):
+        within = within | hitray.Sphere()
+    scene = hitray.Scene()
+    scene.add(within)
+    assert scene.first_hit((0, 0, 5), (0, 0, -1)).t == 4.0

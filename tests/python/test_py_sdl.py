@@ -108,3 +108,19 @@ def test_a_scene_loaded_by_a_relative_path_rebuilds_after_chdir(tmp_path, monkey
     scene.add(hitray.Sphere().translate(0, 0, 20))
     assert len(scene.objects) == 4
     assert scene.first_hit((0, 0, 30), (0, 0, -1)).object == 3
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_a_device_is_refused_not_read_forever(device):
+    """Issue 16, defect 2: /dev/zero was read until the OOM killer came."""
+    if not os.access(device, os.R_OK):
+        pytest.skip(f"{device} is not readable here")
+    with pytest.raises(hitray.FileError, match="not a regular file"):
+        hitray.load_sdl(device)
+
+
+def test_a_fifo_is_refused_at_once(tmp_path):
+    fifo = tmp_path / "scene.sdl"
+    os.mkfifo(fifo)
+    with pytest.raises(hitray.FileError, match="a FIFO"):
+        hitray.load_sdl(fifo)

@@ -6,7 +6,9 @@
 // report progress; an exception from either cancels the render through its
 // progress callback, the render thread is joined, and the exception is
 // raised. So two Python threads can render at once, and Ctrl-C stops a
-// render cleanly within one progress tick.
+// render cleanly: the flag hr_render_options.cancel is read before every ray,
+// so even a render stuck in a slow Python shape stops within one ray per
+// thread.
 #include "image_handle.h"
 #include "scene_handle.h"
 
@@ -28,6 +30,7 @@ struct RenderRun {
     hr_camera camera{};
     hr_render_options options{};
     // Out: filled by the render thread.
+    int32_t query_nesting = 0;  // the calling thread's (hr_query_nesting)
     hr_image *image = nullptr;
     hr_render_stats stats{};
     hr_status status = HR_OK;
@@ -37,7 +40,8 @@ struct RenderRun {
     std::condition_variable changed;
     bool done = false;
     std::atomic<double> fraction{0.0};
-    std::atomic<int32_t> cancel{0};
+    std::atomic<int32_t> cancel{0};  // what on_progress answers
+    int32_t cancel_flag = 0;          // hr_render_options.cancel: read before every ray
 };
 
 int32_t on_progress(void *user, double fraction)
@@ -51,6 +55,9 @@ int32_t on_progress(void *user, double fraction)
 void render_thread(RenderRun *run)
 {
     run->stats.struct_size = sizeof run->stats;
+    // This thread renders for the caller: a render from inside a shape's
+    // hit nests as deep as that hit is.
+    hr_query_set_nesting(run->query_nesting);
     hr_status st = hr_render(run->scene, &run->camera, &run->options, &run->image, &run->stats);
     if (st != HR_OK) run->failure = capture_error(st);  // this thread's error slot
     std::lock_guard<std::mutex> guard(run->lock);
@@ -100,6 +107,8 @@ py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_
     run->options.effects = all_effects ? HR_EFFECTS_ALL : HR_EFFECTS_AUTO;
     run->options.progress = on_progress;
     run->options.progress_user = run.get();
+    run->options.cancel = &run->cancel_flag;
+    run->query_nesting = hr_query_nesting();
 
     double reported = -1.0;
     bool interrupted = false;
@@ -123,6 +132,7 @@ py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_
                 if (!poll_python(progress, fraction, reported)) {
                     interrupted = true;
                     run->cancel.store(1);
+                    __atomic_store_n(&run->cancel_flag, 1, __ATOMIC_RELAXED);
                     PyErr_Fetch(&exc_type, &exc_value, &exc_tb);
                 }
             }

@@ -1,13 +1,23 @@
 // hitray._core.trace: Hill's getFirstHit for N rays at once, over N x 3
 // numpy arrays, with the GIL released and the rays split over threads.
 // A miss gives t = inf, normal (0, 0, 0) and object -1.
+//
+// Beyond a few thousand rays the calling thread traces none itself: it
+// waits, taking the GIL every POLL_MS to run Python's signal handlers (only
+// the main thread runs them), so Ctrl-C stops a long trace within a fraction
+// of a second and raises KeyboardInterrupt itself. The rays are handed out
+// in blocks through an atomic counter, and every thread stops at the next
+// block once a ray failed or the trace was interrupted.
 #include "scene_handle.h"
 
 #include <pybind11/numpy.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -16,6 +26,12 @@ namespace hitray_py {
 namespace {
 
 using rays_array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+constexpr int POLL_MS = 50;
+// Rays per block handed to a thread: small enough that a stop is seen soon.
+constexpr int64_t BLOCK = 1024;
+// Fewer rays than this are traced on the calling thread, as one block.
+constexpr int64_t MIN_PARALLEL = 4096;
 
 struct TraceJob {
     const hr_scene *scene;
@@ -30,12 +46,21 @@ struct TraceJob {
     std::atomic<int64_t> failed_ray{-1};
     ErrorReport failure;
     std::atomic_flag failure_taken = ATOMIC_FLAG_INIT;
+    int64_t count = 0;
+    std::atomic<int64_t> next_block{0};
+    std::atomic<bool> interrupted{false};
+    // The waiting thread sleeps on this until every worker is done.
+    std::mutex lock;
+    std::condition_variable finished;
+    int running = 0;
 };
 
 void trace_range(TraceJob *job, int64_t begin, int64_t end)
 {
     for (int64_t i = begin; i < end; i++) {
-        if (job->failed_ray.load(std::memory_order_relaxed) >= 0) return;
+        if (job->failed_ray.load(std::memory_order_relaxed) >= 0 ||
+            job->interrupted.load(std::memory_order_relaxed))
+            return;
         const double *o = job->origins + 3 * i, *d = job->directions + 3 * i;
         hr_ray ray{{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
         hr_hit hit{};
@@ -59,6 +84,71 @@ void trace_range(TraceJob *job, int64_t begin, int64_t end)
             job->object[i] = -1;
         }
     }
+}
+
+// A worker: blocks of rays until none is left or the trace stops.
+void trace_blocks(TraceJob *job)
+{
+    for (;;) {
+        int64_t begin = job->next_block.fetch_add(BLOCK);
+        if (begin >= job->count || job->failed_ray.load() >= 0 || job->interrupted.load()) break;
+        trace_range(job, begin, std::min(job->count, begin + BLOCK));
+    }
+    std::lock_guard<std::mutex> guard(job->lock);
+    job->running--;
+    job->finished.notify_one();
+}
+
+// Run `workers` threads over the job while this thread, GIL released,
+// wakes every POLL_MS to let Python run its signal handlers. Returns false
+// with the Python exception pending if one was raised (Ctrl-C).
+bool run_workers(TraceJob *job, int64_t workers)
+{
+    std::vector<std::thread> pool;
+    bool ok = true;
+    PyObject *type = nullptr, *value = nullptr, *tb = nullptr;
+    {
+        py::gil_scoped_release release;
+        for (int64_t w = 0; w < workers; w++) {
+            {
+                std::lock_guard<std::mutex> guard(job->lock);
+                job->running++;
+            }
+            try {
+                pool.emplace_back(trace_blocks, job);
+            } catch (const std::system_error &) {
+                std::lock_guard<std::mutex> guard(job->lock);
+                job->running--;
+                break;
+            }
+        }
+        if (pool.empty()) {  // no thread to be had: trace here, unpolled
+            {
+                std::lock_guard<std::mutex> guard(job->lock);
+                job->running++;
+            }
+            trace_blocks(job);
+        }
+        std::unique_lock<std::mutex> guard(job->lock);
+        while (job->running > 0) {
+            job->finished.wait_for(guard, std::chrono::milliseconds(POLL_MS));
+            if (job->running == 0 || !ok) continue;
+            guard.unlock();
+            {
+                py::gil_scoped_acquire acquire;
+                if (PyErr_CheckSignals() != 0) {
+                    ok = false;
+                    job->interrupted.store(true);
+                    PyErr_Fetch(&type, &value, &tb);
+                }
+            }
+            guard.lock();
+        }
+        guard.unlock();
+        for (auto &th : pool) th.join();
+    }
+    if (!ok) PyErr_Restore(type, value, tb);
+    return ok;
 }
 
 py::tuple trace(const ScenePtr &s, const rays_array &origins, const rays_array &directions, double tmin,
@@ -86,23 +176,15 @@ py::tuple trace(const ScenePtr &s, const rays_array &origins, const rays_array &
     job.t = t.mutable_data();
     job.normal = normal.mutable_data();
     job.object = object.mutable_data();
-    {
-        py::gil_scoped_release release;
-        int64_t workers = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+    job.count = n;
+    if (n < MIN_PARALLEL) {
         // Below a few thousand rays a thread costs more than it saves.
-        workers = std::max<int64_t>(1, std::min<int64_t>(workers, n / 4096));
-        std::vector<std::thread> pool;
-        int64_t chunk = (n + workers - 1) / workers;
-        try {
-            for (int64_t w = 1; w < workers; w++)
-                pool.emplace_back(trace_range, &job, std::min(n, w * chunk), std::min(n, (w + 1) * chunk));
-        } catch (const std::system_error &) {
-            // No thread to be had: the calling thread does the rest.
-            int64_t done = static_cast<int64_t>(pool.size() + 1) * chunk;
-            trace_range(&job, std::min(n, done), n);
-        }
-        trace_range(&job, 0, std::min(n, chunk));
-        for (auto &th : pool) th.join();
+        py::gil_scoped_release release;
+        trace_range(&job, 0, n);
+    } else {
+        int64_t workers = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+        workers = std::max<int64_t>(1, std::min<int64_t>(workers, n / MIN_PARALLEL));
+        if (!run_workers(&job, workers)) throw py::error_already_set();
     }
     int64_t bad = job.failed_ray.load();
     if (bad >= 0) {

@@ -127,7 +127,7 @@ _BY_STATUS = {
 
 
 def _from_status(status: int, message: str, filename: Optional[str], line: int,
-                 column: int) -> Error:
+                 column: int) -> BaseException:
     """The exception for a status of the library (called by hitray._core).
 
     An error located in a scene file (a line is known) is an SDLError whatever
@@ -135,6 +135,11 @@ def _from_status(status: int, message: str, filename: Optional[str], line: int,
     carries its place; the status tells what kind it was.
     """
     cause = _python_shape_error()
+    interrupt = _interrupt_behind(cause)
+    if interrupt is not None:
+        # Ctrl-C reached a Python shape's hit on the main thread: it is the
+        # user's interrupt, not a shape's failure.
+        return interrupt
     if cause is not None and str(cause) not in message:
         message = f"{message}: {cause}"
     error = _exception(status, message, filename, line, column)
@@ -151,6 +156,16 @@ def _exception(status: int, message: str, filename: Optional[str], line: int,
     if status == _IO:
         return FileError(message, status, filename)
     return _BY_STATUS.get(status, Error)(message, status)
+
+
+def _interrupt_behind(error: Optional[BaseException]) -> Optional[BaseException]:
+    """The KeyboardInterrupt a shape error was caused by, if any."""
+    seen = 0
+    while error is not None and seen < 100:
+        if isinstance(error, KeyboardInterrupt):
+            return error
+        error, seen = error.__cause__, seen + 1
+    return None
 
 
 def _python_shape_error() -> Optional[BaseException]:

@@ -12,7 +12,7 @@ from . import _convert
 from .camera import Camera
 from .errors import NFFError, SDLError
 from .scene import Scene, _SDLSource
-from .sdl import _file_text, _refuse_nul
+from .sdl import _read_back, _refuse_nul
 
 __all__ = ["load_nff", "parse_nff"]
 
@@ -41,15 +41,19 @@ def load_nff(path: _convert.PathLike) -> Tuple[Scene, Optional[Camera]]:
     reach it.
     """
     raw = _convert.path_bytes(path)
-    text = _file_text(raw)
+    # The library reads the file first, with its limits (a regular file only,
+    # the scene size limit), and says why it cannot; the text is read back
+    # after, to rebuild from (where that fails, a rebuild reads the file).
+    source = _SDLSource(None, raw, None, raw, nff=True)
+    result = _result(source)
+    text = _read_back(raw, allow_nul=True)
     if text is not None and text.startswith(_GZIP_MAGIC):
         try:
             text = gzip.decompress(text)
         except (OSError, EOFError, zlib.error):
-            text = None  # the library names what is wrong with the stream
-    if text is not None and b"\0" in text:
-        text = None  # the library's reader names the NUL byte's place
-    return _result(_SDLSource(text, raw, None, raw, nff=True))
+            text = None
+    source.text = None if text is None or b"\0" in text else text
+    return result
 
 
 def parse_nff(text: str, name: str = "<string>") -> Tuple[Scene, Optional[Camera]]:

@@ -93,17 +93,40 @@ class _AddLight:
 def _add_tree(core: Any, shape: Shape, inherited: Dict[str, Any], base_dir: bytes) -> int:
     """Add a shape and, first, the shapes among its parameters (a boolean's
     operands), which it consumes. Each leaf's material is its own over the
-    one it inherits."""
-    material = {**inherited, **shape._material}
-    params: List[Tuple[str, str, Any]] = []
-    for key, value in shape._params.items():
-        if isinstance(value, Shape):
-            params.append((key, "object", _add_tree(core, value, material, base_dir)))
-        elif isinstance(value, (str, bytes, os.PathLike)):
-            params.append((key, "string", os.fsencode(value)))
-        else:  # a number, made a float by Shape
-            params.append((key, "number", value))
-    return int(core.add_object(shape.name, params, material, shape._transform, base_dir))
+    one it inherits.
+
+    The tree is walked with a stack of its own, not by recursion: a chain of
+    2000 booleans must reach the library, whose limit on composite depth
+    (HR_MAX_COMPOSITE_DEPTH) gives the error, not Python's recursion limit."""
+    # One frame per shape being added: the shape, its material, its
+    # parameters and how many of them are done, the parameters built.
+    Frame = List[Any]
+
+    def frame(node: Shape, above: Dict[str, Any]) -> Frame:
+        return [node, {**above, **node._material}, list(node._params.items()), 0, []]
+
+    frames: List[Frame] = [frame(shape, inherited)]
+    index = -1
+    while frames:
+        top = frames[-1]
+        node, material, items, done, params = top
+        if done < len(items):
+            key, value = items[done]
+            top[3] = done + 1
+            if isinstance(value, Shape):
+                params.append((key, "object", -1))  # the index, once it is added
+                frames.append(frame(value, material))
+            elif isinstance(value, (str, bytes, os.PathLike)):
+                params.append((key, "string", os.fsencode(value)))
+            else:  # a number, made a float by Shape
+                params.append((key, "number", value))
+            continue
+        index = int(core.add_object(node.name, params, material, node._transform, base_dir))
+        frames.pop()
+        if frames:
+            parent = frames[-1][4]
+            parent[-1] = (parent[-1][0], "object", index)
+    return index
 
 
 class Scene:

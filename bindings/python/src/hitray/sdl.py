@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import stat
 from typing import Optional, Tuple, Type
 
 from . import _convert, _core
@@ -11,16 +12,6 @@ from .errors import SDLError
 from .scene import Scene, _SDLSource
 
 __all__ = ["load_sdl", "parse_sdl"]
-
-
-def _file_text(raw: bytes) -> Optional[bytes]:
-    """The file's bytes, read now; None if it cannot be read (the library
-    then reads it and says why)."""
-    try:
-        with open(raw, "rb") as f:
-            return f.read()
-    except OSError:
-        return None
 
 
 def _refuse_nul(data: bytes, name: str, error: Type[SDLError]) -> None:
@@ -52,11 +43,33 @@ def load_sdl(path: _convert.PathLike) -> Tuple[Scene, Optional[Camera]]:
     read now, so later changes to the file do not reach it.
     """
     raw = _convert.path_bytes(path)
-    text = _file_text(raw)
-    if text is not None and b"\0" in text:
-        text = None  # the library's reader names the NUL byte's place
     base_dir = os.path.abspath(os.path.dirname(raw) or b".")
-    return _result(_SDLSource(text, raw, base_dir, raw))
+    # The library reads the file first, with its limits (a regular file
+    # only, up to its first NUL byte and the scene size limit: reading
+    # /dev/zero here would never end) and says why it cannot.
+    source = _SDLSource(None, raw, base_dir, raw)
+    core, cam = source.load()
+    # The text is kept to rebuild from: read back now, as much as the file
+    # held (a regular file, so this ends). Where that fails, a rebuild reads
+    # the file again.
+    source.text = _read_back(raw)
+    return Scene._from_sdl(source, core), None if cam is None else Camera._from_core(cam)
+
+
+def _read_back(path: bytes, allow_nul: bool = False) -> Optional[bytes]:
+    """The bytes of a regular file as it is now (None for anything else, or
+    if it cannot be read; with a NUL byte too unless `allow_nul`, as a
+    gzip stream has): read after the library has read the file with its
+    limits, to keep the text a scene is rebuilt from."""
+    try:
+        with open(path, "rb") as f:
+            info = os.fstat(f.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                return None
+            text = f.read(info.st_size)
+    except OSError:
+        return None
+    return None if not allow_nul and b"\0" in text else text
 
 
 def parse_sdl(text: str, name: str = "<string>",

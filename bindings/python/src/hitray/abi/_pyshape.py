@@ -13,9 +13,10 @@ The class:
   reports); it is asked once, at create time, and must not change;
 - `hit(self, origin, direction, tmin, tmax)` returns every hit with
   tmin < t < tmax as a list of ``(t, (nx, ny, nz), entering)`` sorted by t
-  (a fourth element, if present, is the surface id); the normal points
-  outward, any non-zero length; ``entering`` is true where the ray enters
-  the solid;
+  (a fourth element, if present, is the surface id); t and the normal are
+  numbers (int or float, numpy's too; not strings), the normal points
+  outward, any non-zero length; ``entering`` is True where the ray enters
+  the solid (a bool, or 0 or 1);
 - optional class attributes: ``closed`` (True for a solid whose entering flags
   alternate: HR_SHAPE_CLOSED, CSG-able), ``surface_count`` (default 1),
   ``help`` (default: the first line of the docstring) and
@@ -37,6 +38,7 @@ from __future__ import annotations
 
 import inspect
 import math
+import numbers
 import re
 import struct
 import threading
@@ -179,6 +181,24 @@ def _make_callbacks(reg: _Registration, ffi: Any, lib: Any) -> Tuple[Any, Any, A
     hit_size = _HIT.size
     isfinite = math.isfinite
     cls = reg.cls
+    real = numbers.Real
+
+    def number(value: Any) -> float:
+        # float() would take "4" and True: a hit's numbers must be numbers.
+        if value.__class__ is float:
+            return value
+        if isinstance(value, bool) or not isinstance(value, real):
+            raise TypeError(f"{value!r} is not a number")
+        return float(value)
+
+    def flag(value: Any) -> int:
+        # Any truth value would let "no" mean entering: a flag is a bool
+        # (Python's or numpy's) or the integer 0 or 1.
+        if value is True or value is False:
+            return 1 if value else 0
+        if (isinstance(value, int) and value in (0, 1)) or type(value).__name__ == "bool_":
+            return 1 if value else 0
+        raise TypeError(f"entering must be True or False, not {value!r}")
 
     def fail(where: str, exc: BaseException) -> ShapeError:
         """Keep the error for whoever checks the failed call."""
@@ -270,8 +290,9 @@ def _make_callbacks(reg: _Registration, ffi: Any, lib: Any) -> Tuple[Any, Any, A
                         surface = 0
                     else:
                         t, (nx, ny, nz), entering, surface = h
-                    t = float(t)
-                    nx, ny, nz = float(nx), float(ny), float(nz)
+                    t = number(t)
+                    nx, ny, nz = number(nx), number(ny), number(nz)
+                    entering = flag(entering)
                 except (TypeError, ValueError) as e:
                     raise ShapeError(f"{inst.label}.hit: hit {i} must be (t, (nx, ny, nz), "
                                      f"entering), not {h!r}") from e
@@ -294,7 +315,7 @@ def _make_callbacks(reg: _Registration, ffi: Any, lib: Any) -> Tuple[Any, Any, A
                     raise ShapeError(f"{inst.label}.hit: hit {i} at t={t!r} is beyond "
                                      "double's range")
                 pack_into(packed, i * hit_size, t, px, py, pz, nx, ny, nz, error,
-                          surface, 1 if entering else 0, 0)
+                          surface, entering, 0)
                 previous = t
             out = args.out
             base = out.count

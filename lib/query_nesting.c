@@ -1,0 +1,26 @@
+/* How deeply scene queries nest on the calling thread (query_nesting.h). */
+#include "query_nesting.h"
+
+#include "errors.h"
+
+static _Thread_local int32_t level;
+
+hr_status hr_query_enter(const hr_context *ctx, const char *what)
+{
+    if (level >= HR_MAX_QUERY_NESTING)
+        return hr_error(ctx, HR_ERROR_STATE,
+                        "%s: scene queries nested more than %d deep (a shape's hit that queries "
+                        "the scene it is part of calls itself without end)",
+                        what, HR_MAX_QUERY_NESTING);
+    level++;
+    return HR_OK;
+}
+
+void hr_query_leave(void)
+{
+    if (level > 0) level--;
+}
+
+HR_API int32_t hr_query_nesting(void) { return level; }
+
+HR_API void hr_query_set_nesting(int32_t l) { level = l < 0 ? 0 : l; }
