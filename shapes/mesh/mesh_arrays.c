@@ -18,6 +18,7 @@
 
 #include "mesh.h"
 #include "mesh_arrays.h"
+#include "mesh_text.h"
 
 static const hr_param *find(const hr_create_args *args, const char *name)
 {
@@ -70,6 +71,18 @@ static hr_status check_arrays(const hr_param *points, const hr_param *normals,
         if (!isfinite(points->numbers[i]) || (nn && !isfinite(normals->numbers[i]))) {
             snprintf(error, error_size, "element %zu of parameter '%s' is not a finite number",
                      i, isfinite(points->numbers[i]) ? "normals" : "points");
+            return HR_ERROR_PARAMETER;
+        }
+    /* The readers' coordinate limit (mesh_text.h): the triangle test
+     * multiplies three coordinates, which must stay inside double's range;
+     * past it the edge functions overflow and a hit's barycentric point
+     * comes out anywhere. */
+    for (size_t i = 0; i < np; i++)
+        if (fabs(points->numbers[i]) > MESH_MAX_COORDINATE) {
+            snprintf(error, error_size,
+                     "element %zu of parameter 'points' is %g, beyond the coordinates a mesh "
+                     "takes (at most %g)",
+                     i, points->numbers[i], MESH_MAX_COORDINATE);
             return HR_ERROR_PARAMETER;
         }
     const double vertex_count = (double)(np / 3);

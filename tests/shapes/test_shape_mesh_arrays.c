@@ -6,6 +6,7 @@
  * non-finite or out-of-range element) or by the module (counts that do not
  * fit together, an index past the vertices, a non-whole index) - also when
  * create is called directly, as a host that skipped its checks would. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -158,6 +159,15 @@ static void check_module_alone(void)
     CHECK(harness_create_params(cls, bad, 3, &shape, error, sizeof error) == HR_ERROR_PARAMETER);
     CHECK_MSG(strstr(error, "element 11 of parameter 'normals' is not a finite number"), "%s",
               error);
+    CHECK(shape == NULL);
+    /* Past the readers' coordinate limit (found by fuzz_shapes: a corner at
+     * DBL_MAX gave a hit with every weight 0, outside the bounds). */
+    static const double huge_point[12] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, DBL_MAX};
+    const hr_param huge[2] = {array("points", huge_point, 12), array("triangles", faces, 12)};
+    CHECK(harness_create_params(cls, huge, 2, &shape, error, sizeof error) == HR_ERROR_PARAMETER);
+    CHECK_MSG(strstr(error, "element 11 of parameter 'points' is 1.79769e+308, beyond the "
+                            "coordinates a mesh takes (at most 1e+100)"),
+              "%s", error);
     CHECK(shape == NULL);
     const hr_param good[2] = {array("points", points, 12), array("triangles", faces, 12)};
     CHECK_OK(harness_create_params(cls, good, 2, &shape, error, sizeof error));
