@@ -22,9 +22,11 @@
  *   (a max of such values and tmin) and the exit distance (a min) are then
  *   moved outward by 2^-20 relative and 2^-149 absolute, far more than
  *   those errors;
- * - a direction component so small that 1/d would overflow float (below
- *   2^-100 of the largest) gives NaN slab distances, which the max/min
- *   ignore: that axis culls nothing, which is conservative. An exactly zero
+ * - a direction component so small that 1/d would pass 2^40 (below 2^-40
+ *   of the largest) gives NaN slab distances, which the max/min ignore:
+ *   that axis culls nothing, which is conservative. With boxes and origin
+ *   within 2^64 of zero (else the walk culls nothing at all) no slab
+ *   distance can overflow float (ACCEL_CULL_RANGE). An exactly zero
  *   component gives +-inf distances (or NaN for an origin exactly on the
  *   slab plane, again ignored), the textbook treatment of a parallel ray;
  * - tmin is rounded down and tmax up to float (after scaling).
@@ -76,6 +78,10 @@ typedef struct accel_bvh4 {
     uint32_t *items;
     uint32_t item_count;
     uint32_t depth; /* levels of nodes (1: the root alone) */
+    /* The largest |coordinate| of any item's box (+inf if one is not
+     * finite): a walk culls only where it and the ray's origin are within
+     * ACCEL_CULL_RANGE (accel_bvh4_walk). */
+    double extent;
     void (*free_fn)(void *ptr);
 } accel_bvh4;
 
@@ -117,6 +123,16 @@ typedef struct accel_ray4 {
     double t_scale, t_offset;
     int cull; /* 0: no usable interval, every leaf is visited */
 } accel_ray4;
+
+/* Float's range bounds where culling is exact: a slab distance beyond it
+ * overflows to an infinity, and an entry of +inf reads as a miss. So a
+ * walk culls only when the boxes and the origin (moved back to a negative
+ * tmin) lie within 2^64 of the origin of coordinates and 1/d is at most 2^40 (a smaller component
+ * culls nothing on its axis): every distance is then below 2^65 * 2^40
+ * (or infinite from a zero component), far inside float's 2^128. Beyond,
+ * the walk visits every leaf: slow, and exact. */
+#define ACCEL_CULL_RANGE 0x1p64
+#define ACCEL_INV_MAX 0x1p40
 
 /* Relative slack on every slab distance, folded into 1/d: far more than
  * the five roundings of 2^-24 it covers (see the top of this file). */
@@ -179,17 +195,18 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
         double da = d[a] * down;
         int neg = signbit(da) != 0;
         /* 1/0 is inf of the zero's sign: the parallel ray's slab test. A
-         * 1/d beyond 2^100 would overflow float: NaN, so the axis culls
-         * nothing. */
+         * 1/d beyond ACCEL_INV_MAX: NaN, so the axis culls nothing. */
         double i = 1.0 / da;
         float inv_near = (float)(i * (1.0 - ACCEL_SLACK)), inv_far = (float)(i * (1.0 + ACCEL_SLACK));
-        if (!(fabs(i) <= 0x1p100) && da != 0) inv_near = inv_far = NAN;
-        usable |= fabs(i) <= 0x1p100;
+        if (!(fabs(i) <= ACCEL_INV_MAX) && da != 0) inv_near = inv_far = NAN;
+        usable |= fabs(i) <= ACCEL_INV_MAX;
         float up, dn;
         if (r->t_offset == 0) {
             accel_float_bracket(o[a], &dn, &up);
+            if (!(fabs(o[a]) <= ACCEL_CULL_RANGE)) r->cull = 0;
         } else {
             double moved = o[a] + r->t_offset * d[a];
+            if (!(fabs(moved) <= ACCEL_CULL_RANGE)) r->cull = 0;
             double err = (fabs(o[a]) + fabs(r->t_offset * d[a])) * 0x1p-50;
             dn = accel_float_at_most(moved - err);
             up = accel_float_at_least(moved + err);
@@ -306,6 +323,7 @@ static inline int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, d
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
     accel_ray4_init(&r, ray, tmin);
+    if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init */
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
     accel_f4 tmax4 = accel_f4_set(tmax_f);

@@ -348,6 +348,13 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     bvh->items = b.items;
     bvh->item_count = count;
     bvh->depth = c.depth;
+    bvh->extent = 0.0;
+    for (uint32_t i = 0; i < count; i++) {
+        const double v[6] = {boxes[i].lo.x, boxes[i].lo.y, boxes[i].lo.z,
+                             boxes[i].hi.x, boxes[i].hi.y, boxes[i].hi.z};
+        for (int k = 0; k < 6; k++)
+            if (!(fabs(v[k]) <= bvh->extent)) bvh->extent = isnan(v[k]) ? INFINITY : fabs(v[k]);
+    }
     return 0;
 
 out_of_memory:
