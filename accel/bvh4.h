@@ -150,8 +150,9 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
      * (gamma(2) of the terms' magnitudes). */
     r->t_offset = tmin < 0 ? tmin : 0.0;
     /* An infinite tmin, or one so far back that the moved origin is not
-     * finite, leaves no interval to cull by: the walk then visits every
-     * leaf (accel_bvh4_walk), which is slow but exact. */
+     * finite, leaves no interval to cull by, and neither does a ray that is
+     * not finite (0 * inf): the walk then visits every leaf
+     * (accel_bvh4_walk), which is slow but exact. */
     r->cull = isfinite(tmin) && isfinite(ray->origin.x + r->t_offset * ray->dir.x) &&
               isfinite(ray->origin.y + r->t_offset * ray->dir.y) &&
               isfinite(ray->origin.z + r->t_offset * ray->dir.z);
@@ -338,13 +339,15 @@ static inline int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, d
             if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
         } else {
             const accel_bvh4_node *n = &bvh->nodes[ref];
-            float entry[4] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY};
+            float entry[4];
             unsigned mask = 0;
             if (r.cull) {
                 mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
             } else {
-                for (uint32_t k = 0; k < 4; k++)
+                for (uint32_t k = 0; k < 4; k++) {
+                    entry[k] = -INFINITY;
                     mask |= (uint32_t)(n->count[k] > 0 || n->ref[k] != ACCEL_BVH4_EMPTY) << k;
+                }
             }
             if (mask) {
                 uint32_t k = (uint32_t)__builtin_ctz(mask);

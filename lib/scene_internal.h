@@ -87,11 +87,10 @@ typedef struct hr_trace_ctx {
     uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
     /* The object that blocked the last shadow ray towards each light (by
      * light index modulo the slots; NULL: it was not blocked), asked first
-     * by the next one (hr_scene_trace_shadow), and what the last any-hit
-     * walk stopped at. Per thread, so no two threads share them; they
-     * change how fast a shadow ray is answered, never the answer. */
+     * by the next one (hr_scene_trace_shadow). Per thread, so no two
+     * threads share them; they change how fast a shadow ray is answered,
+     * never the answer. */
     const hr_object *occluder[HR_OCCLUDER_SLOTS];
-    const hr_object *last_occluder;
 } hr_trace_ctx;
 
 #define HR_POLL_INTERVAL 65536u

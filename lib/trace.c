@@ -271,31 +271,26 @@ static hr_intersection *host_scratch_acquire(void *call);
 static void host_scratch_release(void *call, hr_intersection *list);
 
 static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
-                              hr_hit *out, int any, hr_intersection *tmp)
+                              hr_hit *out, int any, hr_intersection *tmp,
+                              const hr_object **blocker)
 {
     hr_hit dummy;
     first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any, NULL};
     traverse(&fs);
-    if (any) tc->last_occluder = fs.hit_object;
+    if (blocker) *blocker = fs.hit_object;
     return fs.found;
 }
 
-static int trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
-                         hr_hit *out, int any)
+int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
 {
     hr_intersection *tmp = host_scratch_acquire(tc);
     if (!tmp) {
         tc->status = HR_ERROR_OUT_OF_MEMORY;
         return 0;
     }
-    int found = trace_nearest_into(tc, ray, tmin, tmax, out, any, tmp);
+    int found = trace_nearest_into(tc, ray, tmin, tmax, out, 0, tmp, NULL);
     host_scratch_release(tc, tmp);
     return found;
-}
-
-int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
-{
-    return trace_nearest(tc, ray, tmin, tmax, out, 0);
 }
 
 /* A shadow ray asks first the object that blocked the last shadow ray
@@ -307,20 +302,19 @@ int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
 int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                           int32_t light)
 {
-    const hr_object **slot = &tc->occluder[(uint32_t)light % HR_OCCLUDER_SLOTS];
-    if (*slot) {
-        hr_intersection *tmp = host_scratch_acquire(tc);
-        if (!tmp) {
-            tc->status = HR_ERROR_OUT_OF_MEMORY;
-            return 0;
-        }
-        int blocked = hr_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK &&
-                      tmp->count > 0;
-        host_scratch_release(tc, tmp);
-        if (blocked) return 1;
+    hr_intersection *tmp = host_scratch_acquire(tc);
+    if (!tmp) {
+        tc->status = HR_ERROR_OUT_OF_MEMORY;
+        return 0;
     }
-    int blocked = trace_nearest(tc, ray, tmin, tmax, NULL, 1);
-    *slot = tc->last_occluder;
+    const hr_object **slot = &tc->occluder[(uint32_t)light % HR_OCCLUDER_SLOTS];
+    int blocked = *slot && hr_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK &&
+                  tmp->count > 0;
+    if (!blocked) {
+        tmp->count = 0;
+        blocked = trace_nearest_into(tc, ray, tmin, tmax, NULL, 1, tmp, slot);
+    }
+    host_scratch_release(tc, tmp);
     return blocked;
 }
 
@@ -364,7 +358,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     hr_hit room[4 * HR_MIN_HIT_CAPACITY];
     hr_intersection tmp = {room, 0, 4 * HR_MIN_HIT_CAPACITY};
     tc.borrowed = room;
-    *found = trace_nearest_into(&tc, ray, tmin, tmax, out, 0, &tmp);
+    *found = trace_nearest_into(&tc, ray, tmin, tmax, out, 0, &tmp, NULL);
     if (tmp.hits != room) free(tmp.hits);
     return finish_query(&tc);
 }

@@ -292,9 +292,10 @@ static int leaf_of(void *user, uint32_t first, uint32_t count)
  * all-hits list, or a caller's own) is walked in two halves, each from 0:
  * the reversed ray for t < 0, then the ray, each keeping the hits of its
  * half so that none is reported twice. accel's walk would take a negative
- * start by moving the origin back, but an origin moved far (tmin = -1e80)
- * loses hits there (test_shape_mesh's soups), and from -inf it visits
- * every leaf. A NaN bound meets nothing, as in the triangle test. */
+ * start by moving the origin back, but it culls nothing once that origin
+ * is far out (tmin = -1e80) or the start is -inf: it visits every leaf,
+ * where the two halves still cull. A NaN bound meets nothing, as in the
+ * triangle test. */
 static void walk(query *q)
 {
     const accel_bvh4 *bvh = &q->m->bvh;
