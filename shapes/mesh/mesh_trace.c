@@ -33,10 +33,26 @@ static hr_vec3 geometric_normal(const hr_vec3 *a, const hr_vec3 *b, const hr_vec
     double e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
     double e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
     double big = 0.0;
-    for (int i = 0; i < 3; i++) big = fmax(big, fmax(fabs(e1[i]), fabs(e2[i])));
+    for (int i = 0; i < 3; i++) big = mesh_max(big, mesh_max(fabs(e1[i]), fabs(e2[i])));
     if (big > 0.0 && isfinite(big)) {
-        int e = ilogb(big);
-        for (int i = 0; i < 3; i++) e1[i] = ldexp(e1[i], -e), e2[i] = ldexp(e2[i], -e);
+        /* Scaled by 2^-ilogb(big), the exponent read off big's bits and the
+         * power of two built from them (ilogb and ldexp are libm calls, and
+         * this runs for every hit a closed mesh's search keeps); the product
+         * with an exact power of two rounds once, as ldexp does. Subnormal
+         * edges and an exponent whose inverse is not a normal double go to
+         * ilogb and ldexp. */
+        uint64_t bits;
+        memcpy(&bits, &big, sizeof bits);
+        const int biased = (int)(bits >> 52);
+        if (biased > 1 && biased < 2046) {
+            const uint64_t scale_bits = (uint64_t)(2046 - biased) << 52; /* 2^(1023 - biased) */
+            double scale;
+            memcpy(&scale, &scale_bits, sizeof scale);
+            for (int i = 0; i < 3; i++) e1[i] *= scale, e2[i] *= scale;
+        } else {
+            int e = ilogb(big);
+            for (int i = 0; i < 3; i++) e1[i] = ldexp(e1[i], -e), e2[i] = ldexp(e2[i], -e);
+        }
     }
     hr_vec3 n = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                  e1[0] * e2[1] - e1[1] * e2[0]};
@@ -62,7 +78,7 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
     double ex = fabs(b[0] * v[0]->x) + fabs(b[1] * v[1]->x) + fabs(b[2] * v[2]->x);
     double ey = fabs(b[0] * v[0]->y) + fabs(b[1] * v[1]->y) + fabs(b[2] * v[2]->y);
     double ez = fabs(b[0] * v[0]->z) + fabs(b[1] * v[1]->z) + fabs(b[2] * v[2]->z);
-    hit->error = MESH_GAMMA(7) * fmax(ex, fmax(ey, ez));
+    hit->error = MESH_GAMMA(7) * mesh_max(ex, mesh_max(ey, ez));
     hit->surface = 0;
     hit->entering = th->entering;
     hr_vec3 ng = geometric_normal(v[0], v[1], v[2]);
@@ -129,7 +145,7 @@ static void sort_hits(hr_hit *h, size_t n)
 
 static double ray_speed(const hr_ray *ray)
 {
-    return fmax(fabs(ray->dir.x), fmax(fabs(ray->dir.y), fabs(ray->dir.z)));
+    return mesh_max(fabs(ray->dir.x), mesh_max(fabs(ray->dir.y), fabs(ray->dir.z)));
 }
 
 /* How far apart in t two crossings of a closed mesh may lie and still be
@@ -137,7 +153,7 @@ static double ray_speed(const hr_ray *ray)
 static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
 {
     return (a->error + b->error) / ray_speed(ray) * 4.0 +
-           8.0 * DBL_EPSILON * fmax(fabs(a->t), fabs(b->t));
+           8.0 * DBL_EPSILON * mesh_max(fabs(a->t), fabs(b->t));
 }
 
 /* A closed mesh's crossings alternate along the exact line, entering
@@ -191,8 +207,8 @@ static double largest_error(const mesh *m)
 {
     const hr_bounds *b = &m->bounds;
     const double big =
-        fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
-             fmax(fabs(b->lo.z), fabs(b->hi.z)));
+        mesh_max(mesh_max(mesh_max(fabs(b->lo.x), fabs(b->hi.x)), mesh_max(fabs(b->lo.y), fabs(b->hi.y))),
+             mesh_max(fabs(b->lo.z), fabs(b->hi.z)));
     return MESH_GAMMA(7) * 2.0 * big;
 }
 
