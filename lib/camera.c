@@ -2,6 +2,7 @@
  * up; a ray through the image plane at distance 1 in front of the eye. */
 #include <math.h>
 
+#include "camera_frame.h"
 #include "errors.h"
 #include "vec.h"
 
@@ -59,21 +60,38 @@ HR_API hr_status hr_camera_validate(hr_context *ctx, const hr_camera *cam)
     return HR_OK;
 }
 
-HR_API hr_status hr_camera_ray(const hr_camera *cam, double px, double py, hr_ray *out)
+int hr_camera_frame_init(hr_camera_frame *f, const hr_camera *cam)
 {
     hr_vec3 u, v, n;
+    if (cam->width <= 0 || cam->height <= 0 ||
+        !(cam->view_angle > 0.0 && cam->view_angle < 180.0) || !camera_axes(cam, &u, &v, &n))
+        return 0;
+    f->eye = cam->eye;
+    f->u = u, f->v = v, f->n = n;
+    f->half_height = tan(0.5 * cam->view_angle * DEG2RAD);
+    f->half_width = f->half_height * (double)cam->width / (double)cam->height;
+    f->width = (double)cam->width;
+    f->height = (double)cam->height;
+    return 1;
+}
+
+void hr_camera_frame_ray(const hr_camera_frame *f, double px, double py, hr_ray *out)
+{
+    double x = f->half_width * (2.0 * px / f->width - 1.0);
+    double y = f->half_height * (1.0 - 2.0 * py / f->height);
+    hr_vec3 dir = v3_add(v3_add(v3_scale(f->u, x), v3_scale(f->v, y)), v3_neg(f->n));
+    out->origin = f->eye;
+    out->dir = v3_normalize(dir);
+}
+
+HR_API hr_status hr_camera_ray(const hr_camera *cam, double px, double py, hr_ray *out)
+{
+    hr_camera_frame f;
     /* The same refusals as hr_camera_validate, and a finite position: the
      * direction promised is unit length, never NaN. */
-    if (!cam || !out || cam->width <= 0 || cam->height <= 0 || !isfinite(px) || !isfinite(py) ||
-        !(cam->view_angle > 0.0 && cam->view_angle < 180.0) || !camera_axes(cam, &u, &v, &n))
+    if (!cam || !out || !isfinite(px) || !isfinite(py) || !hr_camera_frame_init(&f, cam))
         return HR_ERROR_INVALID_ARGUMENT;
-    double H = tan(0.5 * cam->view_angle * DEG2RAD);
-    double W = H * (double)cam->width / (double)cam->height;
-    double x = W * (2.0 * px / cam->width - 1.0);
-    double y = H * (1.0 - 2.0 * py / cam->height);
-    hr_vec3 dir = v3_add(v3_add(v3_scale(u, x), v3_scale(v, y)), v3_neg(n));
-    out->origin = cam->eye;
-    out->dir = v3_normalize(dir);
+    hr_camera_frame_ray(&f, px, py, out);
     return HR_OK;
 }
 

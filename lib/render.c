@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "camera_frame.h"
 #include "errors.h"
 #include "image_srgb.h"
 #include "query_nesting.h"
@@ -38,6 +39,7 @@ HR_API void hr_render_options_default(hr_render_options *o)
 typedef struct render_job {
     const hr_scene *scene;
     hr_camera camera;
+    hr_camera_frame frame; /* the camera's ray constants, once for the image */
     hr_render_options opt;
     float *pixels;
     int32_t width, height;
@@ -111,7 +113,7 @@ static hr_color trace_camera_ray(worker *w, double px, double py)
 {
     render_job *job = w->job;
     hr_ray ray;
-    hr_camera_ray(&job->camera, px, py, &ray);
+    hr_camera_frame_ray(&job->frame, px, py, &ray);
     w->primary++;
     return hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
 }
@@ -357,6 +359,9 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     if (st == HR_OK) {
         job->camera.width = job->opt.width, job->camera.height = job->opt.height;
         st = hr_camera_validate(ctx, &job->camera);
+        /* A camera hr_camera_validate accepts always has a frame. */
+        if (st == HR_OK && !hr_camera_frame_init(&job->frame, &job->camera))
+            st = hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: no view through it");
     }
     hr_image *image = NULL;
     if (st == HR_OK) st = hr_image_create(ctx, job->opt.width, job->opt.height, 3, &image);
