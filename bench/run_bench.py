@@ -83,8 +83,9 @@ README_END = "<!-- /bench-results -->"
 
 
 def run_measured(cmd, cwd):
-    """Run cmd; return (wall seconds, peak RSS KiB, stdout, stderr) using wait4
-    (the child's own peak resident set, its children's included). Its output
+    """Run cmd; return (wall seconds, peak RSS KiB, stdout, stderr, CPU seconds)
+    using wait4 (the child's own peak resident set and its user + system time,
+    its children's included). Its output
     goes through files in the work directory, so no pipe can stall it."""
     out_path = os.path.join(WORK, ".stdout")
     err_path = os.path.join(WORK, ".stderr")
@@ -100,7 +101,7 @@ def run_measured(cmd, cwd):
         err = f.read()
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}):\n{err[-2000:]}")
-    return wall, usage.ru_maxrss, out, err
+    return wall, usage.ru_maxrss, out, err, usage.ru_utime + usage.ru_stime
 
 
 def pov_seconds(text, label):
@@ -185,7 +186,8 @@ def bench_scene(name, d, camera, hitray, scene_file=None, size=None):
     of each kind of the last run of each renderer."""
     scene_file = scene_file or name + ".sdl"
     size = size or ARGS.size
-    res = {t: {"hr": [], "hr_render": [], "hr_mem": [], "pov": [], "pov_render": [], "pov_mem": []}
+    res = {t: {"hr": [], "hr_render": [], "hr_mem": [], "hr_cpu": [], "pov": [], "pov_render": [],
+               "pov_mem": []}
            for t in ARGS.threads}
     rays = {"hitray": {}, "pov": {}}
     for rnd in range(ARGS.runs):
@@ -194,17 +196,18 @@ def bench_scene(name, d, camera, hitray, scene_file=None, size=None):
             for who in order:
                 if who == "hr":
                     stats = os.path.join(d, "stats.json")
-                    wall, mem, _, _ = run_measured(
+                    wall, mem, _, _, cpu = run_measured(
                         hitray_cmd(hitray, scene_file, "hitray.ppm", size, t, camera, stats), d)
                     with open(stats) as f:
                         text = f.read()
                     res[t]["hr"].append(wall)
                     res[t]["hr_render"].append(json_number(text, "seconds"))
                     res[t]["hr_mem"].append(mem)
+                    res[t]["hr_cpu"].append(cpu)
                     rays["hitray"] = {k: json_number(text, k)
                                       for k in ("primary", "shadow", "reflected", "refracted")}
                 elif HAVE_POV:
-                    wall, mem, out, err = run_measured(pov_cmd(name + ".pov", "pov.ppm", size, t), d)
+                    wall, mem, out, err, _ = run_measured(pov_cmd(name + ".pov", "pov.ppm", size, t), d)
                     res[t]["pov"].append(wall)
                     res[t]["pov_render"].append(pov_seconds(out + err, "Trace"))
                     res[t]["pov_mem"].append(mem)
@@ -233,7 +236,7 @@ def raycast_runs(raycast, spheres, threads, runs, engines):
         for t in threads:
             order = engines if rnd % 2 == 0 else list(reversed(engines))
             for e in order:
-                wall, mem, out, _ = run_measured(
+                wall, mem, out, _, _ = run_measured(
                     [raycast, "--engine", e, "--spheres", str(spheres), "--threads", str(t)], ROOT)
                 kv = dict(x.split("=", 1) for x in out.split())
                 kv["peak_kb"] = mem
@@ -298,7 +301,7 @@ def main():
     if ARGS.quick:
         if ARGS.output == os.path.join(BENCH, "RESULTS.md"):
             sys.exit("run_bench: --quick needs --output (it must not replace bench/RESULTS.md)")
-        ARGS.runs, ARGS.scaling_runs, ARGS.threads = 1, 1, "1"
+        ARGS.runs, ARGS.scaling_runs, ARGS.threads = 1, 1, "1,2"
         ARGS.size, ARGS.spd_size, ARGS.scaling = "64x36", "32x32", "1000"
         ARGS.no_profile, ARGS.readme = True, ""
     ARGS.build = os.path.abspath(ARGS.build)
@@ -399,6 +402,7 @@ def main():
         L += scenes_table(scene_rows, sdl_skipped)
     if spd_rows or spd_skipped:
         L += spd_tables(spd_rows, spd_skipped)
+    L += scaling_table(scene_rows + spd_rows)
     if not HAVE_POV:
         L.append("")
         L.append("POV-Ray is not installed: its columns are empty (`make bench` installs it).")
@@ -484,6 +488,33 @@ def scenes_table(rows, skipped):
                      f"{agree:.2f}% |")
     for name, missing in skipped:
         L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
+    return L
+
+
+def scaling_table(rows):
+    """hitray's speed-up from the first thread count to each other one, beside
+    the CPU time it spent: on a machine that other work keeps busy the wall
+    speed-up falls, while the CPU time shows whether the threads themselves
+    added work (contention, shared cache lines, waiting at the end)."""
+    base = ARGS.threads[0]
+    more = [t for t in ARGS.threads if t != base]
+    if not rows or not more:
+        return []
+    L = ["", f"## Thread scaling (hitray, median of {ARGS.runs})", "",
+         f"Speed-up = render-only time at {base} thread(s) / at N threads (the target: at least "
+         f"1.85 at 2). CPU = the whole process's user + system time at N threads / at {base}: "
+         "1.00 means the threads did no more work between them than one did alone, so a "
+         "speed-up below N with CPU near 1.00 is the machine's other load, not the renderer.",
+         "", "| scene | " + " | ".join(f"speed-up {t} thr | CPU {t} thr" for t in more) + " |",
+         "|---|" + "---|---|" * len(more)]
+    for name, res, _ in rows:
+        one = res[base]
+        cells = []
+        for t in more:
+            r = res[t]
+            cells.append(f"{median(one['hr_render']) / median(r['hr_render']):.2f}")
+            cells.append(f"{median(r['hr_cpu']) / median(one['hr_cpu']):.2f}")
+        L.append(f"| {name} | " + " | ".join(cells) + " |")
     return L
 
 
