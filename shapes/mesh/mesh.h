@@ -6,9 +6,9 @@
  * Storage per triangle: 12 bytes of vertex indices, 12 more when the mesh
  * has normals, the vertices themselves (24 bytes each, shared: a closed
  * mesh has about half as many vertices as triangles) and the BVH's nodes
- * (accel/bvh4.h: 128 bytes each, four children, leaves of about five
- * triangles, some 11 bytes a triangle): some 36 bytes a triangle for a
- * closed mesh without normals (test_shape_mesh_large prints the figure).
+ * (accel/bvh4.h: 128 bytes each, four children, small leaves: some 20
+ * bytes a triangle, see mesh_bvh.c): some 44 bytes a triangle for a closed
+ * mesh without normals (test_shape_mesh_large prints the figure).
  * The BVH orders the triangles themselves, so no index array sits between
  * them. */
 #ifndef HITRAY_MESH_H
