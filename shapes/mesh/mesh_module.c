@@ -173,7 +173,7 @@ static const hr_param_spec teapot_params[] = {
     {"tessellation", HR_PARAM_NUMBER, 0, MESH_TEAPOT_DEFAULT_LEVEL, MESH_TEAPOT_MIN_LEVEL,
      MESH_BEZIER_MAX_LEVEL,
      "steps along each side of each of the 32 patches, a whole number: 64 n^2 - 8 n triangles "
-     "(9,120 at the default 12), some 100 bytes each"},
+     "(9,120 at the default 12), some 60 bytes each"},
 };
 
 #define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
