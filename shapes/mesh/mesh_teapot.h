@@ -24,7 +24,7 @@ hr_vec3 mesh_teapot_place(const double newell[3]);
 
 /* The default tessellation (steps along each side of a patch): smooth
  * normals hide the facets inside the silhouette, and the silhouette of the
- * body's widest circle, 48 segments around, is within 0.22% of its radius
+ * body's widest circle, 48 segments around, is within 0.21% of its radius
  * (1 - cos(pi / 48)): under a pixel for a teapot 400 pixels wide. */
 #define MESH_TEAPOT_DEFAULT_LEVEL 12
 
