@@ -1,5 +1,5 @@
-/* SDL's object commands (lib/sdl_reader.h): shapes, CSG booleans, and the
- * solids the original read from data files this project does not have.
+/* SDL's object commands (lib/sdl_reader.h): shapes, CSG booleans, and
+ * `diamond`, the one solid of Hill's list whose shape is not known.
  *
  * Each leaf object is added with hr_scene_add_object, passing a copy of the
  * current material and the top of the transform stack with its inverse (the
@@ -23,7 +23,7 @@
 #define ARGS_TAPER 1       /* taperedCylinder s */
 #define ARGS_FILE 2        /* mesh file */
 #define ARGS_OPERANDS 3    /* union A B */
-#define ARGS_UNSUPPORTED 4 /* buckyball, diamond, teapot */
+#define ARGS_DIAMOND 4     /* refused: see add_leaf */
 #define ARGS_MODULE 5      /* a module's class beyond Hill's list: its parameters */
 #define SDL_MAX_MODULE_PARAMS 64
 
@@ -47,9 +47,9 @@ static const struct {
     {"union", ARGS_OPERANDS},
     {"intersection", ARGS_OPERANDS},
     {"difference", ARGS_OPERANDS},
-    {"buckyball", ARGS_UNSUPPORTED},
-    {"diamond", ARGS_UNSUPPORTED},
-    {"teapot", ARGS_UNSUPPORTED},
+    {"buckyball", ARGS_NONE},
+    {"teapot", ARGS_NONE},
+    {"diamond", ARGS_DIAMOND},
 };
 #define OBJECT_COUNT ((int)(sizeof objects / sizeof objects[0]))
 
@@ -165,11 +165,14 @@ static hr_status add_leaf(sdl_reader *r, sdl_located keyword, int args, int64_t 
         if (st) return st;
         return add(r, keyword, params, count, &r->material, sdl_current_transform(r), index);
     }
-    if (args == ARGS_UNSUPPORTED)
+    /* Hill's readers made `diamond` a Mesh read from diamond.3vn, a file
+     * that was never published with his code (the scenes that came with
+     * it name it, and it is absent), so the diamond's shape is unknown. */
+    if (args == ARGS_DIAMOND)
         return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
-                         "'%s' is not supported: the original reader loaded it from a data file "
-                         "this project does not have",
-                         keyword.token->text);
+                         "'diamond' is not supported: Hill's reader loaded it from the mesh file "
+                         "diamond.3vn, which was never published, so its shape is unknown; "
+                         "give a mesh of your own with 'mesh FILE'");
     if (args == ARGS_TAPER) {
         hr_status st = sdl_read_number(r, keyword, &param.number, NULL);
         if (st) return st;

@@ -2,8 +2,8 @@
  *
  * The reader builds the scene with the same public calls any program makes.
  * On error it returns HR_ERROR_SDL (HR_ERROR_IO for a file it cannot read,
- * HR_ERROR_UNSUPPORTED for `buckyball`, `diamond` and `teapot`, or the error
- * of the library call that failed, such as HR_ERROR_MODULE), makes no scene, and the context's last error
+ * HR_ERROR_UNSUPPORTED for `diamond`, or the error of the library call that
+ * failed, such as HR_ERROR_MODULE), makes no scene, and the context's last error
  * names file:line:col and what was expected; hr_context_last_error_info gives
  * the parts. Errors inside an expanded macro name the line of the `use` and
  * of the definition. */

@@ -94,12 +94,13 @@ hr_status mesh_read_3vn(mesh_builder *b, const char *text, size_t length, const 
 hr_status mesh_read_obj(mesh_builder *b, const char *text, size_t length, const char *shown,
                         char *error, size_t error_size);
 
-/* --- The regular solids ---------------------------------------------------- */
+/* --- The regular solids and the buckyball ------------------------------------ */
 
 #define MESH_TETRAHEDRON 0
 #define MESH_OCTAHEDRON 1
 #define MESH_DODECAHEDRON 2
 #define MESH_ICOSAHEDRON 3
+#define MESH_BUCKYBALL 4 /* the truncated icosahedron */
 
 /* Fills the builder with the solid, vertices on the unit sphere, faces wound
  * counter-clockwise seen from outside. 0, or -1 when out of memory. */

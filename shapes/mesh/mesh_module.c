@@ -1,7 +1,9 @@
 /* The mesh module: triangle and polygon meshes read from files (class
  * `mesh`, parameter `file`), meshes handed over as arrays (class
- * `triangleMesh`, mesh_arrays.c) and Hill's regular solids built in code
- * (`tetrahedron`, `octahedron`, `dodecahedron`, `icosahedron`).
+ * `triangleMesh`, mesh_arrays.c), Hill's regular solids and buckyball built
+ * in code (`tetrahedron`, `octahedron`, `dodecahedron`, `icosahedron`,
+ * `buckyball`; mesh_solids.c) and Newell's teapot tessellated from its
+ * Bezier patches (`teapot`, parameter `tessellation`; mesh_teapot.c).
  *
  * Files: Hill's chapter-6 format (.3vn) or Wavefront OBJ (.obj), see
  * mesh_read_3vn.c and mesh_read_obj.c; a relative name is taken from the
@@ -29,7 +31,9 @@
 
 #include "mesh.h"
 #include "mesh_arrays.h"
+#include "mesh_bezier.h"
 #include "mesh_file.h"
+#include "mesh_teapot.h"
 
 /* A ray with an infinite or NaN component has no finite point but its
  * origin (o + t d is infinite or NaN in that coordinate for every t != 0),
@@ -117,6 +121,39 @@ DEFINE_SOLID_CREATE(tetrahedron, MESH_TETRAHEDRON)
 DEFINE_SOLID_CREATE(octahedron, MESH_OCTAHEDRON)
 DEFINE_SOLID_CREATE(dodecahedron, MESH_DODECAHEDRON)
 DEFINE_SOLID_CREATE(icosahedron, MESH_ICOSAHEDRON)
+DEFINE_SOLID_CREATE(buckyball, MESH_BUCKYBALL)
+
+static hr_status teapot_create(const hr_create_args *args, void **out_shape)
+{
+    *out_shape = NULL;
+    double level = MESH_TEAPOT_DEFAULT_LEVEL;
+    for (int32_t i = 0; i < args->param_count; i++)
+        if (args->params[i].name && strcmp(args->params[i].name, "tessellation") == 0 &&
+            args->params[i].type == HR_PARAM_NUMBER)
+            level = args->params[i].number;
+    /* The host checked the range; a fraction of a step it cannot see. */
+    if (!(level >= MESH_TEAPOT_MIN_LEVEL && level <= MESH_BEZIER_MAX_LEVEL) ||
+        level != floor(level)) {
+        snprintf(args->error, args->error_size,
+                 "parameter 'tessellation' is %g; it must be a whole number of steps along each "
+                 "side of a patch, from %d to %d",
+                 level, MESH_TEAPOT_MIN_LEVEL, MESH_BEZIER_MAX_LEVEL);
+        return HR_ERROR_PARAMETER;
+    }
+    mesh_builder b;
+    mesh_builder_init(&b, args->host);
+    mesh *m = NULL;
+    hr_status st = mesh_teapot_build(&b, (uint32_t)level)
+                       ? HR_ERROR_OUT_OF_MEMORY
+                       : mesh_builder_finish(&b, &m, args->error, args->error_size);
+    mesh_builder_release(&b);
+    if (st == HR_ERROR_OUT_OF_MEMORY)
+        snprintf(args->error, args->error_size,
+                 "out of memory tessellating the teapot into %u triangles",
+                 MESH_TEAPOT_TRIANGLES((uint32_t)level));
+    *out_shape = m;
+    return st;
+}
 
 static const hr_param_spec mesh_params[] = {
     {"file", HR_PARAM_STRING, 1, 0.0, 0.0, 0.0,
@@ -130,6 +167,13 @@ static const hr_param_spec triangle_mesh_params[] = {
      "three vertex indices (from 0) per triangle, counter-clockwise seen from outside"},
     {"normals", HR_PARAM_NUMBERS, 0, 0.0, -DBL_MAX, DBL_MAX,
      "optional: x y z per vertex, shading normals interpolated across each triangle"},
+};
+
+static const hr_param_spec teapot_params[] = {
+    {"tessellation", HR_PARAM_NUMBER, 0, MESH_TEAPOT_DEFAULT_LEVEL, MESH_TEAPOT_MIN_LEVEL,
+     MESH_BEZIER_MAX_LEVEL,
+     "steps along each side of each of the 32 patches, a whole number: 64 n^2 - 8 n triangles "
+     "(9,120 at the default 12), some 60 bytes each"},
 };
 
 #define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
@@ -163,16 +207,27 @@ static const hr_shape_class icosahedron_class =
     MESH_CLASS("icosahedron", HR_SHAPE_CLOSED,
                "regular icosahedron, vertices on the unit sphere", NULL, 0, icosahedron_create);
 
+static const hr_shape_class buckyball_class =
+    MESH_CLASS("buckyball", HR_SHAPE_CLOSED,
+               "truncated icosahedron (12 pentagons, 20 hexagons), vertices on the unit sphere",
+               NULL, 0, buckyball_create);
+static const hr_shape_class teapot_class =
+    MESH_CLASS("teapot", 0,
+               "Newell's teapot from its 32 Bezier patches, smooth normals, glutSolidTeapot(1)'s "
+               "size (y up, base at y = -0.75); open, as Newell made it",
+               teapot_params, 1, teapot_create);
+
 static const hr_shape_class *const mesh_classes[] = {
     &mesh_class, &tetrahedron_class, &octahedron_class, &dodecahedron_class, &icosahedron_class,
-    &triangle_mesh_class,
+    &triangle_mesh_class, &buckyball_class, &teapot_class,
 };
 
 static const hr_module_info mesh_module = {
     .struct_size = sizeof(hr_module_info),
     .abi_version = HR_SHAPE_ABI_VERSION,
     .name = "mesh",
-    .description = "triangle meshes from Hill's .3vn and OBJ files or from arrays, and the regular solids",
+    .description = "triangle meshes from Hill's .3vn and OBJ files or from arrays, the regular "
+                   "solids, the buckyball and Newell's teapot",
     .classes = mesh_classes,
     .class_count = (int32_t)(sizeof mesh_classes / sizeof mesh_classes[0]),
 };

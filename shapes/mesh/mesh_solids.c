@@ -1,19 +1,21 @@
 /* The regular solids of Hill's chapter 6, built in code: tetrahedron,
- * octahedron, dodecahedron and icosahedron, centred at the origin with
- * their vertices on the unit sphere (the generic sphere's size).
+ * octahedron, dodecahedron and icosahedron, and the buckyball (the
+ * truncated icosahedron, which Hill's reader loaded from bucky.3vn),
+ * centred at the origin with their vertices on the unit sphere (the generic
+ * sphere's size).
  *
  * Only the vertices are written down (the usual coordinates, from the cube
  * and the golden ratio); the faces are found from them: a face is the set
  * of vertices on a plane through three of them that has every vertex on
  * its inner side. Its corners are then ordered by angle about the face's
  * centre, counter-clockwise seen from outside, and the polygon is fanned
- * like any other (the dodecahedron's pentagons give three triangles each). */
+ * like any other (a pentagon gives three triangles, a hexagon four). */
 #include <math.h>
 #include <string.h>
 
 #include "mesh.h"
 
-#define MAX_VERTICES 20
+#define MAX_VERTICES 60
 /* Vertices of one solid closer than this to a face plane lie on it: the
  * coordinates are accurate to a few ulps, and distinct planes of these
  * solids are far apart. */
@@ -62,6 +64,13 @@ static int solid_vertices(int solid, vec *v)
         break;
     case MESH_ICOSAHEDRON:
         for (int shift = 0; shift < 3; shift++) n = add_signed(v, n, 0, 1, phi, shift);
+        break;
+    case MESH_BUCKYBALL: /* the icosahedron's edges cut at a third: edge 2 here */
+        for (int shift = 0; shift < 3; shift++) {
+            n = add_signed(v, n, 0, 1, 3 * phi, shift);
+            n = add_signed(v, n, 1, 2 + phi, 2 * phi, shift);
+            n = add_signed(v, n, phi, 2, 2 * phi + 1, shift);
+        }
         break;
     default:
         return 0;

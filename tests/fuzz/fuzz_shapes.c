@@ -228,6 +228,9 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
             /* min > max: no range stated */
             if (spec->min <= spec->max && !(p->number >= spec->min && p->number <= spec->max))
                 valid = 0;
+            /* The teapot's steps a side are counted: a fraction is refused. */
+            if (strcmp(spec->name, "tessellation") == 0 && p->number != floor(p->number))
+                valid = 0;
         } else if (spec->type == HR_PARAM_STRING) {
             const char *const *values = other_strings;
             unsigned n = sizeof other_strings / sizeof other_strings[0];

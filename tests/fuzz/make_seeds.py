@@ -29,7 +29,8 @@ def ray(origin, direction, interval=None):
 # The classes fuzz_shapes.c finds in the built-in modules, in its order
 # (module by module, each module's classes in its own order).
 CLASSES = ["sphere", "plane", "square", "cube", "taperedCylinder", "cylinder", "cone",
-           "torus", "mesh", "tetrahedron", "octahedron", "dodecahedron", "icosahedron"]
+           "openTaperedCylinder", "torus", "mesh", "tetrahedron", "octahedron", "dodecahedron", "icosahedron",
+           "triangleMesh", "buckyball", "teapot"]
 RAYS = [
     ray((0, 0, 5), (0, 0, -1)),
     ray((0.5, 0.25, 0.5), (1, 0.5, -0.25), "line"),
@@ -44,7 +45,7 @@ def shape_seeds():
     for index, name in enumerate(CLASSES):
         params = b""
         variants = [b""]
-        if name == "taperedCylinder":
+        if name in ("taperedCylinder", "openTaperedCylinder"):
             variants = [raw(0.5), raw(0.0), raw(3.0), raw(-1.0), raw(2e6)]
         elif name == "torus":
             # tube, then the solver (0 default, 1 ferrari, 2 ferrari-newton,
@@ -53,6 +54,12 @@ def shape_seeds():
                         raw(0.999) + bytes([3]), raw(0.2) + bytes([4]), raw(1.0) + bytes([3])]
         elif name == "mesh":
             variants = [bytes([k]) for k in range(5)]
+        elif name == "teapot":
+            # steps a side: the coarsest, the default, then refused ones
+            # (a fraction, below and above the range)
+            variants = [raw(2.0), raw(12.0), raw(2.5), raw(1.0), raw(129.0)]
+        elif name == "triangleMesh":
+            continue  # arrays from the input: fuzzed from the seeds of others
         for k, params in enumerate(variants):
             seeds["seed_%s_%d" % (name, k)] = bytes([index]) + params + b"".join(RAYS)
     return seeds

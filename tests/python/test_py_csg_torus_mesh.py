@@ -203,6 +203,33 @@ def test_the_regular_solids():
         assert 4.0 <= hit.t <= 5.0 - 1 / 3
 
 
+def test_the_buckyball_and_the_teapot():
+    require_classes("buckyball", "teapot")
+    scene = hitray.Scene()
+    scene.add(hitray.Buckyball())
+    hit = scene.first_hit((0, 0, 5), (0, 0, -1))
+    # Vertices on the unit sphere; the nearest faces, the hexagons, are at
+    # sqrt(1 - e^2) from the centre, e = 2 / sqrt(9 phi + 10) the edge.
+    phi = (1 + 5 ** 0.5) / 2
+    edge = 2 / (9 * phi + 10) ** 0.5
+    assert 4.0 <= hit.t <= 5.0 - (1 - edge * edge) ** 0.5
+    assert repr(hitray.Buckyball()) == "Buckyball()"
+
+    # Straight down onto the knob's top, glutSolidTeapot's 0.825 high.
+    teapot = hitray.Scene()
+    teapot.add(hitray.Teapot())
+    hit = teapot.first_hit((0, 5, 0), (0, -1, 0))
+    assert hit.t == pytest.approx(5 - 0.825, abs=1e-12) and hit.entering
+    assert hit.normal == pytest.approx((0, 1, 0), abs=1e-12)
+    coarse = hitray.Scene()
+    coarse.add(hitray.Teapot(tessellation=4))
+    assert coarse.first_hit((0, 5, 0), (0, -1, 0)).t == pytest.approx(5 - 0.825, abs=1e-12)
+    assert repr(hitray.Teapot(tessellation=4)) == "Teapot(tessellation=4.0)"
+    for bad in (2.5, 1, 129):
+        with pytest.raises(hitray.ParameterError, match="tessellation"):
+            hitray.Scene().add(hitray.Teapot(tessellation=bad))
+
+
 def test_one_shape_in_two_booleans_is_two_copies():
     require_classes("union", "intersection")
     scene = hitray.Scene()

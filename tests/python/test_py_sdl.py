@@ -39,7 +39,7 @@ def test_the_demo_scene_loads_and_renders():
 @pytest.mark.parametrize("text, line, column, words", [
     ("sphere\nscale 1 x 1\n", 2, 9, "number"),
     ("sphere\n  nosuchword\n", 2, 3, "nosuchword"),
-    ("buckyball\n", 1, 1, "buckyball"),
+    ("diamond\n", 1, 1, "diamond.3vn"),
     ("use undefined\n", 1, 5, "undefined"),
     ("scale 0 1 1 sphere\n", 1, 7, "scale"),  # the zero factor
 ])
@@ -59,8 +59,14 @@ def test_errors_in_the_text_name_file_line_and_column(tmp_path, text, line, colu
 
 def test_unsupported_shapes_are_sdl_errors_with_their_status():
     with pytest.raises(hitray.SDLError) as err:
-        hitray.parse_sdl("teapot")
+        hitray.parse_sdl("diamond")
     assert err.value.status == 9  # HR_ERROR_UNSUPPORTED
+    assert "never published" in str(err.value)
+
+
+def test_the_teapot_and_the_buckyball_load():
+    scene, _ = hitray.parse_sdl("teapot\npush translate 3 0 0 buckyball pop\n")
+    assert [o.shape for o in scene.objects] == ["teapot", "buckyball"]
 
 
 def test_a_missing_file_is_a_file_error(tmp_path):

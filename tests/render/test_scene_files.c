@@ -16,6 +16,8 @@ static const char *const scenes[] = {
     HR_TEST_SOURCE_DIR "/tests/scenes/hill/village.dat",
     HR_TEST_SOURCE_DIR "/tests/scenes/hill/room.dat",
     HR_TEST_SOURCE_DIR "/tests/scenes/shapes/torus.sdl",
+    HR_TEST_SOURCE_DIR "/tests/scenes/shapes/teapot.sdl",
+    HR_TEST_SOURCE_DIR "/tests/scenes/shapes/buckyball.sdl",
 };
 
 #define W 96

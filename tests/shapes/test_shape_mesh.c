@@ -595,26 +595,28 @@ static void test_exact_signs(void)
     CHECK_MSG(wrong_plain > 1000, "only %d plain signs wrong: the inputs do not cancel", wrong_plain);
 }
 
-/* The module's table: six classes, complete vtables, one surface each;
+/* The module's table: eight classes, complete vtables, one surface each;
  * the solids closed and without parameters; `mesh` takes one required
  * string `file` (the name the SDL reader and the Python binding use);
- * `triangleMesh`, last, takes the arrays points, triangles (required) and
- * normals. */
+ * `triangleMesh`, sixth, takes the arrays points, triangles (required) and
+ * normals; then the buckyball, closed, and the teapot, open, with its one
+ * optional number `tessellation` (test_shape_teapot looks further). */
 static void test_classes(void)
 {
     const hr_module_info *info = cube_mesh.module.info;
     CHECK(info->abi_version == HR_SHAPE_ABI_VERSION && strcmp(info->name, "mesh") == 0);
-    CHECK(info->class_count == 6);
-    static const char *const names[6] = {"mesh",         "tetrahedron", "octahedron",
-                                         "dodecahedron", "icosahedron", "triangleMesh"};
-    static const int32_t param_counts[6] = {1, 0, 0, 0, 0, 3};
-    for (int i = 0; i < 6 && i < info->class_count; i++) {
+    CHECK(info->class_count == 8);
+    static const char *const names[8] = {"mesh",         "tetrahedron", "octahedron",
+                                         "dodecahedron", "icosahedron", "triangleMesh",
+                                         "buckyball",    "teapot"};
+    static const int32_t param_counts[8] = {1, 0, 0, 0, 0, 3, 0, 1};
+    for (int i = 0; i < 8 && i < info->class_count; i++) {
         const hr_shape_class *c = info->classes[i];
         CHECK(strcmp(c->name, names[i]) == 0);
         CHECK(c->struct_size == sizeof(hr_shape_class) && c->surface_count == 1);
         CHECK(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit);
         CHECK(c->help && c->help[0]);
-        CHECK(c->flags == (i == 0 || i == 5 ? 0 : HR_SHAPE_CLOSED));
+        CHECK(c->flags == (i == 0 || i == 5 || i == 7 ? 0 : HR_SHAPE_CLOSED));
         CHECK(c->param_count == param_counts[i]);
     }
     const hr_shape_class *m = info->classes[0];

@@ -34,9 +34,9 @@ from .render import render
 from .scene import Scene, SceneObject
 from .sdl import load_sdl, parse_sdl
 from .nff import load_nff, parse_nff
-from .shapes import (Cone, Cube, Cylinder, Difference, Dodecahedron, Icosahedron, Intersection,
-                     Mesh, Octahedron, Plane, Shape, Sphere, Square, TaperedCylinder, Tetrahedron,
-                     Torus, Union)
+from .shapes import (Buckyball, Cone, Cube, Cylinder, Difference, Dodecahedron, Icosahedron,
+                     Intersection, Mesh, Octahedron, Plane, Shape, Sphere, Square, TaperedCylinder,
+                     Teapot, Tetrahedron, Torus, Union)
 
 __version__ = "%d.%d.%d" % _core.version()
 
@@ -44,8 +44,8 @@ __all__ = [
     "Scene", "SceneObject", "Camera", "render", "Image", "RenderStats",
     "load_sdl", "parse_sdl", "load_nff", "parse_nff",
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
-    "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Union", "Intersection",
-    "Difference",
+    "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Buckyball", "Teapot",
+    "Union", "Intersection", "Difference",
     "HitInfo", "TraceResult", "Light",
     "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
     "ModuleInfo",

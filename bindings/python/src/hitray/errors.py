@@ -95,8 +95,8 @@ class StateError(Error):
 
 
 class UnsupportedError(Error):
-    """A feature this build does not have (SDL's ``buckyball``, ``diamond`` and
-    ``teapot`` need data files the original loaded)."""
+    """A feature this build does not have (SDL's ``diamond``: Hill's reader
+    loaded it from a mesh file that was never published)."""
 
 
 class NumericError(Error, ValueError):

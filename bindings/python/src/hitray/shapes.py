@@ -27,8 +27,8 @@ ParamValue = typing.Union[float, int, str, "os.PathLike[str]", bytes, "Shape"]
 
 __all__ = [
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone",
-    "Torus", "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Union",
-    "Intersection", "Difference",
+    "Torus", "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Buckyball",
+    "Teapot", "Union", "Intersection", "Difference",
 ]
 
 
@@ -339,6 +339,37 @@ class Icosahedron(Shape):
 
     def _repr_head(self) -> str:
         return "Icosahedron()"
+
+
+class Buckyball(Shape):
+    """The truncated icosahedron (12 pentagons, 20 hexagons), vertices on the
+    unit sphere: Hill's ``buckyball``."""
+
+    __slots__ = ()
+
+    def __init__(self) -> None:
+        super().__init__("buckyball")
+
+    def _repr_head(self) -> str:
+        return "Buckyball()"
+
+
+class Teapot(Shape):
+    """Newell's teapot, tessellated from its 32 Bezier patches with smooth
+    normals: `tessellation` steps along each side of a patch (a whole number
+    from 2 to 128; 12 if omitted), 64 n² - 8 n triangles. The size of
+    glutSolidTeapot(1.0), as Hill drew it: y up, the base at y = -0.75, the
+    handle towards -x, the spout towards +x. An open surface, as Newell made
+    it (the lid sits in the rim with a gap)."""
+
+    __slots__ = ()
+
+    def __init__(self, tessellation: Optional[int] = None) -> None:
+        super().__init__("teapot", tessellation=tessellation)
+
+    def _repr_head(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self._params.items())
+        return f"Teapot({args})"
 
 
 class _Boolean(Shape):
