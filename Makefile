@@ -64,7 +64,8 @@ build: deps $(BUILD)/build.ninja
 build-all: deps-test build
 	cmake --build $(BUILD) -j $(JOBS) $(NINJA_QUIET)
 
-# The README's picture: its size and samples per pixel.
+# The README's picture, with its size and samples per pixel
+# (tests/python/test_demo_picture.py checks that the two agree).
 demo: build
 	@mkdir -p out
 	$(BUILD)/bin/hitray render scenes/demo.sdl -o out/demo.png --exr out/demo.exr --size 960x720 --spp 4
