@@ -23,6 +23,10 @@ import xml.etree.ElementTree as ET
 START = re.compile(r"^\s*Start\s+\d+: ")
 PASSED = re.compile(r"^\s*\d+/\d+ (Test|MemCheck)\s+#\d+: .* Passed\s+[0-9.]+ sec$")
 SKIPPED = re.compile(r"^\s*\d+/\d+ (Test|MemCheck)\s+#\d+: .*Skipped\s+[0-9.]+ sec$")
+# What `ctest -T memcheck` says of the dashboard it would submit to (there is
+# none): no test's business.
+DASHBOARD = re.compile(r"^(Cannot find file: .*DartConfiguration\.tcl|\s+Site: |\s+Build name: |"
+                       r"Create new tag: |Memory check project )")
 
 
 def test_dir(args):
@@ -67,6 +71,8 @@ def quiet(lines, reasons):
             dropping = True
             continue
         if line.startswith(("Test project ", "Internal ctest changing into directory")):
+            continue
+        if DASHBOARD.match(line):
             continue
         if START.match(line) or PASSED.match(line) or SKIPPED.match(line):
             continue
