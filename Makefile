@@ -34,6 +34,10 @@ NINJA_QUIET :=
 CTEST := scripts/ctest_quiet.py --verbose --
 endif
 
+# $(call configure,DIR,FLAGS): a Ninja build tree in DIR, configured with
+# FLAGS and $(CMAKE_FLAGS).
+configure = mkdir -p $(1) && cmake -S . -B $(1) -G Ninja $(2) $(CMAKE_FLAGS) $(call stdout_to,$(1)/configure.log)
+
 .PHONY: all deps deps-test deps-wheel build build-all demo test test-c test-asan test-tsan test-fuzz \
         test-python test-python-asan test-memcheck test-wheel wheel install clean bench bench-accuracy \
         fuzz fuzz-long
@@ -54,9 +58,7 @@ deps-wheel:
 # builds only the target hitray_runtime (the library, the shape modules, the
 # command and its man page), build-all the rest.
 $(BUILD)/build.ninja: | deps
-	@mkdir -p $(BUILD)
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	    -DHITRAY_BUILD_TESTS=ON -DHITRAY_BUILD_BENCH=ON $(CMAKE_FLAGS) $(call stdout_to,$(BUILD)/configure.log)
+	$(call configure,$(BUILD),-DCMAKE_BUILD_TYPE=RelWithDebInfo -DHITRAY_BUILD_TESTS=ON -DHITRAY_BUILD_BENCH=ON)
 
 build: deps $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS) --target hitray_runtime $(NINJA_QUIET)
@@ -83,9 +85,7 @@ test-c: build-all
 	$(CTEST) --test-dir $(BUILD) -j $(JOBS)
 
 $(ASAN_BUILD)/build.ninja: | deps-test
-	@mkdir -p $(ASAN_BUILD)
-	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DHITRAY_SANITIZE=ON $(CMAKE_FLAGS) \
-	    $(call stdout_to,$(ASAN_BUILD)/configure.log)
+	$(call configure,$(ASAN_BUILD),-DCMAKE_BUILD_TYPE=Debug -DHITRAY_SANITIZE=ON)
 
 test-asan: deps-test $(ASAN_BUILD)/build.ninja
 	cmake --build $(ASAN_BUILD) -j $(JOBS) $(NINJA_QUIET)
@@ -102,9 +102,7 @@ test-memcheck: build-all
 	    --overwrite "MemoryCheckCommandOptions=$(MEMCHECK_OPTIONS)"
 
 $(TSAN_BUILD)/build.ninja: | deps-test
-	@mkdir -p $(TSAN_BUILD)
-	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DHITRAY_TSAN=ON $(CMAKE_FLAGS) \
-	    $(call stdout_to,$(TSAN_BUILD)/configure.log)
+	$(call configure,$(TSAN_BUILD),-DCMAKE_BUILD_TYPE=Debug -DHITRAY_TSAN=ON)
 
 test-tsan: deps-test $(TSAN_BUILD)/build.ninja
 	cmake --build $(TSAN_BUILD) -j $(JOBS) $(NINJA_QUIET)
