@@ -13,7 +13,7 @@ expect_file("${PAGE}")
 # `make build` has configured the tree.
 find_program(GROFF groff)
 if(NOT GROFF)
-  message(STATUS "skipped: groff is not installed (Debian: groff-base), so the page cannot be read")
+  message("skipped: groff is not installed (Debian: groff-base), so the page cannot be read")
   return()
 endif()
 execute_process(COMMAND "${GROFF}" -man -Tascii -ww -P-c -P-b -P-u "${PAGE}"
