@@ -22,7 +22,7 @@ import xml.etree.ElementTree as ET
 #   " 12/212 Test  #12: test_transform ...........   Passed    0.02 sec"
 START = re.compile(r"^\s*Start\s+\d+: ")
 PASSED = re.compile(r"^\s*\d+/\d+ (Test|MemCheck)\s+#\d+: .* Passed\s+[0-9.]+ sec$")
-SKIPPED = re.compile(r"^\s*\d+/\d+ (Test|MemCheck)\s+#\d+: .*Skipped\s+[0-9.]+ sec$")
+SKIPPED = re.compile(r"^\s*\d+/\d+ (?:Test|MemCheck)\s+#\d+: (\S+) .*Skipped\s+[0-9.]+ sec$")
 # What `ctest -T memcheck` says of the dashboard it would submit to (there is
 # none): no test's business.
 DASHBOARD = re.compile(r"^(Cannot find file: .*DartConfiguration\.tcl|\s+Site: |\s+Build name: |"
@@ -35,18 +35,19 @@ def test_dir(args):
     return pathlib.Path.cwd()
 
 
-def skip_reasons(junit):
-    """{test name: reason} from ctest's JUnit file: the test's own line
-    'skipped: ...' when it printed one, else ctest's message."""
-    reasons = {}
+def skip_reasons(skipped_names, junit):
+    """{test name: reason} for the tests ctest reported skipped (not those it
+    could not run, which are failures), from its JUnit file: the test's own
+    line 'skipped: ...' when it printed one, else ctest's message."""
+    reasons = {name: "skipped: no reason given" for name in skipped_names}
     try:
         root = ET.parse(junit).getroot()
     except (OSError, ET.ParseError):
         return reasons
     for case in root.iter("testcase"):
-        skipped = case.find("skipped")
-        if case.get("status") != "notrun" and skipped is None:
+        if case.get("name") not in reasons:
             continue
+        skipped = case.find("skipped")
         output = case.findtext("system-out") or ""
         said = [line.strip() for line in output.splitlines() if line.strip().startswith("skipped:")]
         if said:
@@ -100,7 +101,9 @@ def main(argv):
     if verbose:
         sys.stdout.write(result.stdout)
     else:
-        print(quiet(result.stdout.splitlines(), skip_reasons(junit)))
+        lines = result.stdout.splitlines()
+        skipped = [m.group(1) for m in map(SKIPPED.match, lines) if m]
+        print(quiet(lines, skip_reasons(skipped, junit)))
         if result.returncode != 0:
             print(f"(ctest's whole output: {log})")
     return result.returncode
