@@ -4,13 +4,13 @@
 # bench/raycast and a render of one benchmark scene, each with its top
 # functions (self cost).
 #   bench/profile.sh [SCENE...]  (SCENE: a bench/scenes/*.sdl name, default spheres;
-#                                 needs `make build` and valgrind)
+#                                 needs `make build-all`, which builds bench/raycast, and valgrind)
 set -eu
 cd "$(dirname "$0")/.."
 [ $# -gt 0 ] || set -- spheres
 build=${BUILD:-build}
 command -v valgrind >/dev/null || { echo "profile: valgrind is not installed" >&2; exit 1; }
-[ -x "$build/bin/raycast" ] || { echo "profile: build first (make build)" >&2; exit 1; }
+[ -x "$build/bin/raycast" ] || { echo "profile: build the benchmark programs first (make build-all)" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 

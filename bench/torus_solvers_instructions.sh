@@ -12,7 +12,7 @@ build=${1:-build}
 rays=${2:-2000}
 bin=$build/bench/torus_solvers
 if [ ! -x "$bin" ]; then
-    echo "torus_solvers_instructions.sh: $bin is missing: build first" >&2
+    echo "torus_solvers_instructions.sh: $bin is missing: build the benchmark programs first (make build-all)" >&2
     exit 1
 fi
 command -v valgrind >/dev/null && command -v callgrind_annotate >/dev/null || {

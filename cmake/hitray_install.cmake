@@ -47,3 +47,9 @@ foreach(dir LIBDIR INCLUDEDIR)
 endforeach()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/hitray.pc.in ${PROJECT_BINARY_DIR}/hitray.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/hitray.pc DESTINATION ${HITRAY_PKGCONFIG_INSTALL_DIR})
+
+# What a reader of the man page is pointed to: the docs (the scene language
+# in sdl.md among them) and the example scenes, beside each other.
+set(HITRAY_DATA_INSTALL_DIR ${CMAKE_INSTALL_DATADIR}/hitray)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${HITRAY_DATA_INSTALL_DIR}/docs)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${HITRAY_DATA_INSTALL_DIR}/scenes)

@@ -1,48 +1,59 @@
 #!/bin/sh
-# Install what `make` needs on a Debian machine, only what is missing:
-# Debian packages through apt-get (as root, or through sudo), and the Python
-# test tools through pip into the repository's own virtual environment.
+# Install what a `make` target needs on a Debian machine, only what is
+# missing: Debian packages through apt-get (as root, or through sudo), and
+# Python tools through pip into the repository's own virtual environment.
+#   bootstrap.sh           building the library, the shapes and the command
+#                          (make build, make demo, make install)
+#   bootstrap.sh --test    and the tests (make test): the sanitizers' and
+#                          the fuzzers' clang, valgrind, groff (the man page's
+#                          check), Python and every scripts/requirements-*.txt
+#   bootstrap.sh --wheel   and the wheel (make wheel): Python, the build and
+#                          repair tools (requirements-python.txt, -wheel.txt)
+#   bootstrap.sh --bench   and what `make bench` compares against
 set -eu
 cd "$(dirname "$0")/.."
 
-# `bootstrap.sh --bench` adds what `make bench` compares against.
-bench_pkgs=""
-[ "${1:-}" = "--bench" ] && bench_pkgs="povray libembree-dev"
-# clang, its runtimes (libFuzzer, the sanitizers) and llvm (the symbolizer)
-# build and run the fuzz harnesses in tests/fuzz; valgrind runs make
-# test-memcheck.
-need_pkgs=""
-for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev \
-           python3 python3-venv python3-dev \
-           clang libclang-rt-14-dev llvm valgrind $bench_pkgs; do
+need="cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev"
+python_pkgs="python3 python3-venv python3-dev"
+venv_reqs=""
+case "${1:-}" in
+    "") ;;
+    # clang, its runtimes (libFuzzer, the sanitizers) and llvm (the
+    # symbolizer) build and run the fuzz harnesses in tests/fuzz; valgrind
+    # runs make test-memcheck.
+    --test) need="$need $python_pkgs clang libclang-rt-14-dev llvm valgrind groff-base"
+            venv_reqs=$(ls scripts/requirements-*.txt) ;;
+    --wheel) need="$need $python_pkgs"
+             venv_reqs="scripts/requirements-python.txt scripts/requirements-wheel.txt" ;;
+    --bench) need="$need python3 povray libembree-dev" ;;
+    *) echo "bootstrap.sh: unknown option '$1' (--test, --wheel or --bench)" >&2; exit 2 ;;
+esac
+
+missing=""
+for pkg in $need; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
-        need_pkgs="$need_pkgs $pkg"
+        missing="$missing $pkg"
 done
-if [ -n "$need_pkgs" ]; then
-    echo "bootstrap: installing Debian packages:$need_pkgs"
+if [ -n "$missing" ]; then
+    echo "bootstrap: installing Debian packages:$missing"
     if [ "$(id -u)" = 0 ]; then sudo=""; else sudo="sudo"; fi
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
-    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $need_pkgs
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $missing
 fi
 
-# The venv: created once, then only topped up from requirements.
+[ -n "$venv_reqs" ] || exit 0
+# The venv: created once, then each requirements file installed when it is
+# newer than its stamp (so a changed file tops the venv up).
 venv=.venv
-stamp=$venv/.requirements-stamp
 if [ ! -x "$venv/bin/python" ]; then
     echo "bootstrap: creating the Python virtual environment in $venv"
     python3 -m venv "$venv"
-fi
-# Every scripts/requirements-*.txt is installed; a newer file than the stamp
-# triggers the top-up.
-stale=""
-for req in scripts/requirements-*.txt; do
-    if [ ! -f "$stamp" ] || [ "$req" -nt "$stamp" ]; then stale=1; fi
-done
-if [ -n "$stale" ]; then
     "$venv/bin/python" -m pip install -q --upgrade pip
-    for req in scripts/requirements-*.txt; do
-        "$venv/bin/python" -m pip install -q -r "$req"
-    done
-    touch "$stamp"
 fi
-
+for req in $venv_reqs; do
+    stamp="$venv/.stamp-$(basename "$req" .txt)"
+    if [ ! -f "$stamp" ] || [ "$req" -nt "$stamp" ]; then
+        "$venv/bin/python" -m pip install -q -r "$req"
+        touch "$stamp"
+    fi
+done

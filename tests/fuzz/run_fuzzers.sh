@@ -3,7 +3,7 @@
 # runs them; see FUZZING.md.
 #
 #   run_fuzzers.sh [--build DIR] [--seconds N] [--runs N] [--replay] [--seed S] [--jobs N]
-#                  [--merge] [HARNESS...]
+#                  [--merge] [--quiet] [HARNESS...]
 #
 # Each harness (all of them when none is named: shapes csg sdl nff mesh scene) runs
 # for N seconds (default 60) starting from its committed seeds in
@@ -21,7 +21,8 @@
 # committed corpus, keeping only those that reach new coverage (libFuzzer's
 # -merge=1): the one mode that writes into the source tree.
 # Exits non-zero, naming the harness and the input that broke it, on any
-# crash, sanitizer report, timeout, leak or contract break.
+# crash, sanitizer report, timeout, leak or contract break. --quiet builds
+# without a line per compile (warnings and errors still shown).
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=build-fuzz
@@ -30,6 +31,7 @@ replay=""
 merge=""
 seed=""
 runs=""
+quiet=""
 jobs=${FUZZ_JOBS:-2}
 harnesses=""
 while [ $# -gt 0 ]; do
@@ -41,7 +43,8 @@ while [ $# -gt 0 ]; do
     --seed) seed=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
-    -h | --help) sed -n '2,26p' "$0"; exit 0 ;;
+    --quiet) quiet=1; shift ;;
+    -h | --help) sed -n '2,25p' "$0"; exit 0 ;;
     -*) echo "run_fuzzers.sh: unknown option $1" >&2; exit 2 ;;
     *) harnesses="$harnesses $1"; shift ;;
     esac
@@ -69,7 +72,7 @@ for h in $harnesses; do
     targets="$targets fuzz_$h"
 done
 # shellcheck disable=SC2086 # the target list is meant to split
-cmake --build "$build" -j "$jobs" --target $targets
+cmake --build "$build" -j "$jobs" --target $targets ${quiet:+-- --quiet}
 
 # ASan's and UBSan's reports end the run; leaks are reported too.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:symbolize=1}"

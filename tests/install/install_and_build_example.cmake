@@ -21,6 +21,9 @@ expect_file("${prefix}/${LIBDIR}/cmake/hitray/hitrayConfig.cmake")
 expect_file("${prefix}/${LIBDIR}/cmake/hitray/hitrayConfigVersion.cmake")
 expect_file("${prefix}/${LIBDIR}/pkgconfig/hitray.pc")
 expect_file("${prefix}/bin/hitray")
+expect_file("${prefix}/share/man/man1/hitray.1")
+expect_file("${prefix}/share/hitray/docs/sdl.md")
+expect_file("${prefix}/share/hitray/scenes/demo.sdl")
 
 # The installed command runs from its new place and finds the installed
 # library and shape modules through relative paths alone.
@@ -32,6 +35,11 @@ run_checked("installed hitray shapes" "${prefix}/bin/hitray" shapes)
 if(NOT LAST_OUTPUT MATCHES "moved prefix/[^\n]*hitray/shapes/sphere\\.so")
   message(FATAL_ERROR "the installed hitray did not find the installed modules:\n${LAST_OUTPUT}")
 endif()
+
+# The installed example scene renders with the installed command.
+run_checked("installed hitray render of the installed demo scene" "${prefix}/bin/hitray" render
+  "${prefix}/share/hitray/scenes/demo.sdl" -o "${WORK_DIR}/demo.png" --size 32x24)
+expect_png("${WORK_DIR}/demo.png")
 
 set(image "${WORK_DIR}/spheres.png")
 if(MODE STREQUAL "cmake")
@@ -53,9 +61,25 @@ elseif(MODE STREQUAL "pkgconfig")
   separate_arguments(flags UNIX_COMMAND "${flags}")
   separate_arguments(extra UNIX_COMMAND "${EXTRA_FLAGS}")
   # The same thing a user types: cc spheres.c $(pkg-config --cflags --libs hitray).
-  run_checked("compiling with pkg-config flags" "${C_COMPILER}" -std=c11 -Wall -Werror ${extra}
-    "${SOURCE_DIR}/examples/c/spheres.c" -o "${WORK_DIR}/spheres" ${flags}
-    "-Wl,-rpath,${prefix}/${LIBDIR}")
+  # What the README says of a prefix the loader does not search: linked with
+  # the flags alone, the program cannot find libhitray.so.0 when it starts;
+  # LD_LIBRARY_PATH or an RPATH to the prefix's libdir lets it.
+  run_checked("compiling with pkg-config flags alone" "${C_COMPILER}" -std=c11 -Wall -Werror ${extra}
+    "${SOURCE_DIR}/examples/c/spheres.c" -o "${WORK_DIR}/spheres-no-rpath" ${flags})
+  execute_process(COMMAND "${WORK_DIR}/spheres-no-rpath" "${image}" 64x48
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "libhitray\\.so\\.0")
+    message(FATAL_ERROR "without an RPATH the example was expected not to find libhitray.so.0 "
+      "(${rc}):\n${out}\n${err}")
+  endif()
+  set(ENV{LD_LIBRARY_PATH} "${prefix}/${LIBDIR}")
+  run_checked("running the example with LD_LIBRARY_PATH" "${WORK_DIR}/spheres-no-rpath" "${image}" 64x48)
+  unset(ENV{LD_LIBRARY_PATH})
+  run_checked("pkg-config --variable=libdir" "${PKG_CONFIG}" --variable=libdir hitray)
+  string(STRIP "${LAST_OUTPUT}" libdir)
+  string(REPLACE "\\ " " " libdir "${libdir}")  # pkg-config escapes the prefix's space
+  run_checked("compiling with pkg-config flags and an RPATH" "${C_COMPILER}" -std=c11 -Wall -Werror ${extra}
+    "${SOURCE_DIR}/examples/c/spheres.c" -o "${WORK_DIR}/spheres" ${flags} "-Wl,-rpath,${libdir}")
   run_checked("running the example" "${WORK_DIR}/spheres" "${image}" 64x48)
 else()
   message(FATAL_ERROR "unknown MODE '${MODE}'")

@@ -3,7 +3,7 @@ helpers over the raw ABI (scenes from SDL text, queries, renders).
 
 Two modes, chosen once:
 - installed: the hitray package is importable with its extension module
-  (pip install ./bindings/python, as `make test` does): hitray.abi loads the
+  (pip install . at the root, as `make test` does): hitray.abi loads the
   package's own libhitray, as a user's program would;
 - build tree: no package, so hitray.abi is imported from
   bindings/python/src and loads lib/libhitray.so.0 of the build tree named by

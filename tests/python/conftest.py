@@ -1,7 +1,7 @@
 """Shared helpers of the tests of the Python package `hitray`.
 
 The package under test is the one installed into the running interpreter
-(`make test-python` installs it from bindings/python first); it is never
+(`make test-python` installs it from the repository's root first); it is never
 imported from the source tree. HITRAY_BUILD_DIR (default ./build) names the
 CMake build tree, where the test-only shape modules live.
 """

@@ -1,0 +1,135 @@
+"""The manylinux wheel of `make wheel`, as a user on another machine gets it:
+installed into a fresh venv and imported there from outside the source tree,
+it renders with the library search path emptied, loads libpng, OpenEXRCore
+and every hitray library from the wheel itself, and each shared object it
+ships needs only what the wheel holds or the manylinux policy lets a wheel
+take from the system (checked with ldd against auditwheel's own policy
+file). `auditwheel show` must find the wheel consistent with its tag."""
+
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import pytest
+
+HERE = pathlib.Path(__file__).resolve().parent
+
+
+def manylinux_policy(wheel):
+    """The policy named by the wheel's platform tag, from auditwheel's policy
+    file (the one `auditwheel repair` applied)."""
+    tag = re.search(r"-(manylinux_\d+_\d+)_[a-z0-9_]+\.whl$", wheel.name)
+    assert tag, f"{wheel.name} has no manylinux platform tag (was it repaired by auditwheel?)"
+    import auditwheel
+    policies = json.loads((pathlib.Path(auditwheel.__file__).parent / "policy" /
+                           "manylinux-policy.json").read_text())
+    for policy in policies:
+        if policy["name"] == tag.group(1) or tag.group(1) in policy.get("aliases", []):
+            return policy
+    pytest.fail(f"auditwheel knows no policy {tag.group(1)}")
+
+
+def clean_env():
+    """The environment of a user who set nothing: no library search path, no
+    shape path, nothing of this repository on Python's path."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("LD_LIBRARY_PATH", "LD_PRELOAD", "HITRAY_SHAPE_PATH", "PYTHONPATH",
+                        "HITRAY_BUILD_DIR", "VIRTUAL_ENV")}
+    env["LD_LIBRARY_PATH"] = ""
+    return env
+
+
+@pytest.fixture(scope="module")
+def venv(tmp_path_factory, wheel):
+    """A fresh venv (no system site-packages) with the wheel installed, by
+    pip as a user runs it; its dependencies come from the package index."""
+    root = tmp_path_factory.mktemp("wheel")
+    env_dir = root / "venv"
+    subprocess.run([sys.executable, "-m", "venv", str(env_dir)], check=True)
+    python = env_dir / "bin" / "python"
+    result = subprocess.run([str(python), "-m", "pip", "install", "-q", "--disable-pip-version-check",
+                             str(wheel)], capture_output=True, text=True, env=clean_env())
+    assert result.returncode == 0, result.stdout + result.stderr
+    site = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['platlib'])"],
+                          capture_output=True, text=True, check=True).stdout.strip()
+    return {"root": root, "python": python, "site": pathlib.Path(site)}
+
+
+@pytest.fixture(scope="module")
+def rendered(venv):
+    out = venv["root"] / "render"
+    result = subprocess.run([str(venv["python"]), str(HERE / "render_in_venv.py"), str(out)],
+                            capture_output=True, text=True, env=clean_env(), cwd=venv["root"],
+                            timeout=300)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return out, json.loads(result.stdout)
+
+
+def shipped_elf_files(site):
+    files = [p for p in (site / "hitray").rglob("*.so*") if p.is_file()]
+    files += [p for p in (site / "hitray.libs").glob("*.so*") if p.is_file()]
+    return files
+
+
+def test_imports_from_the_venv_and_renders(venv, rendered):
+    out, report = rendered
+    assert pathlib.Path(report["hitray"]).is_relative_to(venv["site"]), report["hitray"]
+    assert report["shape"] == [48, 64, 3]
+    assert report["finite"]
+    # Lit shapes of several colours on a grey floor: far more than a few
+    # distinct pixels, and some light.
+    assert report["max"] > 0.1 and report["distinct"] > 50
+    assert out.with_suffix(".png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert out.with_suffix(".exr").read_bytes()[:4] == b"\x76\x2f\x31\x01"
+
+
+def test_loads_its_libraries_from_the_wheel(venv, rendered):
+    # What the process mapped, not what ldd predicts: libpng, OpenEXRCore,
+    # libhitray and the shape modules are the wheel's copies, none the
+    # system's (this machine has the system's too: the build used them).
+    _, report = rendered
+    mapped = [pathlib.Path(p) for p in report["mapped"]]
+    for wanted in ("libpng16", "libOpenEXRCore", "libhitray.so", "/shapes/sphere.so",
+                   "/shapes/mesh.so", "/shapes/torus.so"):
+        hits = [p for p in mapped if wanted in str(p)]
+        assert hits, f"{wanted} was not loaded; mapped: {report['mapped']}"
+        for path in hits:
+            assert path.is_relative_to(venv["site"]), f"{wanted} loaded from {path}, not the wheel"
+
+
+def test_every_shipped_object_needs_only_the_wheel_or_the_policy(venv, wheel):
+    allowed = set(manylinux_policy(wheel)["lib_whitelist"])
+    files = shipped_elf_files(venv["site"])
+    names = {p.name for p in files}
+    assert "libhitray.so.0" in names and "sphere.so" in names
+    assert any(n.startswith("libpng16-") for n in names), f"libpng not vendored: {sorted(names)}"
+    assert any(n.startswith("libOpenEXRCore") for n in names), f"OpenEXRCore not vendored: {sorted(names)}"
+    problems = []
+    for path in files:
+        result = subprocess.run(["ldd", str(path)], capture_output=True, text=True, env=clean_env())
+        assert result.returncode == 0, f"ldd {path}: {result.stderr}"
+        for line in result.stdout.splitlines():
+            line = line.strip()
+            found = re.match(r"^(\S+) => (.*?)(?: \(0x[0-9a-f]+\))?$", line)
+            if not found:
+                continue  # linux-vdso.so.1, the dynamic loader: no file to look up
+            name, where = found.groups()
+            if where == "not found":
+                problems.append(f"{path.name}: {name} not found")
+            elif not pathlib.Path(where).resolve().is_relative_to(venv["site"]) and name not in allowed:
+                problems.append(f"{path.name}: {name} => {where} (neither in the wheel nor allowed "
+                                f"by {manylinux_policy(wheel)['name']})")
+    assert not problems, "\n".join(problems)
+
+
+def test_auditwheel_show_finds_it_consistent(wheel):
+    result = subprocess.run([sys.executable, "-m", "auditwheel", "show", str(wheel)],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr
+    print(result.stdout)
+    tag = re.search(r"-(manylinux_\d+_\d+_[a-z0-9_]+)\.whl$", wheel.name).group(1)
+    assert f'consistent with\nthe following platform tag: "{tag}"' in result.stdout.replace(
+        "consistent with the", "consistent with\nthe")
