@@ -9,6 +9,7 @@
  * held until they are complete (cli_interrupt_release): killing the process
  * there would leave a temporary file behind. */
 #include <signal.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -36,12 +37,13 @@ double cli_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void cli_progress_begin(cli_progress *p)
+void cli_progress_begin(cli_progress *p, const char *label)
 {
     memset(p, 0, sizeof *p);
     p->draw = isatty(STDERR_FILENO);
     p->last_shown = -1;
     p->started = cli_now();
+    p->label = label;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_sigint;
@@ -54,21 +56,38 @@ void cli_progress_begin(cli_progress *p)
     if (!(previous_sigint.sa_flags & SA_SIGINFO) && previous_sigint.sa_handler == SIG_IGN) cli_interrupt_release();
 }
 
+/* One line of the bar: label, bar, per cent, the time so far and, from 1%
+ * on, the time left at the rate so far. */
+static void format_bar(char *out, size_t size, const char *label, double fraction, double elapsed)
+{
+    int percent = (int)(fraction * 100.0 + 0.5);
+    if (percent < 0) percent = 0;
+    if (percent > 100) percent = 100;
+    char bar[BAR_WIDTH + 1];
+    int filled = percent * BAR_WIDTH / 100;
+    for (int i = 0; i < BAR_WIDTH; i++) bar[i] = i < filled ? '#' : ' ';
+    bar[BAR_WIDTH] = '\0';
+    /* The time left, at the rate so far; not before 1% is done, when the
+     * rate says little. */
+    if (fraction >= 0.01 && fraction < 1.0)
+        snprintf(out, size, "%s [%s] %3d%%  %.1f s, about %.0f s left", label, bar, percent, elapsed,
+                 elapsed * (1.0 - fraction) / fraction + 0.5);
+    else
+        snprintf(out, size, "%s [%s] %3d%%  %.1f s", label, bar, percent, elapsed);
+}
+
 int32_t cli_progress_update(void *user, double fraction)
 {
     cli_progress *p = user;
     if (p->draw) {
         int percent = (int)(fraction * 100.0 + 0.5);
-        if (percent < 0) percent = 0;
-        if (percent > 100) percent = 100;
         /* Redraw only when the number changes: a big render finishes
-         * thousands of tiles, and the terminal need not see each. */
+         * thousands of tiles, and the terminal need not see each. The
+         * library reports fractions that never go backwards. */
         if (percent != p->last_shown) {
-            char bar[BAR_WIDTH + 1];
-            int filled = percent * BAR_WIDTH / 100;
-            for (int i = 0; i < BAR_WIDTH; i++) bar[i] = i < filled ? '#' : ' ';
-            bar[BAR_WIDTH] = '\0';
-            fprintf(stderr, "\rrendering [%s] %3d%%  %.1f s", bar, percent, cli_now() - p->started);
+            char line[256];
+            format_bar(line, sizeof line, p->label, fraction, cli_now() - p->started);
+            fprintf(stderr, "\r%s\033[K", line);
             fflush(stderr);
             p->last_shown = percent;
         }
@@ -82,6 +101,14 @@ void cli_progress_end(cli_progress *p)
         fputs("\r\033[K", stderr); /* clear the bar's line */
         fflush(stderr);
     }
+}
+
+void cli_status(const char *what, const char *name)
+{
+    if (!isatty(STDERR_FILENO)) return;
+    if (what) fprintf(stderr, "\r%s %s ...\033[K", what, name);
+    else fputs("\r\033[K", stderr);
+    fflush(stderr);
 }
 
 void cli_interrupt_release(void)

@@ -17,8 +17,11 @@ int cli_scene_load(cli_scene *s, const char *path)
     hr_status st = hr_context_create(&s->ctx);
     if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
     s->sdl.struct_size = sizeof s->sdl;
+    s->path = path;
+    cli_status("loading", path);
     st = cli_is_nff(path) ? hr_nff_load_file(s->ctx, path, &s->sdl)
                           : hr_sdl_load_file(s->ctx, path, &s->sdl);
+    cli_status(NULL, NULL);
     if (st != HR_OK) {
         int rc = cli_library_error(s->ctx, st);
         cli_scene_free(s);
@@ -29,7 +32,10 @@ int cli_scene_load(cli_scene *s, const char *path)
 
 int cli_scene_commit(cli_scene *s)
 {
+    /* Building the BVH of a large mesh takes seconds. */
+    cli_status("building the scene of", s->path);
     hr_status st = hr_scene_commit(s->sdl.scene);
+    cli_status(NULL, NULL);
     return st == HR_OK ? 0 : cli_library_error(s->ctx, st);
 }
 
