@@ -1,4 +1,5 @@
 /* Loading a scene file for the verbs that need one (cli.h). */
+#include <stdio.h>
 #include <string.h>
 #include <strings.h>
 
@@ -11,11 +12,21 @@ int cli_is_nff(const char *path)
            (n >= 7 && strcasecmp(path + n - 7, ".nff.gz") == 0);
 }
 
+/* The library's warnings, one line each on stderr (never stdout, which
+ * `hitray hits` and `--json` keep for their records). */
+static void print_warning(void *user, const hr_warning *w)
+{
+    (void)user;
+    cli_status(NULL, NULL); /* a status line being shown ends first */
+    fprintf(stderr, "hitray: warning: %s\n", w->message);
+}
+
 int cli_scene_load(cli_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
     hr_status st = hr_context_create(&s->ctx);
     if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
+    hr_context_set_warning_callback(s->ctx, print_warning, NULL);
     s->sdl.struct_size = sizeof s->sdl;
     s->path = path;
     cli_status("loading", path);

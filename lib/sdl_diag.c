@@ -28,6 +28,35 @@ static void append(text *t, const char *fmt, ...)
     if (t->length >= sizeof t->data) t->length = sizeof t->data - 1;
 }
 
+/* The message for `what` at `at`, with the macro levels that led there;
+ * *origin is the token in the file's own text where it arose. */
+static void place_message(const sdl_source *src, sdl_located at, const char *what, text *t,
+                          const sdl_token **origin)
+{
+    /* The expansions that led to `at`, innermost first. */
+    int32_t chain[SDL_MAX_MACRO_NESTING + 1];
+    int32_t levels = 0;
+    for (int32_t e = at.expansion; e >= 0 && levels < SDL_MAX_MACRO_NESTING + 1;
+         e = src->expansions[e].parent)
+        chain[levels++] = e;
+
+    *origin = levels > 0 ? src->expansions[chain[levels - 1]].use : at.token;
+    for (int32_t k = levels - 1; k >= 0; k--) {
+        int32_t outer_rank = levels - 1 - k; /* 0 for the outermost */
+        if (levels > SHOWN_OUTER_LEVELS + SHOWN_INNER_LEVELS && outer_rank == SHOWN_OUTER_LEVELS) {
+            int32_t skipped = levels - SHOWN_OUTER_LEVELS - SHOWN_INNER_LEVELS;
+            append(t, "... (%d more macro levels) ...: ", (int)skipped);
+            k -= skipped - 1;
+            continue;
+        }
+        const sdl_expansion *e = &src->expansions[chain[k]];
+        const sdl_token *name = src->macros.macros[e->macro].name;
+        append(t, "%s:%d:%d: in macro '%s' (defined at %s:%d:%d): ", src->file, (int)e->use->line,
+               (int)e->use->column, name->text, src->file, (int)name->line, (int)name->column);
+    }
+    append(t, "%s:%d:%d: %s", src->file, (int)at.token->line, (int)at.token->column, what);
+}
+
 hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt, ...)
 {
     /* The caller's part first: its arguments may point into the context's
@@ -37,31 +66,23 @@ hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, con
     va_start(ap, fmt);
     vsnprintf(what, sizeof what, fmt, ap);
     va_end(ap);
-
-    /* The expansions that led to `at`, innermost first. */
-    int32_t chain[SDL_MAX_MACRO_NESTING + 1];
-    int32_t levels = 0;
-    for (int32_t e = at.expansion; e >= 0 && levels < SDL_MAX_MACRO_NESTING + 1;
-         e = src->expansions[e].parent)
-        chain[levels++] = e;
-
-    const sdl_token *origin = levels > 0 ? src->expansions[chain[levels - 1]].use : at.token;
     text t = {{0}, 0};
-    for (int32_t k = levels - 1; k >= 0; k--) {
-        int32_t outer_rank = levels - 1 - k; /* 0 for the outermost */
-        if (levels > SHOWN_OUTER_LEVELS + SHOWN_INNER_LEVELS && outer_rank == SHOWN_OUTER_LEVELS) {
-            int32_t skipped = levels - SHOWN_OUTER_LEVELS - SHOWN_INNER_LEVELS;
-            append(&t, "... (%d more macro levels) ...: ", (int)skipped);
-            k -= skipped - 1;
-            continue;
-        }
-        const sdl_expansion *e = &src->expansions[chain[k]];
-        const sdl_token *name = src->macros.macros[e->macro].name;
-        append(&t, "%s:%d:%d: in macro '%s' (defined at %s:%d:%d): ", src->file, (int)e->use->line,
-               (int)e->use->column, name->text, src->file, (int)name->line, (int)name->column);
-    }
-    append(&t, "%s:%d:%d: %s", src->file, (int)at.token->line, (int)at.token->column, what);
+    const sdl_token *origin;
+    place_message(src, at, what, &t, &origin);
     return hr_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
+}
+
+void sdl_warning(const sdl_source *src, int32_t code, sdl_located at, const char *fmt, ...)
+{
+    char what[MESSAGE_SIZE];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    text t = {{0}, 0};
+    const sdl_token *origin;
+    place_message(src, at, what, &t, &origin);
+    hr_warn(src->ctx, code, src->file, origin->line, origin->column, "%s", t.data);
 }
 
 const char *sdl_describe_run_on(const sdl_source *src, sdl_located keyword, sdl_located found,

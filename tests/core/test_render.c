@@ -248,7 +248,7 @@ static void progress_never_goes_backwards(void)
     o.tile_size = 1;
     o.threads = 8;
     o.progress = log_progress;
-    for (int round = 0; round < 4; round++) {
+    for (int round = 0; round < 8; round++) {
         progress_log log = {0.0, 0, 0};
         o.progress_user = &log;
         hr_image *img = render(s, &c, &o, NULL);

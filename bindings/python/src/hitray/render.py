@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import importlib.util
+import sys
 from typing import Any, Callable, Optional, Tuple, Union
 
 from . import _convert, _core
@@ -14,14 +16,34 @@ __all__ = ["render"]
 Progress = Union[bool, Callable[[float], Any]]
 
 
+def _in_notebook() -> bool:
+    """Whether this runs in a Jupyter kernel (IPython's kernel app)."""
+    ipython = sys.modules.get("IPython")
+    get = getattr(ipython, "get_ipython", None)
+    shell = get() if callable(get) else None
+    return shell is not None and "IPKernelApp" in getattr(shell, "config", {})
+
+
+def _tqdm_class() -> Any:
+    """tqdm's notebook widget where it can be drawn, its plain text bar
+    everywhere else. tqdm.auto would pick the widget in any notebook and,
+    without ipywidgets, warn (TqdmWarning: IProgress not found) before
+    falling back; this falls back without the warning."""
+    if _in_notebook() and importlib.util.find_spec("ipywidgets") is not None:
+        from tqdm.notebook import tqdm as notebook_tqdm  # type: ignore[import-untyped, unused-ignore]
+        return notebook_tqdm
+    from tqdm.std import tqdm as text_tqdm  # type: ignore[import-untyped, unused-ignore]
+    return text_tqdm
+
+
 class _Bar:
-    """A tqdm bar that follows the fraction of tiles done."""
+    """A tqdm bar that follows the fraction of tiles done (which the library
+    never reports going backwards), with the time left."""
 
     def __init__(self) -> None:
-        from tqdm.auto import tqdm  # type: ignore[import-untyped, unused-ignore]
-
-        self._bar = tqdm(total=100, unit="%", desc="hitray", leave=False,
-                         bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}")
+        self._bar = _tqdm_class()(
+            total=100, unit="%", desc="hitray", leave=False,
+            bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining} left")
         self._shown = 0.0
 
     def __call__(self, fraction: float) -> None:
