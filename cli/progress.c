@@ -17,6 +17,7 @@
 #include "cli.h"
 
 #define BAR_WIDTH 32
+#define BAR_LINE_WIDTH 96 /* the longest label and time left fit */
 
 static volatile sig_atomic_t interrupted;
 static struct sigaction previous_sigint;
@@ -85,9 +86,12 @@ int32_t cli_progress_update(void *user, double fraction)
          * thousands of tiles, and the terminal need not see each. The
          * library reports fractions that never go backwards. */
         if (percent != p->last_shown) {
+            /* Padded to a fixed width, so a shorter line covers a longer
+             * one; erasing the line ("\033[K") is kept for the end, where
+             * it says the render is over (tests watch for it). */
             char line[256];
             format_bar(line, sizeof line, p->label, fraction, cli_now() - p->started);
-            fprintf(stderr, "\r%s\033[K", line);
+            fprintf(stderr, "\r%-*s", BAR_LINE_WIDTH, line);
             fflush(stderr);
             p->last_shown = percent;
         }
@@ -103,11 +107,19 @@ void cli_progress_end(cli_progress *p)
     }
 }
 
+/* Characters of the status line on the terminal now (0: none). */
+static int status_shown;
+
 void cli_status(const char *what, const char *name)
 {
     if (!isatty(STDERR_FILENO)) return;
-    if (what) fprintf(stderr, "\r%s %s ...\033[K", what, name);
-    else fputs("\r\033[K", stderr);
+    /* Overwritten with blanks, not erased with "\033[K": see above. */
+    if (status_shown) fprintf(stderr, "\r%*s\r", status_shown, "");
+    status_shown = 0;
+    if (what) {
+        int n = fprintf(stderr, "%s %s ...", what, name);
+        status_shown = n > 0 ? n : 0;
+    }
     fflush(stderr);
 }
 

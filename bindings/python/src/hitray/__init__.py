@@ -25,8 +25,8 @@ of Python's ``warnings``.
 
 # No `from __future__ import annotations` here: it would leave the name
 # `annotations` in the package's namespace (and dir(hitray)).
-import importlib
-import typing
+import importlib as _importlib
+import typing as _typing
 
 from . import _core
 from .camera import Camera
@@ -46,7 +46,7 @@ from .shapes import (Cone, Cube, Cylinder, Difference, Dodecahedron, Icosahedron
 
 __version__ = "%d.%d.%d" % _core.version()
 
-if typing.TYPE_CHECKING:
+if _typing.TYPE_CHECKING:
     from . import abi
 
 __all__ = [
@@ -63,13 +63,13 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> typing.Any:
+def __getattr__(name: str) -> _typing.Any:
     # PEP 562: hitray.abi is imported on first use (it loads cffi and parses
     # the headers), not by every `import hitray`.
     if name == "abi":
-        return importlib.import_module(".abi", __name__)
+        return _importlib.import_module(".abi", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def __dir__() -> typing.List[str]:
+def __dir__() -> _typing.List[str]:
     return sorted(set(globals()) | {"abi"})

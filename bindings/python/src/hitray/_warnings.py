@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import os
 import sys
+import types
 import warnings
+from typing import Optional
 
 from . import _core
 from .errors import SceneWarning
@@ -23,7 +25,7 @@ _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
 def _caller_level() -> int:
     """The stack level of the nearest frame outside this package, for
     warnings.warn (1 is the frame calling warn)."""
-    frame = sys._getframe(2)  # issue's caller; warn's level 2
+    frame: Optional[types.FrameType] = sys._getframe(2)  # issue's caller; warn's level 2
     level = 2
     while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
         frame = frame.f_back

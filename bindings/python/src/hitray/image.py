@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import tempfile
 from dataclasses import dataclass
-from typing import Any, FrozenSet, Optional, Tuple
+from typing import Any, FrozenSet, Optional, Tuple, Type, TypeVar
 
 import numpy as np
 
@@ -15,6 +15,8 @@ from . import _convert, _core
 __all__ = ["Image", "RenderedImage", "RenderStats"]
 
 _FORMATS = {None: 0, "png": 1, "exr": 2, "ppm": 3, "pfm": 4}
+
+_ImageT = TypeVar("_ImageT", bound="Image")
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,7 @@ class Image:
         self._stats: Optional[RenderStats] = None
 
     @classmethod
-    def _wrap(cls, core: Any) -> "Image":
+    def _wrap(cls: Type[_ImageT], core: Any) -> _ImageT:
         image = object.__new__(cls)
         image._core = core
         s = core.stats

@@ -321,11 +321,13 @@ class Mesh(Shape):
             return
         if vertices is None or faces is None:
             raise TypeError("Mesh: give a file, or vertices=(n, 3) and faces=(m, 3) arrays")
-        arrays = {"points": _rows_of_three(vertices, "vertices"),
-                  "triangles": _rows_of_three(faces, "faces", integral=True)}
+        arrays: Dict[str, ParamValue] = {
+            "points": _rows_of_three(vertices, "vertices"),
+            "triangles": _rows_of_three(faces, "faces", integral=True)}
         if normals is not None:
             arrays["normals"] = _rows_of_three(normals, "normals")
-        super().__init__("triangleMesh", **arrays)
+        super().__init__("triangleMesh")
+        self._params = arrays  # already the library's form: no second copy
 
     def _repr_head(self) -> str:
         if "file" in self._params:
