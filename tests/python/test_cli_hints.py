@@ -3,12 +3,13 @@ verbs, SDL keywords and shape classes; the library's warnings on stderr; a
 progress bar that never goes backwards and says how long is left, for
 `hitray render` and for each of `hitray savings`' renders."""
 
+import json
 import os
 import pty
 import re
 import subprocess
 
-from conftest import TWO_SPHERES_SDL, require_classes
+from conftest import ROOT, TWO_SPHERES_SDL, require_classes
 from test_cli import HITRAY, run, write_sdl
 
 
@@ -116,3 +117,29 @@ def test_an_optional_tube_radius_in_sdl(tmp_path):
     scene = write_sdl(tmp_path, "t.sdl", "torus 0.1\n")
     result = run("hits", scene, "--origin", "1,0,5", "--dir", "0,0,-1")
     assert result.returncode == 0 and '"t": 4.9' in result.stdout
+
+
+def docs_sdl_start_scene():
+    text = (ROOT / "docs" / "sdl.md").read_text()
+    return re.search(r"```sdl\n(.*?)```", text, re.S).group(1)
+
+
+def test_the_scene_docs_sdl_opens_with_renders_without_warnings(tmp_path):
+    """docs/sdl.md's first scene is complete: it renders every effect it
+    shows, with no warning; without its threshold line, the warning its text
+    quotes comes, at the line and column quoted."""
+    text = docs_sdl_start_scene()
+    scene = write_sdl(tmp_path, "start.sdl", text)
+    stats = tmp_path / "stats.json"
+    result = run("render", scene, "-o", tmp_path / "start.png", "--size", "64x48", "--stats-json", stats)
+    assert result.returncode == 0 and "warning" not in result.stderr, result.stderr
+    effects = set(json.loads(stats.read_text())["effects"])
+    assert {"diffuse", "specular", "shadows", "reflection", "refraction"} <= effects
+    lines = [line for line in text.splitlines() if not line.startswith("minReflectivity")]
+    scene = write_sdl(tmp_path, "start.sdl", "\n".join(lines[:4] + [""] + lines[4:]) + "\n")
+    result = run("render", scene, "-o", tmp_path / "start.png", "--size", "64x48")
+    quoted = re.search(r"`hitray: warning: start\.sdl:(\d+):(\d+): (reflectivity [^:]*):",
+                       (ROOT / "docs" / "sdl.md").read_text().replace("\n  ", " "))
+    assert quoted, "docs/sdl.md quotes the warning"
+    assert (f"hitray: warning: {scene}:{quoted.group(1)}:{quoted.group(2)}: {quoted.group(3)}:"
+            in result.stderr), result.stderr
