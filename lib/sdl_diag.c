@@ -57,31 +57,38 @@ static void place_message(const sdl_source *src, sdl_located at, const char *wha
     append(t, "%s:%d:%d: %s", src->file, (int)at.token->line, (int)at.token->column, what);
 }
 
-hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt, ...)
+/* The caller's message, then the whole placed message, and its origin. */
+static void format_at(const sdl_source *src, sdl_located at, const char *fmt, va_list ap, text *t,
+                      const sdl_token **origin) HR_PRINTF(3, 0);
+static void format_at(const sdl_source *src, sdl_located at, const char *fmt, va_list ap, text *t,
+                      const sdl_token **origin)
 {
     /* The caller's part first: its arguments may point into the context's
      * error slot (a message being passed on), which hr_error_at rewrites. */
     char what[MESSAGE_SIZE];
-    va_list ap;
-    va_start(ap, fmt);
     vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
+    place_message(src, at, what, t, origin);
+}
+
+hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt, ...)
+{
     text t = {{0}, 0};
     const sdl_token *origin;
-    place_message(src, at, what, &t, &origin);
+    va_list ap;
+    va_start(ap, fmt);
+    format_at(src, at, fmt, ap, &t, &origin);
+    va_end(ap);
     return hr_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
 }
 
 void sdl_warning(const sdl_source *src, int32_t code, sdl_located at, const char *fmt, ...)
 {
-    char what[MESSAGE_SIZE];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
     text t = {{0}, 0};
     const sdl_token *origin;
-    place_message(src, at, what, &t, &origin);
+    va_list ap;
+    va_start(ap, fmt);
+    format_at(src, at, fmt, ap, &t, &origin);
+    va_end(ap);
     hr_warn(src->ctx, code, src->file, origin->line, origin->column, "%s", t.data);
 }
 

@@ -4,13 +4,10 @@ progress bar that never goes backwards and says how long is left, for
 `hitray render` and for each of `hitray savings`' renders."""
 
 import json
-import os
-import pty
 import re
-import subprocess
 
 from conftest import ROOT, TWO_SPHERES_SDL, require_classes
-from test_cli import HITRAY, run, write_sdl
+from test_cli import run, run_on_a_terminal, write_sdl
 
 
 def test_a_misspelt_option_or_verb_gets_a_suggestion(tmp_path):
@@ -53,35 +50,6 @@ def test_warnings_go_to_stderr_and_the_render_goes_on(tmp_path):
     # hits keeps stdout for its records.
     result = run("hits", empty, "--origin", "0,0,5", "--dir", "0,0,-1")
     assert result.stdout == "" and "no objects" in result.stderr
-
-
-def run_on_a_terminal(*args):
-    """Run hitray with stderr on a pseudo-terminal; (exit status, stdout,
-    what the terminal got)."""
-    master, slave = pty.openpty()
-    try:
-        proc = subprocess.Popen([str(HITRAY), *map(str, args)], stdout=subprocess.PIPE, stderr=slave)
-        os.close(slave)
-        slave = -1
-        seen = b""
-        while True:
-            try:
-                chunk = os.read(master, 65536)
-            except OSError:
-                break
-            if not chunk:
-                break
-            seen += chunk
-        out = proc.stdout.read()
-        proc.wait(timeout=120)
-    finally:
-        if slave >= 0:
-            os.close(slave)
-        os.close(master)
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-    return proc.returncode, out, seen.decode("utf-8", "replace")
 
 
 def bar_percents(terminal, label):
