@@ -100,7 +100,7 @@ void hr_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line
              const char *fmt, ...)
 {
     if (!ctx || !ctx->warning_fn) return;
-    char message[1024];
+    char message[2048]; /* as an error slot holds: a placed SDL message fits */
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(message, sizeof message, fmt, ap);
