@@ -60,7 +60,11 @@ class _SDLSource:
     def load(self, warn: bool = True) -> Tuple[Any, Any]:
         """The library scene and camera from the text; its warnings are
         issued (the first read) or dropped (a rebuild, `warn` False)."""
-        result = self._read()
+        try:
+            result = self._read()
+        except BaseException:
+            _warnings.discard()  # a failed read's warnings are not the next call's
+            raise
         if warn:
             _warnings.issue()
         else:
