@@ -291,6 +291,15 @@ def test_a_misspelt_shape_class_gets_a_suggestion():
         hitray.parse_sdl("exponent 20 sphere")
 
 
+def test_misspelt_material_keywords_and_shape_parameters_get_suggestions():
+    scene = hitray.Scene()
+    with pytest.raises(TypeError, match=r"'specularExponet' \(did you mean 'specularExponent'\?\)"):
+        scene.add(hitray.Sphere(), specularExponet=30)
+    require_classes("torus")
+    with pytest.raises(hitray.ParameterError, match=r"no parameter 'tub' \(did you mean 'tube'\?\)"):
+        scene.add(hitray.Shape("torus", tub=0.3))
+
+
 def test_sdl_torus_takes_an_optional_tube_radius():
     require_classes("torus")
     scene, _ = hitray.parse_sdl("torus 0.1")

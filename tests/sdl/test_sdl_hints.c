@@ -72,6 +72,23 @@ static void suggestions(hr_context *ctx)
     CHECK(hr_sdl_load_string(ctx, "frobnicate", SDL_TEST_NAME, NULL, &r) == HR_ERROR_SDL);
     CHECK(strstr(hr_context_last_error(ctx), "did you mean") == NULL);
 
+    /* A parameter name of a class, given through the C API. */
+    hr_sdl_result scene_only = {.struct_size = sizeof scene_only};
+    if (LOAD_OK(ctx, "", &scene_only)) {
+        hr_param p = {.name = "tub", .type = HR_PARAM_NUMBER, .number = 0.5};
+        hr_object_desc d = {.struct_size = sizeof d, .shape = "taperedCylinder", .param_count = 1,
+                            .params = &p};
+        CHECK(hr_scene_add_object(scene_only.scene, &d, NULL) == HR_ERROR_PARAMETER);
+        CHECK_MSG(strstr(hr_context_last_error(ctx), "no parameter 'tub'") != NULL &&
+                      strstr(hr_context_last_error(ctx), "did you mean") == NULL,
+                  "%s", hr_context_last_error(ctx));
+        p.name = "ss";
+        CHECK(hr_scene_add_object(scene_only.scene, &d, NULL) == HR_ERROR_PARAMETER);
+        CHECK_MSG(strstr(hr_context_last_error(ctx), "no parameter 'ss' (did you mean 's'?)") != NULL,
+                  "%s", hr_context_last_error(ctx));
+        hr_scene_destroy(scene_only.scene);
+    }
+
     /* A class name asked of the context by name (C, Python's Shape(...)). */
     const hr_shape_class *cls;
     CHECK(hr_context_find_shape_class(ctx, "cylindre", &cls, NULL) == HR_ERROR_MODULE);

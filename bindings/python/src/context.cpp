@@ -4,6 +4,8 @@
 // registered later, from hitray.abi say, is seen at once).
 #include "core.h"
 
+#include <pybind11/stl.h>
+
 #include <dlfcn.h>
 
 #include <climits>
@@ -149,6 +151,13 @@ void bind_context(py::module_ &m)
           py::arg("path"), "Load one shape module file now (its classes win over searched ones).");
     m.def("add_shape_dir", [](const py::bytes &dir) { check(hr_context_add_shape_dir(context(), std::string(dir).c_str())); },
           py::arg("directory"), "Search a directory for shape modules before the default places.");
+    m.def("suggest", [](const std::string &word, const std::vector<std::string> &candidates) -> py::object {
+        std::vector<const char *> names;
+        for (const std::string &c : candidates) names.push_back(c.c_str());
+        const char *near = hr_suggest(word.c_str(), names.data(), static_cast<int32_t>(names.size()));
+        return near ? py::object(py::str(near)) : py::object(py::none());
+    }, py::arg("word"), py::arg("candidates"),
+          "hr_suggest: the candidate nearest a misspelt word, or None.");
     m.def("take_warnings", &take_warnings,
           "The calling thread's pending library warnings, as (code, message, file, line, column).");
     m.def("modules", &modules, "Every module on the search path, loaded or refused.");
