@@ -76,13 +76,14 @@ hr_status sdl_cmd_camera(sdl_reader *r, sdl_located keyword)
 {
     double v[10];
     for (int i = 0; i < 10; i++) {
-        sdl_located at;
+        sdl_located at = {NULL, -1}; /* stays so when no token could be read */
         hr_status st = sdl_read_number(r, keyword, &v[i], &at);
         /* Hill's gluLookAt has 9 numbers; this keyword adds the angle. Say
          * how many it takes when some came and then no more. */
         double ignored;
-        int not_a_number = at.token->kind != SDL_TOKEN_WORD ||
-                           sdl_parse_number(at.token->text, &ignored) == SDL_NUMBER_NOT_A_NUMBER;
+        int not_a_number = at.token && (at.token->kind != SDL_TOKEN_WORD ||
+                                        sdl_parse_number(at.token->text, &ignored) ==
+                                            SDL_NUMBER_NOT_A_NUMBER);
         if (st == HR_ERROR_SDL && i > 0 && not_a_number) {
             char found[64];
             return sdl_error(r->src, HR_ERROR_SDL, at,
