@@ -54,6 +54,19 @@ static const cli_option *find_option(const cli_parser *p, const char *arg, size_
     return NULL;
 }
 
+/* The verb's option nearest a misspelt one, by the library's measure. */
+static const char *suggest_option(const cli_parser *p, const char *arg, size_t len)
+{
+    char word[64];
+    if (len >= sizeof word) return NULL;
+    memcpy(word, arg, len);
+    word[len] = '\0';
+    const char *names[64];
+    int32_t n = 0;
+    for (const cli_option *o = p->options; o->name && n < 64; o++) names[n++] = o->name;
+    return hr_suggest(word, names, n);
+}
+
 int cli_next(cli_parser *p, const char **name, const char **value)
 {
     *name = NULL;
@@ -72,7 +85,13 @@ int cli_next(cli_parser *p, const char **name, const char **value)
     size_t len = equals ? (size_t)(equals - arg) : strlen(arg);
     const cli_option *o = find_option(p, arg, len);
     if (!o) {
-        cli_error("%s: unknown option '%.*s' (see 'hitray %s --help')", p->verb, (int)len, arg, p->verb);
+        const char *near = suggest_option(p, arg, len);
+        if (near)
+            cli_error("%s: unknown option '%.*s' (did you mean '%s'? see 'hitray %s --help')", p->verb,
+                      (int)len, arg, near, p->verb);
+        else
+            cli_error("%s: unknown option '%.*s' (see 'hitray %s --help')", p->verb, (int)len, arg,
+                      p->verb);
         return CLI_BAD;
     }
     *name = o->name;

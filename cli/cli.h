@@ -83,12 +83,16 @@ void json_vec3(FILE *f, hr_vec3 v);
  * them be finished instead of killing the process half way. */
 typedef struct cli_progress {
     int draw;       /* stderr is a terminal */
-    int last_shown; /* per mille last drawn, -1 before the first */
+    int last_shown; /* per cent last drawn, -1 before the first */
     double started; /* seconds, monotonic */
+    const char *label; /* what is running: "rendering", "savings: full" */
 } cli_progress;
-void cli_progress_begin(cli_progress *p);
+void cli_progress_begin(cli_progress *p, const char *label);
 int32_t cli_progress_update(void *user, double fraction);
 void cli_progress_end(cli_progress *p);
+/* A stage with no fraction to show ("loading scene.sdl ..."), on the
+ * terminal only; NULL clears the line. */
+void cli_status(const char *what, const char *name);
 /* Hold SIGINT, SIGTERM, SIGHUP and SIGQUIT while output files are written
  * (cli_release_signals delivers any that came), so no signal can leave a
  * half-written temporary file. */
@@ -104,6 +108,7 @@ double cli_now(void);
 typedef struct cli_scene {
     hr_context *ctx;
     hr_sdl_result sdl;
+    const char *path; /* for messages */
 } cli_scene;
 /* 0 on success; on failure the error is reported and everything freed.
  * A name ending in .nff or .nff.gz (any case) is read as NFF, any other as

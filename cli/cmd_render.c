@@ -342,7 +342,7 @@ static int render_and_write(const render_request *r, cli_scene *s)
     memset(&stats, 0, sizeof stats);
     stats.struct_size = sizeof stats;
     hr_image *image = NULL;
-    cli_progress_begin(&progress);
+    cli_progress_begin(&progress, "rendering");
     hr_status st = hr_render(s->sdl.scene, &cam, &o, &image, &stats);
     /* A signal that kills the process mid-write would leave a temporary file
      * (the library writes beside the target, then renames): SIGTERM, SIGHUP,

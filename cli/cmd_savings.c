@@ -9,6 +9,7 @@
 #include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "cli.h"
@@ -210,7 +211,21 @@ static int render_row(const savings_request *r, cli_scene *s, const hr_camera *c
     o.exact = min_weight == 0.0; /* the rows without a cut-off are the exact reference */
     memset(&w->stats, 0, sizeof w->stats);
     w->stats.struct_size = sizeof w->stats;
+    /* Each row's render has its own bar, named by the row. */
+    char label[96];
+    if (isnan(w->parameter)) snprintf(label, sizeof label, "savings: %s", w->name);
+    else snprintf(label, sizeof label, "savings: %s %g", w->name, w->parameter);
+    cli_progress progress;
+    o.progress = cli_progress_update;
+    o.progress_user = &progress;
+    cli_progress_begin(&progress, label);
     hr_status st = hr_render(s->sdl.scene, cam, &o, image, &w->stats);
+    cli_progress_end(&progress);
+    cli_interrupt_release();
+    if (st == HR_ERROR_CANCELLED && cli_interrupted()) {
+        cli_error("savings interrupted");
+        return CLI_EXIT_INTERRUPTED;
+    }
     return st == HR_OK ? 0 : cli_library_error(s->ctx, st);
 }
 
@@ -237,8 +252,8 @@ static int run_savings(const savings_request *r, cli_scene *s)
     int n = 0;
     hr_image *reference = NULL;
     rows[n] = (row){"full", NAN, {0}, {0, 0, 0}};
-    if (render_row(r, s, &cam, &rows[n++], &reference, HR_EFFECTS_AUTO, 0, 0)) return CLI_EXIT_ERROR;
-    int rc = 0;
+    int rc = render_row(r, s, &cam, &rows[n++], &reference, HR_EFFECTS_AUTO, 0, 0);
+    if (rc) return rc;
     for (int i = 0; i < nv && !rc; i++) {
         const variant *v = &variants[i];
         row *w = &rows[n];

@@ -53,5 +53,8 @@ int main(int argc, char **argv)
     if (!strcmp(verb, "shapes")) return cmd_shapes(argc - 1, argv + 1);
     if (!strcmp(verb, "savings")) return cmd_savings(argc - 1, argv + 1);
     if (verb[0] == '-') return cli_error("unknown option '%s' (see 'hitray --help')", verb);
+    static const char *const verbs[] = {"render", "hits", "shapes", "savings"};
+    const char *near = hr_suggest(verb, verbs, (int32_t)(sizeof verbs / sizeof verbs[0]));
+    if (near) return cli_error("unknown command '%s' (did you mean '%s'? see 'hitray --help')", verb, near);
     return cli_error("unknown command '%s' (see 'hitray --help')", verb);
 }

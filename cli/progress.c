@@ -9,6 +9,7 @@
  * held until they are complete (cli_interrupt_release): killing the process
  * there would leave a temporary file behind. */
 #include <signal.h>
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include "cli.h"
 
 #define BAR_WIDTH 32
+#define BAR_LINE_WIDTH 96 /* the longest label and time left fit */
 
 static volatile sig_atomic_t interrupted;
 static struct sigaction previous_sigint;
@@ -36,12 +38,13 @@ double cli_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void cli_progress_begin(cli_progress *p)
+void cli_progress_begin(cli_progress *p, const char *label)
 {
     memset(p, 0, sizeof *p);
     p->draw = isatty(STDERR_FILENO);
     p->last_shown = -1;
     p->started = cli_now();
+    p->label = label;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_sigint;
@@ -54,21 +57,41 @@ void cli_progress_begin(cli_progress *p)
     if (!(previous_sigint.sa_flags & SA_SIGINFO) && previous_sigint.sa_handler == SIG_IGN) cli_interrupt_release();
 }
 
+/* One line of the bar: label, bar, per cent, the time so far and, from 1%
+ * on, the time left at the rate so far. */
+static void format_bar(char *out, size_t size, const char *label, double fraction, double elapsed)
+{
+    int percent = (int)(fraction * 100.0 + 0.5);
+    if (percent < 0) percent = 0;
+    if (percent > 100) percent = 100;
+    char bar[BAR_WIDTH + 1];
+    int filled = percent * BAR_WIDTH / 100;
+    for (int i = 0; i < BAR_WIDTH; i++) bar[i] = i < filled ? '#' : ' ';
+    bar[BAR_WIDTH] = '\0';
+    /* The time left, at the rate so far; not before 1% is done, when the
+     * rate says little. */
+    if (fraction >= 0.01 && fraction < 1.0)
+        snprintf(out, size, "%s [%s] %3d%%  %.1f s, about %.0f s left", label, bar, percent, elapsed,
+                 elapsed * (1.0 - fraction) / fraction + 0.5);
+    else
+        snprintf(out, size, "%s [%s] %3d%%  %.1f s", label, bar, percent, elapsed);
+}
+
 int32_t cli_progress_update(void *user, double fraction)
 {
     cli_progress *p = user;
     if (p->draw) {
         int percent = (int)(fraction * 100.0 + 0.5);
-        if (percent < 0) percent = 0;
-        if (percent > 100) percent = 100;
         /* Redraw only when the number changes: a big render finishes
-         * thousands of tiles, and the terminal need not see each. */
+         * thousands of tiles, and the terminal need not see each. The
+         * library reports fractions that never go backwards. */
         if (percent != p->last_shown) {
-            char bar[BAR_WIDTH + 1];
-            int filled = percent * BAR_WIDTH / 100;
-            for (int i = 0; i < BAR_WIDTH; i++) bar[i] = i < filled ? '#' : ' ';
-            bar[BAR_WIDTH] = '\0';
-            fprintf(stderr, "\rrendering [%s] %3d%%  %.1f s", bar, percent, cli_now() - p->started);
+            /* Padded to a fixed width, so a shorter line covers a longer
+             * one; erasing the line ("\033[K") is kept for the end, where
+             * it says the render is over (tests watch for it). */
+            char line[256];
+            format_bar(line, sizeof line, p->label, fraction, cli_now() - p->started);
+            fprintf(stderr, "\r%-*s", BAR_LINE_WIDTH, line);
             fflush(stderr);
             p->last_shown = percent;
         }
@@ -82,6 +105,22 @@ void cli_progress_end(cli_progress *p)
         fputs("\r\033[K", stderr); /* clear the bar's line */
         fflush(stderr);
     }
+}
+
+/* Characters of the status line on the terminal now (0: none). */
+static int status_shown;
+
+void cli_status(const char *what, const char *name)
+{
+    if (!isatty(STDERR_FILENO)) return;
+    /* Overwritten with blanks, not erased with "\033[K": see above. */
+    if (status_shown) fprintf(stderr, "\r%*s\r", status_shown, "");
+    status_shown = 0;
+    if (what) {
+        int n = fprintf(stderr, "%s %s ...", what, name);
+        status_shown = n > 0 ? n : 0;
+    }
+    fflush(stderr);
 }
 
 void cli_interrupt_release(void)

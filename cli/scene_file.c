@@ -1,4 +1,5 @@
 /* Loading a scene file for the verbs that need one (cli.h). */
+#include <stdio.h>
 #include <string.h>
 #include <strings.h>
 
@@ -11,14 +12,27 @@ int cli_is_nff(const char *path)
            (n >= 7 && strcasecmp(path + n - 7, ".nff.gz") == 0);
 }
 
+/* The library's warnings, one line each on stderr (never stdout, which
+ * `hitray hits` and `--json` keep for their records). */
+static void print_warning(void *user, const hr_warning *w)
+{
+    (void)user;
+    cli_status(NULL, NULL); /* a status line being shown ends first */
+    fprintf(stderr, "hitray: warning: %s\n", w->message);
+}
+
 int cli_scene_load(cli_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
     hr_status st = hr_context_create(&s->ctx);
     if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
+    hr_context_set_warning_callback(s->ctx, print_warning, NULL);
     s->sdl.struct_size = sizeof s->sdl;
+    s->path = path;
+    cli_status("loading", path);
     st = cli_is_nff(path) ? hr_nff_load_file(s->ctx, path, &s->sdl)
                           : hr_sdl_load_file(s->ctx, path, &s->sdl);
+    cli_status(NULL, NULL);
     if (st != HR_OK) {
         int rc = cli_library_error(s->ctx, st);
         cli_scene_free(s);
@@ -29,7 +43,10 @@ int cli_scene_load(cli_scene *s, const char *path)
 
 int cli_scene_commit(cli_scene *s)
 {
+    /* Building the BVH of a large mesh takes seconds. */
+    cli_status("building the scene of", s->path);
     hr_status st = hr_scene_commit(s->sdl.scene);
+    cli_status(NULL, NULL);
     return st == HR_OK ? 0 : cli_library_error(s->ctx, st);
 }
 

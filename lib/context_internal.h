@@ -28,6 +28,8 @@ struct hr_context {
     pthread_key_t error_key;  /* per-thread last error (hr_error_slot) */
     hr_error_fn error_fn;
     void *error_user;
+    hr_warning_fn warning_fn; /* may be NULL: warnings go nowhere */
+    void *warning_user;
     char **dirs;              /* extra search directories, in order */
     int32_t dir_count;
     int32_t scanned;          /* the search path has been read */

@@ -96,6 +96,26 @@ HR_API void hr_context_set_error_callback(hr_context *ctx, hr_error_fn fn, void 
     ctx->error_user = user;
 }
 
+void hr_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line, int32_t column,
+             const char *fmt, ...)
+{
+    if (!ctx || !ctx->warning_fn) return;
+    char message[2048]; /* as an error slot holds: a placed SDL message fits */
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof message, fmt, ap);
+    va_end(ap);
+    hr_warning w = {sizeof w, code, message, file ? file : "", line, column};
+    ctx->warning_fn(ctx->warning_user, &w);
+}
+
+HR_API void hr_context_set_warning_callback(hr_context *ctx, hr_warning_fn fn, void *user)
+{
+    if (!ctx) return;
+    ctx->warning_fn = fn;
+    ctx->warning_user = user;
+}
+
 HR_API const char *hr_status_name(hr_status status)
 {
     switch (status) {

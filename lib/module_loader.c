@@ -14,6 +14,7 @@
 #include "errors.h"
 #include "module_loader.h"
 #include "strutil.h"
+#include "suggest.h"
 
 #define REFUSAL_SIZE 1024
 
@@ -330,7 +331,15 @@ static hr_status not_found(hr_context *ctx, const char *name, char *msg, size_t 
         int n = snprintf(refused + len, sizeof refused - len, "; %s", ctx->modules[i]->error);
         if (n > 0) len += (size_t)n;
     }
-    snprintf(msg, size, "no shape module provides '%s' (searched: %s)%s", name,
+    hr_suggester near;
+    hr_suggester_init(&near, name);
+    for (int32_t i = 0; i < ctx->class_count; i++) hr_suggester_offer(&near, ctx->classes[i].cls->name);
+    for (int32_t i = 0; i < ctx->module_count; i++)
+        for (int32_t j = 0; j < ctx->modules[i]->class_count; j++)
+            hr_suggester_offer(&near, ctx->modules[i]->classes[j].name);
+    char hint[128] = "";
+    if (near.best) snprintf(hint, sizeof hint, " (did you mean '%.96s'?)", near.best);
+    snprintf(msg, size, "no shape module provides '%s'%s (searched: %s)%s", name, hint,
              dirs.len ? dirs.text : "nothing", refused);
     return HR_ERROR_MODULE;
 }

@@ -513,6 +513,9 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
     free(owner);
     work_out_effects(s);
     s->committed = 1;
+    if (s->object_count == 0)
+        hr_warn(s->ctx, HR_WARNING_EMPTY_SCENE, NULL, 0, 0,
+                "the scene has no objects: every pixel is the background colour");
     return HR_OK;
 }
 

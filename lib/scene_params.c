@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "errors.h"
+#include "suggest.h"
 
 static const char *type_name(int32_t type)
 {
@@ -106,11 +107,15 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
         for (int32_t i = 0; i < cls->param_count; i++)
             if (strcmp(cls->params[i].name, p->name) == 0) k = i;
         if (k < 0) {
-            char names[512];
+            char names[512], hint[128] = "";
             list_params(cls, names, sizeof names);
+            hr_suggester near;
+            hr_suggester_init(&near, p->name);
+            for (int32_t i = 0; i < cls->param_count; i++) hr_suggester_offer(&near, cls->params[i].name);
+            if (near.best) snprintf(hint, sizeof hint, " (did you mean '%.96s'?)", near.best);
             return hr_error(ctx, HR_ERROR_PARAMETER,
-                            "shape '%s' (module '%s') has no parameter '%s'; %s", cls->name,
-                            module_path, p->name, names);
+                            "shape '%s' (module '%s') has no parameter '%s'%s; %s", cls->name,
+                            module_path, p->name, hint, names);
         }
         const hr_param_spec *spec = &cls->params[k];
         if (seen[k]++)

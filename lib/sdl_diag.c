@@ -28,16 +28,11 @@ static void append(text *t, const char *fmt, ...)
     if (t->length >= sizeof t->data) t->length = sizeof t->data - 1;
 }
 
-hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt, ...)
+/* The message for `what` at `at`, with the macro levels that led there;
+ * *origin is the token in the file's own text where it arose. */
+static void place_message(const sdl_source *src, sdl_located at, const char *what, text *t,
+                          const sdl_token **origin)
 {
-    /* The caller's part first: its arguments may point into the context's
-     * error slot (a message being passed on), which hr_error_at rewrites. */
-    char what[MESSAGE_SIZE];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-
     /* The expansions that led to `at`, innermost first. */
     int32_t chain[SDL_MAX_MACRO_NESTING + 1];
     int32_t levels = 0;
@@ -45,23 +40,56 @@ hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, con
          e = src->expansions[e].parent)
         chain[levels++] = e;
 
-    const sdl_token *origin = levels > 0 ? src->expansions[chain[levels - 1]].use : at.token;
-    text t = {{0}, 0};
+    *origin = levels > 0 ? src->expansions[chain[levels - 1]].use : at.token;
     for (int32_t k = levels - 1; k >= 0; k--) {
         int32_t outer_rank = levels - 1 - k; /* 0 for the outermost */
         if (levels > SHOWN_OUTER_LEVELS + SHOWN_INNER_LEVELS && outer_rank == SHOWN_OUTER_LEVELS) {
             int32_t skipped = levels - SHOWN_OUTER_LEVELS - SHOWN_INNER_LEVELS;
-            append(&t, "... (%d more macro levels) ...: ", (int)skipped);
+            append(t, "... (%d more macro levels) ...: ", (int)skipped);
             k -= skipped - 1;
             continue;
         }
         const sdl_expansion *e = &src->expansions[chain[k]];
         const sdl_token *name = src->macros.macros[e->macro].name;
-        append(&t, "%s:%d:%d: in macro '%s' (defined at %s:%d:%d): ", src->file, (int)e->use->line,
+        append(t, "%s:%d:%d: in macro '%s' (defined at %s:%d:%d): ", src->file, (int)e->use->line,
                (int)e->use->column, name->text, src->file, (int)name->line, (int)name->column);
     }
-    append(&t, "%s:%d:%d: %s", src->file, (int)at.token->line, (int)at.token->column, what);
+    append(t, "%s:%d:%d: %s", src->file, (int)at.token->line, (int)at.token->column, what);
+}
+
+/* The caller's message, then the whole placed message, and its origin. */
+static void format_at(const sdl_source *src, sdl_located at, const char *fmt, va_list ap, text *t,
+                      const sdl_token **origin) HR_PRINTF(3, 0);
+static void format_at(const sdl_source *src, sdl_located at, const char *fmt, va_list ap, text *t,
+                      const sdl_token **origin)
+{
+    /* The caller's part first: its arguments may point into the context's
+     * error slot (a message being passed on), which hr_error_at rewrites. */
+    char what[MESSAGE_SIZE];
+    vsnprintf(what, sizeof what, fmt, ap);
+    place_message(src, at, what, t, origin);
+}
+
+hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt, ...)
+{
+    text t = {{0}, 0};
+    const sdl_token *origin;
+    va_list ap;
+    va_start(ap, fmt);
+    format_at(src, at, fmt, ap, &t, &origin);
+    va_end(ap);
     return hr_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
+}
+
+void sdl_warning(const sdl_source *src, int32_t code, sdl_located at, const char *fmt, ...)
+{
+    text t = {{0}, 0};
+    const sdl_token *origin;
+    va_list ap;
+    va_start(ap, fmt);
+    format_at(src, at, fmt, ap, &t, &origin);
+    va_end(ap);
+    hr_warn(src->ctx, code, src->file, origin->line, origin->column, "%s", t.data);
 }
 
 const char *sdl_describe_run_on(const sdl_source *src, sdl_located keyword, sdl_located found,

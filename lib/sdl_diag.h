@@ -16,6 +16,11 @@
 hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt,
                     ...) HR_PRINTF(4, 5);
 
+/* The same place and macro levels for a warning (HR_WARNING_*) to the
+ * context's warning callback. */
+void sdl_warning(const sdl_source *src, int32_t code, sdl_located at, const char *fmt, ...)
+    HR_PRINTF(4, 5);
+
 /* When `keyword` came from a macro body and `found` (an argument it wanted)
  * did not come from that same expansion, the arguments ran on past the end
  * of the body: writes " (the arguments of 'K' in macro 'M', defined at

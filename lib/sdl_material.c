@@ -81,6 +81,7 @@ hr_status sdl_cmd_material_number(sdl_reader *r, sdl_located keyword)
             hr_status st = sdl_read_number(r, keyword, &v, &at);
             if (st) return st;
             memcpy((char *)&r->material + number_fields[i].offset, &v, sizeof v);
+            sdl_note_coefficient(r, keyword);
             return check_value(r, at);
         }
     return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a material number",

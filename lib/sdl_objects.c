@@ -18,6 +18,8 @@
 #include "errors.h"
 #include "sdl_diag.h"
 #include "sdl_reader.h"
+#include "sdl_words.h"
+#include "suggest.h"
 
 #define ARGS_NONE 0        /* sphere, cube, ... */
 #define ARGS_TAPER 1       /* taperedCylinder s */
@@ -25,6 +27,7 @@
 #define ARGS_OPERANDS 3    /* union A B */
 #define ARGS_DIAMOND 4     /* refused: see add_leaf */
 #define ARGS_MODULE 5      /* a module's class beyond Hill's list: its parameters */
+#define ARGS_TUBE 6        /* torus [tube]: an optional tube radius */
 #define SDL_MAX_MODULE_PARAMS 64
 
 static const struct {
@@ -38,7 +41,7 @@ static const struct {
     {"taperedCylinder", ARGS_TAPER},
     {"cylinder", ARGS_NONE},
     {"cone", ARGS_NONE},
-    {"torus", ARGS_NONE},
+    {"torus", ARGS_TUBE},
     {"mesh", ARGS_FILE},
     {"tetrahedron", ARGS_NONE},
     {"octahedron", ARGS_NONE},
@@ -78,6 +81,41 @@ static int module_class_exists(hr_context *ctx, const char *word)
         if (hr_context_module(ctx, i, &e) != HR_OK || !e.loaded) continue;
         for (int32_t k = 0; k < e.class_count; k++)
             if (strcmp(e.classes[k]->name, word) == 0) return 1;
+    }
+    return 0;
+}
+
+void sdl_offer_object_keywords(sdl_reader *r, hr_suggester *near)
+{
+    for (int i = 0; i < OBJECT_COUNT; i++) hr_suggester_offer(near, objects[i].keyword);
+    int32_t n = hr_context_module_count(r->ctx);
+    for (int32_t i = 0; i < n; i++) {
+        hr_module_entry e;
+        memset(&e, 0, sizeof e);
+        e.struct_size = sizeof e;
+        if (hr_context_module(r->ctx, i, &e) != HR_OK || !e.loaded) continue;
+        for (int32_t k = 0; k < e.class_count; k++) hr_suggester_offer(near, e.classes[k]->name);
+    }
+}
+
+int sdl_refused_module(sdl_reader *r, const char *word, char *why, size_t size)
+{
+    const size_t length = strlen(word);
+    int32_t n = hr_context_module_count(r->ctx);
+    for (int32_t i = 0; i < n; i++) {
+        hr_module_entry e;
+        memset(&e, 0, sizeof e);
+        e.struct_size = sizeof e;
+        if (hr_context_module(r->ctx, i, &e) != HR_OK || e.loaded) continue;
+        const char *slash = strrchr(e.path, '/');
+        const char *base = slash ? slash + 1 : e.path;
+        /* "disk.so", or "libdisk.so" as CMake names a module by default. */
+        if (strncmp(base, "lib", 3) == 0 && strncmp(base + 3, word, length) == 0 && base[3 + length] == '.')
+            base += 3;
+        if (strncmp(base, word, length) == 0 && base[length] == '.') {
+            snprintf(why, size, "%s", e.error);
+            return 1;
+        }
     }
     return 0;
 }
@@ -156,6 +194,8 @@ static hr_status add(sdl_reader *r, sdl_located keyword, const hr_param *params,
 
 static hr_status add_leaf(sdl_reader *r, sdl_located keyword, int args, int64_t *index)
 {
+    hr_status noted = sdl_note_material_use(r);
+    if (noted) return noted;
     hr_param param;
     memset(&param, 0, sizeof param);
     int32_t count = 0;
@@ -179,6 +219,19 @@ static hr_status add_leaf(sdl_reader *r, sdl_located keyword, int args, int64_t 
         param.name = "s";
         param.type = HR_PARAM_NUMBER;
         count = 1;
+    } else if (args == ARGS_TUBE) {
+        /* Optional: a number cannot start the next command, so one here is
+         * the tube radius; without it the class's default (0.2). */
+        double ignored;
+        sdl_located next = sdl_source_peek(r->src);
+        if (next.token->kind == SDL_TOKEN_WORD &&
+            sdl_parse_number(next.token->text, &ignored) != SDL_NUMBER_NOT_A_NUMBER) {
+            hr_status st = sdl_read_number(r, keyword, &param.number, NULL);
+            if (st) return st;
+            param.name = "tube";
+            param.type = HR_PARAM_NUMBER;
+            count = 1;
+        }
     } else if (args == ARGS_FILE) {
         sdl_located file;
         hr_status st = sdl_source_next(r->src, &file);

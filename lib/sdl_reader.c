@@ -8,6 +8,7 @@
 #include "errors.h"
 #include "sdl_diag.h"
 #include "sdl_words.h"
+#include "suggest.h"
 
 static hr_status cmd_def(sdl_reader *r, sdl_located keyword)
 {
@@ -79,6 +80,7 @@ void sdl_reader_release(sdl_reader *r)
     if (!r) return;
     free(r->stack);
     free(r->parameters);
+    free(r->coefficient_uses);
     memset(r, 0, sizeof *r);
 }
 
@@ -179,6 +181,23 @@ static hr_status not_a_command(sdl_reader *r, sdl_located t)
     if (spelled)
         return sdl_error(r->src, HR_ERROR_SDL, t,
                          "unknown keyword %s (keywords are case-sensitive: '%s')", found, spelled);
+    /* The book's prose calls it the exponent; its SDL keyword is longer. */
+    if (strcmp(t.token->text, "exponent") == 0)
+        return sdl_error(r->src, HR_ERROR_SDL, t,
+                         "unknown keyword %s (did you mean 'specularExponent'? the book's "
+                         "'exponent' is Phong's specular exponent)", found);
+    char refused[1024];
+    if (sdl_refused_module(r, t.token->text, refused, sizeof refused))
+        return sdl_error(r->src, HR_ERROR_MODULE, t,
+                         "unknown keyword %s: a module for it was found but refused: %s", found,
+                         refused);
+    hr_suggester near;
+    hr_suggester_init(&near, t.token->text);
+    for (size_t i = 0; i < COMMAND_COUNT; i++) hr_suggester_offer(&near, commands[i].keyword);
+    sdl_offer_object_keywords(r, &near);
+    if (near.best)
+        return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s (did you mean '%s'?)", found,
+                         near.best);
     return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s", found);
 }
 
@@ -231,5 +250,6 @@ hr_status sdl_reader_run(sdl_reader *r)
      * rule of the scene's that the reader does not know of. */
     hr_status st = hr_scene_set_globals(r->scene, &r->globals);
     if (st) return sdl_error(r->src, st, t, "%s", hr_context_last_error(r->ctx));
+    sdl_warn_thresholds(r);
     return HR_OK;
 }

@@ -17,6 +17,15 @@
  * 4x4 matrices, and a macro used in a loop can push on every pass. */
 #define SDL_MAX_TRANSFORM_DEPTH 65536
 
+/* A reflectivity or transparency command some object used
+ * (sdl_thresholds.c). */
+#define SDL_COEFFICIENT_KINDS 2 /* 0: reflectivity, 1: transparency */
+typedef struct sdl_coefficient_use {
+    int kind;
+    sdl_located at; /* the command's keyword */
+    double value;
+} sdl_coefficient_use;
+
 typedef struct sdl_reader {
     hr_context *ctx;
     hr_scene *scene;
@@ -32,6 +41,13 @@ typedef struct sdl_reader {
     hr_scene_globals globals; /* given to the scene at the end of the read */
     int32_t has_camera;
     hr_camera camera;
+
+    /* Where the current material's coefficients were set (token NULL: not
+     * by a command), and the commands objects used (sdl_thresholds.c). */
+    sdl_located coefficient_at[SDL_COEFFICIENT_KINDS];
+    sdl_located last_noted[SDL_COEFFICIENT_KINDS];
+    sdl_coefficient_use *coefficient_uses;
+    size_t coefficient_use_count, coefficient_use_capacity;
 } sdl_reader;
 
 /* Set up / tear down everything but the scene, which the caller owns. */
@@ -54,6 +70,14 @@ hr_status sdl_read_color(sdl_reader *r, sdl_located keyword, hr_color *out);
 hr_status sdl_read_whole(sdl_reader *r, sdl_located keyword, double min, double max,
                          int64_t *out);
 
+/* Coefficients below their thresholds (sdl_thresholds.c): note the place of
+ * a reflectivity or transparency command, note that an object is made with
+ * the current material, and at the end of the read warn for each command
+ * used whose value the final thresholds hide. */
+void sdl_note_coefficient(sdl_reader *r, sdl_located keyword);
+hr_status sdl_note_material_use(sdl_reader *r);
+void sdl_warn_thresholds(sdl_reader *r);
+
 /* The top of the transform stack. */
 hr_transform *sdl_current_transform(sdl_reader *r);
 
@@ -63,6 +87,13 @@ const char *sdl_object_keyword(int index);
  * unsupported solid), or, if it is not a command, the name of a shape class
  * some module provides (a user's plugin); sdl_read_object then reads it. */
 int sdl_is_object_keyword(sdl_reader *r, const char *word);
+/* For an unknown keyword: offer every object keyword and every loaded
+ * module's class name to `near`; and whether a module that would provide
+ * `word` (its file is named after it: `disk.so` for `disk`) was found but
+ * refused, writing why into `why`. */
+struct hr_suggester;
+void sdl_offer_object_keywords(sdl_reader *r, struct hr_suggester *near);
+int sdl_refused_module(sdl_reader *r, const char *word, char *why, size_t size);
 /* 1 if `word` is a state command (translate, light, def, ...). */
 int sdl_is_command_keyword(const char *word);
 /* Read the object that starts at `keyword` (for a boolean: both operands,

@@ -13,6 +13,7 @@
 #include "errors.h"
 #include "sdl_diag.h"
 #include "sdl_reader.h"
+#include "sdl_words.h"
 
 hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
 {
@@ -74,8 +75,24 @@ hr_status sdl_cmd_light(sdl_reader *r, sdl_located keyword)
 hr_status sdl_cmd_camera(sdl_reader *r, sdl_located keyword)
 {
     double v[10];
-    hr_status st = sdl_read_numbers(r, keyword, 10, v);
-    if (st) return st;
+    for (int i = 0; i < 10; i++) {
+        sdl_located at = {NULL, -1}; /* stays so when no token could be read */
+        hr_status st = sdl_read_number(r, keyword, &v[i], &at);
+        /* Hill's gluLookAt has 9 numbers; this keyword adds the angle. Say
+         * how many it takes when some came and then no more. */
+        double ignored;
+        int not_a_number = at.token && (at.token->kind != SDL_TOKEN_WORD ||
+                                        sdl_parse_number(at.token->text, &ignored) ==
+                                            SDL_NUMBER_NOT_A_NUMBER);
+        if (st == HR_ERROR_SDL && i > 0 && not_a_number) {
+            char found[64];
+            return sdl_error(r->src, HR_ERROR_SDL, at,
+                             "'camera' takes 10 numbers (eye x y z, look-at x y z, up x y z, view "
+                             "angle in degrees), found %d before %s",
+                             i, sdl_describe(at.token, found, sizeof found));
+        }
+        if (st) return st;
+    }
     hr_camera cam = r->camera;
     cam.eye = (hr_vec3){v[0], v[1], v[2]};
     cam.look = (hr_vec3){v[3], v[4], v[5]};

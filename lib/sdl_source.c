@@ -57,6 +57,15 @@ hr_status sdl_source_next(sdl_source *src, sdl_located *out)
     return HR_OK;
 }
 
+sdl_located sdl_source_peek(const sdl_source *src)
+{
+    int32_t f = src->frame_count - 1;
+    while (f > 0 && src->frames[f].next == src->frames[f].end) f--;
+    const sdl_frame *top = &src->frames[f];
+    if (top->next == top->end) return (sdl_located){top->end, -1};
+    return (sdl_located){top->next, top->expansion};
+}
+
 /* Capacity for at least `needed` items, doubling; 0 if it would overflow. */
 static int32_t grown_capacity(int32_t capacity, int32_t needed)
 {

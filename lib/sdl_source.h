@@ -63,6 +63,10 @@ void sdl_source_release(sdl_source *src);
  * when expansion passes SDL_MAX_EXPANDED_TOKENS. */
 hr_status sdl_source_next(sdl_source *src, sdl_located *out);
 
+/* The token sdl_source_next would give now, without taking it (and without
+ * counting it against the expansion limit). For optional arguments. */
+sdl_located sdl_source_peek(const sdl_source *src);
+
 /* Start pasting the body of `macro`, named by `name` after the `use` keyword
  * `use`. Refuses a macro that is already being expanded (it would repeat
  * without end: bodies are fixed text with no conditions) and nesting deeper

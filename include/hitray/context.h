@@ -44,6 +44,28 @@ HR_API hr_status hr_context_last_error_info(const hr_context *ctx, hr_error_info
 typedef void (*hr_error_fn)(void *user, hr_status status, const char *message);
 HR_API void hr_context_set_error_callback(hr_context *ctx, hr_error_fn fn, void *user);
 
+/* Warnings: input the library accepts and acts on, but that probably does
+ * not do what its writer meant (a scene with nothing in it, a coefficient
+ * too small to be traced). The library never prints; a program that wants
+ * them shows them (the `hitray` command on stderr, Python as `warnings`).
+ * The callback runs on the thread of the call that found the case, before
+ * that call returns; `warning` and its strings are valid during the call
+ * only. Set it before the context is shared between threads. */
+#define HR_WARNING_EMPTY_SCENE 1     /* committed with no object: background only */
+#define HR_WARNING_BELOW_THRESHOLD 2 /* a reflectivity (transparency) above 0 but
+                                        below minReflectivity (minTransparency):
+                                        it spawns no ray and adds nothing */
+typedef struct hr_warning {
+    uint32_t struct_size;
+    int32_t code;        /* HR_WARNING_* */
+    const char *message; /* one line, starting with "file:line:col: " when in a file */
+    const char *file;    /* "" if not in a file */
+    int32_t line;        /* 1-based; 0 if unknown */
+    int32_t column;      /* 1-based; 0 if unknown */
+} hr_warning;
+typedef void (*hr_warning_fn)(void *user, const hr_warning *warning);
+HR_API void hr_context_set_warning_callback(hr_context *ctx, hr_warning_fn fn, void *user);
+
 /* Search `dir` for modules before the default places. */
 HR_API hr_status hr_context_add_shape_dir(hr_context *ctx, const char *dir);
 /* Load one module file now; its classes take precedence over modules found
@@ -77,6 +99,16 @@ typedef struct hr_module_entry {
 } hr_module_entry;
 HR_API int32_t hr_context_module_count(hr_context *ctx);
 HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_entry *out);
+
+/* "Did you mean": of `count` candidate words, the one nearest `word` by
+ * edit distance (insertions, deletions, substitutions and swaps of two
+ * neighbours, letters compared without regard to case), if it is within one
+ * step per four letters of `word` (at least one); NULL if none is. The
+ * first of equally near candidates wins; one equal to `word` is never
+ * suggested. The returned pointer is one of `candidates`. The SDL reader and
+ * the module loader use it for their messages; a program can for its own
+ * words (the `hitray` command's options). */
+HR_API const char *hr_suggest(const char *word, const char *const *candidates, int32_t count);
 
 /* Short human name of a status code ("invalid argument", ...). */
 HR_API const char *hr_status_name(hr_status status);

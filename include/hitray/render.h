@@ -15,7 +15,8 @@ extern "C" {
 
 /* Called from one thread at a time as tiles finish, and every 65536 rays
  * within a tile (so even a render stuck in one costly pixel can be stopped),
- * with the fraction of tiles done in [0, 1]. Return non-zero to cancel:
+ * with the fraction of tiles done in [0, 1], never less than the one before
+ * (the last is 1 for a render that ran to the end). Return non-zero to cancel:
  * hr_render then stops early and returns HR_ERROR_CANCELLED, with no image. */
 typedef int32_t (*hr_progress_fn)(void *user, double fraction);
 

@@ -108,6 +108,13 @@ PIN_OFF(hr_render_stats, rays_cut, 72);
 PIN_SIZE(hr_image_write_options, 24);
 PIN_SIZE(hr_error_info, 32);
 PIN_SIZE(hr_module_entry, 56);
+/* hr_warning (the warning callback's argument, added within ABI 1). */
+PIN_SIZE(hr_warning, 32);
+PIN_OFF(hr_warning, code, 4);
+PIN_OFF(hr_warning, message, 8);
+PIN_OFF(hr_warning, file, 16);
+PIN_OFF(hr_warning, line, 24);
+PIN_OFF(hr_warning, column, 28);
 PIN_SIZE(hr_sdl_result, 112);
 PIN_OFF(hr_sdl_result, camera, 16);
 PIN_SIZE(hr_transform, 256);

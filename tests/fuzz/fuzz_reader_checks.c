@@ -122,6 +122,32 @@ void fuzz_reader_check_rays(hr_context *ctx, const char *tag, const hr_sdl_resul
     }
 }
 
+/* What a warning must be: a known code, and a message that names the
+ * scene (and, when it has a place, starts with that place) or, from
+ * commit, no file at all. */
+typedef struct warning_check {
+    const char *tag, *name;
+} warning_check;
+
+static void check_warning(void *user, const hr_warning *w)
+{
+    const warning_check *c = user;
+    if (w->struct_size != sizeof *w || !w->message || !w->file)
+        fuzz_fail("%s: a malformed warning", c->tag);
+    if (w->code != HR_WARNING_EMPTY_SCENE && w->code != HR_WARNING_BELOW_THRESHOLD)
+        fuzz_fail("%s: warning code %d: %s", c->tag, (int)w->code, w->message);
+    if (!*w->file) return;
+    const size_t n = strlen(c->name);
+    if (strcmp(w->file, c->name) != 0 || strncmp(w->message, c->name, n) != 0 || w->message[n] != ':')
+        fuzz_fail("%s: a warning in file '%s' does not start with '%s:': %s", c->tag, w->file,
+                  c->name, w->message);
+    int line = 0, column = 0, used = 0;
+    if (w->line > 0 && (sscanf(w->message + n + 1, "%d:%d: %n", &line, &column, &used) != 2 ||
+                        !used || line != w->line || column != w->column))
+        fuzz_fail("%s: a warning at %d:%d whose message says otherwise: %s", c->tag, (int)w->line,
+                  (int)w->column, w->message);
+}
+
 void fuzz_reader_input(hr_context *ctx, const char *tag, const char *name,
                       fuzz_reader_fn read, const uint8_t *data, size_t size)
 {
@@ -130,14 +156,18 @@ void fuzz_reader_input(hr_context *ctx, const char *tag, const char *name,
     memcpy(text, data, size);
     text[size] = '\0';
     hr_sdl_result r = {.struct_size = sizeof r};
+    warning_check check = {tag, name};
+    hr_context_set_warning_callback(ctx, check_warning, &check);
     const hr_status st = read(ctx, text, name, &r);
     const size_t length = strlen(text);
     free(text);
     if (st != HR_OK) {
+        hr_context_set_warning_callback(ctx, NULL, NULL);
         fuzz_reader_check_error(ctx, tag, name, st, &r, length);
         return;
     }
     if (!r.scene) fuzz_fail("%s: HR_OK and no scene", tag);
     fuzz_reader_check_rays(ctx, tag, &r);
+    hr_context_set_warning_callback(ctx, NULL, NULL);
     hr_scene_destroy(r.scene);
 }

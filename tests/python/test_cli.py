@@ -342,29 +342,39 @@ def test_block_and_depth_options(scene, tmp_path):
     assert json.loads(stats.read_text())["primary"] == 16  # one ray per 4x4 block
 
 
-def test_progress_bar_only_on_a_terminal(scene, tmp_path):
+def run_on_a_terminal(*args):
+    """Run hitray with stderr on a pseudo-terminal; (exit status, stdout,
+    what the terminal got). Stdout is read at the end: keep it small."""
     master, slave = pty.openpty()
     try:
-        proc = subprocess.run([str(HITRAY), "render", str(scene), "-o", str(tmp_path / "p.png"),
-                               "--size", "64x64"], stdout=subprocess.PIPE, stderr=slave, timeout=120)
+        proc = subprocess.Popen([str(HITRAY), *map(str, args)], stdout=subprocess.PIPE, stderr=slave)
+    finally:
         os.close(slave)
-        slave = -1
-        seen = b""
+    seen = b""
+    try:
         while True:
             try:
-                chunk = os.read(master, 4096)
-            except OSError:
+                chunk = os.read(master, 65536)
+            except OSError:  # EIO: the last writer closed the terminal
                 break
             if not chunk:
                 break
             seen += chunk
+        out = proc.stdout.read()
+        proc.wait(timeout=120)
     finally:
-        if slave >= 0:
-            os.close(slave)
         os.close(master)
-    assert proc.returncode == 0
-    assert b"rendering [" in seen and b"100%" in seen
-    assert b"rendering" not in proc.stdout
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    return proc.returncode, out, seen.decode("utf-8", "replace")
+
+
+def test_progress_bar_only_on_a_terminal(scene, tmp_path):
+    rc, out, seen = run_on_a_terminal("render", scene, "-o", tmp_path / "p.png", "--size", "64x64")
+    assert rc == 0
+    assert "rendering [" in seen and "100%" in seen
+    assert b"rendering" not in out
 
 
 def test_ctrl_c_cancels_cleanly(tmp_path):

@@ -5,6 +5,8 @@ import re
 import subprocess
 import sys
 
+import pytest
+
 from conftest import ROOT, require_classes
 
 
@@ -33,6 +35,20 @@ def test_the_readme_python_example_renders_an_image(tmp_path):
     out = run_python(readme_python_example(), tmp_path)
     assert png_size(tmp_path / "python.png") == (640, 480)
     assert "HitInfo(t=7.0, point=(-1.2, 1.0, 1.0)" in out
+
+
+def test_the_readme_python_example_passes_mypy_strict(tmp_path):
+    """What a user's editor and CI say about the README's code: it
+    type-checks strictly against the installed package's annotations and
+    stubs (image.stats is a RenderStats, not an Optional, after render)."""
+    mypy = pytest.importorskip("mypy", reason="mypy is not installed (scripts/requirements-python.txt)")
+    assert mypy
+    example = tmp_path / "readme_example.py"
+    example.write_text(readme_python_example())
+    check = subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental",
+                            "--cache-dir", str(tmp_path / "cache"), str(example)],
+                           capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert check.returncode == 0, check.stdout + check.stderr
 
 
 def test_the_scene_in_code_example_is_the_readme_s(tmp_path):

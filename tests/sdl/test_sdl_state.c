@@ -222,7 +222,7 @@ static void camera(hr_context *ctx)
     EXPECT_ERROR(ctx, "camera 0 0 5 0 0 0 0 1 0 180", HR_ERROR_SDL, 1, 1,
                  "'camera' cannot make rays", "view angle");
     EXPECT_ERROR(ctx, "camera 0 0 5 0 0 0 0 1 0", HR_ERROR_SDL, 1, 25,
-                 "expected a number after 'camera', found end of file");
+                 "'camera' takes 10 numbers", "found 9 before end of file");
 }
 
 int main(void)

@@ -4,12 +4,49 @@
 // registered later, from hitray.abi say, is seen at once).
 #include "core.h"
 
+#include <pybind11/stl.h>
+
 #include <dlfcn.h>
 
 #include <climits>
 #include <cstdlib>
+#include <vector>
 
 namespace hitray_py {
+
+namespace {
+
+// The library's warnings, kept per thread until the Python layer takes
+// them (take_warnings) right after the call that raised them and issues
+// them with warnings.warn: the callback itself runs inside library calls,
+// often with the GIL released, where Python cannot be entered (and an
+// exception from a warnings filter could not pass through C).
+struct PendingWarning {
+    int32_t code;
+    std::string message, file;
+    int32_t line, column;
+};
+thread_local std::vector<PendingWarning> pending_warnings;
+
+void on_warning(void *, const hr_warning *w)
+{
+    try {
+        pending_warnings.push_back({w->code, w->message, w->file, w->line, w->column});
+    } catch (...) {
+        // Out of memory: a lost warning, not a failed call.
+    }
+}
+
+py::list take_warnings()
+{
+    py::list out;
+    for (const PendingWarning &w : pending_warnings)
+        out.append(py::make_tuple(w.code, text(w.message), path_text(w.file), w.line, w.column));
+    pending_warnings.clear();
+    return out;
+}
+
+}  // namespace
 
 hr_context *context()
 {
@@ -17,7 +54,9 @@ hr_context *context()
     // destroyed: see core.h.
     static hr_context *const ctx = [] {
         hr_context *c = nullptr;
-        return hr_context_create(&c) == HR_OK ? c : nullptr;
+        if (hr_context_create(&c) != HR_OK) return static_cast<hr_context *>(nullptr);
+        hr_context_set_warning_callback(c, on_warning, nullptr);
+        return c;
     }();
     return ctx;
 }
@@ -112,6 +151,15 @@ void bind_context(py::module_ &m)
           py::arg("path"), "Load one shape module file now (its classes win over searched ones).");
     m.def("add_shape_dir", [](const py::bytes &dir) { check(hr_context_add_shape_dir(context(), std::string(dir).c_str())); },
           py::arg("directory"), "Search a directory for shape modules before the default places.");
+    m.def("suggest", [](const std::string &word, const std::vector<std::string> &candidates) -> py::object {
+        std::vector<const char *> names;
+        for (const std::string &c : candidates) names.push_back(c.c_str());
+        const char *near = hr_suggest(word.c_str(), names.data(), static_cast<int32_t>(names.size()));
+        return near ? py::object(py::str(near)) : py::object(py::none());
+    }, py::arg("word"), py::arg("candidates"),
+          "hr_suggest: the candidate nearest a misspelt word, or None.");
+    m.def("take_warnings", &take_warnings,
+          "The calling thread's pending library warnings, as (code, message, file, line, column).");
     m.def("modules", &modules, "Every module on the search path, loaded or refused.");
     m.def("find_shape_class", &find_shape_class, py::arg("name"),
           "The shape class that provides `name`, loading modules if needed.");

@@ -61,6 +61,9 @@ py::object stats(const ImagePtr &self)
     d["reflected"] = s.reflected;
     d["refracted"] = s.refracted;
     d["seconds"] = s.seconds;
+    d["pixels_refined"] = s.pixels_refined;
+    d["samples_saved"] = s.samples_saved;
+    d["rays_cut"] = s.rays_cut;
     py::list effects;
     for (uint32_t e = 1; e < (1u << HR_EFFECT_COUNT); e <<= 1)
         if (s.effects & e) effects.append(hr_effect_name(e));

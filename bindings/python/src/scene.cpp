@@ -3,6 +3,7 @@
 // Intersection of every hit, shade. The vectorised trace is in trace.cpp.
 #include "scene_handle.h"
 
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -75,10 +76,14 @@ py::dict material_dict(const hr_material &m)
 }
 
 // One parameter as the Python layer sends it: (name, kind, value), kind
-// "number", "string" (bytes) or "object" (an index of this scene).
+// "number", "string" (bytes), "object" (an index of this scene) or
+// "numbers" (a C-contiguous float64 numpy array, lent to the library for
+// the call: no copy, whatever its size).
+using DoubleArray = py::array_t<double, py::array::c_style>;
 struct ParamArg {
     std::string name;
     std::string string;
+    DoubleArray numbers; // holds the array while the library reads it
     hr_param param{};
 };
 
@@ -100,6 +105,15 @@ int64_t add_object(const ScenePtr &s, const std::string &shape, const py::list &
         } else if (kind == "object") {
             a.param.type = HR_PARAM_OBJECT;
             a.param.object = p[2].cast<int64_t>();
+        } else if (kind == "numbers") {
+            // The Python layer made it float64 and contiguous; anything else
+            // is refused rather than silently copied here.
+            if (!py::isinstance<DoubleArray>(p[2]))
+                throw py::type_error("parameter '" + a.name + "': expected a contiguous float64 array");
+            a.numbers = p[2].cast<DoubleArray>();
+            a.param.type = HR_PARAM_NUMBERS;
+            a.param.numbers = a.numbers.size() ? a.numbers.data() : nullptr;
+            a.param.count = static_cast<int64_t>(a.numbers.size());
         } else {
             throw py::value_error("parameter '" + a.name + "': unknown kind '" + kind + "'");
         }
@@ -236,7 +250,16 @@ py::list effects(const ScenePtr &s)
 py::tuple hit_tuple(const hr_hit &h)
 {
     return py::make_tuple(h.t, tuple_of(h.point), tuple_of(h.normal), h.surface, h.entering != 0,
-                          h.object);
+                          h.object, h.error);
+}
+
+// hr_hit_spawn_origin reads only the point and its error bound.
+py::tuple spawn_origin(const vec3 &point, double error, const vec3 &side)
+{
+    hr_hit hit{};
+    hit.point = to_vec3(point);
+    hit.error = error;
+    return tuple_of(hr_hit_spawn_origin(&hit, to_vec3(side)));
 }
 
 hr_ray ray_of(const vec3 &origin, const vec3 &direction)
@@ -339,6 +362,8 @@ void bind_scene(py::module_ &m)
         .def("all_hits", &all_hits, py::arg("origin"), py::arg("direction"), py::arg("tmin"), py::arg("tmax"))
         .def("shade", &shade, py::arg("origin"), py::arg("direction"), py::arg("depth"))
         .def("frame_camera", &frame_camera, py::arg("width"), py::arg("height"), py::arg("angle"));
+    m.def("spawn_origin", &spawn_origin, py::arg("point"), py::arg("error"), py::arg("side"),
+          "hr_hit_spawn_origin: where a ray leaving a hit toward `side` starts.");
 }
 
 }  // namespace hitray_py

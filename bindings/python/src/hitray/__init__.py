@@ -17,16 +17,22 @@ Scenes come from code (Scene, the shape classes, Camera) or from Hill's SDL
 Scene.hits (the Intersection of every hit) and Scene.trace (many rays as
 numpy arrays). Every failure of the library raises a hitray.Error subclass.
 The library, its shape modules and the extension all live inside this
-package; libhitray finds the modules next to itself.
+package; libhitray finds the modules next to itself. ``hitray.abi`` (the C
+ABI through cffi, and shape classes written in Python) is imported on first
+use. The library's warnings about a scene are :class:`SceneWarning` entries
+of Python's ``warnings``.
 """
 
-from __future__ import annotations
+# No `from __future__ import annotations` here: it would leave the name
+# `annotations` in the package's namespace (and dir(hitray)).
+import importlib as _importlib
+import typing as _typing
 
 from . import _core
 from .camera import Camera
 from .errors import (ArgumentError, Error, FileError, ModuleError, NumericError, ParameterError,
-                     NFFError, SDLError, StateError, UnsupportedError)
-from .image import Image, RenderStats
+                     NFFError, SceneWarning, SDLError, StateError, UnsupportedError)
+from .image import Image, RenderedImage, RenderStats
 from .modules import (ModuleInfo, ShapeClass, ShapeParam, add_shape_dir, load_module, modules,
                       shape_classes)
 from .queries import HitInfo, Light, TraceResult
@@ -40,8 +46,11 @@ from .shapes import (Buckyball, Cone, Cube, Cylinder, Difference, Dodecahedron, 
 
 __version__ = "%d.%d.%d" % _core.version()
 
+if _typing.TYPE_CHECKING:
+    from . import abi
+
 __all__ = [
-    "Scene", "SceneObject", "Camera", "render", "Image", "RenderStats",
+    "Scene", "SceneObject", "Camera", "render", "Image", "RenderedImage", "RenderStats",
     "load_sdl", "parse_sdl", "load_nff", "parse_nff",
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
     "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Buckyball", "Teapot",
@@ -50,5 +59,17 @@ __all__ = [
     "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
     "ModuleInfo",
     "Error", "ArgumentError", "FileError", "ModuleError", "ParameterError", "SDLError",
-    "NFFError", "StateError", "UnsupportedError", "NumericError",
+    "NFFError", "StateError", "UnsupportedError", "NumericError", "SceneWarning",
 ]
+
+
+def __getattr__(name: str) -> _typing.Any:
+    # PEP 562: hitray.abi is imported on first use (it loads cffi and parses
+    # the headers), not by every `import hitray`.
+    if name == "abi":
+        return _importlib.import_module(".abi", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> _typing.List[str]:
+    return sorted(set(globals()) | {"abi"})

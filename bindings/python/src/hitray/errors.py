@@ -89,6 +89,29 @@ class NFFError(SDLError):
     the same."""
 
 
+class SceneWarning(UserWarning):
+    """A warning of the library's about a scene: accepted, but probably not
+    what was meant (no objects at all; a coefficient below the threshold
+    that lets it spawn rays, such as ``reflectivity 0.08`` under the default
+    ``minReflectivity 0.5``).
+
+    Attributes:
+        code: the library's HR_WARNING_* number (1: empty scene, 2: below
+            threshold).
+        filename: the scene file, None when not from a file.
+        line: 1-based line, 0 if unknown.
+        column: 1-based column, 0 if unknown.
+    """
+
+    def __init__(self, message: str, code: int = 0, filename: Optional[str] = None,
+                 line: int = 0, column: int = 0) -> None:
+        super().__init__(message)
+        self.code = code
+        self.filename = filename
+        self.line = line
+        self.column = column
+
+
 class StateError(Error):
     """A call in the wrong state (for instance querying an uncommitted scene
     through the low-level core)."""

@@ -6,15 +6,17 @@ from __future__ import annotations
 import os
 import tempfile
 from dataclasses import dataclass
-from typing import Any, FrozenSet, Optional, Tuple
+from typing import Any, FrozenSet, Optional, Tuple, Type, TypeVar
 
 import numpy as np
 
 from . import _convert, _core
 
-__all__ = ["Image", "RenderStats"]
+__all__ = ["Image", "RenderedImage", "RenderStats"]
 
 _FORMATS = {None: 0, "png": 1, "exr": 2, "ppm": 3, "pfm": 4}
+
+_ImageT = TypeVar("_ImageT", bound="Image")
 
 
 @dataclass(frozen=True)
@@ -29,6 +31,11 @@ class RenderStats:
         refracted: transmitted rays.
         seconds: wall time of the render.
         effects: the effects that ran ("diffuse", "shadows", "reflection", ...).
+        pixels_refined: adaptive supersampling: pixels given every sample.
+        samples_saved: adaptive: camera rays a full render would cast minus
+            those cast (negative where the corner samples cost more).
+        rays_cut: reflected and refracted rays the contribution cut-off
+            (min_weight) did not trace.
     """
 
     threads: int
@@ -38,6 +45,9 @@ class RenderStats:
     refracted: int
     seconds: float
     effects: FrozenSet[str]
+    pixels_refined: int = 0
+    samples_saved: int = 0
+    rays_cut: int = 0
 
     @property
     def rays(self) -> int:
@@ -62,13 +72,13 @@ class Image:
         self._stats: Optional[RenderStats] = None
 
     @classmethod
-    def _wrap(cls, core: Any) -> "Image":
+    def _wrap(cls: Type[_ImageT], core: Any) -> _ImageT:
         image = object.__new__(cls)
         image._core = core
         s = core.stats
         image._stats = None if s is None else RenderStats(
             s["threads"], s["primary"], s["shadow"], s["reflected"], s["refracted"], s["seconds"],
-            frozenset(s["effects"]))
+            frozenset(s["effects"]), s["pixels_refined"], s["samples_saved"], s["rays_cut"])
         return image
 
     @property
@@ -130,3 +140,17 @@ class Image:
 
     def __repr__(self) -> str:
         return f"<hitray.Image {self.width}x{self.height}x{self.channels}>"
+
+
+class RenderedImage(Image):
+    """What :func:`hitray.render` returns: an :class:`Image` that always has
+    its render's statistics, so ``image.stats.rays`` needs no None check
+    (and type-checks as such)."""
+
+    __slots__ = ()
+
+    @property
+    def stats(self) -> RenderStats:
+        """The render's statistics."""
+        assert self._stats is not None, "a rendered image carries its statistics"
+        return self._stats

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any, Dict, Mapping
 
-from . import _convert
+from . import _convert, _core
 
 # snake_case name -> kind; SDL's camelCase names map onto these.
 _FIELDS = {
@@ -50,7 +50,9 @@ def normalize(values: Mapping[str, Any]) -> Dict[str, Any]:
         field = _SDL_NAMES.get(key, key)
         kind = _FIELDS.get(field)
         if kind is None:
-            raise TypeError(f"unknown material keyword '{key}'; the material keywords are: "
+            near = _core.suggest(key, list(MATERIAL_NAMES))
+            hint = f" (did you mean '{near}'?)" if near else ""
+            raise TypeError(f"unknown material keyword '{key}'{hint}; the material keywords are: "
                             + ", ".join(MATERIAL_NAMES))
         if field in out:
             raise TypeError(f"material keyword '{key}' given twice (as SDL's and Python's name)")

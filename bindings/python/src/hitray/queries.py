@@ -4,11 +4,12 @@ vectorised trace, and a scene's lights."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, Sequence
 
 import numpy as np
 
-from ._convert import Vec3
+from . import _core
+from ._convert import Vec3, vec3
 
 __all__ = ["HitInfo", "TraceResult", "Light"]
 
@@ -27,6 +28,9 @@ class HitInfo:
             tapered cylinder's 0 wall, 1 base, 2 cap; 0 for one-surface shapes).
         object: index of the object in the scene (``scene.objects[i]``); for a
             boolean, the leaf whose surface it is.
+        error: a bound on the distance of `point` from the true surface
+            point (per coordinate, absolute), what :meth:`spawn_origin`
+            moves off by.
     """
 
     t: float
@@ -35,11 +39,22 @@ class HitInfo:
     entering: bool
     surface: int
     object: int
+    error: float = 0.0
 
     @classmethod
     def _from_core(cls, h: Any) -> "HitInfo":
-        t, point, normal, surface, entering, obj = h
-        return cls(t, point, normal, bool(entering), surface, obj)
+        t, point, normal, surface, entering, obj, error = h
+        return cls(t, point, normal, bool(entering), surface, obj, error)
+
+    def spawn_origin(self, side: Sequence[float]) -> Vec3:
+        """Where a ray leaving this hit toward `side` starts (the C
+        ``hr_hit_spawn_origin``): the point moved off the surface by the
+        hit's own error bound, so the ray cannot hit the surface it leaves.
+        `side` is a unit normal, or its negation to pass into a solid; the
+        renderer's shadow, reflected and refracted rays start this way.
+        ``hit.spawn_origin(hit.normal)`` is outside, ``-normal`` inside."""
+        x, y, z = _core.spawn_origin(self.point, self.error, vec3(side, "side"))
+        return (x, y, z)
 
 
 class TraceResult(NamedTuple):

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import importlib.util
+import sys
 from typing import Any, Callable, Optional, Tuple, Union
 
 from . import _convert, _core
 from .camera import Camera
-from .image import Image
+from .image import RenderedImage
 from .scene import Scene
 
 __all__ = ["render"]
@@ -14,14 +16,34 @@ __all__ = ["render"]
 Progress = Union[bool, Callable[[float], Any]]
 
 
+def _in_notebook() -> bool:
+    """Whether this runs in a Jupyter kernel (IPython's kernel app)."""
+    ipython = sys.modules.get("IPython")
+    get = getattr(ipython, "get_ipython", None)
+    shell = get() if callable(get) else None
+    return shell is not None and "IPKernelApp" in getattr(shell, "config", {})
+
+
+def _tqdm_class() -> Any:
+    """tqdm's notebook widget where it can be drawn, its plain text bar
+    everywhere else. tqdm.auto would pick the widget in any notebook and,
+    without ipywidgets, warn (TqdmWarning: IProgress not found) before
+    falling back; this falls back without the warning."""
+    if _in_notebook() and importlib.util.find_spec("ipywidgets") is not None:
+        from tqdm.notebook import tqdm as notebook_tqdm  # type: ignore[import-untyped, unused-ignore]
+        return notebook_tqdm
+    from tqdm.std import tqdm as text_tqdm  # type: ignore[import-untyped, unused-ignore]
+    return text_tqdm
+
+
 class _Bar:
-    """A tqdm bar that follows the fraction of tiles done."""
+    """A tqdm bar that follows the fraction of tiles done (which the library
+    never reports going backwards), with the time left."""
 
     def __init__(self) -> None:
-        from tqdm.auto import tqdm  # type: ignore[import-untyped, unused-ignore]
-
-        self._bar = tqdm(total=100, unit="%", desc="hitray", leave=False,
-                         bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining}")
+        self._bar = _tqdm_class()(
+            total=100, unit="%", desc="hitray", leave=False,
+            bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining} left")
         self._shown = 0.0
 
     def __call__(self, fraction: float) -> None:
@@ -36,7 +58,10 @@ class _Bar:
 
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480),
            spp: int = 1, threads: Optional[int] = None, depth: Optional[int] = None,
-           progress: Progress = True, *, block_size: int = 1, all_effects: bool = False) -> Image:
+           progress: Progress = True, *, block: Optional[int] = None, effects: str = "auto",
+           adaptive: Optional[float] = None, min_weight: Optional[float] = None,
+           exact: bool = False, block_size: Optional[int] = None,
+           all_effects: bool = False) -> RenderedImage:
     """Render `scene` through `camera` into a new :class:`Image` of `size`
     (width, height).
 
@@ -49,9 +74,22 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
         depth: bounces (None: the scene's max_recursion_depth).
         progress: True shows a tqdm bar; a callable is called with the
             fraction done (0..1) from the calling thread; False shows nothing.
-        block_size: Hill's blocksize: one ray per block of block_size² pixels.
-        all_effects: run every effect's code path even where the scene needs
-            none (the same image, slower; for measuring what the analysis saves).
+        block: Hill's blocksize: one ray per block of block² pixels
+            (``hitray render --block``; ``block_size`` is the same, by its
+            earlier name).
+        effects: "auto" runs only the effects the scene calls for; "all"
+            runs every effect's code path (the same image, slower; for
+            measuring what the analysis saves). ``all_effects=True`` is
+            ``effects="all"``.
+        adaptive: adaptive supersampling (``--adaptive``): every pixel corner
+            is sampled once and only pixels whose corners differ by more than
+            this (0..1, sRGB-encoded) get the `spp` pattern; needs spp >= 2
+            and block 1. None: off.
+        min_weight: the contribution cut-off (``--min-weight``, 0..1): no
+            reflected or refracted ray of weight below it is traced. None:
+            the library's default, 2^-24.
+        exact: trace every contribution, however small (``--exact``; not
+            with min_weight).
 
     The GIL is released while the render runs, so other Python threads run
     and several renders can run at once. Ctrl-C (KeyboardInterrupt), or an
@@ -70,9 +108,12 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     d = -1 if depth is None else _convert.integer(depth, "depth")
     if depth is not None and d < 0:
         raise ValueError(f"render: depth must be at least 0, not {d}")
-    block = _convert.integer(block_size, "block_size")
-    if block < 1:
-        raise ValueError(f"render: block_size must be at least 1, not {block}")
+    blocks = _block(block, block_size)
+    all_paths = _effects(effects, all_effects)
+    # The library checks these (range, spp and block for adaptive, exact
+    # against min_weight) and says what is wrong: ArgumentError.
+    threshold = 0.0 if adaptive is None else _convert.number(adaptive, "adaptive")
+    weight = 0.0 if min_weight is None else _convert.number(min_weight, "min_weight")
     if camera is None:
         camera = scene.frame_camera((w, h))
     elif not isinstance(camera, Camera):
@@ -91,9 +132,28 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     else:
         raise TypeError("render: progress must be True, False or a callable taking the fraction done")
     try:
-        core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, block,
-                                  bool(all_effects), callback)
+        core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, blocks,
+                                  all_paths, threshold, weight, bool(exact), callback)
     finally:
         if bar is not None:
             bar.close()
-    return Image._wrap(core_image)
+    return RenderedImage._wrap(core_image)
+
+
+def _block(block: Optional[int], block_size: Optional[int]) -> int:
+    if block is not None and block_size is not None:
+        raise TypeError("render: give block or block_size (the same option), not both")
+    given = block if block is not None else block_size
+    if given is None:
+        return 1
+    value = _convert.integer(given, "block")
+    if value < 1:
+        raise ValueError(f"render: block must be at least 1, not {value}")
+    return value
+
+
+def _effects(effects: str, all_effects: bool) -> bool:
+    if effects not in ("auto", "all"):
+        raise ValueError(f"render: effects must be 'auto' or 'all', not {effects!r}")
+    return effects == "all" or bool(all_effects)
+

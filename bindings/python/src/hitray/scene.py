@@ -18,7 +18,7 @@ from typing import Any, Dict, FrozenSet, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _convert, _core, material as _material
+from . import _convert, _core, _warnings, material as _material
 from ._convert import Vec3
 from .camera import Camera
 from .queries import HitInfo, Light, TraceResult
@@ -57,7 +57,21 @@ class _SDLSource:
         self.text, self.name, self.base_dir, self.path = text, name, base_dir, path
         self.nff = nff
 
-    def load(self) -> Tuple[Any, Any]:
+    def load(self, warn: bool = True) -> Tuple[Any, Any]:
+        """The library scene and camera from the text; its warnings are
+        issued (the first read) or dropped (a rebuild, `warn` False)."""
+        try:
+            result = self._read()
+        except BaseException:
+            _warnings.discard()  # a failed read's warnings are not the next call's
+            raise
+        if warn:
+            _warnings.issue()
+        else:
+            _warnings.discard()
+        return result
+
+    def _read(self) -> Tuple[Any, Any]:
         if self.nff:
             if self.text is None:
                 assert self.path is not None
@@ -118,6 +132,8 @@ def _add_tree(core: Any, shape: Shape, inherited: Dict[str, Any], base_dir: byte
                 frames.append(frame(value, material))
             elif isinstance(value, (str, bytes, os.PathLike)):
                 params.append((key, "string", os.fsencode(value)))
+            elif isinstance(value, np.ndarray):
+                params.append((key, "numbers", value))  # lent, not copied
             else:  # a number, made a float by Shape
                 params.append((key, "number", value))
             continue
@@ -161,7 +177,7 @@ class Scene:
 
     # --- the library scene ----------------------------------------------------
     def _build(self) -> Any:
-        core = self._sdl.load()[0] if self._sdl is not None else _core.Scene()
+        core = self._sdl.load(warn=False)[0] if self._sdl is not None else _core.Scene()
         for op in self._ops:
             op.apply(core)
         if self._globals:
@@ -186,6 +202,7 @@ class Scene:
             core = self._current()
             if not core.committed:
                 core.commit()
+                _warnings.issue()
             return core
 
     def _record(self, op: Union[_AddObject, _AddLight]) -> int:

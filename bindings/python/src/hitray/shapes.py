@@ -23,13 +23,26 @@ import numpy as np
 
 from . import _convert, _core, material as _material
 
-ParamValue = typing.Union[float, int, str, "os.PathLike[str]", bytes, "Shape"]
+ParamValue = typing.Union[float, int, str, "os.PathLike[str]", bytes, "Shape", np.ndarray]
 
 __all__ = [
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone",
     "Torus", "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Buckyball",
     "Teapot", "Union", "Intersection", "Difference",
 ]
+
+
+def _numbers(value: Any, what: str) -> np.ndarray:
+    """An array parameter as the library takes it: float64, contiguous and
+    flat. One copy in C (never a Python loop over the elements), made
+    read-only, so the shape stays a value whatever the caller does to the
+    array afterwards."""
+    try:
+        out = np.array(value, dtype=np.float64, order="C", copy=True).reshape(-1)
+    except (TypeError, ValueError) as e:
+        raise TypeError(f"{what}: expected an array of numbers ({e})") from None
+    out.flags.writeable = False
+    return out
 
 
 def _format_number(x: float) -> str:
@@ -62,9 +75,11 @@ class Shape:
                 checked[key] = _convert.as_float(value, f"shape '{name}': parameter '{key}'")
             elif isinstance(value, (str, bytes, os.PathLike)):
                 checked[key] = value
+            elif isinstance(value, np.ndarray):
+                checked[key] = _numbers(value, f"shape '{name}': parameter '{key}'")
             else:
-                raise TypeError(f"shape '{name}': parameter '{key}' must be a number, a string or "
-                                f"a Shape, not {type(value).__name__}")
+                raise TypeError(f"shape '{name}': parameter '{key}' must be a number, a string, "
+                                f"a numpy array or a Shape, not {type(value).__name__}")
         self._name = name
         self._params = checked
         self._transform = _core.Transform()
@@ -280,17 +295,60 @@ class Torus(Shape):
 
 
 class Mesh(Shape):
-    """A mesh read from `file` when added: Wavefront OBJ if the name ends in
-    .obj, Hill's chapter-6 format otherwise. A relative name is taken from the
-    current directory at the time of ``Scene.add``."""
+    """A triangle mesh, from a file or from arrays.
+
+    ``Mesh(file)`` reads the file when added: Wavefront OBJ if the name ends
+    in .obj, Hill's chapter-6 format otherwise; a relative name is taken from
+    the current directory at the time of ``Scene.add``.
+
+    ``Mesh(vertices=V, faces=F, normals=N)`` takes the arrays trimesh and
+    Open3D hold a mesh in: V an (n, 3) array of points, F an (m, 3) array of
+    vertex indices from 0, N (optional) an (n, 3) array of shading normals,
+    one per vertex. They reach the mesh module's ``triangleMesh`` class as
+    array parameters, each copied once (in C, as float64) and never touched
+    per triangle by Python; the module checks every index against the
+    vertex count and builds the same watertight mesh as from a file.
+    """
 
     __slots__ = ()
 
-    def __init__(self, file: typing.Union[str, "os.PathLike[str]", bytes]) -> None:
-        super().__init__("mesh", file=file)
+    def __init__(self, file: typing.Union[str, "os.PathLike[str]", bytes, None] = None, *,
+                 vertices: Any = None, faces: Any = None, normals: Any = None) -> None:
+        if file is not None:
+            if vertices is not None or faces is not None or normals is not None:
+                raise TypeError("Mesh: give a file or vertices and faces, not both")
+            super().__init__("mesh", file=file)
+            return
+        if vertices is None or faces is None:
+            raise TypeError("Mesh: give a file, or vertices=(n, 3) and faces=(m, 3) arrays")
+        arrays: Dict[str, ParamValue] = {
+            "points": _rows_of_three(vertices, "vertices"),
+            "triangles": _rows_of_three(faces, "faces", integral=True)}
+        if normals is not None:
+            arrays["normals"] = _rows_of_three(normals, "normals")
+        super().__init__("triangleMesh")
+        self._params = arrays  # already the library's form: no second copy
 
     def _repr_head(self) -> str:
-        return f"Mesh({self._params['file']!r})"
+        if "file" in self._params:
+            return f"Mesh({self._params['file']!r})"
+        counts = {k: int(np.asarray(v).size) // 3 for k, v in self._params.items()}
+        parts = [f"vertices=<{counts['points']} points>", f"faces=<{counts['triangles']} triangles>"]
+        if "normals" in counts:
+            parts.append(f"normals=<{counts['normals']} normals>")
+        return f"Mesh({', '.join(parts)})"
+
+
+def _rows_of_three(value: Any, name: str, integral: bool = False) -> np.ndarray:
+    """An (n, 3) array (or anything numpy reads as one) for Mesh."""
+    a = np.asarray(value)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"Mesh: {name} must be an (n, 3) array, not of shape {a.shape}")
+    if integral and a.size and a.dtype.kind not in "iu":
+        raise TypeError(f"Mesh: {name} must hold integer vertex indices, not {a.dtype}")
+    if not integral and a.dtype.kind not in "fiu":
+        raise TypeError(f"Mesh: {name} must hold numbers, not {a.dtype}")
+    return _numbers(a, f"Mesh: {name}")
 
 
 class Tetrahedron(Shape):
