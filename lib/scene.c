@@ -10,6 +10,7 @@
 #include "scene_internal.h"
 #include "scene_params.h"
 #include "specular.h"
+#include "texture.h"
 #include "vec.h"
 
 /* Copy a caller's struct that starts with struct_size into a defaulted full
@@ -58,6 +59,7 @@ static void object_free(hr_object *o)
 {
     if (!o) return;
     if (o->shape) o->cls->destroy(o->shape);
+    free(o->texture);
     free(o->params_copy);
     free(o);
 }
@@ -69,6 +71,7 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     for (int64_t i = scene->object_count - 1; i >= 0; i--) object_free(scene->objects[i]);
     free(scene->objects);
     free(scene->lights);
+    hr_scene_free_pixmaps(scene);
     free(scene->unbounded);
     accel_bvh4_release(&scene->bvh);
     free(scene->leaf_objects);
@@ -336,9 +339,13 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
                           message[0] ? message : "create failed without a message");
         }
     }
+    if (st == HR_OK) st = hr_texture_bind(s, o);
     if (st == HR_OK) {
         for (int32_t i = 0; i < n; i++)
-            if (children[i]) ((hr_object *)children[i])->top_level = 0;
+            if (children[i]) {
+                ((hr_object *)children[i])->top_level = 0;
+                ((hr_object *)children[i])->parent = o;
+            }
     }
     free(full);
     free(children);
@@ -444,6 +451,8 @@ static void work_out_effects(hr_scene *s)
             for (int32_t k = 0; k < s->light_count; k++)
                 if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
+        hr_texture_place(o);
+        if (o->texture && (f & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) effects |= HR_EFFECT_TEXTURE;
         o->specular_cutoff = hr_specular_cutoff(m->specular_exponent);
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;
@@ -532,6 +541,7 @@ HR_API const char *hr_effect_name(uint32_t effect)
     case HR_EFFECT_REFLECTION: return "reflection";
     case HR_EFFECT_REFRACTION: return "refraction";
     case HR_EFFECT_SUPERSAMPLING: return "supersampling";
+    case HR_EFFECT_TEXTURE: return "texture";
     default: return NULL;
     }
 }

@@ -33,6 +33,8 @@ typedef struct hr_object {
     double specular_cutoff;   /* hr_specular_cutoff of the material's exponent */
     hr_bounds local_bounds;   /* object space */
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
+    const struct hr_object *parent; /* the composite that consumed it, or NULL */
+    struct hr_texture *texture; /* lib/texture.h; NULL: untextured */
 } hr_object;
 
 struct hr_scene {
@@ -51,6 +53,8 @@ struct hr_scene {
     const hr_object **leaf_objects; /* those objects in the BVH's leaf order */
     const hr_object **unbounded; /* top-level objects outside the BVH */
     int32_t unbounded_count;
+    struct hr_pixmap **pixmaps; /* Hill's makePixmap (lib/pixmap.c) */
+    int32_t pixmap_count, pixmap_cap;
 };
 
 /* Per-thread state of tracing: what hr_hit_args.call points to. Scratch

@@ -23,6 +23,7 @@
 #include <math.h>
 
 #include "scene_internal.h"
+#include "texture.h"
 #include "vec.h"
 
 /* A light adds exactly nothing where, in every channel, its colour or
@@ -39,11 +40,10 @@ int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t fl
            (L->color.b == 0.0 || (d.b == 0.0 && sp.b == 0.0));
 }
 
-static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, hr_vec3 m,
-                             hr_vec3 to_eye, uint32_t flags)
+static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat,
+                             const hr_hit *h, hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
 {
     const hr_scene *s = tc->scene;
-    const hr_material *mat = &o->material;
     hr_color sum = rgb(0, 0, 0);
     hr_vec3 origin = hr_hit_spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
@@ -93,6 +93,22 @@ static int worth_tracing(hr_trace_ctx *tc, double weight, int forced)
 static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
                       double weight, int forced);
 
+/* The material of a textured object at hit h: its own, or (where the
+ * texture has a term to modulate) a copy in `buf` with the ambient and
+ * diffuse colours multiplied by the texture's. Out of line, so shade's
+ * own code is the same for an untextured scene. */
+static __attribute__((noinline)) const hr_material *
+texture_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t flags, hr_material *buf)
+{
+    if (!(flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) return &o->material;
+    hr_color t = hr_texture_color(o, h);
+    *buf = o->material;
+    buf->ambient = rgb_mul(buf->ambient, t);
+    buf->diffuse = rgb_mul(buf->diffuse, t);
+    tc->effects_ran |= HR_EFFECT_TEXTURE;
+    return buf;
+}
+
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
     return shade(tc, ray, depth, max_depth, 1.0, 0);
@@ -118,6 +134,10 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     uint32_t flags = o->mat_flags;
     if (tc->force_all_effects)
         flags |= HR_MAT_EMITS | HR_MAT_AMBIENT | HR_MAT_DIFFUSE | HR_MAT_SPECULAR;
+    /* A texture modulates the ambient and diffuse colours (Hill), nothing
+     * else; an untextured object pays this one test. */
+    hr_material textured;
+    if (o->texture) mat = texture_material(tc, o, &h, flags, &textured);
 
     hr_vec3 dir = v3_normalize(ray->dir);
     hr_vec3 to_eye = v3_neg(dir);
@@ -134,7 +154,7 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
         tc->effects_ran |= HR_EFFECT_AMBIENT;
     }
     if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0)
-        c = rgb_add(c, direct_light(tc, o, &h, m, to_eye, flags));
+        c = rgb_add(c, direct_light(tc, o, mat, &h, m, to_eye, flags));
     if (depth >= max_depth) return c;
 
     /* Under HR_EFFECTS_ALL every bounce is traced, weighted by what the

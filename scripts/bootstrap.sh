@@ -12,7 +12,7 @@ bench_pkgs=""
 # build and run the fuzz harnesses in tests/fuzz; valgrind runs make
 # test-memcheck.
 need_pkgs=""
-for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev \
+for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev libstb-dev \
            python3 python3-venv python3-dev \
            clang libclang-rt-14-dev llvm valgrind $bench_pkgs; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
