@@ -1,6 +1,7 @@
 /* An object's texture: checked when the object is added, placed at commit,
  * looked up at each of its hits that shade sees (lib/texture.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,16 +25,21 @@ static hr_status fill_params(hr_context *ctx, const hr_object *o, const hr_textu
         const hr_texture_param *p = &kind->params[i];
         const double v = i < m->parameter_count ? m->parameters[i] : p->default_value;
         const char *why = NULL;
+        char range[96] = "";
+        if (p->kind == HR_TEXTURE_PARAM_POSITIVE) {
+            if (p->max < 1e300) snprintf(range, sizeof range, " (at most %g)", p->max);
+        } else {
+            snprintf(range, sizeof range, " (within [%g, %g])", p->min, p->max);
+        }
         if (!isfinite(v)) why = "must be finite";
         else if (p->kind == HR_TEXTURE_PARAM_POSITIVE && !(v > 0.0 && v <= p->max)) why = "must be positive";
         else if (p->kind != HR_TEXTURE_PARAM_POSITIVE && !(v >= p->min && v <= p->max)) why = "is out of range";
         else if (p->kind == HR_TEXTURE_PARAM_WHOLE && v != floor(v)) why = "must be a whole number";
         if (why)
             return hr_error(ctx, HR_ERROR_PARAMETER,
-                            "shape '%s': texture %d (%s): parameter %d (%s) is %g and %s "
-                            "(within [%g, %g])",
+                            "shape '%s': texture %d (%s): parameter %d (%s) is %g and %s%s",
                             o->cls->name, (int)m->texture, kind->name, (int)i + 1, p->name, v, why,
-                            p->kind == HR_TEXTURE_PARAM_POSITIVE ? 0.0 : p->min, p->max);
+                            range);
         out[i] = v;
     }
     return HR_OK;
