@@ -128,6 +128,17 @@ static hr_status check_material(hr_context *ctx, const hr_material *m)
     if (!isfinite(m->specular_fraction) || !isfinite(m->surface_roughness))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: specularFraction and surfaceRoughness must be finite");
+    if (!(m->specular_fraction >= 0 && m->specular_fraction <= 1))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: specularFraction %g must be within [0, 1]", m->specular_fraction);
+    /* Beckmann's m: below 1e-3 the highlight is narrower than a pixel of any
+     * view, and 1 / m^2 would let one term grow past what keeps a pixel
+     * finite; past 100 it is flat. Only Cook-Torrance reads it. */
+    if (m->specular_fraction > 0 && !(m->surface_roughness >= 1e-3 && m->surface_roughness <= 100))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: surfaceRoughness %g must be within [0.001, 100] where "
+                        "specularFraction is above 0",
+                        m->surface_roughness);
     if (!(m->speed_of_light > 0.0) || !isfinite(m->speed_of_light))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: speedOfLight must be positive and finite, not %g",
@@ -445,6 +456,7 @@ static void work_out_effects(hr_scene *s)
         if (!rgb_is_zero(rgb_mul(m->ambient, g->global_ambient))) f |= HR_MAT_AMBIENT;
         if (lit && !rgb_is_zero(m->diffuse)) f |= HR_MAT_DIFFUSE;
         if (lit && !rgb_is_zero(m->specular)) f |= HR_MAT_SPECULAR;
+        if (m->specular_fraction > 0) f |= HR_MAT_COOK_TORRANCE;
         if (m->reflectivity > 0 && m->reflectivity >= g->min_reflectivity) f |= HR_MAT_REFLECTS;
         if (m->transparency > 0 && m->transparency >= g->min_transparency) f |= HR_MAT_REFRACTS;
         if (f & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR))

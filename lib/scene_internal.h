@@ -16,6 +16,7 @@
 #define HR_MAT_REFLECTS 16u
 #define HR_MAT_REFRACTS 32u
 #define HR_MAT_INERT_LIGHT 64u /* some light cannot add to its diffuse or specular */
+#define HR_MAT_COOK_TORRANCE 128u /* specularFraction > 0: Cook-Torrance, not Phong */
 
 typedef struct hr_object {
     int64_t index;

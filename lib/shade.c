@@ -7,7 +7,11 @@
  *          + transparency * shade(transmitted ray)   if transparency >= minTransparency
  *
  * m is the unit normal turned to face the incoming ray, s the unit vector to
- * the light, h the half-way vector between s and the direction to the eye. A
+ * the light, h the half-way vector between s and the direction to the eye.
+ * Where the material's specularFraction f is above 0 the specular term is
+ * Cook-Torrance's instead (lib/cook_torrance.h), and the lit part of each
+ * light is light * ((1 - f) diffuse (s.m) + f specular R_s (s.m)), Hill's
+ * mix; a texture multiplies the ambient and diffuse colours first. A
  * light behind the surface (s.m <= 0) adds nothing, diffuse or specular, and
  * casts no shadow ray. Shadows are Hill's: any object between the point and
  * the light blocks it completely. Each term is skipped unless the material
@@ -22,6 +26,7 @@
  * path, and one below the cut-off is not traced. */
 #include <math.h>
 
+#include "cook_torrance.h"
 #include "scene_internal.h"
 #include "texture.h"
 #include "vec.h"
@@ -64,10 +69,19 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_mate
         if (!(lambert > 0.0)) continue;
         hr_color c = rgb(0, 0, 0);
         if (flags & HR_MAT_DIFFUSE) {
-            c = rgb_scale(mat->diffuse, lambert);
+            c = rgb_scale(mat->diffuse, flags & HR_MAT_COOK_TORRANCE
+                                            ? lambert * (1.0 - mat->specular_fraction)
+                                            : lambert);
             tc->effects_ran |= HR_EFFECT_DIFFUSE;
         }
-        if (flags & HR_MAT_SPECULAR) {
+        if ((flags & HR_MAT_SPECULAR) && (flags & HR_MAT_COOK_TORRANCE)) {
+            /* Cook-Torrance's term, weighted by the fraction as Hill mixes
+             * it with the diffuse: (1 - f) R_d + f R_s. */
+            double r = hr_cook_torrance(m, sdir, to_eye, mat->surface_roughness,
+                                        1.0 / mat->speed_of_light);
+            c = rgb_add(c, rgb_scale(mat->specular, mat->specular_fraction * r));
+            tc->effects_ran |= HR_EFFECT_SPECULAR;
+        } else if (flags & HR_MAT_SPECULAR) {
             hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
             double phong = v3_dot(half, m);
             /* At or below the cut-off pow would give exactly 0 (specular.h). */
