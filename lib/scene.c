@@ -457,6 +457,7 @@ static void work_out_effects(hr_scene *s)
         if (lit && !rgb_is_zero(m->diffuse)) f |= HR_MAT_DIFFUSE;
         if (lit && !rgb_is_zero(m->specular)) f |= HR_MAT_SPECULAR;
         if (m->specular_fraction > 0) f |= HR_MAT_COOK_TORRANCE;
+        if (o->texture) f |= HR_MAT_TEXTURED;
         if (m->reflectivity > 0 && m->reflectivity >= g->min_reflectivity) f |= HR_MAT_REFLECTS;
         if (m->transparency > 0 && m->transparency >= g->min_transparency) f |= HR_MAT_REFRACTS;
         if (f & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR))

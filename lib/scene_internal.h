@@ -17,6 +17,9 @@
 #define HR_MAT_REFRACTS 32u
 #define HR_MAT_INERT_LIGHT 64u /* some light cannot add to its diffuse or specular */
 #define HR_MAT_COOK_TORRANCE 128u /* specularFraction > 0: Cook-Torrance, not Phong */
+#define HR_MAT_TEXTURED 256u       /* it has a texture (hr_object.texture) */
+/* Shading works on an adjusted copy of the material (lib/shade.c). */
+#define HR_MAT_ADJUSTED (HR_MAT_COOK_TORRANCE | HR_MAT_TEXTURED)
 
 typedef struct hr_object {
     int64_t index;

@@ -33,7 +33,7 @@ HR_API float *hr_image_data(hr_image *image);
  * HR_IMAGE_READ_MAX_PIXELS pixels (checked before its pixels are decoded,
  * so a file cannot make the reader allocate without bound). */
 #define HR_IMAGE_READ_MAX_SIDE 65536
-#define HR_IMAGE_READ_MAX_PIXELS (1L << 26)
+#define HR_IMAGE_READ_MAX_PIXELS 67108864 /* 2^26 */
 HR_API hr_status hr_image_read(hr_context *ctx, const char *path, hr_image **out);
 
 #define HR_FORMAT_AUTO 0 /* from the file extension */
