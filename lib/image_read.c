@@ -6,10 +6,13 @@
  * the size from the header first and refuses one beyond the limits in
  * image.h before decoding a pixel. */
 #include <errno.h>
+#include <fcntl.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <stb_image.h>
 
@@ -91,8 +94,23 @@ HR_API hr_status hr_image_read(hr_context *ctx, const char *path, hr_image **out
 {
     if (!path || !out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_image_read: NULL argument");
     *out = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f) return hr_error(ctx, HR_ERROR_IO, "cannot open image '%s': %s", path, strerror(errno));
+    /* A regular file only: a FIFO or a device could block the read, or never
+     * end (O_NONBLOCK: opening a FIFO with no writer would wait for one). */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return hr_error(ctx, HR_ERROR_IO, "cannot open image '%s': %s", path, strerror(errno));
+    struct stat info;
+    const int stat_failed = fstat(fd, &info) != 0;
+    if (stat_failed || !S_ISREG(info.st_mode)) {
+        const char *why = stat_failed ? strerror(errno) : S_ISDIR(info.st_mode) ? "a directory"
+                                                                                 : "not a regular file";
+        close(fd);
+        return hr_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, why);
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        close(fd);
+        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory opening '%s'", path);
+    }
     unsigned char magic[8] = {0};
     size_t got = fread(magic, 1, sizeof magic, f);
     hr_status st;

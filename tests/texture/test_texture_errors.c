@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <hitray/hitray.h>
 
@@ -66,6 +67,11 @@ int main(void)
     expect(ctx, "makePixmap 1 bad.jpg", dir, HR_ERROR_IO, "test.sdl:1:14: ", "cannot read JPEG");
     expect(ctx, "makePixmap 1 wide.png", dir, HR_ERROR_UNSUPPORTED, "test.sdl:1:14: ",
            "is 65537 x 1 pixels");
+    expect(ctx, "makePixmap 1 .", dir, HR_ERROR_IO, "test.sdl:1:14: ", "/.': a directory");
+    char fifo[4096];
+    snprintf(fifo, sizeof fifo, "%s/fifo.png", dir);
+    CHECK(mkfifo(fifo, 0600) == 0);
+    expect(ctx, "makePixmap 1 fifo.png", dir, HR_ERROR_IO, "test.sdl:1:14: ", "not a regular file");
     expect(ctx, "makePixmap 0 ok.png", dir, HR_ERROR_SDL, "test.sdl:1:12: ", "");
     expect(ctx, "makePixmap 1.5 ok.png", dir, HR_ERROR_SDL, "test.sdl:1:12: ", "");
     expect(ctx, "makePixmap 1 ok.png\nmakePixmap 1 ok.png", dir, HR_ERROR_INVALID_ARGUMENT,
