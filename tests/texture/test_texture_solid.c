@@ -128,6 +128,15 @@ static void test_wood_marble_reference(hr_context *ctx)
         CHECK(textured);
     }
     CHECK(tx_effects_ran(r.scene, &r.camera) & HR_EFFECT_TEXTURE);
+    /* Running every effect's code changes no bit of a textured scene. */
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.width = RW, o.height = RH, o.effects = HR_EFFECTS_ALL;
+    hr_image *all = NULL;
+    CHECK_OK(hr_render(r.scene, &r.camera, &o, &all, NULL));
+    if (all && img[0])
+        CHECK(memcmp(hr_image_data(all), hr_image_data(img[0]), (size_t)RW * RH * 3 * sizeof(float)) == 0);
+    hr_image_destroy(all);
     for (int t = 0; t < 3; t++) hr_image_destroy(img[t]);
     hr_image_destroy(ref);
     hr_scene_destroy(r.scene);
