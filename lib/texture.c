@@ -45,12 +45,6 @@ static hr_status fill_params(hr_context *ctx, const hr_object *o, const hr_textu
     return HR_OK;
 }
 
-/* Whether the object's class gives (u, v) for this shape. */
-static int gives_uv(const hr_object *o)
-{
-    return HR_CLASS_HAS(o->cls, surface_uv) && o->cls->surface_uv &&
-           o->cls->surface_uv(o->shape, NULL, NULL) == 1;
-}
 
 hr_status hr_texture_bind(hr_scene *s, hr_object *o)
 {
@@ -68,11 +62,16 @@ hr_status hr_texture_bind(hr_scene *s, hr_object *o)
                         o->cls->name, (int)id, known);
     }
     if (id > 0) {
-        if (!gives_uv(o))
+        const int has_entry = HR_CLASS_HAS(o->cls, surface_uv) && o->cls->surface_uv;
+        if (!has_entry || o->cls->surface_uv(o->shape, NULL, NULL) != 1)
             return hr_error(ctx, HR_ERROR_PARAMETER,
-                            "shape '%s' (module '%s') gives no (u, v) on its surface, so it cannot "
-                            "carry image texture %d",
-                            o->cls->name, o->module_path, (int)id);
+                            "shape '%s' (module '%s') gives no (u, v) on %s, so it cannot carry "
+                            "image texture %d",
+                            o->cls->name, o->module_path,
+                            has_entry ? "this object's surface (its data has none: a mesh file "
+                                        "without texture coordinates, say)"
+                                      : "its surface",
+                            (int)id);
         if (!(pixmap = hr_scene_find_pixmap(s, id)))
             return hr_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s': image texture %d needs pixmap %d, which is not made "

@@ -518,10 +518,10 @@ def test_shapes_says_which_classes_give_uv():
         start = next(i for i, l in enumerate(lines) if l.startswith(f"  {name} "))
         return next(l for l in lines[start + 1:] if l.strip().startswith("(u, v):")).strip()
 
-    for name in ("sphere", "cube", "square", "plane", "cylinder", "cone", "torus"):
+    for name in ("sphere", "cube", "square", "plane", "cylinder", "cone", "torus", "mesh"):
         assert uv_of(name) == "(u, v): yes, for image textures", name
     assert uv_of("union") == "(u, v): its leaves'"
-    assert uv_of("mesh").startswith("(u, v): none (image textures refused")
+    assert uv_of("tetrahedron").startswith("(u, v): none (image textures refused")
 
 
 def test_shapes_reports_modules_that_failed(tmp_path):

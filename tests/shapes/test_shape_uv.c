@@ -4,12 +4,15 @@
  * comment. The hit points carry a few roundings (their error bound is near
  * 1e-16), and u and v are a division, an atan2 or a hypot of them, so 1e-12
  * is far above what they can be off and far below any mistake of a
- * definition (an eighth of a turn, a swapped axis). The mesh class gives
- * none: a mesh's (u, v) would come from its file's texture coordinates. */
+ * definition (an eighth of a turn, a swapped axis). A mesh's (u, v) are
+ * its OBJ file's texture coordinates, interpolated: within 1e-9 (the
+ * triangle is found again by a probe 1e-7 of the mesh's size long, and the
+ * barycentric weights carry the test's rounding). */
 #include <math.h>
 #include <string.h>
 
 #include "hr_test.h"
+#include "mesh_support.h"
 #include "module_harness.h"
 
 #define TOL 1e-12
@@ -106,12 +109,37 @@ int main(void)
     };
     CHECK_CLASS("torus", "torus", NAN, torus);
 
-    /* The mesh gives none. */
-    harness_module mesh;
-    if (harness_load("mesh", &mesh)) {
-        const hr_shape_class *cls = harness_find_class(&mesh, "mesh");
-        CHECK(cls && (!HR_CLASS_HAS(cls, surface_uv) || !cls->surface_uv));
-        harness_unload(&mesh);
+    /* The mesh: its OBJ file's texture coordinates, interpolated, found
+     * from the point alone (mesh_uv.c); none where the file has none. */
+    harness_shape sq;
+    char path[4096];
+    if (mesh_open_file(&sq, mesh_data_path("textured_square.obj", path, sizeof path))) {
+        CHECK(sq.cls->surface_uv && sq.cls->surface_uv(sq.shape, NULL, NULL) == 1);
+        /* u = x + 1, v = (y + 1) / 2: points in either triangle, and on the
+         * diagonal between them. */
+        const double at[][2] = {{0.5, -0.5}, {-0.25, 0.6}, {0.3, 0.3}, {-0.9, -0.95}, {0.99, 0.98}};
+        for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+            hr_hit hits[HARNESS_MAX_HITS];
+            if (harness_hits(&sq, harness_ray(at[i][0], at[i][1], 5, 0, 0, -1), hits) < 1) {
+                CHECK_MSG(0, "textured square: no hit at (%g, %g)", at[i][0], at[i][1]);
+                continue;
+            }
+            double uv[2] = {NAN, NAN};
+            CHECK(sq.cls->surface_uv(sq.shape, &hits[0], uv) == 1);
+            CHECK_NEAR(uv[0], at[i][0] + 1.0, 1e-9);
+            CHECK_NEAR(uv[1], 0.5 * (at[i][1] + 1.0), 1e-9);
+        }
+        harness_close(&sq);
+    }
+    harness_shape bare;
+    if (mesh_open_file(&bare, mesh_data_path("cube.obj", path, sizeof path))) {
+        CHECK(bare.cls->surface_uv && bare.cls->surface_uv(bare.shape, NULL, NULL) == 0);
+        harness_close(&bare);
+    }
+    if (mesh_open_file(&bare, mesh_data_path("smooth_square.obj", path, sizeof path))) {
+        /* One face has texture coordinates, the other not: none. */
+        CHECK(bare.cls->surface_uv(bare.shape, NULL, NULL) == 0);
+        harness_close(&bare);
     }
     return hr_test_end();
 }

@@ -106,6 +106,11 @@ int main(void)
     expect(ctx, text, dir, HR_ERROR_PARAMETER, "test.sdl:2:1: ",
            "shape 'mesh' (module '");
     expect(ctx, text, dir, HR_ERROR_PARAMETER, "test.sdl:2:1: ",
+           "gives no (u, v) on this object's surface (its data has none: a mesh file without "
+           "texture coordinates, say), so it cannot carry image texture 1");
+    expect(ctx, "makePixmap 1 ok.png texture 1\ntetrahedron", dir, HR_ERROR_PARAMETER, "test.sdl:2:1: ",
+           "shape 'tetrahedron' (module '");
+    expect(ctx, "makePixmap 1 ok.png texture 1\ntetrahedron", dir, HR_ERROR_PARAMETER, "test.sdl:2:1: ",
            "gives no (u, v) on its surface, so it cannot carry image texture 1");
     /* A solid texture needs no (u, v): the same mesh takes one. */
     snprintf(text, sizeof text, "texture -3\nmesh %s/tests/data/meshes/cube.obj", HR_TEST_SOURCE_DIR);

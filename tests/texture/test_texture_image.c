@@ -3,7 +3,8 @@
  * sampled at every texel's (u, v): nearest gives that texel exactly,
  * bilinear gives it at the texel's centre and the mean of two texels
  * midway between them. Also the texture on a CSG object (its leaf's
- * (u, v)), tiling by the (u, v) range, and the `texture` effect. */
+ * (u, v)), on a mesh (its OBJ file's texture coordinates), tiling by the
+ * (u, v) range, and the `texture` effect. */
 #define _POSIX_C_SOURCE 200809L /* snprintf into paths */
 #include <math.h>
 #include <stdio.h>
@@ -183,6 +184,30 @@ static void test_csg_leaf(hr_context *ctx, const char *dir)
     hr_scene_destroy(s);
 }
 
+/* On a mesh, the (u, v) of its OBJ file's vt: textured_square.obj has
+ * u = x + 1 (the image twice across), v = (y + 1) / 2. */
+static void test_mesh_texcoords(hr_context *ctx, const char *dir)
+{
+    char text[8192];
+    snprintf(text, sizeof text,
+             FLAT "makePixmap 1 texels.png  texture 1 parameters 5 0 1 0 1 1\n"
+                  "mesh %s/tests/data/meshes/textured_square.obj\n",
+             HR_TEST_SOURCE_DIR);
+    hr_scene *s = tx_scene(ctx, text, dir);
+    if (!s) return;
+    for (int y = 0; y < TH; y++)
+        for (int x = 0; x < TW; x++) {
+            double u = (x + 0.5) / TW, v = 1.0 - (y + 0.5) / TH;
+            hr_color want = texel(x, y);
+            for (int tile = 0; tile < 2; tile++) {
+                hr_color c = tx_down(s, u + tile - 1.0, 2.0 * v - 1.0);
+                CHECK_MSG(c.r == (float)want.r && c.g == (float)want.g && c.b == (float)want.b,
+                          "mesh texel (%d, %d), tile %d: %g %g %g", x, y, tile, c.r, c.g, c.b);
+            }
+        }
+    hr_scene_destroy(s);
+}
+
 /* Pixmaps through the C API. */
 static void test_api(hr_context *ctx, const char *png)
 {
@@ -219,6 +244,7 @@ int main(void)
     test_sphere_texels(ctx, dir);
     test_tiling(ctx, dir);
     test_csg_leaf(ctx, dir);
+    test_mesh_texcoords(ctx, dir);
     test_api(ctx, png);
     char cmd[8192];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
