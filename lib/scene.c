@@ -87,7 +87,10 @@ static int color_finite(hr_color c) { return isfinite(c.r) && isfinite(c.g) && i
  * adds at most (2 + lights) * 1e12 to its pixel, weighted by products of
  * coefficients <= 1. A pixel is a sum over the rays it traced, so it stays
  * far below float's 3.4e38 for any render that can finish (it would take
- * ~1e20 rays per pixel to get there). */
+ * ~1e20 rays per pixel to get there). A texture's colour is bounded the same
+ * way (its parameters and pixmap pixels), and Cook-Torrance's term by
+ * HR_COOK_TORRANCE_MAX: each multiplies a ray's share by at most 1e6 more,
+ * which still takes ~1e14 rays per pixel to overflow. */
 #define HR_MAX_COLOR 1e6
 #define HR_MAX_EXPONENT 1e6
 
