@@ -11,8 +11,9 @@ static const char shapes_help[] =
     "\n"
     "List the shape modules found (in HITRAY_SHAPE_PATH and in hitray/shapes\n"
     "next to libhitray), the shape classes each provides, and each class's\n"
-    "parameters: name, type, default, range and meaning. Modules that could\n"
-    "not be loaded are listed with the reason.\n"
+    "parameters: name, type, default, range and meaning, and whether it gives\n"
+    "(u, v) for image textures. Modules that could not be loaded are listed\n"
+    "with the reason.\n"
     "\n"
     "options:\n"
     "  -h, --help            this help\n";
@@ -48,6 +49,10 @@ static void print_class(const hr_shape_class *cls)
     putchar('\n');
     if (cls->param_count == 0) printf("      (no parameters)\n");
     for (int32_t i = 0; i < cls->param_count && cls->params; i++) print_param(&cls->params[i]);
+    /* Which classes an image texture can go on (hr_shape_class.surface_uv). */
+    if (cls->flags & HR_SHAPE_COMPOSITE) printf("      (u, v): its leaves'\n");
+    else if (HR_CLASS_HAS(cls, surface_uv) && cls->surface_uv) printf("      (u, v): yes, for image textures\n");
+    else printf("      (u, v): none (image textures refused; solid textures work)\n");
 }
 
 static void print_module(const hr_module_entry *m)

@@ -23,6 +23,14 @@ double hr_srgb_encode(double linear)
     return 1.055 * pow(v, 1.0 / 2.4) - 0.055;
 }
 
+double hr_srgb_decode(double encoded)
+{
+    double v = clamp01(encoded);
+    if (v == 1.0) return 1.0;
+    if (v <= 0.04045) return v / 12.92;
+    return pow((v + 0.055) / 1.055, 2.4);
+}
+
 /* The code value by the formula: what the table below reproduces. */
 static uint32_t code_by_formula(float linear, int srgb, uint32_t max_code)
 {

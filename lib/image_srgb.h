@@ -9,6 +9,9 @@
  * of a linear value clamped to [0, 1]; NaN counts as 0. */
 double hr_srgb_encode(double linear);
 
+/* The inverse: the linear value of an sRGB-encoded value in [0, 1]. */
+double hr_srgb_decode(double encoded);
+
 /* `linear` as a code value in 0..max_code (255 or 65535), rounded to
  * nearest: sRGB-encoded if `srgb`, else only clamped (NaN gives 0). */
 uint32_t hr_code_value(float linear, int srgb, uint32_t max_code);

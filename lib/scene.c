@@ -10,6 +10,7 @@
 #include "scene_internal.h"
 #include "scene_params.h"
 #include "specular.h"
+#include "texture.h"
 #include "vec.h"
 
 /* Copy a caller's struct that starts with struct_size into a defaulted full
@@ -58,6 +59,7 @@ static void object_free(hr_object *o)
 {
     if (!o) return;
     if (o->shape) o->cls->destroy(o->shape);
+    free(o->texture);
     free(o->params_copy);
     free(o);
 }
@@ -69,6 +71,7 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     for (int64_t i = scene->object_count - 1; i >= 0; i--) object_free(scene->objects[i]);
     free(scene->objects);
     free(scene->lights);
+    hr_scene_free_pixmaps(scene);
     free(scene->unbounded);
     accel_bvh4_release(&scene->bvh);
     free(scene->leaf_objects);
@@ -84,7 +87,10 @@ static int color_finite(hr_color c) { return isfinite(c.r) && isfinite(c.g) && i
  * adds at most (2 + lights) * 1e12 to its pixel, weighted by products of
  * coefficients <= 1. A pixel is a sum over the rays it traced, so it stays
  * far below float's 3.4e38 for any render that can finish (it would take
- * ~1e20 rays per pixel to get there). */
+ * ~1e20 rays per pixel to get there). A texture's colour is bounded the same
+ * way (its parameters and pixmap pixels), and Cook-Torrance's term by
+ * HR_COOK_TORRANCE_MAX: each multiplies a ray's share by at most 1e6 more,
+ * which still takes ~1e14 rays per pixel to overflow. */
 #define HR_MAX_COLOR 1e6
 #define HR_MAX_EXPONENT 1e6
 
@@ -125,6 +131,17 @@ static hr_status check_material(hr_context *ctx, const hr_material *m)
     if (!isfinite(m->specular_fraction) || !isfinite(m->surface_roughness))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: specularFraction and surfaceRoughness must be finite");
+    if (!(m->specular_fraction >= 0 && m->specular_fraction <= 1))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: specularFraction %g must be within [0, 1]", m->specular_fraction);
+    /* Beckmann's m: below 1e-3 the highlight is narrower than a pixel of any
+     * view, and 1 / m^2 would let one term grow past what keeps a pixel
+     * finite; past 100 it is flat. Only Cook-Torrance reads it. */
+    if (m->specular_fraction > 0 && !(m->surface_roughness >= 1e-3 && m->surface_roughness <= 100))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "material: surfaceRoughness %g must be within [0.001, 100] where "
+                        "specularFraction is above 0",
+                        m->surface_roughness);
     if (!(m->speed_of_light > 0.0) || !isfinite(m->speed_of_light))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: speedOfLight must be positive and finite, not %g",
@@ -336,9 +353,13 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
                           message[0] ? message : "create failed without a message");
         }
     }
+    if (st == HR_OK) st = hr_texture_bind(s, o);
     if (st == HR_OK) {
         for (int32_t i = 0; i < n; i++)
-            if (children[i]) ((hr_object *)children[i])->top_level = 0;
+            if (children[i]) {
+                ((hr_object *)children[i])->top_level = 0;
+                ((hr_object *)children[i])->parent = o;
+            }
     }
     free(full);
     free(children);
@@ -438,12 +459,16 @@ static void work_out_effects(hr_scene *s)
         if (!rgb_is_zero(rgb_mul(m->ambient, g->global_ambient))) f |= HR_MAT_AMBIENT;
         if (lit && !rgb_is_zero(m->diffuse)) f |= HR_MAT_DIFFUSE;
         if (lit && !rgb_is_zero(m->specular)) f |= HR_MAT_SPECULAR;
+        if (m->specular_fraction > 0) f |= HR_MAT_COOK_TORRANCE;
+        if (o->texture) f |= HR_MAT_TEXTURED;
         if (m->reflectivity > 0 && m->reflectivity >= g->min_reflectivity) f |= HR_MAT_REFLECTS;
         if (m->transparency > 0 && m->transparency >= g->min_transparency) f |= HR_MAT_REFRACTS;
         if (f & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR))
             for (int32_t k = 0; k < s->light_count; k++)
                 if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
+        hr_texture_place(o);
+        if (o->texture && (f & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) effects |= HR_EFFECT_TEXTURE;
         o->specular_cutoff = hr_specular_cutoff(m->specular_exponent);
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;
@@ -535,6 +560,7 @@ HR_API const char *hr_effect_name(uint32_t effect)
     case HR_EFFECT_REFLECTION: return "reflection";
     case HR_EFFECT_REFRACTION: return "refraction";
     case HR_EFFECT_SUPERSAMPLING: return "supersampling";
+    case HR_EFFECT_TEXTURE: return "texture";
     default: return NULL;
     }
 }

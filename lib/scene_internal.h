@@ -16,6 +16,10 @@
 #define HR_MAT_REFLECTS 16u
 #define HR_MAT_REFRACTS 32u
 #define HR_MAT_INERT_LIGHT 64u /* some light cannot add to its diffuse or specular */
+#define HR_MAT_COOK_TORRANCE 128u /* specularFraction > 0: Cook-Torrance, not Phong */
+#define HR_MAT_TEXTURED 256u       /* it has a texture (hr_object.texture) */
+/* Shading works on an adjusted copy of the material (lib/shade.c). */
+#define HR_MAT_ADJUSTED (HR_MAT_COOK_TORRANCE | HR_MAT_TEXTURED)
 
 typedef struct hr_object {
     int64_t index;
@@ -33,6 +37,8 @@ typedef struct hr_object {
     double specular_cutoff;   /* hr_specular_cutoff of the material's exponent */
     hr_bounds local_bounds;   /* object space */
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
+    const struct hr_object *parent; /* the composite that consumed it, or NULL */
+    struct hr_texture *texture; /* lib/texture.h; NULL: untextured */
 } hr_object;
 
 struct hr_scene {
@@ -51,6 +57,8 @@ struct hr_scene {
     const hr_object **leaf_objects; /* those objects in the BVH's leaf order */
     const hr_object **unbounded; /* top-level objects outside the BVH */
     int32_t unbounded_count;
+    struct hr_pixmap **pixmaps; /* Hill's makePixmap (lib/pixmap.c) */
+    int32_t pixmap_count, pixmap_cap;
 };
 
 /* Per-thread state of tracing: what hr_hit_args.call points to. Scratch

@@ -1,11 +1,8 @@
 /* SDL's material commands (lib/sdl_reader.h). The material is sticky: every
  * later object gets a copy of it, until it changes or `defaultMaterials`
- * resets it; push/pop do not save it.
- *
- * Stored but not used in shading (the renderer follows Hill's Phong-style
- * model): specularFraction and surfaceRoughness (Cook-Torrance), texture and
- * its parameters. They are kept on each object, where hr_scene_object_info
- * shows them, for a later texture or Cook-Torrance shader. */
+ * resets it; push/pop do not save it. `texture` names a solid texture
+ * (checked here) or an image texture, whose pixmap and parameters the
+ * scene checks at each object that takes it (lib/texture.c). */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -15,6 +12,7 @@
 #include "errors.h"
 #include "sdl_diag.h"
 #include "sdl_reader.h"
+#include "texture.h"
 
 static const struct {
     const char *keyword;
@@ -93,6 +91,12 @@ hr_status sdl_cmd_texture(sdl_reader *r, sdl_located keyword)
     int64_t texture;
     hr_status st = sdl_read_whole(r, keyword, (double)INT32_MIN, (double)INT32_MAX, &texture);
     if (st) return st;
+    if (texture < 0 && !hr_solid_texture_find((int32_t)texture)) {
+        char known[256];
+        hr_solid_texture_list(known, sizeof known);
+        return sdl_error(r->src, HR_ERROR_SDL, keyword, "there is no solid texture %lld (there are %s)",
+                         (long long)texture, known);
+    }
     r->material.texture = (int32_t)texture;
     return HR_OK;
 }

@@ -44,6 +44,7 @@ static const struct {
     {"texture", sdl_cmd_texture},
     {"parameters", sdl_cmd_parameters},
     {"defaultMaterials", sdl_cmd_default_materials},
+    {"makePixmap", sdl_cmd_make_pixmap},
     {"background", sdl_cmd_global_color},
     {"globalAmbient", sdl_cmd_global_color},
     {"minReflectivity", sdl_cmd_global_threshold},

@@ -117,6 +117,7 @@ hr_status sdl_cmd_material_number(sdl_reader *r, sdl_located keyword);
 hr_status sdl_cmd_texture(sdl_reader *r, sdl_located keyword);
 hr_status sdl_cmd_parameters(sdl_reader *r, sdl_located keyword);
 hr_status sdl_cmd_default_materials(sdl_reader *r, sdl_located keyword);
+hr_status sdl_cmd_make_pixmap(sdl_reader *r, sdl_located keyword); /* sdl_pixmap.c */
 /* The material with SDL's defaults and no texture parameters. */
 void sdl_material_reset(sdl_reader *r);
 

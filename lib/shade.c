@@ -7,7 +7,11 @@
  *          + transparency * shade(transmitted ray)   if transparency >= minTransparency
  *
  * m is the unit normal turned to face the incoming ray, s the unit vector to
- * the light, h the half-way vector between s and the direction to the eye. A
+ * the light, h the half-way vector between s and the direction to the eye.
+ * Where the material's specularFraction f is above 0 the specular term is
+ * Cook-Torrance's instead (lib/cook_torrance.h), and the lit part of each
+ * light is light * ((1 - f) diffuse (s.m) + f specular R_s (s.m)), Hill's
+ * mix; a texture multiplies the ambient and diffuse colours first. A
  * light behind the surface (s.m <= 0) adds nothing, diffuse or specular, and
  * casts no shadow ray. Shadows are Hill's: any object between the point and
  * the light blocks it completely. Each term is skipped unless the material
@@ -22,7 +26,9 @@
  * path, and one below the cut-off is not traced. */
 #include <math.h>
 
+#include "cook_torrance.h"
 #include "scene_internal.h"
+#include "texture.h"
 #include "vec.h"
 
 /* A light adds exactly nothing where, in every channel, its colour or
@@ -39,11 +45,23 @@ int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t fl
            (L->color.b == 0.0 || (d.b == 0.0 && sp.b == 0.0));
 }
 
-static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, hr_vec3 m,
-                             hr_vec3 to_eye, uint32_t flags)
+/* Cook-Torrance's specular term of one light, weighted by the fraction as
+ * Hill mixes it with the diffuse, (1 - f) R_d + f R_s (the diffuse's share
+ * is taken in shading_material). */
+static hr_color cook_torrance_term(const hr_material *mat, hr_vec3 m, hr_vec3 sdir, hr_vec3 to_eye)
+{
+    double r = hr_cook_torrance(m, sdir, to_eye, mat->surface_roughness, 1.0 / mat->speed_of_light);
+    return rgb_scale(mat->specular, mat->specular_fraction * r);
+}
+
+/* The light loop; `cook` (a constant in each caller below) picks the
+ * specular term, so each caller compiles to a loop of its own and Phong's
+ * is the same code it was before Cook-Torrance. */
+static inline __attribute__((always_inline)) hr_color
+light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const hr_hit *h, hr_vec3 m,
+           hr_vec3 to_eye, uint32_t flags, const int cook)
 {
     const hr_scene *s = tc->scene;
-    const hr_material *mat = &o->material;
     hr_color sum = rgb(0, 0, 0);
     hr_vec3 origin = hr_hit_spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
@@ -68,16 +86,33 @@ static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_hit 
             tc->effects_ran |= HR_EFFECT_DIFFUSE;
         }
         if (flags & HR_MAT_SPECULAR) {
-            hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
-            double phong = v3_dot(half, m);
-            /* At or below the cut-off pow would give exactly 0 (specular.h). */
-            if (phong > o->specular_cutoff)
-                c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
+            if (cook) {
+                c = rgb_add(c, cook_torrance_term(mat, m, sdir, to_eye));
+            } else {
+                hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
+                double phong = v3_dot(half, m);
+                /* At or below the cut-off pow would give exactly 0 (specular.h). */
+                if (phong > o->specular_cutoff)
+                    c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
+            }
             tc->effects_ran |= HR_EFFECT_SPECULAR;
         }
         sum = rgb_add(sum, rgb_mul(L->color, c));
     }
     return sum;
+}
+
+static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat,
+                             const hr_hit *h, hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+{
+    return light_loop(tc, o, mat, h, m, to_eye, flags, 0);
+}
+
+static __attribute__((noinline)) hr_color direct_light_cook_torrance(hr_trace_ctx *tc, const hr_object *o,
+                                                                     const hr_material *mat, const hr_hit *h,
+                                                                     hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+{
+    return light_loop(tc, o, mat, h, m, to_eye, flags, 1);
 }
 
 /* Whether a bounce whose path weight would be `weight` is traced. A forced
@@ -96,6 +131,26 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
     return shade(tc, ray, depth, max_depth, 1.0, 0);
+}
+
+/* The material shading uses at hit h of an object whose material is
+ * textured or Cook-Torrance's (HR_MAT_ADJUSTED): a copy in `buf` whose
+ * ambient and diffuse colours are multiplied by the texture's (where the
+ * texture has a term to modulate) and whose diffuse gives the specular
+ * its fraction, (1 - f). Out of line, so shade's own code is the same for
+ * every other object. */
+static __attribute__((noinline)) const hr_material *
+shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t flags, hr_material *buf)
+{
+    *buf = o->material;
+    if (o->texture && (flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) {
+        hr_color t = hr_texture_color(o, h);
+        buf->ambient = rgb_mul(buf->ambient, t);
+        buf->diffuse = rgb_mul(buf->diffuse, t);
+        tc->effects_ran |= HR_EFFECT_TEXTURE;
+    }
+    if (flags & HR_MAT_COOK_TORRANCE) buf->diffuse = rgb_scale(buf->diffuse, 1.0 - buf->specular_fraction);
+    return buf;
 }
 
 static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
@@ -118,6 +173,11 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     uint32_t flags = o->mat_flags;
     if (tc->force_all_effects)
         flags |= HR_MAT_EMITS | HR_MAT_AMBIENT | HR_MAT_DIFFUSE | HR_MAT_SPECULAR;
+    /* A texture modulates the ambient and diffuse colours (Hill), nothing
+     * else; Cook-Torrance takes its fraction from the diffuse. Any other
+     * object pays this one test. */
+    hr_material adjusted;
+    if (flags & HR_MAT_ADJUSTED) mat = shading_material(tc, o, &h, flags, &adjusted);
 
     hr_vec3 dir = v3_normalize(ray->dir);
     hr_vec3 to_eye = v3_neg(dir);
@@ -134,7 +194,9 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
         tc->effects_ran |= HR_EFFECT_AMBIENT;
     }
     if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0)
-        c = rgb_add(c, direct_light(tc, o, &h, m, to_eye, flags));
+        c = rgb_add(c, flags & HR_MAT_COOK_TORRANCE
+                           ? direct_light_cook_torrance(tc, o, mat, &h, m, to_eye, flags)
+                           : direct_light(tc, o, mat, &h, m, to_eye, flags));
     if (depth >= max_depth) return c;
 
     /* Under HR_EFFECTS_ALL every bounce is traced, weighted by what the

@@ -15,8 +15,6 @@
 #include "transform_inline.h"
 #include "vec.h"
 
-#define GAMMA3 (3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5))
-
 hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
 {
     if (capacity <= list->capacity) return HR_OK;
@@ -94,22 +92,6 @@ static void sort_tail_by_t(hr_intersection *list, int32_t start)
     }
 }
 
-
-/* Error of a point after p' = M p: |M| e (error carried through) plus the
- * rounding of the product, gamma(3) (|M| |p| + |translation|) per row. */
-static double transformed_error(const double m[16], hr_vec3 p, double e)
-{
-    double worst = 0.0;
-    for (int r = 0; r < 3; r++) {
-        const double *row = m + 4 * r;
-        double carried = (fabs(row[0]) + fabs(row[1]) + fabs(row[2])) * e;
-        double rounding = GAMMA3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
-                                    fabs(row[3]));
-        double total = carried + rounding;
-        if (total > worst) worst = total;
-    }
-    return worst;
-}
 
 hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
                           double tmin, double tmax, int32_t mode, int unit_normals,
@@ -193,7 +175,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * neither M^-T nor normalising overflows or underflows. */
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
-            h.error = transformed_error(obj->m, h.point, h.error);
+            h.error = hr_xform_error(obj->m, h.point, h.error);
             h.point = hr_xform_point(obj->m, h.point);
             h.normal = hr_xform_normal(obj->inv, h.normal);
             h.normal = v3_unit_exponent(h.normal);

@@ -6,6 +6,9 @@
 #ifndef HITRAY_LIB_TRANSFORM_INLINE_H
 #define HITRAY_LIB_TRANSFORM_INLINE_H
 
+#include <float.h>
+#include <math.h>
+
 #include <hitray/common.h>
 
 /* M p (with translation). */
@@ -32,6 +35,24 @@ static inline hr_vec3 hr_xform_normal(const double inv[16], hr_vec3 n)
                  inv[1] * n.x + inv[5] * n.y + inv[9] * n.z,
                  inv[2] * n.x + inv[6] * n.y + inv[10] * n.z};
     return r;
+}
+
+/* The error bound of a point after p' = M p, where p carried `e` per
+ * coordinate: |M| e carried through, plus the rounding of the product,
+ * gamma(3) (|M| |p| + |translation|) per row. */
+static inline double hr_xform_error(const double m[16], hr_vec3 p, double e)
+{
+    const double gamma3 = 3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5);
+    double worst = 0.0;
+    for (int r = 0; r < 3; r++) {
+        const double *row = m + 4 * r;
+        double carried = (fabs(row[0]) + fabs(row[1]) + fabs(row[2])) * e;
+        double rounding = gamma3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
+                                    fabs(row[3]));
+        double total = carried + rounding;
+        if (total > worst) worst = total;
+    }
+    return worst;
 }
 
 #endif

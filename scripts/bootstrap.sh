@@ -13,7 +13,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 
-need="cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev"
+need="cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev libstb-dev"
 python_pkgs="python3 python3-venv python3-dev"
 venv_reqs=""
 case "${1:-}" in

@@ -24,6 +24,18 @@ HR_API int32_t hr_image_channels(const hr_image *image);
 /* width * height * channels floats; stays valid until destroy. */
 HR_API float *hr_image_data(hr_image *image);
 
+/* Read a PNG (libpng: any bit depth, palette or grey, its gAMA/sRGB
+ * honoured), BMP or JPEG (stb_image: 8-bit sRGB) file into a new RGB image
+ * of linear floats, the format told by the file's first bytes. Fails with
+ * HR_ERROR_IO naming the file and the reason (missing, not a regular file,
+ * unreadable, not one of these formats, corrupt) or HR_ERROR_UNSUPPORTED for an image wider or
+ * taller than HR_IMAGE_READ_MAX_SIDE or of more than
+ * HR_IMAGE_READ_MAX_PIXELS pixels (checked before its pixels are decoded,
+ * so a file cannot make the reader allocate without bound). */
+#define HR_IMAGE_READ_MAX_SIDE 65536
+#define HR_IMAGE_READ_MAX_PIXELS 16777216 /* 2^24, 4096 x 4096: 192 MiB of floats */
+HR_API hr_status hr_image_read(hr_context *ctx, const char *path, hr_image **out);
+
 #define HR_FORMAT_AUTO 0 /* from the file extension */
 #define HR_FORMAT_PNG 1
 #define HR_FORMAT_EXR 2

@@ -22,7 +22,11 @@ extern "C" {
  * [0, 1e6], a speed of light <= 0. Light colours obey the same +-1e6. */
 typedef struct hr_material {
     uint32_t struct_size;
-    int32_t texture;          /* 0 none; stored, not yet used in shading */
+    int32_t texture;          /* 0 none; < 0 a solid texture (-1 checkerboard,
+                                 -2 wood, -3 marble); N > 0 the image texture of
+                                 pixmap N (hr_scene_set_pixmap). It modulates
+                                 the ambient and diffuse colours; `parameters`
+                                 tune it (docs/sdl.md lists each one) */
     hr_color ambient;         /* default 0.1 0.1 0.1 */
     hr_color diffuse;         /* default 0.8 0.8 0.8 */
     hr_color specular;        /* default 0 0 0 */
@@ -31,8 +35,11 @@ typedef struct hr_material {
     double reflectivity;      /* default 0; mirror weight in [0, 1] */
     double transparency;      /* default 0; transmission weight in [0, 1] */
     double speed_of_light;    /* default 1; relative speed of light inside */
-    double specular_fraction; /* Cook-Torrance; stored, not used in shading */
-    double surface_roughness; /* Cook-Torrance; stored, not used in shading */
+    double specular_fraction; /* default 0: Phong's specular term. In (0, 1]:
+                                 the specular term is Cook-Torrance's, weighted
+                                 by this, and the diffuse by 1 minus it */
+    double surface_roughness; /* default 1: Beckmann's m (rms slope of the
+                                 microfacets) of Cook-Torrance; > 0 */
     int32_t parameter_count;  /* texture parameters (copied at add time) */
     int32_t reserved;
     const double *parameters;
@@ -123,6 +130,17 @@ HR_API hr_status hr_scene_get_globals(const hr_scene *scene, hr_scene_globals *o
 HR_API hr_status hr_scene_commit(hr_scene *scene);
 HR_API int32_t hr_scene_is_committed(const hr_scene *scene);
 
+/* Hill's makePixmap: make `image` (RGB or RGBA, linear floats; alpha is
+ * dropped) pixmap number `index` (>= 1) of the scene, for objects whose
+ * material has texture `index`. The pixels are copied. Each number is made
+ * once, before the objects that use it are added: hr_scene_add_object
+ * refuses an image texture whose pixmap is not there. Fails with
+ * HR_ERROR_INVALID_ARGUMENT (index < 1, made already, an image with a NaN
+ * or infinite pixel or a component beyond +-1e6) or HR_ERROR_STATE. */
+HR_API hr_status hr_scene_set_pixmap(hr_scene *scene, int32_t index, const hr_image *image);
+/* Whether pixmap `index` is made (1) or not (0). */
+HR_API int32_t hr_scene_has_pixmap(const hr_scene *scene, int32_t index);
+
 /* Introspection. */
 HR_API int64_t hr_scene_object_count(const hr_scene *scene);
 HR_API int32_t hr_scene_light_count(const hr_scene *scene);
@@ -152,7 +170,8 @@ HR_API hr_status hr_scene_bounds(const hr_scene *scene, hr_bounds *out, int32_t 
 #define HR_EFFECT_REFLECTION 32u
 #define HR_EFFECT_REFRACTION 64u
 #define HR_EFFECT_SUPERSAMPLING 128u /* set in render statistics only */
-#define HR_EFFECT_COUNT 8
+#define HR_EFFECT_TEXTURE 256u       /* a solid or image texture was looked up */
+#define HR_EFFECT_COUNT 9
 HR_API uint32_t hr_scene_effects(const hr_scene *scene);
 /* Name of one effect bit ("shadows", ...), NULL for an unknown bit. */
 HR_API const char *hr_effect_name(uint32_t effect);

@@ -168,6 +168,19 @@ struct hr_shape_class {
      * The host keeps the tighter of it and the mapped box, per axis. NULL:
      * the host maps the corners of `bounds`. */
     void (*transformed_bounds)(const void *shape, const double m[16], hr_bounds *out);
+    /* Optional: where on the surface a hit lies, (u, v), for image textures
+     * (hr_material.texture > 0). `hit` is one of this shape's own hits in
+     * object space: its point, its normal (any non-zero length) and its
+     * surface id are set, as `hit` returned them up to rounding. Writes
+     * uv[0] = u and uv[1] = v, finite, in the class's own units (the
+     * material's texture parameters say which range the image covers, and it
+     * tiles outside it). Returns 1. Called with `hit` and `uv` NULL, it says
+     * whether this shape gives (u, v) at all (1) or not (0: a mesh whose file
+     * has no texture coordinates); the host asks once, when an object with an
+     * image texture is added, and refuses it on 0. Called only for textured
+     * hits, never on an untextured scene; reentrant and allocation-free like
+     * `hit`. NULL: the class gives no (u, v). */
+    int32_t (*surface_uv)(const void *shape, const hr_hit *hit, double uv[2]);
 };
 
 /* Whether a class declared with `struct_size` has `field`. The host's copy

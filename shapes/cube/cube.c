@@ -27,6 +27,7 @@
 #include "../common/shape_hits.h"
 #include "../common/shape_instance.h"
 #include "../common/shape_math.h"
+#include "../common/shape_uv.h"
 
 /* Face ids: 2 axis for the +1 face of an axis, 2 axis + 1 for the -1 face. */
 static shape_span cube_axis_span(double o, double d, int axis)
@@ -75,6 +76,30 @@ static void cube_bounds(const void *shape, hr_bounds *out)
     shape_set_bounds(out, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0);
 }
 
+/* (u, v) per face, each face's two other coordinates taken from [-1, 1]
+ * to [0, 1] and oriented so that an image reads the right way round seen
+ * from outside: on the four side faces v runs up +z and u to the viewer's
+ * right; on the top (+z) and bottom (-z) v runs along +y. Every face shows
+ * the whole image once with the default parameters. */
+static int32_t cube_uv(const void *shape, const hr_hit *hit, double uv[2])
+{
+    (void)shape;
+    SHAPE_UV_PROBE(hit, uv);
+    const hr_vec3 p = hit->point;
+    /* Per surface (+x, -x, +y, -y, +z, -z): the coordinate along u and its
+     * sign, then the coordinate along v. */
+    static const struct {
+        int u_axis;
+        double u_sign;
+        int v_axis;
+    } faces[6] = {{1, 1, 2}, {1, -1, 2}, {0, -1, 2}, {0, 1, 2}, {0, 1, 1}, {0, -1, 1}};
+    const int f = hit->surface >= 0 && hit->surface < 6 ? hit->surface : 0;
+    const double c[3] = {p.x, p.y, p.z};
+    uv[0] = 0.5 * (faces[f].u_sign * c[faces[f].u_axis] + 1.0);
+    uv[1] = 0.5 * (c[faces[f].v_axis] + 1.0);
+    return 1;
+}
+
 static const hr_shape_class cube_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -89,6 +114,7 @@ static const hr_shape_class cube_class = {
     .hit = cube_hit,
     .first_hit = cube_first_hit,
     .any_hit = cube_any_hit,
+    .surface_uv = cube_uv,
 };
 
 static const hr_shape_class *const cube_classes[] = {&cube_class};

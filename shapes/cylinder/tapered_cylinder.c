@@ -71,6 +71,7 @@
 
 #include "../common/shape_hits.h"
 #include "../common/shape_math.h"
+#include "../common/shape_uv.h"
 
 #define SURFACE_WALL 0
 #define SURFACE_BASE 1
@@ -370,6 +371,26 @@ static const hr_param_spec tapered_params[] = {
      "radius at z = 1 (the radius at z = 0 is 1): 0 makes a cone, 1 a cylinder"},
 };
 
+/* (u, v): on the wall, u the turn about z from +x in [0, 1) and v the
+ * height z in [0, 1]; on the base and cap disks the same u and v the
+ * distance from the axis as a fraction of the disk's radius (0 at the
+ * centre, 1 on the rim). */
+static int32_t tapered_uv(const void *shape, const hr_hit *hit, double uv[2])
+{
+    SHAPE_UV_PROBE(hit, uv);
+    const tapered_cylinder *c = shape;
+    const hr_vec3 p = hit->point;
+    uv[0] = shape_turn(p.y, p.x);
+    if (hit->surface == SURFACE_WALL) {
+        uv[1] = p.z;
+    } else {
+        const double radius = hit->surface == SURFACE_CAP ? c->s : 1.0;
+        const double r = hypot(p.x, p.y) / radius;
+        uv[1] = isfinite(r) ? r : 0.0;
+    }
+    return 1;
+}
+
 #define TAPERED_CLASS(class_name, class_help, params_list, params_count, create_fn)          \
     {                                                                                       \
         .struct_size = sizeof(hr_shape_class), .flags = HR_SHAPE_CLOSED, .name = class_name, \
@@ -377,6 +398,7 @@ static const hr_param_spec tapered_params[] = {
         .surface_count = 3, .create = create_fn, .destroy = tapered_destroy,                \
         .bounds = tapered_bounds, .hit = tapered_hit, .first_hit = tapered_first_hit,       \
         .any_hit = tapered_any_hit, .transformed_bounds = tapered_transformed_bounds,       \
+        .surface_uv = tapered_uv,                                                           \
     }
 
 static const hr_shape_class tapered_cylinder_class =
@@ -407,6 +429,7 @@ static const hr_shape_class open_tapered_cylinder_class = {
     .hit = open_hit,
     .first_hit = open_first_hit,
     .any_hit = open_any_hit,
+    .surface_uv = tapered_uv,
 };
 
 static const hr_shape_class *const tapered_classes[] = {

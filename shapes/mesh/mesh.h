@@ -21,8 +21,15 @@
 
 #include "bvh4.h"
 
-/* A corner with no normal (OBJ faces may omit them). */
+/* A corner with no normal (OBJ faces may omit them), or no texture
+ * coordinate. */
 #define MESH_NO_NORMAL UINT32_MAX
+#define MESH_NO_TEXCOORD UINT32_MAX
+
+/* One OBJ `vt`: where on an image texture a vertex lies (mesh_uv.c). */
+typedef struct mesh_texcoord {
+    double u, v;
+} mesh_texcoord;
 /* Indices are 32-bit; the largest count of vertices, normals or triangles. */
 #define MESH_MAX_COUNT ((size_t)UINT32_MAX - 1u)
 
@@ -43,6 +50,12 @@ typedef struct mesh {
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */
     int closed;
+    /* Texture coordinates and 3 indices into them per triangle (in BVH
+     * order), NULL when no triangle has them all: the (u, v) of
+     * hr_shape_class.surface_uv (mesh_uv.c). */
+    mesh_texcoord *texcoords;
+    uint32_t *corner_texcoords;
+    uint32_t texcoord_count;
 } mesh;
 
 /* --- Building ------------------------------------------------------------ */
@@ -60,6 +73,9 @@ typedef struct mesh_builder {
     uint32_t *corner_normals; /* 3 per triangle, MESH_NO_NORMAL where none */
     size_t triangle_count, triangle_capacity;
     size_t degenerate_count; /* triangles skipped: two corners at one point */
+    mesh_texcoord *texcoords;
+    size_t texcoord_count, texcoord_capacity;
+    uint32_t *corner_texcoords; /* 3 per triangle, MESH_NO_TEXCOORD where none */
 } mesh_builder;
 
 void mesh_builder_init(mesh_builder *b, const hr_host *host);
@@ -74,6 +90,10 @@ int mesh_builder_add_normal(mesh_builder *b, hr_vec3 n);
  * Returns 0, or -1 when out of memory or past MESH_MAX_COUNT triangles. */
 int mesh_builder_add_polygon(mesh_builder *b, const uint32_t *vertices, const uint32_t *normals,
                              size_t count);
+/* The same with texture coordinates (`texcoords` may be NULL: none). */
+int mesh_builder_add_texcoord(mesh_builder *b, mesh_texcoord t);
+int mesh_builder_add_polygon_uv(mesh_builder *b, const uint32_t *vertices, const uint32_t *normals,
+                                const uint32_t *texcoords, size_t count);
 
 /* Builds the BVH and hands the arrays over to a new mesh (the builder is
  * left empty). On failure writes a message to error and returns a status. */
@@ -112,7 +132,15 @@ int mesh_solid_build(mesh_builder *b, int solid);
  * args->out (mesh_trace.c). */
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode);
 
-/* Builds m->bvh and orders m->corners (and m->corner_normals) to match. */
+/* Builds m->bvh and orders m->corners (and m->corner_normals and
+ * m->corner_texcoords) to match. */
 hr_status mesh_bvh_build(mesh *m);
+
+/* --- (u, v) ------------------------------------------------------------------ */
+
+/* hr_shape_class.surface_uv of every mesh class (mesh_uv.c): the triangle
+ * under the hit point, its texture coordinates interpolated; 0 on the
+ * host's question when the mesh has none. */
+int32_t mesh_uv(const void *shape, const hr_hit *hit, double uv[2]);
 
 #endif

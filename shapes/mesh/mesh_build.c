@@ -20,6 +20,8 @@ void mesh_builder_release(mesh_builder *b)
     host->free(b->normals);
     host->free(b->corners);
     host->free(b->corner_normals);
+    host->free(b->texcoords);
+    host->free(b->corner_texcoords);
     mesh_builder_init(b, host);
 }
 
@@ -42,28 +44,28 @@ static int grow(const hr_host *host, void **array, size_t *capacity, size_t coun
     return 0;
 }
 
-/* Corner and corner-normal arrays grow together: capacity in triangles. */
+/* Corner, corner-normal and corner-texcoord arrays grow together:
+ * capacity in triangles. */
 static int grow_triangles(mesh_builder *b, size_t wanted)
 {
     if (wanted <= b->triangle_capacity) return 0;
     if (wanted > MESH_MAX_COUNT) return -1;
     size_t cap = b->triangle_capacity ? b->triangle_capacity : 64;
     while (cap < wanted) cap *= 2; /* wanted < 2^32: no overflow */
-    uint32_t *corners = b->host->alloc(3 * cap * sizeof *corners);
-    uint32_t *normals = b->host->alloc(3 * cap * sizeof *normals);
-    if (!corners || !normals) {
-        b->host->free(corners);
-        b->host->free(normals);
-        return -1;
+    uint32_t **arrays[3] = {&b->corners, &b->corner_normals, &b->corner_texcoords};
+    uint32_t *grown[3];
+    for (int a = 0; a < 3; a++) {
+        grown[a] = b->host->alloc(3 * cap * sizeof *grown[a]);
+        if (!grown[a]) {
+            while (a-- > 0) b->host->free(grown[a]);
+            return -1;
+        }
     }
-    if (b->triangle_count) {
-        memcpy(corners, b->corners, 3 * b->triangle_count * sizeof *corners);
-        memcpy(normals, b->corner_normals, 3 * b->triangle_count * sizeof *normals);
+    for (int a = 0; a < 3; a++) {
+        if (b->triangle_count) memcpy(grown[a], *arrays[a], 3 * b->triangle_count * sizeof *grown[a]);
+        b->host->free(*arrays[a]);
+        *arrays[a] = grown[a];
     }
-    b->host->free(b->corners);
-    b->host->free(b->corner_normals);
-    b->corners = corners;
-    b->corner_normals = normals;
     b->triangle_capacity = cap;
     return 0;
 }
@@ -101,6 +103,16 @@ int mesh_builder_add_normal(mesh_builder *b, hr_vec3 n)
     return 0;
 }
 
+int mesh_builder_add_texcoord(mesh_builder *b, mesh_texcoord t)
+{
+    if (b->texcoord_count >= MESH_MAX_COUNT) return -1;
+    if (grow(b->host, (void **)&b->texcoords, &b->texcoord_capacity, b->texcoord_count,
+             b->texcoord_count + 1, sizeof *b->texcoords))
+        return -1;
+    b->texcoords[b->texcoord_count++] = t;
+    return 0;
+}
+
 static int same_point(hr_vec3 a, hr_vec3 b)
 {
     return a.x == b.x && a.y == b.y && a.z == b.z;
@@ -108,6 +120,12 @@ static int same_point(hr_vec3 a, hr_vec3 b)
 
 int mesh_builder_add_polygon(mesh_builder *b, const uint32_t *vertices, const uint32_t *normals,
                              size_t count)
+{
+    return mesh_builder_add_polygon_uv(b, vertices, normals, NULL, count);
+}
+
+int mesh_builder_add_polygon_uv(mesh_builder *b, const uint32_t *vertices, const uint32_t *normals,
+                                const uint32_t *texcoords, size_t count)
 {
     for (size_t i = 1; i + 1 < count; i++) {
         const uint32_t v[3] = {vertices[0], vertices[i], vertices[i + 1]};
@@ -128,6 +146,10 @@ int mesh_builder_add_polygon(mesh_builder *b, const uint32_t *vertices, const ui
         n[0] = normals ? normals[0] : MESH_NO_NORMAL;
         n[1] = normals ? normals[i] : MESH_NO_NORMAL;
         n[2] = normals ? normals[i + 1] : MESH_NO_NORMAL;
+        uint32_t *tc = b->corner_texcoords + 3 * b->triangle_count;
+        tc[0] = texcoords ? texcoords[0] : MESH_NO_TEXCOORD;
+        tc[1] = texcoords ? texcoords[i] : MESH_NO_TEXCOORD;
+        tc[2] = texcoords ? texcoords[i + 1] : MESH_NO_TEXCOORD;
         b->triangle_count++;
     }
     return 0;
@@ -141,6 +163,8 @@ void mesh_destroy(mesh *m)
     host->free(m->normals);
     host->free(m->corners);
     host->free(m->corner_normals);
+    host->free(m->texcoords);
+    host->free(m->corner_texcoords);
     accel_bvh4_release(&m->bvh);
     host->free(m);
 }
@@ -191,11 +215,25 @@ hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t e
             shrink(host, b->corner_normals, 3 * b->triangle_count, sizeof *b->corner_normals);
         b->corner_normals = NULL;
     }
+    /* Texture coordinates only where every triangle has them: (u, v) is
+     * the whole surface's or none of it. */
+    int all_texcoords = b->texcoord_count > 0;
+    for (size_t i = 0; i < 3 * b->triangle_count && all_texcoords; i++)
+        all_texcoords = b->corner_texcoords[i] != MESH_NO_TEXCOORD;
+    if (all_texcoords) {
+        m->texcoords = shrink(host, b->texcoords, b->texcoord_count, sizeof *b->texcoords);
+        b->texcoords = NULL;
+        m->corner_texcoords =
+            shrink(host, b->corner_texcoords, 3 * b->triangle_count, sizeof *b->corner_texcoords);
+        b->corner_texcoords = NULL;
+        m->texcoord_count = (uint32_t)b->texcoord_count;
+    }
     m->vertex_count = (uint32_t)b->vertex_count;
     m->normal_count = any_normal ? (uint32_t)b->normal_count : 0;
     m->triangle_count = (uint32_t)b->triangle_count;
     mesh_builder_release(b);
-    if (!m->vertices || !m->corners || (any_normal && (!m->normals || !m->corner_normals))) {
+    if (!m->vertices || !m->corners || (any_normal && (!m->normals || !m->corner_normals)) ||
+        (all_texcoords && (!m->texcoords || !m->corner_texcoords))) {
         mesh_destroy(m);
         return HR_ERROR_OUT_OF_MEMORY;
     }

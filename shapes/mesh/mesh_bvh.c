@@ -52,8 +52,11 @@ hr_status mesh_bvh_build(mesh *m)
     hr_bounds *boxes = host->alloc(n * sizeof *boxes);
     uint32_t *corners = host->alloc(3 * n * sizeof *corners);
     uint32_t *corner_normals = m->corner_normals ? host->alloc(3 * n * sizeof *corner_normals) : NULL;
+    uint32_t *corner_texcoords =
+        m->corner_texcoords ? host->alloc(3 * n * sizeof *corner_texcoords) : NULL;
     hr_status st = HR_OK;
-    if (!boxes || !corners || (m->corner_normals && !corner_normals)) {
+    if (!boxes || !corners || (m->corner_normals && !corner_normals) ||
+        (m->corner_texcoords && !corner_texcoords)) {
         st = HR_ERROR_OUT_OF_MEMORY;
         goto done;
     }
@@ -74,6 +77,9 @@ hr_status mesh_bvh_build(mesh *m)
         if (corner_normals)
             memcpy(corner_normals + 3 * i, m->corner_normals + 3 * (size_t)order[i],
                    3 * sizeof *corner_normals);
+        if (corner_texcoords)
+            memcpy(corner_texcoords + 3 * i, m->corner_texcoords + 3 * (size_t)order[i],
+                   3 * sizeof *corner_texcoords);
     }
     host->free(m->bvh.items);
     m->bvh.items = NULL;
@@ -84,6 +90,11 @@ hr_status mesh_bvh_build(mesh *m)
         host->free(m->corner_normals);
         m->corner_normals = corner_normals;
         corner_normals = NULL;
+    }
+    if (corner_texcoords) {
+        host->free(m->corner_texcoords);
+        m->corner_texcoords = corner_texcoords;
+        corner_texcoords = NULL;
     }
     /* The object's bounds, exact: those of the corners of its triangles. */
     hr_vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
@@ -98,5 +109,6 @@ done:
     host->free(boxes);
     host->free(corners);
     host->free(corner_normals);
+    host->free(corner_texcoords);
     return st;
 }

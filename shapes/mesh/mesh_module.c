@@ -176,19 +176,24 @@ static const hr_param_spec teapot_params[] = {
      "(9,120 at the default 12), some 60 bytes each"},
 };
 
+#define MESH_CLASS_FIELDS(name_, flags_, help_, params_, count_, create_)      \
+    .struct_size = sizeof(hr_shape_class), .flags = flags_, .name = name_,     \
+    .help = help_, .params = params_, .param_count = count_,                   \
+    .surface_count = 1, .create = create_, .destroy = mesh_destroy_shape,      \
+    .bounds = mesh_bounds, .hit = mesh_hit, .first_hit = mesh_first_hit,       \
+    .any_hit = mesh_any_hit
 #define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
-    {                                                                          \
-        .struct_size = sizeof(hr_shape_class), .flags = flags_, .name = name_, \
-        .help = help_, .params = params_, .param_count = count_,               \
-        .surface_count = 1, .create = create_, .destroy = mesh_destroy_shape,  \
-        .bounds = mesh_bounds, .hit = mesh_hit, .first_hit = mesh_first_hit,   \
-        .any_hit = mesh_any_hit,                                               \
-    }
+    {MESH_CLASS_FIELDS(name_, flags_, help_, params_, count_, create_)}
 
-static const hr_shape_class mesh_class =
-    MESH_CLASS("mesh", 0,
-               "triangle or polygon mesh from a file (Hill's .3vn, or OBJ); one surface",
-               mesh_params, 1, mesh_create);
+/* Only a file can hold texture coordinates (OBJ's vt): the one class with
+ * (u, v) (mesh_uv.c). */
+static const hr_shape_class mesh_class = {
+    MESH_CLASS_FIELDS("mesh", 0,
+                      "triangle or polygon mesh from a file (Hill's .3vn, or OBJ); one surface; "
+                      "(u, v) from an OBJ file's vt",
+                      mesh_params, 1, mesh_create),
+    .surface_uv = mesh_uv,
+};
 static const hr_shape_class triangle_mesh_class =
     MESH_CLASS("triangleMesh", 0,
                "triangle mesh from arrays given by the caller (points, triangles, normals); "

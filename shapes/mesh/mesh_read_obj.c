@@ -1,17 +1,20 @@
 /* Wavefront OBJ, the geometry of it: `v x y z [w]` vertices, `vn x y z`
- * normals and `f` faces whose corners are `v`, `v/vt`, `v//vn` or
- * `v/vt/vn` (1-based; negative indices count back from the latest vertex
- * or normal, as OBJ defines). A face uses normals only when every corner
- * names one. Polygons are fanned into triangles from their first corner.
- * Texture coordinates, groups, objects, smoothing groups, materials, lines
- * and points are read past; any other statement is an error, so a file
- * that is not OBJ is not taken for an empty one. '#' starts a comment. */
+ * normals, `vt u [v [w]]` texture coordinates and `f` faces whose corners
+ * are `v`, `v/vt`, `v//vn` or `v/vt/vn` (1-based; negative indices count
+ * back from the latest vertex, normal or texture coordinate, as OBJ
+ * defines). A face uses normals only when every corner names one, and
+ * texture coordinates likewise (a texture index past the `vt`s defined,
+ * which files without any `vt` carry, gives the corner none). Polygons are
+ * fanned into triangles from their first corner. Groups, objects, smoothing
+ * groups, materials, lines and points are read past; any other statement
+ * is an error, so a file that is not OBJ is not taken for an empty one.
+ * '#' starts a comment. */
 #include <string.h>
 
 #include "mesh.h"
 #include "mesh_text.h"
 
-static const char *const ignored[] = {"vt", "vp", "o", "g", "s", "usemtl", "mtllib", "l", "p"};
+static const char *const ignored[] = {"vp", "o", "g", "s", "usemtl", "mtllib", "l", "p"};
 
 static hr_status read_vector(mesh_text *t, const mesh_token *keyword, hr_vec3 *out, int extra)
 {
@@ -40,6 +43,27 @@ static hr_status read_vector(mesh_text *t, const mesh_token *keyword, hr_vec3 *o
     return HR_OK;
 }
 
+/* `vt u [v [w]]`: v defaults to 0, w is read and not used. */
+static hr_status read_texcoord(mesh_text *t, const mesh_token *keyword, mesh_texcoord *out)
+{
+    double c[3] = {0.0, 0.0, 0.0};
+    int k = 0;
+    for (;; k++) {
+        mesh_token tok = mesh_text_next(t, 0, 1);
+        if (!tok.length) break;
+        int ok = k < 3 ? mesh_parse_number(&tok, &c[k]) : 0;
+        if (ok < 0)
+            return mesh_text_error(t, &tok, "'vt': coordinate out of range (at most %g)",
+                                   MESH_MAX_COORDINATE);
+        if (ok == 0)
+            return mesh_text_error(t, &tok, k < 3 ? "'vt': expected a number"
+                                                  : "'vt': unexpected text after the coordinates");
+    }
+    if (k == 0) return mesh_text_error(t, keyword, "'vt': expected at least u");
+    out->u = c[0], out->v = c[1];
+    return HR_OK;
+}
+
 /* One index of a corner: 1-based, or negative from the end; 0 and
  * references past what is defined so far are errors. */
 static int resolve_index(const char *s, size_t n, size_t defined, uint32_t *out)
@@ -53,7 +77,7 @@ static int resolve_index(const char *s, size_t n, size_t defined, uint32_t *out)
 }
 
 typedef struct corner_buffers {
-    uint32_t *vertices, *normals;
+    uint32_t *vertices, *normals, *texcoords;
     size_t capacity;
 } corner_buffers;
 
@@ -61,26 +85,28 @@ static hr_status read_face(mesh_builder *b, mesh_text *t, const mesh_token *keyw
                            corner_buffers *buf)
 {
     size_t n = 0;
-    int all_normals = 1;
+    int all_normals = 1, all_texcoords = 1;
     for (;;) {
         mesh_token tok = mesh_text_next(t, 0, 1);
         if (!tok.length) break;
         if (n == buf->capacity) {
             /* Corners are bounded by the tokens of the line, hence by the file. */
             size_t cap = buf->capacity ? 2 * buf->capacity : 16;
-            uint32_t *v = b->host->alloc(cap * sizeof *v), *nn = b->host->alloc(cap * sizeof *nn);
-            if (!v || !nn) {
-                b->host->free(v);
-                b->host->free(nn);
-                return HR_ERROR_OUT_OF_MEMORY;
+            uint32_t **arrays[3] = {&buf->vertices, &buf->normals, &buf->texcoords};
+            uint32_t *grown[3];
+            for (int a = 0; a < 3; a++) {
+                grown[a] = b->host->alloc(cap * sizeof *grown[a]);
+                if (!grown[a]) {
+                    while (a-- > 0) b->host->free(grown[a]);
+                    return HR_ERROR_OUT_OF_MEMORY;
+                }
             }
-            if (n) {
-                memcpy(v, buf->vertices, n * sizeof *v);
-                memcpy(nn, buf->normals, n * sizeof *nn);
+            for (int a = 0; a < 3; a++) {
+                if (n) memcpy(grown[a], *arrays[a], n * sizeof *grown[a]);
+                b->host->free(*arrays[a]);
+                *arrays[a] = grown[a];
             }
-            b->host->free(buf->vertices);
-            b->host->free(buf->normals);
-            buf->vertices = v, buf->normals = nn, buf->capacity = cap;
+            buf->capacity = cap;
         }
         /* v, v/vt, v//vn, v/vt/vn */
         const char *s = tok.start, *end = tok.start + tok.length;
@@ -92,6 +118,7 @@ static hr_status read_face(mesh_builder *b, mesh_text *t, const mesh_token *keyw
                                    "vertices so far)",
                                    n + 1, b->vertex_count);
         buf->normals[n] = MESH_NO_NORMAL;
+        buf->texcoords[n] = MESH_NO_TEXCOORD;
         if (slash1) {
             const char *slash2 = memchr(slash1 + 1, '/', (size_t)(end - slash1 - 1));
             if (slash2) {
@@ -106,25 +133,30 @@ static hr_status read_face(mesh_builder *b, mesh_text *t, const mesh_token *keyw
                                            "range (%zu normals so far)",
                                            n + 1, b->normal_count);
             }
-            /* The texture index is not used, but must be well formed. */
+            /* The texture index must be well formed; one past the `vt`s
+             * defined gives the corner no texture coordinate. */
             const char *tend = slash2 ? slash2 : end;
             if (tend > slash1 + 1) {
                 mesh_token tex = {slash1 + 1, (size_t)(tend - slash1 - 1), 0};
-                uint64_t ignored_index;
+                uint64_t index;
                 int neg = tex.start[0] == '-';
                 mesh_token digits = {tex.start + neg, tex.length - (size_t)neg, 0};
-                if (!mesh_parse_whole(&digits, MESH_MAX_COUNT, &ignored_index))
+                if (!mesh_parse_whole(&digits, MESH_MAX_COUNT, &index))
                     return mesh_text_error(t, &tok, "face corner %zu: bad texture index", n + 1);
+                if (!resolve_index(tex.start, tex.length, b->texcoord_count, &buf->texcoords[n]))
+                    buf->texcoords[n] = MESH_NO_TEXCOORD;
             } else if (!slash2) {
                 return mesh_text_error(t, &tok, "face corner %zu: nothing after '/'", n + 1);
             }
         }
         if (buf->normals[n] == MESH_NO_NORMAL) all_normals = 0;
+        if (buf->texcoords[n] == MESH_NO_TEXCOORD) all_texcoords = 0;
         n++;
     }
     if (n < 3)
         return mesh_text_error(t, keyword, "a face needs at least 3 corners, this one has %zu", n);
-    if (mesh_builder_add_polygon(b, buf->vertices, all_normals ? buf->normals : NULL, n))
+    if (mesh_builder_add_polygon_uv(b, buf->vertices, all_normals ? buf->normals : NULL,
+                                    all_texcoords ? buf->texcoords : NULL, n))
         return HR_ERROR_OUT_OF_MEMORY;
     return HR_OK;
 }
@@ -134,7 +166,7 @@ hr_status mesh_read_obj(mesh_builder *b, const char *text, size_t length, const 
 {
     mesh_text t;
     mesh_text_init(&t, text, length, shown, error, error_size);
-    corner_buffers buf = {NULL, NULL, 0};
+    corner_buffers buf = {NULL, NULL, NULL, 0};
     hr_status st = HR_OK;
     while (!st) {
         mesh_token keyword = mesh_text_next(&t, 1, 1);
@@ -146,6 +178,10 @@ hr_status mesh_read_obj(mesh_builder *b, const char *text, size_t length, const 
         } else if (mesh_token_is(&keyword, "vn")) {
             hr_vec3 n;
             if (!(st = read_vector(&t, &keyword, &n, 0)) && mesh_builder_add_normal(b, n))
+                st = HR_ERROR_OUT_OF_MEMORY;
+        } else if (mesh_token_is(&keyword, "vt")) {
+            mesh_texcoord tc;
+            if (!(st = read_texcoord(&t, &keyword, &tc)) && mesh_builder_add_texcoord(b, tc))
                 st = HR_ERROR_OUT_OF_MEMORY;
         } else if (mesh_token_is(&keyword, "f")) {
             st = read_face(b, &t, &keyword, &buf);
@@ -162,5 +198,6 @@ hr_status mesh_read_obj(mesh_builder *b, const char *text, size_t length, const 
     }
     b->host->free(buf.vertices);
     b->host->free(buf.normals);
+    b->host->free(buf.texcoords);
     return st;
 }

@@ -10,6 +10,7 @@
 
 #include "../common/shape_hits.h"
 #include "../common/shape_instance.h"
+#include "../common/shape_uv.h"
 
 static void plane_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
@@ -32,6 +33,17 @@ static void plane_bounds(const void *shape, hr_bounds *out)
     shape_set_bounds(out, -INFINITY, -INFINITY, 0.0, INFINITY, INFINITY, 0.0);
 }
 
+/* (u, v): x and y themselves, so an image tiles the plane in unit squares
+ * with its default parameters. */
+static int32_t plane_uv(const void *shape, const hr_hit *hit, double uv[2])
+{
+    (void)shape;
+    SHAPE_UV_PROBE(hit, uv);
+    uv[0] = hit->point.x;
+    uv[1] = hit->point.y;
+    return 1;
+}
+
 static const hr_shape_class plane_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0,
@@ -44,6 +56,7 @@ static const hr_shape_class plane_class = {
     .destroy = shape_plain_destroy,
     .bounds = plane_bounds,
     .hit = plane_hit,
+    .surface_uv = plane_uv,
     .first_hit = plane_first_hit,
     .any_hit = plane_any_hit,
 };

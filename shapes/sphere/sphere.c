@@ -34,6 +34,7 @@
 #include "../common/shape_hits.h"
 #include "../common/shape_instance.h"
 #include "../common/shape_math.h"
+#include "../common/shape_uv.h"
 
 SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
 {
@@ -125,6 +126,20 @@ static void sphere_transformed_bounds(const void *shape, const double m[16], hr_
     shape_set_bounds(out, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
 }
 
+/* (u, v): longitude and latitude, with the poles on the z axis (Hill's
+ * parametrisation x = cos v' cos u', y = cos v' sin u', z = sin v'): u the
+ * turn about z from +x, in [0, 1); v from 0 at the south pole (-z) to 1
+ * at the north pole. */
+static int32_t sphere_uv(const void *shape, const hr_hit *hit, double uv[2])
+{
+    (void)shape;
+    SHAPE_UV_PROBE(hit, uv);
+    const hr_vec3 p = hit->point;
+    uv[0] = shape_turn(p.y, p.x);
+    uv[1] = atan2(p.z, hypot(p.x, p.y)) / 3.14159265358979323846 + 0.5;
+    return 1;
+}
+
 static const hr_shape_class sphere_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -140,6 +155,7 @@ static const hr_shape_class sphere_class = {
     .first_hit = sphere_first_hit,
     .any_hit = sphere_any_hit,
     .transformed_bounds = sphere_transformed_bounds,
+    .surface_uv = sphere_uv,
 };
 
 static const hr_shape_class *const sphere_classes[] = {&sphere_class};

@@ -11,6 +11,7 @@
 
 #include "../common/shape_hits.h"
 #include "../common/shape_instance.h"
+#include "../common/shape_uv.h"
 
 static void square_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
@@ -40,6 +41,17 @@ static void square_bounds(const void *shape, hr_bounds *out)
     shape_set_bounds(out, -1.0, -1.0, 0.0, 1.0, 1.0, 0.0);
 }
 
+/* (u, v): x and y taken from [-1, 1] to [0, 1], so an image covers the
+ * square once with its default parameters. */
+static int32_t square_uv(const void *shape, const hr_hit *hit, double uv[2])
+{
+    (void)shape;
+    SHAPE_UV_PROBE(hit, uv);
+    uv[0] = 0.5 * (hit->point.x + 1.0);
+    uv[1] = 0.5 * (hit->point.y + 1.0);
+    return 1;
+}
+
 static const hr_shape_class square_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0,
@@ -52,6 +64,7 @@ static const hr_shape_class square_class = {
     .destroy = shape_plain_destroy,
     .bounds = square_bounds,
     .hit = square_hit,
+    .surface_uv = square_uv,
     .first_hit = square_first_hit,
     .any_hit = square_any_hit,
 };

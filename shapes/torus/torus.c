@@ -37,6 +37,7 @@
 
 #include "../common/shape_hits.h"
 #include "../common/shape_math.h"
+#include "../common/shape_uv.h"
 #include "torus_quartic.h"
 
 /* A tube of radius 1 closes the hole (a horn torus) and a larger one makes a
@@ -200,6 +201,19 @@ static const hr_param_spec torus_params[] = {
      "up to 2e-6 relative near tangents"},
 };
 
+/* (u, v): Hill's two angles as fractions of a turn: u about the z axis
+ * from +x (around the ring), v about the tube's own centre circle, 0 on
+ * the outer equator, 1/4 on top (+z), in [0, 1). */
+static int32_t torus_uv(const void *shape, const hr_hit *hit, double uv[2])
+{
+    (void)shape;
+    SHAPE_UV_PROBE(hit, uv);
+    const hr_vec3 p = hit->point;
+    uv[0] = shape_turn(p.y, p.x);
+    uv[1] = shape_turn(p.z, hypot(p.x, p.y) - 1.0);
+    return 1;
+}
+
 static const hr_shape_class torus_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -214,6 +228,7 @@ static const hr_shape_class torus_class = {
     .hit = torus_hit,
     .first_hit = torus_first_hit,
     .any_hit = torus_any_hit,
+    .surface_uv = torus_uv,
 };
 
 static const hr_shape_class *const torus_classes[] = {&torus_class};

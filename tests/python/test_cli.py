@@ -519,6 +519,21 @@ def test_shapes_lists_modules_classes_and_parameters():
         assert all(name in solver for name in ("ferrari", "ferrari-newton", "bracketing"))
 
 
+def test_shapes_says_which_classes_give_uv():
+    """Each class's listing ends with whether an image texture can go on it."""
+    out = run("shapes").stdout
+    lines = out.splitlines()
+
+    def uv_of(name):
+        start = next(i for i, l in enumerate(lines) if l.startswith(f"  {name} "))
+        return next(l for l in lines[start + 1:] if l.strip().startswith("(u, v):")).strip()
+
+    for name in ("sphere", "cube", "square", "plane", "cylinder", "cone", "torus", "mesh"):
+        assert uv_of(name) == "(u, v): yes, for image textures", name
+    assert uv_of("union") == "(u, v): its leaves'"
+    assert uv_of("tetrahedron").startswith("(u, v): none (image textures refused")
+
+
 def test_shapes_reports_modules_that_failed(tmp_path):
     (tmp_path / "broken.so").write_text("not a shared object")
     r = run("shapes", env={"HITRAY_SHAPE_PATH": str(tmp_path)})

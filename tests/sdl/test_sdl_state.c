@@ -80,10 +80,10 @@ static void materials(hr_context *ctx)
     const char *text =
         "diffuse .1 .2 .3 ambient .4 .5 .6 specular .7 .8 .9 emissive 1 .5 .25\n"
         "specularExponent 20 reflectivity .6 transparency .3 speedOfLight .75\n"
-        "specularFraction .4 surfaceRoughness .2 texture -2 parameters 3 1 2.5 -3\n"
+        "specularFraction .4 surfaceRoughness .2 texture -2 parameters 3 1 2.5 3\n"
         "sphere\n"                          /* 0: everything above */
         "push diffuse 1 0 0 pop cube\n"     /* 1: push/pop do not save the material */
-        "parameters 0 texture 5 square\n"   /* 2: parameters replaced, none now */
+        "parameters 0 texture -1 square\n"  /* 2: parameters replaced, none now */
         "defaultMaterials plane\n"          /* 3: SDL's defaults */
         "parameters 2 7 8 cylinder\n"       /* 4: parameters after a reset */
         "defaultMaterials cone\n";          /* 5: and reset again */
@@ -104,7 +104,7 @@ static void materials(hr_context *ctx)
     CHECK(o.material.parameter_count == 3);
     if (o.material.parameter_count == 3 && o.material.parameters)
         CHECK(o.material.parameters[0] == 1 && o.material.parameters[1] == 2.5 &&
-              o.material.parameters[2] == -3);
+              o.material.parameters[2] == 3);
 
     o = sdl_test_object(r.scene, 1);
     CHECK_COLOR(o.material.diffuse, 1, 0, 0, 0);
@@ -113,7 +113,7 @@ static void materials(hr_context *ctx)
 
     o = sdl_test_object(r.scene, 2);
     CHECK(o.material.parameter_count == 0);
-    CHECK(o.material.texture == 5);
+    CHECK(o.material.texture == -1);
     CHECK_COLOR(o.material.diffuse, 1, 0, 0, 0);
 
     hr_material d;

@@ -1,6 +1,7 @@
 // hitray._core.Image: an hr_image whose float pixels numpy sees in place
 // (buffer protocol: H x W x C float32, writable), its render statistics,
-// and the library's writers (PNG, EXR, PPM, PFM; always a complete file).
+// the library's writers (PNG, EXR, PPM, PFM; always a complete file) and
+// its reader (PNG, BMP, JPEG: for pixmaps).
 #include "image_handle.h"
 
 #include <pybind11/numpy.h>
@@ -21,6 +22,20 @@ ImagePtr from_array(const py::array_t<float, py::array::c_style | py::array::for
     check(hr_image_create(context(), static_cast<int32_t>(a.shape(1)), static_cast<int32_t>(a.shape(0)),
                           static_cast<int32_t>(a.shape(2)), &img));
     std::memcpy(hr_image_data(img), a.data(), static_cast<size_t>(a.size()) * sizeof(float));
+    return std::make_shared<ImageHandle>(img);
+}
+
+// A PNG, BMP or JPEG file as linear pixels (hr_image_read).
+ImagePtr read(const py::bytes &path)
+{
+    std::string p = path;
+    hr_image *img = nullptr;
+    hr_status st;
+    {
+        py::gil_scoped_release release;
+        st = hr_image_read(context(), p.c_str(), &img);
+    }
+    check(st);
     return std::make_shared<ImageHandle>(img);
 }
 
@@ -78,6 +93,7 @@ void bind_image(py::module_ &m)
     py::class_<ImageHandle, ImagePtr>(m, "Image", py::buffer_protocol(),
                                       "Linear float pixels (see hitray.Image for the public API).")
         .def_static("from_array", &from_array, py::arg("array"))
+        .def_static("read", &read, py::arg("path"))
         .def_buffer(&pixels)
         .def_property_readonly("width", [](const ImagePtr &s) { return hr_image_width(s->image); })
         .def_property_readonly("height", [](const ImagePtr &s) { return hr_image_height(s->image); })

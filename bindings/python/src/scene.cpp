@@ -1,6 +1,7 @@
 // hitray._core.Scene: building an hr_scene (objects, lights, globals),
 // committing it, and Hill's single-ray queries on it: getFirstHit, the
 // Intersection of every hit, shade. The vectorised trace is in trace.cpp.
+#include "image_handle.h"
 #include "scene_handle.h"
 
 #include <pybind11/numpy.h>
@@ -149,6 +150,12 @@ int64_t add_object(const ScenePtr &s, const std::string &shape, const py::list &
     }
     check(st);
     return index;
+}
+
+// Hill's makePixmap: the image becomes pixmap `index` (copied).
+void set_pixmap(const ScenePtr &s, int32_t index, const ImagePtr &image)
+{
+    check(hr_scene_set_pixmap(s->scene, index, image->image));
 }
 
 void add_light(const ScenePtr &s, const vec3 &position, const vec3 &color)
@@ -343,6 +350,9 @@ void bind_scene(py::module_ &m)
         .def("add_object", &add_object, py::arg("shape"), py::arg("params"), py::arg("material"),
              py::arg("transform"), py::arg("base_dir"))
         .def("add_light", &add_light, py::arg("position"), py::arg("color"))
+        .def("set_pixmap", &set_pixmap, py::arg("index"), py::arg("image"))
+        .def("has_pixmap", [](const ScenePtr &s, int32_t index) { return hr_scene_has_pixmap(s->scene, index) != 0; },
+             py::arg("index"))
         .def("get_globals", &get_globals)
         .def("set_globals", &set_globals, py::arg("values"))
         .def("commit", &commit)

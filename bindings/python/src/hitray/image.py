@@ -72,6 +72,14 @@ class Image:
         self._stats: Optional[RenderStats] = None
 
     @classmethod
+    def read(cls: Type[_ImageT], path: _convert.PathLike) -> _ImageT:
+        """Read a PNG, BMP or JPEG file (told by its first bytes) as linear
+        RGB: PNG through libpng with its gAMA/sRGB chunk honoured, BMP and
+        JPEG as 8-bit sRGB. For pixmaps (Scene.pixmap). Raises FileError
+        naming the file, UnsupportedError for an image too large to read."""
+        return cls._wrap(_core.Image.read(_convert.path_bytes(path)))
+
+    @classmethod
     def _wrap(cls: Type[_ImageT], core: Any) -> _ImageT:
         image = object.__new__(cls)
         image._core = core

@@ -21,6 +21,7 @@ import numpy as np
 from . import _convert, _core, _warnings, material as _material
 from ._convert import Vec3
 from .camera import Camera
+from .image import Image
 from .queries import HitInfo, Light, TraceResult
 from .shapes import Shape
 
@@ -104,6 +105,17 @@ class _AddLight:
         return int(core.light_count) - 1
 
 
+class _MakePixmap:
+    __slots__ = ("index", "image")
+
+    def __init__(self, index: int, image: Image) -> None:
+        self.index, self.image = index, image
+
+    def apply(self, core: Any) -> int:
+        core.set_pixmap(self.index, self.image._core)
+        return self.index
+
+
 def _add_tree(core: Any, shape: Shape, inherited: Dict[str, Any], base_dir: bytes) -> int:
     """Add a shape and, first, the shapes among its parameters (a boolean's
     operands), which it consumes. Each leaf's material is its own over the
@@ -164,7 +176,7 @@ class Scene:
     def __init__(self) -> None:
         self._lock = threading.RLock()
         self._sdl: Optional[_SDLSource] = None
-        self._ops: List[Union[_AddObject, _AddLight]] = []
+        self._ops: List[Union[_AddObject, _AddLight, _MakePixmap]] = []
         self._globals: Dict[str, Any] = {}
         self._live: Any = _core.Scene()
 
@@ -205,7 +217,7 @@ class Scene:
                 _warnings.issue()
             return core
 
-    def _record(self, op: Union[_AddObject, _AddLight]) -> int:
+    def _record(self, op: Union[_AddObject, _AddLight, _MakePixmap]) -> int:
         with self._lock:
             core = self._editable()
             before = core.object_count
@@ -238,6 +250,17 @@ class Scene:
         fields = _material.normalize(material)
         index = self._record(_AddObject(shape, fields, os.fsencode(os.getcwd())))
         return SceneObject(self, index)
+
+    def pixmap(self, index: int, image: Union[Image, _convert.PathLike]) -> None:
+        """Hill's makePixmap: make `image` (a hitray.Image, or the path of a
+        PNG, BMP or JPEG file, read with Image.read) pixmap number `index`
+        (from 1), for objects added later with ``texture=index``. Each number
+        is made once. Raises ArgumentError (index below 1, made already, a
+        pixel not finite), FileError (a file that cannot be read)."""
+        index = _convert.integer(index, "pixmap index")
+        if not isinstance(image, Image):
+            image = Image.read(image)
+        self._record(_MakePixmap(index, image))
 
     def light(self, position: Sequence[float], color: Sequence[float] = (1.0, 1.0, 1.0)) -> None:
         """Add a point light at `position` (world coordinates) with `color`."""

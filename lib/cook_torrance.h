@@ -1,0 +1,28 @@
+/* Internal: Cook and Torrance's specular term (Hill, chapter 8; Cook and
+ * Torrance, "A Reflectance Model for Computer Graphics", 1982), used by
+ * shade where a material's specularFraction is above 0. */
+#ifndef HITRAY_LIB_COOK_TORRANCE_H
+#define HITRAY_LIB_COOK_TORRANCE_H
+
+#include <hitray/common.h>
+
+/* The largest value hr_cook_torrance returns: a grazing view or light
+ * makes the term's 1 / (n.v) unbounded, and a colour times this stays
+ * within the bound that keeps every pixel finite (scene.c). */
+#define HR_COOK_TORRANCE_MAX 1e6
+
+/* R_s (n.l) for unit vectors n (the normal, on the viewer's side), l (to
+ * the light) and v (to the eye):
+ *   F D G / (pi (n.v))
+ * with D Beckmann's distribution of roughness m (the rms slope of the
+ * microfacets), G the geometric attenuation min(1, 2 (n.h)(n.v) / (v.h),
+ * 2 (n.h)(n.l) / (v.h)), and F Fresnel's reflectance for unpolarised light
+ * at relative index `eta` (the material's 1 / speedOfLight) and angle
+ * acos(v.h). 0 where the light or the eye is below the surface. */
+double hr_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta);
+
+/* Fresnel's reflectance of unpolarised light at cos(angle) c and relative
+ * index eta (1 beyond the critical angle), in Cook and Torrance's form. */
+double hr_fresnel(double c, double eta);
+
+#endif

@@ -1,0 +1,128 @@
+/* A scene's pixmaps (Hill's makePixmap) and how an image texture reads one.
+ *
+ * Each pixmap is kept on its own allocation, so the objects that use it
+ * hold its address across later additions. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "errors.h"
+#include "scene_internal.h"
+#include "texture.h"
+#include "vec.h"
+
+#define PIXEL_LIMIT 1e6 /* the bound hr_material_validate puts on colours */
+
+const hr_pixmap *hr_scene_find_pixmap(const hr_scene *s, int32_t index)
+{
+    for (int32_t i = 0; i < s->pixmap_count; i++)
+        if (s->pixmaps[i]->index == index) return s->pixmaps[i];
+    return NULL;
+}
+
+void hr_scene_free_pixmaps(hr_scene *s)
+{
+    for (int32_t i = 0; i < s->pixmap_count; i++) {
+        free(s->pixmaps[i]->rgb);
+        free(s->pixmaps[i]);
+    }
+    free(s->pixmaps);
+    s->pixmaps = NULL;
+    s->pixmap_count = s->pixmap_cap = 0;
+}
+
+HR_API int32_t hr_scene_has_pixmap(const hr_scene *s, int32_t index)
+{
+    return s && hr_scene_find_pixmap(s, index) != NULL;
+}
+
+/* The image's pixels as RGB, checked. */
+static hr_status copy_pixels(hr_context *ctx, int32_t index, const hr_image *image, float **out)
+{
+    const int32_t w = hr_image_width(image), h = hr_image_height(image);
+    const int32_t ch = hr_image_channels(image);
+    const float *src = hr_image_data((hr_image *)image);
+    float *rgb = malloc((size_t)w * (size_t)h * 3 * sizeof *rgb);
+    if (!rgb)
+        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory for pixmap %d (%d x %d)",
+                        (int)index, (int)w, (int)h);
+    for (size_t p = 0; p < (size_t)w * (size_t)h; p++)
+        for (int c = 0; c < 3; c++) {
+            const float v = src[p * (size_t)ch + (size_t)c];
+            if (!(fabsf(v) <= PIXEL_LIMIT)) {
+                free(rgb);
+                return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                         "pixmap %d: pixel (%d, %d) has %s %g; pixels must be finite, each within "
+                         "+-%g",
+                         (int)index, (int)(p % (size_t)w), (int)(p / (size_t)w),
+                         c == 0 ? "red" : c == 1 ? "green" : "blue", (double)v, PIXEL_LIMIT);
+            }
+            rgb[p * 3 + (size_t)c] = v;
+        }
+    *out = rgb;
+    return HR_OK;
+}
+
+HR_API hr_status hr_scene_set_pixmap(hr_scene *s, int32_t index, const hr_image *image)
+{
+    if (!s) return HR_ERROR_INVALID_ARGUMENT;
+    hr_context *ctx = s->ctx;
+    if (!image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: NULL image", (int)index);
+    if (s->committed) return hr_error(ctx, HR_ERROR_STATE, "cannot make a pixmap in a committed scene");
+    if (index < 1)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap number %d: pixmaps are numbered from 1",
+                        (int)index);
+    if (hr_scene_find_pixmap(s, index))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d is made already", (int)index);
+    const int32_t ch = hr_image_channels(image);
+    if (hr_image_width(image) < 1 || hr_image_height(image) < 1 || (ch != 3 && ch != 4))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: the image must be RGB or RGBA",
+                        (int)index);
+    if (s->pixmap_count == s->pixmap_cap) {
+        int32_t cap = s->pixmap_cap ? 2 * s->pixmap_cap : 4;
+        hr_pixmap **grown = realloc(s->pixmaps, (size_t)cap * sizeof *grown);
+        if (!grown) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        s->pixmaps = grown;
+        s->pixmap_cap = cap;
+    }
+    hr_pixmap *pm = calloc(1, sizeof *pm);
+    if (!pm) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    hr_status st = copy_pixels(ctx, index, image, &pm->rgb);
+    if (st) {
+        free(pm);
+        return st;
+    }
+    pm->index = index;
+    pm->width = hr_image_width(image);
+    pm->height = hr_image_height(image);
+    s->pixmaps[s->pixmap_count++] = pm;
+    return HR_OK;
+}
+
+static hr_color texel(const hr_pixmap *pm, int32_t x, int32_t y)
+{
+    const float *p = pm->rgb + ((size_t)y * (size_t)pm->width + (size_t)x) * 3;
+    return rgb(p[0], p[1], p[2]);
+}
+
+/* x in [0, n) from a coordinate that may be one step outside. */
+static int32_t wrap(int32_t x, int32_t n) { return x < 0 ? x + n : x >= n ? x - n : x; }
+
+hr_color hr_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest)
+{
+    /* Texel centres sit at (x + 1/2) / width across and, since rows run
+     * from the top, at 1 - (y + 1/2) / height up. */
+    const double fx = s * pm->width, fy = (1.0 - t) * pm->height;
+    if (nearest) {
+        int32_t x = (int32_t)fx, y = (int32_t)fy;
+        return texel(pm, x < pm->width ? x : pm->width - 1, y < pm->height ? y : pm->height - 1);
+    }
+    const double gx = fx - 0.5, gy = fy - 0.5;
+    const double x0 = floor(gx), y0 = floor(gy);
+    const double ax = gx - x0, ay = gy - y0;
+    const int32_t xa = wrap((int32_t)x0, pm->width), xb = wrap((int32_t)x0 + 1, pm->width);
+    const int32_t ya = wrap((int32_t)y0, pm->height), yb = wrap((int32_t)y0 + 1, pm->height);
+    hr_color top = rgb_add(rgb_scale(texel(pm, xa, ya), 1.0 - ax), rgb_scale(texel(pm, xb, ya), ax));
+    hr_color bottom = rgb_add(rgb_scale(texel(pm, xa, yb), 1.0 - ax), rgb_scale(texel(pm, xb, yb), ax));
+    return rgb_add(rgb_scale(top, 1.0 - ay), rgb_scale(bottom, ay));
+}
