@@ -10,11 +10,12 @@ bench_pkgs=""
 [ "${1:-}" = "--bench" ] && bench_pkgs="povray libembree-dev"
 # clang, its runtimes (libFuzzer, the sanitizers) and llvm (the symbolizer)
 # build and run the fuzz harnesses in tests/fuzz; valgrind runs make
-# test-memcheck.
+# test-memcheck. libsdl2-dev builds hitray-view (the window of `hitray
+# view`); xvfb and xdotool give its tests a display and key presses.
 need_pkgs=""
 for pkg in cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev \
            python3 python3-venv python3-dev \
-           clang libclang-rt-14-dev llvm valgrind $bench_pkgs; do
+           clang libclang-rt-14-dev llvm valgrind libsdl2-dev xvfb xdotool $bench_pkgs; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
         need_pkgs="$need_pkgs $pkg"
 done
