@@ -121,15 +121,36 @@ static int parse_request(int argc, char **argv, view_request *r)
     return PARSE_OK;
 }
 
-/* SDL would say "No available video device"; say what is missing. A chosen
- * SDL_VIDEODRIVER (offscreen, say) is left for SDL to judge. */
-static int check_display(void)
+/* The video drivers to try, from the environment: SDL would otherwise go on
+ * from an unreachable display to drivers that draw nowhere (offscreen) and
+ * show no window at all. A chosen SDL_VIDEODRIVER is left for SDL to judge.
+ * Without any display, say so (SDL would say "No available video device").
+ * 0 and `drivers` filled, or the error reported. */
+static int choose_drivers(char *drivers, size_t size)
 {
-    const char *driver = getenv("SDL_VIDEODRIVER");
+    const char *chosen = getenv("SDL_VIDEODRIVER");
     const char *x11 = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
-    if ((driver && *driver) || (x11 && *x11) || (wayland && *wayland)) return 0;
-    return cli_error("view: no display to open a window on (neither DISPLAY nor WAYLAND_DISPLAY is set); "
-                     "'hitray render' writes the image to a file instead");
+    drivers[0] = '\0';
+    if (chosen && *chosen) return 0;
+    int has_x11 = x11 && *x11, has_wayland = wayland && *wayland;
+    if (!has_x11 && !has_wayland)
+        return cli_error("view: no display to open a window on (neither DISPLAY nor WAYLAND_DISPLAY is set); "
+                         "'hitray render' writes the image to a file instead");
+    snprintf(drivers, size, "%s%s%s", has_wayland ? "wayland" : "", has_wayland && has_x11 ? "," : "",
+             has_x11 ? "x11" : "");
+    return 0;
+}
+
+/* Where the window was to go, for the message when it cannot. */
+static void describe_display(char *buf, size_t size)
+{
+    const char *chosen = getenv("SDL_VIDEODRIVER");
+    const char *x11 = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+    if (chosen && *chosen) snprintf(buf, size, "SDL_VIDEODRIVER '%s'", chosen);
+    else if (wayland && *wayland && x11 && *x11)
+        snprintf(buf, size, "WAYLAND_DISPLAY '%s' or DISPLAY '%s'", wayland, x11);
+    else if (wayland && *wayland) snprintf(buf, size, "WAYLAND_DISPLAY '%s'", wayland);
+    else snprintf(buf, size, "DISPLAY '%s'", x11 ? x11 : "");
 }
 
 /* --- the running viewer --- */
@@ -328,7 +349,8 @@ int main(int argc, char **argv)
     view_request req;
     int parsed = parse_request(argc, argv, &req);
     if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
-    if (check_display()) return CLI_EXIT_ERROR;
+    char drivers[32];
+    if (choose_drivers(drivers, sizeof drivers)) return CLI_EXIT_ERROR;
 
     viewer v;
     memset(&v, 0, sizeof v);
@@ -342,7 +364,12 @@ int main(int argc, char **argv)
         hr_status st = hr_camera_validate(v.scene.ctx, &v.camera);
         if (st != HR_OK) rc = cli_library_error(v.scene.ctx, st);
     }
-    if (!rc && SDL_Init(SDL_INIT_VIDEO) != 0) rc = cli_error("view: cannot open a window: %s", SDL_GetError());
+    if (!rc && drivers[0]) SDL_SetHint(SDL_HINT_VIDEODRIVER, drivers);
+    if (!rc && SDL_Init(SDL_INIT_VIDEO) != 0) {
+        char where[512];
+        describe_display(where, sizeof where);
+        rc = cli_error("view: cannot open a window on %s: %s", where, SDL_GetError());
+    }
     if (!rc) {
         rc = run(&v);
         SDL_Quit();
