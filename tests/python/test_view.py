@@ -15,7 +15,6 @@ exit status 1, with no window left open.
 
 import math
 import os
-import queue
 import select
 import shutil
 import subprocess
@@ -129,30 +128,42 @@ def test_view_block_passes_differ_from_the_final(display, tmp_path):
 # --- the camera keys ---------------------------------------------------------
 
 class Viewer:
-    """hitray view running in the background, its stdout read line by line."""
+    """hitray view running in the background, its stdout lines collected as
+    they come (a line may come before the one a test waits for first: the
+    final pass of a small image can be written before the next key is)."""
 
     def __init__(self, display, *args, cwd):
         self.display = display
         self.proc = subprocess.Popen([str(HITRAY), "view", *map(str, args)], stdout=subprocess.PIPE,
                                      stderr=subprocess.PIPE, text=True, env=clean_env(DISPLAY=display), cwd=cwd)
-        self.lines = queue.Queue()
+        self.lines, self.ended = [], False
+        self.changed = threading.Condition()
         threading.Thread(target=self._read, daemon=True).start()
 
     def _read(self):
         for line in self.proc.stdout:
-            self.lines.put(line.rstrip("\n"))
-        self.lines.put(None)
+            with self.changed:
+                self.lines.append(line.rstrip("\n"))
+                self.changed.notify_all()
+        with self.changed:
+            self.ended = True
+            self.changed.notify_all()
 
-    def next_line(self, starts):
-        """The next stdout line beginning with `starts` (others are skipped)."""
-        while True:
-            try:
-                line = self.lines.get(timeout=WAIT)
-            except queue.Empty:
-                pytest.fail(f"no line starting {starts!r} from hitray view within {WAIT} s")
-            assert line is not None, f"hitray view ended before printing {starts!r}: {self.proc.stderr.read()}"
-            if line.startswith(starts):
-                return line
+    def line(self, starts, nth=1, ends=""):
+        """The nth stdout line so far beginning with `starts` and ending with
+        `ends`, waiting for it."""
+        def found():
+            matches = [x for x in self.lines if x.startswith(starts) and x.endswith(ends)]
+            return matches[nth - 1] if len(matches) >= nth else None
+        with self.changed:
+            if not self.changed.wait_for(lambda: found() is not None or self.ended, timeout=WAIT):
+                title = self.title()
+                self.proc.kill()
+                pytest.fail(f"no line {nth} starting {starts!r} from hitray view within {WAIT} s "
+                            f"(title: {title!r}; lines: {self.lines!r}; stderr: {self.proc.stderr.read()!r})")
+            line = found()
+        assert line is not None, f"hitray view ended before printing {starts!r}: {self.proc.stderr.read()}"
+        return line
 
     def xdotool(self, *args):
         r = subprocess.run(["xdotool", *args], capture_output=True, text=True,
@@ -212,30 +223,27 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
     shot, saved = tmp_path / "shot.pfm", tmp_path / "saved.exr"
     viewer = Viewer(display, DEMO, "--size", SIZE, "--screenshot", shot, "-o", saved, cwd=tmp_path)
     try:
-        first = viewer.next_line("wrote ")
+        first = viewer.line("wrote ")
         assert first == f"wrote {shot}: camera 7 4.2000000000000002 10  0 1.1000000000000001 0  0 1 0  38"
         title = viewer.title()
         assert "final pass" in title and "rays/s" in title and "effects: " in title and "shadows" in title
         # C prints the camera, W slides forward, Left yaws left, C again.
         viewer.keys("c", "w", "Left", "c")
-        before = camera_values(viewer.next_line("camera "))
-        after_line = viewer.next_line("camera ")
+        before = camera_values(viewer.line("camera "))
+        after_line = viewer.line("camera ", nth=2)
         after = camera_values(after_line)
         assert before == [7, 4.2, 10, 0, 1.1, 0, 0, 1, 0, 38]
         expected = hill_forward_then_yaw_left(before)
         for got, want in zip(after, expected):
             assert got == pytest.approx(want, rel=1e-12, abs=1e-12)  # double rounding of a few operations
-        # The next final pass of that camera is written (a move's refinement
+        # The final pass of that camera is written (a move's refinement
         # cancelled by the next key writes nothing).
-        while True:
-            line = viewer.next_line("wrote ")
-            if line.endswith(after_line):
-                break
+        viewer.line(f"wrote {shot}: ", ends=after_line)
         camera_arg = ",".join(after_line.split()[1:])
         assert shot.read_bytes() == render(tmp_path, "ref.pfm", "--camera", camera_arg)
         # P saves the picture shown (EXR from the extension) with its camera.
         viewer.keys("p")
-        assert viewer.next_line("saved ") == f"saved {saved}: {after_line}"
+        assert viewer.line("saved ") == f"saved {saved}: {after_line}"
         assert saved.read_bytes() == render(tmp_path, "ref.exr", "--camera", camera_arg)
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
@@ -248,7 +256,7 @@ def test_view_help_key_lists_the_keys(display, tmp_path):
     viewer = Viewer(display, DEMO, "--size", "32x24", cwd=tmp_path)
     try:
         viewer.keys("h")
-        assert "slide forward" in viewer.next_line("  W / S")
+        assert "slide forward" in viewer.line("  W / S")
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
     finally:
