@@ -112,6 +112,9 @@ static void refine(view_renderer *r, const hr_camera *camera, uint64_t generatio
         frame.passes = r->passes;
         frame.settings = r->plan[pass];
         frame.since_restart = now_seconds() - started;
+        /* Done before the window hears of the last frame, so the status
+         * line it draws for that frame says so. */
+        if (pass == r->passes - 1) atomic_store(&r->running_pass, r->passes);
         if (!publish(r, &frame)) return;
         r->notify(r->notify_user);
     }
