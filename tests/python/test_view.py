@@ -19,6 +19,7 @@ import select
 import shutil
 import subprocess
 import threading
+import time
 
 import pytest
 
@@ -157,7 +158,7 @@ class Viewer:
             return matches[nth - 1] if len(matches) >= nth else None
         with self.changed:
             if not self.changed.wait_for(lambda: found() is not None or self.ended, timeout=WAIT):
-                title = self.title()
+                title = self.title(wait=False)
                 self.proc.kill()
                 pytest.fail(f"no line {nth} starting {starts!r} from hitray view within {WAIT} s "
                             f"(title: {title!r}; lines: {self.lines!r}; stderr: {self.proc.stderr.read()!r})")
@@ -176,8 +177,12 @@ class Viewer:
         self.xdotool("windowfocus", "--sync", window.split()[0])
         self.xdotool("key", "--delay", "20", *names)
 
-    def title(self):
-        return self.xdotool("getwindowname", self.xdotool("search", "--name", "^hitray view").split()[0])
+    def title(self, wait=True):
+        """The window's title (waiting for the window), or "" with wait=False
+        and no window."""
+        if not wait and not view_windows(self.display):
+            return ""
+        return self.xdotool("getwindowname", self.xdotool("search", "--sync", "--name", "^hitray view").split()[0])
 
     def close(self):
         if self.proc.poll() is None:
@@ -248,6 +253,23 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
         assert viewer.proc.stderr.read() == ""
+    finally:
+        viewer.close()
+
+
+def test_view_quits_during_a_pass_of_minutes(display, tmp_path):
+    """Esc while the full-quality pass runs (65536 samples a pixel on one
+    thread: far longer than WAIT) cancels it rather than waiting for it."""
+    viewer = Viewer(display, DEMO, "--size", "64x48", "--spp", "65536", "--threads", "1", cwd=tmp_path)
+    try:
+        for _ in range(WAIT * 10):
+            if "pass 6 of 6" in viewer.title():
+                break
+            time.sleep(0.1)
+        else:
+            pytest.fail(f"the final pass did not start: {viewer.title()!r}")
+        viewer.keys("Escape")
+        assert viewer.proc.wait(timeout=WAIT) == 0
     finally:
         viewer.close()
 
