@@ -13,6 +13,8 @@ Hill's slide and yaw define and the next final pass is `hitray render
 exit status 1, with no window left open.
 """
 
+import ctypes
+import ctypes.util
 import math
 import os
 import select
@@ -52,6 +54,8 @@ def display():
     xvfb = shutil.which("Xvfb")
     if not xvfb:
         pytest.skip("Xvfb is not installed (Debian's xvfb; scripts/bootstrap.sh installs it)")
+    if not shutil.which("xdotool"):
+        pytest.fail("xdotool is not installed (Debian's xdotool; scripts/bootstrap.sh installs it)")
     read_end, write_end = os.pipe()
     proc = subprocess.Popen([xvfb, "-displayfd", str(write_end), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
                             pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
@@ -253,6 +257,64 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
         assert viewer.proc.stderr.read() == ""
+    finally:
+        viewer.close()
+
+
+def read_ppm(data):
+    """(width, height, RGB bytes) of a binary PPM as hitray writes it."""
+    magic, size, maxval, pixels = data.split(b"\n", 3)
+    assert magic == b"P6" and maxval == b"255"
+    width, height = map(int, size.split())
+    return width, height, pixels
+
+
+def window_pixels(display, window, width, height):
+    """The window's pixels as the X server has them (libX11 through ctypes:
+    Xvfb has no compositor, so this is what is on the screen)."""
+    x11 = ctypes.CDLL(ctypes.util.find_library("X11") or "libX11.so.6")
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XGetImage.restype = ctypes.c_void_p
+    x11.XGetImage.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_int, ctypes.c_uint,
+                              ctypes.c_uint, ctypes.c_ulong, ctypes.c_int]
+    x11.XGetPixel.restype = ctypes.c_ulong
+    x11.XGetPixel.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    connection = x11.XOpenDisplay(display.encode())
+    assert connection, f"cannot open {display}"
+    try:
+        image = x11.XGetImage(connection, window, 0, 0, width, height, 0xFFFFFFFF, 2)  # ZPixmap
+        assert image, "XGetImage failed"
+        return [[x11.XGetPixel(image, x, y) for x in range(width)] for y in range(height)]
+    finally:
+        x11.XCloseDisplay(connection)
+
+
+def test_view_window_shows_the_final_pass(display, tmp_path):
+    """What is on the screen is the final pass in 8-bit sRGB, the same codes
+    `hitray render` writes to a PPM (a small image is shown at a whole
+    multiple of its size: each image pixel is a square of screen pixels)."""
+    shot = tmp_path / "shot.pfm"
+    viewer = Viewer(display, DEMO, "--size", SIZE, "--screenshot", shot, cwd=tmp_path)
+    try:
+        viewer.line("wrote ")  # printed after the pass is drawn
+        window = viewer.xdotool("search", "--sync", "--name", "^hitray view").split()[0]
+        geometry = dict(line.split("=") for line in viewer.xdotool("getwindowgeometry", "--shell", window).split())
+        width, height = int(geometry["WIDTH"]), int(geometry["HEIGHT"])
+        iw, ih, want = read_ppm(render(tmp_path, "ref.ppm"))
+        zoom = width // iw
+        assert zoom >= 1 and (width, height) == (zoom * iw, zoom * ih)
+        screen = window_pixels(display, int(window), width, height)
+        wrong = 0
+        for y in range(ih):
+            for x in range(iw):
+                at = 3 * (y * iw + x)
+                rgb = (want[at] << 16) | (want[at + 1] << 8) | want[at + 2]
+                wrong += screen[zoom * y + zoom // 2][zoom * x + zoom // 2] & 0xFFFFFF != rgb
+        assert wrong == 0, f"{wrong} of {iw * ih} pixels on the screen differ from hitray render's PPM"
+        viewer.keys("Escape")
+        assert viewer.proc.wait(timeout=WAIT) == 0
     finally:
         viewer.close()
 
