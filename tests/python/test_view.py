@@ -259,6 +259,13 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         viewer.line(f"wrote {shot}: ", ends=after_line)
         camera_arg = ",".join(after_line.split()[1:])
         assert shot.read_bytes() == render(tmp_path, "ref.pfm", "--camera", camera_arg)
+        # The line is one for the SDL file: the scene with it renders the same.
+        moved = tmp_path / "moved.sdl"
+        moved.write_text("".join(after_line + "\n" if line.startswith("camera ") else line
+                                 for line in DEMO.read_text().splitlines(keepends=True)))
+        r = run("render", moved, "--size", SIZE, "-o", tmp_path / "moved.pfm", env=clean_env())
+        assert r.returncode == 0, r.stderr
+        assert (tmp_path / "moved.pfm").read_bytes() == shot.read_bytes()
         # P saves the picture shown (EXR from the extension) with its camera.
         viewer.keys("p")
         assert viewer.line("saved ") == f"saved {saved}: {after_line}"
