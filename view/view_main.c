@@ -195,10 +195,10 @@ static int save_frame(viewer *v, const char *path, const char *verb)
     if (!v->shown.image) return cli_error("view: no picture to save yet");
     hr_status st = hr_image_write(v->scene.ctx, v->shown.image, path, NULL);
     if (st != HR_OK) return cli_library_error(v->scene.ctx, st);
-    char camera[512], line[1024 + 512];
+    char camera[512];
     view_camera_line(&v->shown.camera, camera, sizeof camera);
-    snprintf(line, sizeof line, "%s %s: %s", verb, path, camera);
-    print_line(line);
+    printf("%s %s: ", verb, path); /* a path of any length, whole */
+    print_line(camera);
     return 0;
 }
 
