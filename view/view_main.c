@@ -44,7 +44,7 @@ static const char view_help[] =
     "  -h, --help            this help\n"
     "\n"
     "The final pass is the image 'hitray render' makes with the same scene,\n"
-    "size, --spp, --depth, --block and camera, bit for bit; a block pass is\n"
+    "size, --spp, --depth, --block, --min-weight, --exact and camera, bit for bit; a block pass is\n"
     "'hitray render --block N'.\n"
     "\n";
 
@@ -56,14 +56,16 @@ typedef struct view_request {
     const char *screenshot;
     int exit_when_done;
     int32_t width, height, spp, threads, depth, block;
-    int has_camera;
+    int has_camera, exact;
     double camera[10];
+    double min_weight;
 } view_request;
 
 static const cli_option view_options[] = {
     {"--size", NULL, 1},   {"--spp", NULL, 1},        {"--threads", NULL, 1},        {"--depth", NULL, 1},
     {"--block", NULL, 1},  {"--camera", NULL, 1},     {"--output", "-o", 1},         {"--screenshot", NULL, 1},
-    {"--exit-when-done", NULL, 0}, {"--help", "-h", 0}, {NULL, NULL, 0},
+    {"--exit-when-done", NULL, 0}, {"--min-weight", NULL, 1}, {"--exact", NULL, 0}, {"--help", "-h", 0},
+    {NULL, NULL, 0},
 };
 
 #define PARSE_OK 0
@@ -109,6 +111,8 @@ static int parse_request(int argc, char **argv, view_request *r)
         else if (!strcmp(name, "--output")) r->output = value, output_given = 1;
         else if (!strcmp(name, "--screenshot")) r->screenshot = value;
         else if (!strcmp(name, "--exit-when-done")) r->exit_when_done = 1;
+        else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
+        else if (!strcmp(name, "--exact")) r->exact = 1;
         if (!ok) return PARSE_ERROR;
     }
     if (!r->scene_path) return cli_error("view: no scene file given (see 'hitray view --help')");
@@ -116,6 +120,7 @@ static int parse_request(int argc, char **argv, view_request *r)
      * read-only directory is still of use. */
     if (output_given && check_image_file("--output", r->output)) return PARSE_ERROR;
     if (r->screenshot && check_image_file("--screenshot", r->screenshot)) return PARSE_ERROR;
+    if (r->exact && r->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
     if (r->exit_when_done && !r->screenshot)
         return cli_error("--exit-when-done: needs --screenshot FILE (else the final pass would be lost)");
     return PARSE_OK;
@@ -321,6 +326,8 @@ static int run(viewer *v)
     o.height = v->camera.height;
     o.threads = r->threads;
     o.max_depth = r->depth;
+    o.min_weight = r->min_weight;
+    o.exact = r->exact;
     v->passes = view_pass_plan(r->block, r->spp, v->plan);
     v->steps = view_steps_for(&v->camera);
     v->wake_event = SDL_RegisterEvents(1);

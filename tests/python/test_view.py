@@ -115,8 +115,9 @@ def view_windows(display):
 
 # --- the passes --------------------------------------------------------------
 
-@pytest.mark.parametrize("args", [(), ("--spp", "4"), ("--block", "8"), ("--block", "4", "--spp", "2")],
-                         ids=["final", "final-spp4", "block8", "block4-spp2"])
+@pytest.mark.parametrize("args", [(), ("--spp", "4"), ("--block", "8"), ("--block", "4", "--spp", "2"),
+                                  ("--min-weight", "0.05", "--depth", "3"), ("--exact",)],
+                         ids=["final", "final-spp4", "block8", "block4-spp2", "min-weight-depth", "exact"])
 def test_view_last_pass_equals_render(display, tmp_path, args):
     """The pass the refinement ends with is `hitray render`'s image with the
     same options: the full-quality pass, or with --block N the block pass
@@ -404,6 +405,7 @@ def test_view_bad_camera_is_refused_before_a_window(display, tmp_path):
     (("-o", "nodir/x.png"), "cannot write 'nodir/x.png': no directory 'nodir'"),
     (("--block", "0"), "--block"),
     (("--spp", "x"), "--spp"),
+    (("--exact", "--min-weight", "0.1"), "--exact: cannot be combined with --min-weight"),
     (("--bogus",), "view: unknown option '--bogus'"),
 ])
 def test_view_bad_options(tmp_path, args, message):
