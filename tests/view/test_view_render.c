@@ -89,6 +89,22 @@ static void refine_to_the_end(view_renderer *r, const cli_scene *s, const hr_ren
     }
 }
 
+/* Take frames up to the one of pass `last` (the slow pass after it would
+ * take minutes, so none comes later); every one must be of `generation`
+ * and, if `cam` is given, of that camera. Frames may have been dropped
+ * unseen, so the first one taken may already be `last`. 0 on a timeout. */
+static int take_up_to(view_renderer *r, int last, uint64_t generation, const hr_camera *cam)
+{
+    view_frame f;
+    do {
+        if (!next_frame(r, &f)) return 0;
+        CHECK(f.generation == generation);
+        if (cam) CHECK(memcmp(&f.camera, cam, sizeof *cam) == 0);
+        hr_image_destroy(f.image);
+    } while (f.pass != last);
+    return 1;
+}
+
 int main(void)
 {
     cli_scene s;
@@ -129,21 +145,10 @@ int main(void)
     CHECK(r != NULL);
     if (!r) return hr_test_end();
     view_frame f;
-    for (;;) { /* up to the block-1 pass, before the slow one */
-        CHECK(next_frame(r, &f));
-        hr_image_destroy(f.image);
-        if (f.pass == slow_passes - 2) break;
-    }
+    CHECK(take_up_to(r, slow_passes - 2, 1, NULL));
     view_apply(VIEW_PITCH_UP, &cam, &steps);
     uint64_t g = view_renderer_restart(r, &cam);
-    CHECK(next_frame(r, &f));
-    CHECK(f.generation == g && memcmp(&f.camera, &cam, sizeof cam) == 0);
-    hr_image_destroy(f.image);
-    for (;;) {
-        CHECK(next_frame(r, &f));
-        hr_image_destroy(f.image);
-        if (f.pass == slow_passes - 2) break;
-    }
+    CHECK(take_up_to(r, slow_passes - 2, g, &cam));
     view_renderer_stop(r); /* in the slow pass */
 
     /* A camera the renderer refuses: the error is kept, no frame comes;
