@@ -322,13 +322,22 @@ def test_view_window_shows_the_final_pass(display, tmp_path):
         iw, ih, want = read_ppm(render(tmp_path, "ref.ppm"))
         zoom = width // iw
         assert zoom >= 1 and (width, height) == (zoom * iw, zoom * ih)
-        screen = window_pixels(display, int(window), width, height)
-        wrong = 0
-        for y in range(ih):
-            for x in range(iw):
-                at = 3 * (y * iw + x)
-                rgb = (want[at] << 16) | (want[at + 1] << 8) | want[at + 2]
-                wrong += screen[zoom * y + zoom // 2][zoom * x + zoom // 2] & 0xFFFFFF != rgb
+        def wrong_pixels():
+            screen = window_pixels(display, int(window), width, height)
+            wrong = 0
+            for y in range(ih):
+                for x in range(iw):
+                    at = 3 * (y * iw + x)
+                    rgb = (want[at] << 16) | (want[at + 1] << 8) | want[at + 2]
+                    wrong += screen[zoom * y + zoom // 2][zoom * x + zoom // 2] & 0xFFFFFF != rgb
+            return wrong
+        # The X server draws the viewer's requests in its own time: give it
+        # a few seconds to show the pass the viewer has drawn.
+        for _ in range(30):
+            wrong = wrong_pixels()
+            if wrong == 0:
+                break
+            time.sleep(0.1)
         assert wrong == 0, f"{wrong} of {iw * ih} pixels on the screen differ from hitray render's PPM"
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
