@@ -21,6 +21,7 @@ int cmd_render(int argc, char **argv);
 int cmd_hits(int argc, char **argv);
 int cmd_shapes(int argc, char **argv);
 int cmd_savings(int argc, char **argv);
+int cmd_view(int argc, char **argv);
 
 /* --- errors (args.c) --- */
 
@@ -67,6 +68,16 @@ int cli_parse_doubles(const char *option, const char *text, int count, double *o
 int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t *height);
 /* One decimal number within 0..1. */
 int cli_parse_fraction(const char *option, const char *text, double *out);
+
+/* --- output files (output_path.c) --- */
+
+/* 1 if the name ends in an extension hr_image_write knows (.png .exr .ppm
+ * .pfm, any case). */
+int cli_has_image_extension(const char *path);
+/* The directory a file would go to must exist and be writable, and the name
+ * must be one a file can have there; otherwise the error (naming `option`)
+ * is reported and CLI_EXIT_ERROR returned. 0 when it can be written. */
+int cli_check_writable(const char *option, const char *path);
 
 /* --- output helpers --- */
 
@@ -120,6 +131,9 @@ int cli_scene_commit(cli_scene *s);
  * one that frames what is there (Hill's default at (0,0,5) may see nothing
  * of such a scene). */
 hr_camera cli_scene_camera(const cli_scene *s, int32_t width, int32_t height);
+/* The scene's camera with eye, look-at point, up vector and view angle
+ * replaced by c[0..9] (the --camera option's values), at width x height. */
+hr_camera cli_camera_from_values(const cli_scene *s, const double c[10], int32_t width, int32_t height);
 void cli_scene_free(cli_scene *s);
 
 #endif

@@ -8,8 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "cli.h"
 
@@ -76,40 +74,6 @@ static const cli_option render_options[] = {
     {"--exact", NULL, 0},
     {"--help", "-h", 0},   {NULL, NULL, 0},
 };
-
-static int has_image_extension(const char *path)
-{
-    static const char *const extensions[] = {".png", ".exr", ".ppm", ".pfm"};
-    size_t n = strlen(path);
-    for (size_t i = 0; i < sizeof extensions / sizeof extensions[0]; i++)
-        if (n > 4 && strcasecmp(path + n - 4, extensions[i]) == 0) return 1;
-    return 0;
-}
-
-/* The directory a file would go to must exist and be writable, and the
- * name must be one a file can have there. */
-static int check_writable(const char *option, const char *path)
-{
-    if (!*path) return cli_error("%s: the file name is empty", option);
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (!slash) {
-        strcpy(dir, ".");
-    } else if (slash == path) {
-        strcpy(dir, "/");
-    } else if ((size_t)(slash - path) < sizeof dir) {
-        memcpy(dir, path, (size_t)(slash - path));
-        dir[slash - path] = '\0';
-    } else {
-        return cli_error("%s: '%s': the name is too long", option, path);
-    }
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-        return cli_error("cannot write '%s': no directory '%s'", path, dir);
-    if (access(dir, W_OK) != 0) return cli_error("cannot write '%s': directory '%s' is not writable", path, dir);
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) return cli_error("cannot write '%s': it is a directory", path);
-    return 0;
-}
 
 /* Two outputs named alike would overwrite each other (by name only: two
  * spellings of one path are not caught). */
@@ -179,7 +143,7 @@ static int parse_request(int argc, char **argv, render_request *r)
         return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
     if (r->adaptive > 0 && r->block > 1) return cli_error("--adaptive: cannot be combined with --block");
     if (r->exact && r->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
-    if (!has_image_extension(r->output))
+    if (!cli_has_image_extension(r->output))
         return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          r->output);
     /* --exr always writes OpenEXR: a file named otherwise would lie about
@@ -188,9 +152,9 @@ static int parse_request(int argc, char **argv, render_request *r)
     if (r->exr_output && *r->exr_output &&
         (exr_len < 4 || strcasecmp(r->exr_output + exr_len - 4, ".exr") != 0))
         return cli_error("--exr: '%s' does not end in .exr", r->exr_output);
-    if (check_writable("--output", r->output)) return PARSE_ERROR;
-    if (r->exr_output && check_writable("--exr", r->exr_output)) return PARSE_ERROR;
-    if (r->stats_json && check_writable("--stats-json", r->stats_json)) return PARSE_ERROR;
+    if (cli_check_writable("--output", r->output)) return PARSE_ERROR;
+    if (r->exr_output && cli_check_writable("--exr", r->exr_output)) return PARSE_ERROR;
+    if (r->stats_json && cli_check_writable("--stats-json", r->stats_json)) return PARSE_ERROR;
     if (check_distinct("--output", r->output, "--exr", r->exr_output) ||
         check_distinct("--output", r->output, "--stats-json", r->stats_json) ||
         check_distinct("--exr", r->exr_output, "--stats-json", r->stats_json))
@@ -201,15 +165,7 @@ static int parse_request(int argc, char **argv, render_request *r)
 static hr_camera choose_camera(const render_request *r, const cli_scene *s)
 {
     if (!r->has_camera) return cli_scene_camera(s, r->width, r->height);
-    hr_camera cam = s->sdl.camera;
-    const double *c = r->camera;
-    cam.eye = (hr_vec3){c[0], c[1], c[2]};
-    cam.look = (hr_vec3){c[3], c[4], c[5]};
-    cam.up = (hr_vec3){c[6], c[7], c[8]};
-    cam.view_angle = c[9];
-    cam.width = r->width;
-    cam.height = r->height;
-    return cam;
+    return cli_camera_from_values(s, r->camera, r->width, r->height);
 }
 
 static uint64_t total_rays(const hr_render_stats *s) { return s->primary + s->shadow + s->reflected + s->refracted; }

@@ -15,6 +15,8 @@ static const char usage[] =
     "                        where a ray meets the scene, as JSON lines\n"
     "  shapes                list the shape modules found and their parameters\n"
     "  savings SCENE         rays saved and error caused by each opt-in saving\n"
+    "  view SCENE            render in a window, coarse to fine, and fly Hill's camera\n"
+    "                        (runs hitray-view, built where SDL2 is installed)\n"
     "\n"
     "options:\n"
     "  -h, --help            this help; 'hitray <command> --help' for a command's\n"
@@ -52,6 +54,7 @@ int main(int argc, char **argv)
     if (!strcmp(verb, "hits")) return cmd_hits(argc - 1, argv + 1);
     if (!strcmp(verb, "shapes")) return cmd_shapes(argc - 1, argv + 1);
     if (!strcmp(verb, "savings")) return cmd_savings(argc - 1, argv + 1);
+    if (!strcmp(verb, "view")) return cmd_view(argc - 1, argv + 1);
     if (verb[0] == '-') return cli_error("unknown option '%s' (see 'hitray --help')", verb);
     static const char *const verbs[] = {"render", "hits", "shapes", "savings"};
     const char *near = hr_suggest(verb, verbs, (int32_t)(sizeof verbs / sizeof verbs[0]));

@@ -65,3 +65,15 @@ hr_camera cli_scene_camera(const cli_scene *s, int32_t width, int32_t height)
     cam.height = height;
     return cam;
 }
+
+hr_camera cli_camera_from_values(const cli_scene *s, const double c[10], int32_t width, int32_t height)
+{
+    hr_camera cam = s->sdl.camera;
+    cam.eye = (hr_vec3){c[0], c[1], c[2]};
+    cam.look = (hr_vec3){c[3], c[4], c[5]};
+    cam.up = (hr_vec3){c[6], c[7], c[8]};
+    cam.view_angle = c[9];
+    cam.width = width;
+    cam.height = height;
+    return cam;
+}

@@ -2,7 +2,7 @@
 # --help texts, so the page and the help cannot drift apart: the general help
 # is the DESCRIPTION, each command listed under its "commands:" (a new verb
 # joins by being listed there) gets a section with its `--help`, verbatim.
-#   cmake -DHITRAY=<the built hitray> -DOUTPUT=<hitray.1> -DVERSION=<x.y.z>
+#   cmake -DHITRAY=<the built hitray> -DOUTPUT=<hitray.1> -DVERSION=<x.y.z> [-DVIEWER_BUILT=ON]
 #         -P hitray_man.cmake
 cmake_minimum_required(VERSION 3.18)
 
@@ -65,6 +65,12 @@ string(REPLACE "-" "\\-" summary "${first}${rest}")
 set(synopsis "")
 set(commands "")
 foreach(verb IN LISTS verbs)
+  if(verb STREQUAL "view" AND NOT VIEWER_BUILT)
+    # A build without SDL2 has no hitray-view to give the help.
+    string(APPEND synopsis "hitray view ...\n.br\n")
+    string(APPEND commands ".SS hitray view\nNot in this build: hitray-view, the window, needs SDL2.\n")
+    continue()
+  endif()
   hitray_help(text ${verb})
   string(REGEX MATCH "^usage: ([^\n]+)" _ "${text}")
   if(NOT CMAKE_MATCH_1)

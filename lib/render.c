@@ -128,13 +128,23 @@ static hr_color trace_camera_ray(worker *w, double px, double py)
     return hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
 }
 
+/* The caller's own flag (hr_render_options.cancel). */
+static int caller_cancelled(const render_job *job)
+{
+    return job->opt.cancel && __atomic_load_n(job->opt.cancel, __ATOMIC_RELAXED);
+}
+
 /* The full pattern over a pixel (or Hill's block) at (bx, by) of size
- * bw x bh: the value a full render gives it. */
+ * bw x bh: the value a full render gives it. Once the render is cancelled
+ * the rest of the pattern is skipped: each of its rays would return at once,
+ * but a pixel of 65536 samples would still cost 65536 turns of the loop, and
+ * a tile of them seconds. */
 static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, float *px)
 {
     int32_t spp = w->job->opt.samples_per_pixel;
     hr_color sum = rgb(0, 0, 0);
     for (int32_t k = 0; k < spp; k++) {
+        if (atomic_load_explicit(&w->job->cancelled, memory_order_relaxed) || caller_cancelled(w->job)) break;
         double dx, dy;
         sample_offset(k, spp, &dx, &dy);
         sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh));
@@ -237,12 +247,6 @@ static void render_tile(worker *w, int64_t tile)
         pthread_mutex_unlock(&job->progress_lock);
         atomic_store(&job->cancelled, 1);
     }
-}
-
-/* The caller's own flag (hr_render_options.cancel). */
-static int caller_cancelled(const render_job *job)
-{
-    return job->opt.cancel && __atomic_load_n(job->opt.cancel, __ATOMIC_RELAXED);
 }
 
 static void *worker_main(void *arg)

@@ -13,15 +13,16 @@
 set -eu
 cd "$(dirname "$0")/.."
 
-need="cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev libstb-dev"
+need="cmake ninja-build gcc g++ make pkg-config libpng-dev zlib1g-dev libopenexr-dev libfast-float-dev libstb-dev libsdl2-dev"
 python_pkgs="python3 python3-venv python3-dev"
 venv_reqs=""
 case "${1:-}" in
     "") ;;
     # clang, its runtimes (libFuzzer, the sanitizers) and llvm (the
     # symbolizer) build and run the fuzz harnesses in tests/fuzz; valgrind
-    # runs make test-memcheck.
-    --test) need="$need $python_pkgs clang libclang-rt-14-dev llvm valgrind groff-base"
+    # runs make test-memcheck; xvfb and xdotool give hitray-view's tests
+    # a display and key presses.
+    --test) need="$need $python_pkgs clang libclang-rt-14-dev llvm valgrind groff-base xvfb xdotool"
             venv_reqs=$(ls scripts/requirements-*.txt) ;;
     --wheel) need="$need $python_pkgs"
              venv_reqs="scripts/requirements-python.txt scripts/requirements-wheel.txt" ;;

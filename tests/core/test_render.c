@@ -260,10 +260,41 @@ static void progress_never_goes_backwards(void)
     hr_scene_destroy(s);
 }
 
+static int32_t raise_flag(void *user, double fraction)
+{
+    (void)fraction;
+    __atomic_store_n((int32_t *)user, 1, __ATOMIC_RELAXED);
+    return 0;
+}
+
+/* One tile of 256 x 256 pixels of 65536 samples each, cancelled through
+ * hr_render_options.cancel at the first poll: the rest of every pixel's
+ * pattern is skipped, not run through ray by ray (that took 2^32 turns of
+ * the sample loop, many minutes: ctest's timeout is the guard). */
+static void cancel_inside_the_samples(void)
+{
+    hr_scene *s = busy_scene(0);
+    hr_camera c = view(256, 256);
+    hr_render_options o;
+    hr_render_options_default(&o);
+    o.threads = 1;
+    o.tile_size = 256;
+    o.samples_per_pixel = 65536;
+    int32_t flag = 0;
+    o.cancel = &flag;
+    o.progress = raise_flag;
+    o.progress_user = &flag;
+    hr_image *img = (hr_image *)1;
+    CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_CANCELLED);
+    CHECK(img == NULL && flag == 1);
+    hr_scene_destroy(s);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
     cancel_inside_a_pixel();
+    cancel_inside_the_samples();
     effects_all();
     centres_and_threads();
     blocks();

@@ -5,6 +5,7 @@
 #   MODE=pkgconfig  cc spheres.c $(pkg-config --cflags --libs hitray)
 # Variables: MODE BUILD_DIR SOURCE_DIR WORK_DIR LIBDIR GENERATOR C_COMPILER
 #            EXTRA_FLAGS (sanitizer flags of the build, may be empty) VERSION
+#            VIEW (ON when hitray-view is built)
 cmake_minimum_required(VERSION 3.18)
 
 include(${CMAKE_CURRENT_LIST_DIR}/install_common.cmake)
@@ -34,6 +35,15 @@ endif()
 run_checked("installed hitray shapes" "${prefix}/bin/hitray" shapes)
 if(NOT LAST_OUTPUT MATCHES "moved prefix/[^\n]*hitray/shapes/sphere\\.so")
   message(FATAL_ERROR "the installed hitray did not find the installed modules:\n${LAST_OUTPUT}")
+endif()
+# `hitray view` runs the hitray-view installed beside it (its --help needs
+# no display).
+if(VIEW)
+  expect_file("${prefix}/bin/hitray-view")
+  run_checked("installed hitray view --help" "${prefix}/bin/hitray" view --help)
+  if(NOT LAST_OUTPUT MATCHES "usage: hitray view SCENE")
+    message(FATAL_ERROR "the installed hitray view did not run hitray-view:\n${LAST_OUTPUT}")
+  endif()
 endif()
 
 # The installed example scene renders with the installed command.
