@@ -34,9 +34,26 @@ class _Bar:
         self._bar.close()
 
 
+def _window(window: Any, width: int, height: int) -> Tuple[int, int, int, int]:
+    """(x, y, width, height) of a render window, checked against the image
+    size here so the error names the window as the caller wrote it."""
+    try:
+        x, y, ww, wh = window
+    except (TypeError, ValueError):
+        raise TypeError(f"render: window must be (x, y, width, height), got {window!r}") from None
+    x, y = _convert.integer(x, "window x"), _convert.integer(y, "window y")
+    ww, wh = _convert.integer(ww, "window width"), _convert.integer(wh, "window height")
+    if x < 0 or y < 0 or ww < 1 or wh < 1 or x + ww > width or y + wh > height:
+        raise ValueError(f"render: window {ww}x{wh} at ({x}, {y}) must be at least 1x1 and lie inside "
+                         f"the {width}x{height} image")
+    return (x, y, ww, wh)
+
+
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480),
            spp: int = 1, threads: Optional[int] = None, depth: Optional[int] = None,
-           progress: Progress = True, *, block_size: int = 1, all_effects: bool = False) -> Image:
+           progress: Progress = True, *, block_size: int = 1, all_effects: bool = False,
+           adaptive: float = 0.0, min_weight: float = 0.0, exact: bool = False,
+           window: Optional[Tuple[int, int, int, int]] = None) -> Image:
     """Render `scene` through `camera` into a new :class:`Image` of `size`
     (width, height).
 
@@ -52,6 +69,16 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
         block_size: Hill's blocksize: one ray per block of block_size² pixels.
         all_effects: run every effect's code path even where the scene needs
             none (the same image, slower; for measuring what the analysis saves).
+        adaptive: > 0: adaptive supersampling with this threshold (0..1,
+            display space): every pixel corner is sampled, and only pixels
+            whose corners differ by more get the `spp` pattern (spp >= 2).
+        min_weight: the contribution cut-off (0: the default, 2^-24).
+        exact: trace every contribution, however small (min_weight 0).
+        window: (x, y, width, height): render only this rectangle of the
+            `size` image, into an Image of width x height whose pixels are
+            bit for bit those of the full render (so windows that tile the
+            frame give it exactly; hitray.distributed renders that way).
+            None: the whole image.
 
     The GIL is released while the render runs, so other Python threads run
     and several renders can run at once. Ctrl-C (KeyboardInterrupt), or an
@@ -73,6 +100,9 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     block = _convert.integer(block_size, "block_size")
     if block < 1:
         raise ValueError(f"render: block_size must be at least 1, not {block}")
+    rect = (0, 0, w, h) if window is None else _window(window, w, h)
+    threshold = _convert.number(adaptive, "adaptive")
+    cutoff = _convert.number(min_weight, "min_weight")
     if camera is None:
         camera = scene.frame_camera((w, h))
     elif not isinstance(camera, Camera):
@@ -92,7 +122,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
         raise TypeError("render: progress must be True, False or a callable taking the fraction done")
     try:
         core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, block,
-                                  bool(all_effects), callback)
+                                  bool(all_effects), threshold, cutoff, bool(exact), rect, callback)
     finally:
         if bar is not None:
             bar.close()
