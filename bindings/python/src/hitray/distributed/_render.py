@@ -174,7 +174,9 @@ class _Run:
         self.tiles: Dict[Any, Tuple[_Frame, Window]] = {}
         self.packs: Dict[str, List[Any]] = {}  # key -> [scattered future, frames using it]
         self.by_scene: Dict[int, Tuple[Scene, ScenePack]] = {}
-        self.completed = distributed.as_completed()
+        # with_results: each tile's pixels are fetched as soon as it is done,
+        # in the client's event loop, not by one round trip per tile here.
+        self.completed = distributed.as_completed(with_results=True)
 
     def _pack(self, scene: Scene) -> ScenePack:
         """The scene's pack, made once per Scene object of this run (the
@@ -192,21 +194,22 @@ class _Run:
             entry = self.packs[pack.key] = [shipped, 0]
         entry[1] += 1
         frame = _Frame(index, path, self.size, pack.key)
-        for window in self.windows:
-            x, y, _, _ = window
-            future = self.client.submit(render_window, entry[0], camera, self.size, self.options, window,
-                                        self.threads,
-                                        key=f"hitray-tile-{self.run_id}-{index}-{x}-{y}", pure=False,
-                                        priority=-index)
+        n = len(self.windows)
+        # One map, one message to the scheduler for the frame's tiles.
+        futures = self.client.map(render_window, [entry[0]] * n, [camera] * n, [self.size] * n,
+                                  [self.options] * n, self.windows, [self.threads] * n,
+                                  key=[f"hitray-tile-{self.run_id}-{index}-{x}-{y}" for x, y, _, _ in self.windows],
+                                  pure=False, priority=-index)
+        for future, window in zip(futures, self.windows):
             self.tiles[future] = (frame, window)
-            frame.pending += 1
-            self.completed.add(future)
+        frame.pending = n
+        self.completed.update(futures)
 
     def frames(self) -> Iterator[_Frame]:
         """Frames as their last tile comes back (a worker's failure raised)."""
-        for future in self.completed:
+        for future, result in self.completed:
             frame, window = self.tiles.pop(future)
-            frame.place(window, future.result())
+            frame.place(window, result)
             future.release()
             self.bar.tile()
             if frame.pending == 0:
