@@ -357,3 +357,24 @@ def test_distributed_cli_scheduler_that_does_not_answer(tmp_path):
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and f"no Dask scheduler answered at '{address}' within 2 s" in lines[0], proc.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_distributed_frames_of_a_scene_changed_between_frames(client, tmp_path):
+    """One Scene changed by the frame function before each frame (its
+    background, an object added): every frame ships what the scene was when
+    the frame was asked for, though frames are in flight together."""
+    scene, camera = two_spheres()
+    expected = {}
+
+    def frame(i):
+        scene.background = (0.2 * i, 0.1, 0.3)
+        if i == 2:
+            scene.add(hitray.Sphere().translate(0, 2.5, 0).scale(0.4, 0.4, 0.4), diffuse=(0.9, 0.9, 0.1))
+        expected[i] = exr_bytes(hitray.render(scene, camera, (24, 16), progress=False), tmp_path / "here.exr")
+        return scene, camera
+
+    pattern = str(tmp_path / "f%d.exr")
+    hd.render_frames(frame, pattern, count=4, size=(24, 16), client=client, tile=8, progress=False)
+    assert len(set(expected.values())) == 4
+    for i in range(4):
+        assert pathlib.Path(pattern % i).read_bytes() == expected[i], i

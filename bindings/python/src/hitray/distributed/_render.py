@@ -10,6 +10,7 @@ Dask runs its tasks again elsewhere and they give the same bits.
 
 from __future__ import annotations
 
+import collections
 import os
 import time
 import uuid
@@ -159,10 +160,32 @@ class _Bar:
             self._bar.close()
 
 
+class _Shipped:
+    """A scene scattered to the workers, and the frames in flight using it."""
+
+    __slots__ = ("future", "users")
+
+    def __init__(self, future: Any) -> None:
+        self.future, self.users = future, 0
+
+
+def _same_description(a: Tuple[Any, List[Any], Dict[str, Any]], b: Tuple[Any, List[Any], Dict[str, Any]]) -> bool:
+    """Whether two descriptions of a Scene (Scene._description) are the
+    same: the same source and recorded operations (each is never changed
+    once recorded), equal globals."""
+    return (a[0] is b[0] and len(a[1]) == len(b[1]) and all(x is y for x, y in zip(a[1], b[1]))
+            and a[2] == b[2])
+
+
 class _Run:
     """Tiles of frames on a client: scenes shipped once each (scattered to
     every worker), tiles submitted with earlier frames first, frames handed
     back as they complete."""
+
+    # Scenes no frame in flight uses stay on the workers, this many of the
+    # latest, for the next frames (an animation of one scene ships it once);
+    # older ones are dropped, so a run of many scenes holds few at a time.
+    KEEP_IDLE = 2
 
     def __init__(self, client: Any, size: Tuple[int, int], options: Dict[str, Any], tile: int,
                  threads: Optional[int], bar: _Bar) -> None:
@@ -172,31 +195,33 @@ class _Run:
         self.windows = windows(size, tile)
         self.run_id = uuid.uuid4().hex
         self.tiles: Dict[Any, Tuple[_Frame, Window]] = {}
-        self.packs: Dict[str, List[Any]] = {}  # key -> [scattered future, frames using it]
-        self.by_scene: Dict[int, Tuple[Scene, ScenePack]] = {}
+        self.shipped: "collections.OrderedDict[str, _Shipped]" = collections.OrderedDict()
+        # id(scene) -> (the scene, kept so the id stays its own; its
+        # description when packed; the pack).
+        self.by_scene: Dict[int, Tuple[Scene, Any, ScenePack]] = {}
         # with_results: each tile's pixels are fetched as soon as it is done,
         # in the client's event loop, not by one round trip per tile here.
         self.completed = distributed.as_completed(with_results=True)
 
     def _pack(self, scene: Scene) -> ScenePack:
-        """The scene's pack, made once per Scene object of this run (the
-        scene is kept, so its id stays its own)."""
+        """The scene's pack: made again only if the scene changed since."""
+        description = scene._description()
         known = self.by_scene.get(id(scene))
-        if known is None:
-            known = self.by_scene[id(scene)] = (scene, ScenePack(scene))
-        return known[1]
+        if known is None or not _same_description(known[1], description):
+            known = self.by_scene[id(scene)] = (scene, description, ScenePack(scene))
+        return known[2]
 
     def submit(self, index: int, path: Optional[str], scene: Scene, camera: Camera) -> None:
         pack = self._pack(scene)
-        entry = self.packs.get(pack.key)
-        if entry is None:
-            shipped = self.client.scatter(pack, broadcast=True, hash=False)
-            entry = self.packs[pack.key] = [shipped, 0]
-        entry[1] += 1
+        shipped = self.shipped.get(pack.key)
+        if shipped is None:
+            shipped = self.shipped[pack.key] = _Shipped(self.client.scatter(pack, broadcast=True, hash=False))
+        self.shipped.move_to_end(pack.key)
+        shipped.users += 1
         frame = _Frame(index, path, self.size, pack.key)
         n = len(self.windows)
         # One map, one message to the scheduler for the frame's tiles.
-        futures = self.client.map(render_window, [entry[0]] * n, [camera] * n, [self.size] * n,
+        futures = self.client.map(render_window, [shipped.future] * n, [camera] * n, [self.size] * n,
                                   [self.options] * n, self.windows, [self.threads] * n,
                                   key=[f"hitray-tile-{self.run_id}-{index}-{x}-{y}" for x, y, _, _ in self.windows],
                                   pure=False, priority=-index)
@@ -204,6 +229,13 @@ class _Run:
             self.tiles[future] = (frame, window)
         frame.pending = n
         self.completed.update(futures)
+
+    def _drop_idle(self) -> None:
+        idle = [key for key, s in self.shipped.items() if s.users == 0]
+        for key in idle[:max(0, len(idle) - self.KEEP_IDLE)]:  # the oldest first
+            self.shipped.pop(key).future.release()
+            for scene_id in [i for i, known in self.by_scene.items() if known[2].key == key]:
+                del self.by_scene[scene_id]
 
     def frames(self) -> Iterator[_Frame]:
         """Frames as their last tile comes back (a worker's failure raised)."""
@@ -213,24 +245,23 @@ class _Run:
             future.release()
             self.bar.tile()
             if frame.pending == 0:
-                entry = self.packs[frame.pack_key]
-                entry[1] -= 1
-                if entry[1] == 0:  # no frame in flight uses the scene: let the workers drop it
-                    del self.packs[frame.pack_key]
-                    entry[0].release()
+                self.shipped[frame.pack_key].users -= 1
+                self._drop_idle()
                 yield frame
 
     def in_flight(self) -> int:
         return len({id(frame) for frame, _ in self.tiles.values()})
 
-    def cancel(self) -> None:
-        """Cancel every tile still out (Ctrl-C, a failure)."""
+    def close(self) -> None:
+        """Cancel every tile still out (after Ctrl-C or a failure) and let
+        the workers drop the scenes."""
         if self.tiles:
             self.client.cancel(list(self.tiles))
         self.tiles.clear()
-        for shipped, _ in self.packs.values():
-            shipped.release()
-        self.packs.clear()
+        for shipped in self.shipped.values():
+            shipped.future.release()
+        self.shipped.clear()
+        self.by_scene.clear()
 
 
 def _threads(threads: Any) -> Optional[int]:
@@ -292,10 +323,8 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
             run.submit(0, None, scene, camera)
             for frame in run.frames():
                 return frame.image()
-        except BaseException:
-            run.cancel()
-            raise
         finally:
+            run.close()
             bar.close()
     raise RuntimeError("hitray.distributed: the frame never completed")  # unreachable: frames() ends with it
 
@@ -390,10 +419,8 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
                 if on_frame is not None:
                     on_frame(frame.index, frame.path)
                 top_up()
-        except BaseException:
-            run.cancel()
-            raise
         finally:
+            run.close()
             bar.close()
     return written
 
