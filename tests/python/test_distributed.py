@@ -378,3 +378,43 @@ def test_distributed_frames_of_a_scene_changed_between_frames(client, tmp_path):
     assert len(set(expected.values())) == 4
     for i in range(4):
         assert pathlib.Path(pattern % i).read_bytes() == expected[i], i
+
+
+def test_distributed_local_cluster_when_no_client(tmp_path):
+    """client=None: a LocalCluster of `workers` processes on this machine,
+    started for the render and closed after it."""
+    scene, camera = two_spheres()
+    here = hitray.render(scene, camera, (30, 20), spp=2, progress=False)
+    there = hd.render(scene, camera, (30, 20), spp=2, workers=2, tile=16, progress=False)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert there.stats.threads >= 2  # both workers rendered (at least one thread each)
+
+
+def test_distributed_cli_ctrl_c_cancels(client, tmp_path):
+    """SIGINT to the command line once its tiles are on the scheduler: it
+    exits with 130 and one line, writes nothing, and leaves no tile behind."""
+    scene_file = tmp_path / "two.sdl"
+    scene_file.write_text(TWO_SPHERES_SDL)
+    out = tmp_path / "never.png"
+    proc = subprocess.Popen([sys.executable, "-m", "hitray.distributed", "render", str(scene_file), "-o", str(out),
+                             "--scheduler", client.scheduler.address, "--size", "160x120", "--spp", "64",
+                             "--tile", "4", "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        for _ in range(1200):  # until its tiles are scheduled (or it ended early)
+            if tile_tasks(client) or proc.poll() is not None:
+                break
+            time.sleep(0.05)
+        assert proc.poll() is None, proc.communicate()
+        proc.send_signal(signal.SIGINT)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 130, stderr
+    assert stderr.strip().splitlines()[-1] == "python -m hitray.distributed: interrupted"
+    assert not out.exists()
+    for _ in range(200):
+        if not tile_tasks(client):
+            break
+        time.sleep(0.05)
+    assert tile_tasks(client) == []
