@@ -418,3 +418,14 @@ def test_distributed_cli_ctrl_c_cancels(client, tmp_path):
             break
         time.sleep(0.05)
     assert tile_tasks(client) == []
+
+
+def test_distributed_render_takes_hitray_render_arguments():
+    """hd.render is a drop-in for hitray.render: the same arguments in the
+    same order (all but window: the tiles are windows), then the cluster's."""
+    import inspect
+
+    here = [p for p in inspect.signature(hitray.render).parameters if p != "window"]
+    there = list(inspect.signature(hd.render).parameters)
+    assert there[:len(here)] == here
+    assert there[len(here):] == ["client", "tile", "workers", "timeout"]

@@ -281,14 +281,15 @@ def _tile_size(tile: Any) -> int:
 
 
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480), spp: int = 1,
-           depth: Optional[int] = None, progress: Progress = True, *, block_size: int = 1,
-           all_effects: bool = False, adaptive: float = 0.0, min_weight: float = 0.0, exact: bool = False,
-           client: Any = None, tile: int = 64, workers: Optional[int] = None, threads: Optional[int] = None,
+           threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = True, *,
+           block_size: int = 1, all_effects: bool = False, adaptive: float = 0.0, min_weight: float = 0.0,
+           exact: bool = False, client: Any = None, tile: int = 64, workers: Optional[int] = None,
            timeout: float = 10.0) -> Image:
     """Render `scene` through `camera` as :func:`hitray.render` does, on a
     Dask cluster: the frame is cut into tiles of `tile` x `tile` pixels,
     each rendered by a worker, and the Image put back together is bit for
-    bit the one ``hitray.render`` gives with the same options.
+    bit the one ``hitray.render`` gives with the same options (its
+    arguments, in its order, plus the cluster's).
 
     Args:
         client: a ``distributed.Client``; a scheduler address
@@ -342,11 +343,10 @@ def _frame_path(out_pattern: Any, index: int) -> str:
 
 
 def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = None,
-                  size: Tuple[int, int] = (640, 480), spp: int = 1, depth: Optional[int] = None,
-                  progress: Progress = True, *, block_size: int = 1, all_effects: bool = False,
-                  adaptive: float = 0.0, min_weight: float = 0.0, exact: bool = False, client: Any = None,
-                  tile: int = 64, workers: Optional[int] = None, threads: Optional[int] = None,
-                  timeout: float = 10.0,
+                  size: Tuple[int, int] = (640, 480), spp: int = 1, threads: Optional[int] = None,
+                  depth: Optional[int] = None, progress: Progress = True, *, block_size: int = 1,
+                  all_effects: bool = False, adaptive: float = 0.0, min_weight: float = 0.0, exact: bool = False,
+                  client: Any = None, tile: int = 64, workers: Optional[int] = None, timeout: float = 10.0,
                   frames_in_flight: int = 4, bits: int = 8, linear: bool = False, half: bool = False,
                   on_frame: Optional[Callable[[int, str], Any]] = None) -> List[str]:
     """Render an animation on a Dask cluster, one file per frame.
