@@ -82,7 +82,7 @@ def main():
     print("|---:|---:|---:|---:|---:|---:|---:|")
     for workers in (int(w) for w in a.workers.split(",")):
         with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                      dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+                                      dashboard_address=":0") as cluster, distributed.Client(cluster) as client:
             threads = max(1, cores // workers)
 
             def ship():

@@ -46,7 +46,7 @@ push translate 0 -1 0 rotate -90 1 0 0 diffuse 0.5 0.5 0.5 reflectivity 0.6 plan
 @pytest.fixture(scope="module")
 def client():
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       host="127.0.0.1", dashboard_address=None)
+                                       host="127.0.0.1", dashboard_address=":0")
     c = distributed.Client(cluster)
     yield c
     c.close()
@@ -262,8 +262,12 @@ def test_distributed_bad_input_raises_on_the_client(client, tmp_path):
         hd.render(scene, camera, (20, 10), adaptive=0.1, client=client, progress=False)
     with pytest.raises(ValueError, match="tile must be within 1..65536 pixels, not 0"):
         hd.render(scene, camera, (20, 10), tile=0, client=client, progress=False)
+    with pytest.raises(ValueError, match="cut a 4000x3000 frame into 12000000 tiles, more than 100000"):
+        hd.render(scene, camera, (4000, 3000), tile=1, client=client, progress=False)
     with pytest.raises(ValueError, match="needs one integer conversion"):
         hd.render_frames(orbit, str(tmp_path / "frame.png"), count=2, client=client, progress=False)
+    with pytest.raises(FileNotFoundError, match=r"nowhere: no such directory for frame 0"):
+        hd.render_frames(orbit, str(tmp_path / "nowhere" / "f%d.png"), count=2, client=client, progress=False)
     with pytest.raises(TypeError, match="give count"):
         hd.render_frames(orbit, str(tmp_path / "f%d.png"), client=client, progress=False)
     with pytest.raises(TypeError, match="client must be a distributed.Client"):

@@ -67,8 +67,10 @@ def connect(client: Any = None, workers: Optional[int] = None, timeout: float = 
             made.close()
         return
     n = 1 if workers is None else workers
+    # ":0": the scheduler's HTTP server (health checks, and the dashboard
+    # where bokeh is installed) on a free port, so clusters never collide.
     cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=max(1, local_cores() // n),
-                                       processes=True, dashboard_address=None)
+                                       processes=True, dashboard_address=":0")
     try:
         made = distributed.Client(cluster)
         try:

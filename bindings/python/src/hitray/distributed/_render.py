@@ -273,10 +273,20 @@ def _threads(threads: Any) -> Optional[int]:
     return n
 
 
-def _tile_size(tile: Any) -> int:
+# The most tiles a frame is cut into: each is a Dask task, which costs the
+# scheduler memory and milliseconds; past this a frame spends far longer
+# being scheduled than rendered (docs/distributed.md).
+MAX_TILES_PER_FRAME = 100_000
+
+
+def _tile_size(tile: Any, size: Tuple[int, int]) -> int:
     t = _convert.integer(tile, "tile")
     if not 1 <= t <= 65536:
         raise ValueError(f"hitray.distributed: tile must be within 1..65536 pixels, not {t}")
+    count = -(-size[0] // t) * -(-size[1] // t)
+    if count > MAX_TILES_PER_FRAME:
+        raise ValueError(f"hitray.distributed: tiles of {t} pixels cut a {size[0]}x{size[1]} frame into {count} "
+                         f"tiles, more than {MAX_TILES_PER_FRAME}: use larger tiles")
     return t
 
 
@@ -313,7 +323,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     rays (an adaptive corner on a tile border is cast by both tiles).
     """
     size = _convert.size(size)
-    tile = _tile_size(tile)
+    tile = _tile_size(tile, size)
     options = _options(spp, depth, block_size, all_effects, adaptive, min_weight, exact)
     tile_threads = _threads(threads)
     camera = _check_here(scene, camera, size, options)
@@ -379,7 +389,7 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
         def frame_at(i: int) -> Tuple[Scene, Optional[Camera]]:
             return listed[i]
     size = _convert.size(size)
-    tile = _tile_size(tile)
+    tile = _tile_size(tile, size)
     in_flight = _convert.integer(frames_in_flight, "frames_in_flight")
     if in_flight < 1:
         raise ValueError(f"render_frames: frames_in_flight must be at least 1, not {in_flight}")
@@ -387,6 +397,10 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
     tile_threads = _threads(threads)
     todo = [(i, path) for i, path in ((i, _frame_path(out_pattern, i)) for i in range(total))
             if not os.path.exists(path)]
+    for index, path in todo:
+        folder = os.path.dirname(path) or "."
+        if not os.path.isdir(folder):
+            raise FileNotFoundError(f"render_frames: {folder}: no such directory for frame {index} ({path})")
     if not todo:
         return []
     written: List[str] = []
