@@ -94,6 +94,8 @@ CASES = {
 @pytest.mark.parametrize("tile", [17, 64])
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_distributed_frame_identity(client, tmp_path, case, tile):
+    """Tiles of 17 (cutting blocks of 3 and adaptive corners) and 64 (one
+    tile in a row, another cut by the edge) give the single render's EXR."""
     kind, options = CASES[case]
     scene, camera = scene_of(kind)
     size = (70, 45)
@@ -107,7 +109,7 @@ def test_distributed_frame_identity(client, tmp_path, case, tile):
     assert there.stats.effects == here.stats.effects
 
 
-@pytest.mark.parametrize("case", ["spp1", "adaptive", "block3-depth1", "csg"])
+@pytest.mark.parametrize("case", sorted(CASES))
 def test_distributed_frame_identity_one_pixel_tiles(client, tmp_path, case):
     kind, options = CASES[case]
     scene, camera = scene_of(kind)
