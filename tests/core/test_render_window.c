@@ -9,12 +9,12 @@
  * ending before the window) render the whole image. */
 #include <stddef.h>
 #include <stdint.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
 
 #include "hr_test.h"
+#include "random_rays.h"
 #include "scene_builder.h"
 
 #define W 45
@@ -75,11 +75,12 @@ static void check_tiling(const char *what, const hr_render_options *o, hr_image 
 /* Windows with random corners (a fixed seed, so a failure repeats). */
 static void check_random_windows(const char *what, const hr_render_options *o, hr_image *full, int count)
 {
-    unsigned seed = 14;
+    ray_rng rng;
+    rng_seed(&rng, 14);
     for (int i = 0; i < count; i++) {
-        int32_t x = (int32_t)(rand_r(&seed) % W), y = (int32_t)(rand_r(&seed) % H);
-        int32_t w = 1 + (int32_t)(rand_r(&seed) % (unsigned)(W - x));
-        int32_t h = 1 + (int32_t)(rand_r(&seed) % (unsigned)(H - y));
+        int32_t x = (int32_t)(rng_next(&rng) % W), y = (int32_t)(rng_next(&rng) % H);
+        int32_t w = 1 + (int32_t)(rng_next(&rng) % (uint64_t)(W - x));
+        int32_t h = 1 + (int32_t)(rng_next(&rng) % (uint64_t)(H - y));
         CHECK_MSG(window_matches(*o, full, x, y, w, h, NULL), "%s: window %dx%d at (%d, %d) differs", what,
                   (int)w, (int)h, (int)x, (int)y);
     }
