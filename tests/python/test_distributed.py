@@ -22,6 +22,7 @@ import hitray
 from conftest import BUILD, ROOT, TWO_SPHERES_SDL, require_classes
 
 distributed = pytest.importorskip("distributed", reason="dask[distributed] is not installed")
+dask = pytest.importorskip("dask")
 hd = pytest.importorskip("hitray.distributed")
 
 HITRAY = BUILD / "bin" / "hitray"
@@ -143,7 +144,11 @@ def test_distributed_worker_killed_mid_frame(client, tmp_path):
             os.kill(pids[victim], signal.SIGKILL)
             killed.append(fraction)
 
-    there = hd.render(scene, camera, size, client=client, tile=8, threads=1, progress=kill_once, **options)
+    # Fetching a finished tile from the dead worker, before the scheduler
+    # knows it is dead, is retried for the connect timeout (30 s by default):
+    # shorter here, so the test does not wait on it.
+    with dask.config.set({"distributed.comm.timeouts.connect": "3s"}):
+        there = hd.render(scene, camera, size, client=client, tile=8, threads=1, progress=kill_once, **options)
     assert killed and killed[0] < 1.0
     assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
     client.wait_for_workers(2, timeout=120)
