@@ -7,7 +7,13 @@
  * the samples at its own four corners, which any tile computes to the same
  * bits (corners on a tile's border are traced by both tiles). Each thread
  * owns its tracing context and corner rows for the whole render, so no ray
- * allocates. */
+ * allocates.
+ *
+ * A window (hr_render_options.window_*) renders a rectangle of the image:
+ * tiles cover the window only, but every sample, corner and block keeps its
+ * place on the full image (coordinates are the full image's throughout; only
+ * the store into the window's pixels subtracts its origin), so a window's
+ * pixels are the full render's bits. */
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -41,8 +47,9 @@ typedef struct render_job {
     hr_camera camera;
     hr_camera_frame frame; /* the camera's ray constants, once for the image */
     hr_render_options opt;
-    float *pixels;
-    int32_t width, height;
+    float *pixels;          /* the window's pixels */
+    int32_t width, height;  /* the full image's size */
+    int32_t win_x, win_y, win_width, win_height;
     /* 65536 x 65536 pixels in tiles of 1 is 2^32 tiles: past int32. */
     int64_t tiles_x, tiles_y, tile_count;
     int32_t max_depth;
@@ -119,6 +126,12 @@ static void poll_progress(void *user)
     pthread_mutex_unlock(&job->progress_lock);
 }
 
+/* The stored pixel (x, y) of the full image, inside the window. */
+static float *pixel_at(const render_job *job, int32_t x, int32_t y)
+{
+    return &job->pixels[3 * ((size_t)(y - job->win_y) * job->win_width + (size_t)(x - job->win_x))];
+}
+
 static hr_color trace_camera_ray(worker *w, double px, double py)
 {
     render_job *job = w->job;
@@ -156,26 +169,26 @@ static void render_tile_full(worker *w, int32_t x0, int32_t y0, int32_t x1, int3
 {
     render_job *job = w->job;
     int32_t block = job->opt.block_size;
-    /* Blocks are aligned to the image, not the tile, so a block that straddles
-     * tiles gets the same colour in both. */
+    /* Blocks are aligned to the full image, not the tile or the window, so a
+     * block that straddles tiles or windows gets the same colour in each:
+     * copying from a neighbour inside the tile gives the bits tracing the
+     * block's ray again would. */
     for (int32_t y = y0; y < y1; y++) {
         for (int32_t x = x0; x < x1; x++) {
             int32_t bx = x - x % block, by = y - y % block;
             if (block > 1 && x != bx && x != x0) {
                 /* Copy from the pixel to the left, inside this tile and block. */
-                memcpy(&job->pixels[3 * ((size_t)y * job->width + x)],
-                       &job->pixels[3 * ((size_t)y * job->width + x - 1)], 3 * sizeof(float));
+                memcpy(pixel_at(job, x, y), pixel_at(job, x - 1, y), 3 * sizeof(float));
                 continue;
             }
             if (block > 1 && y != by && y != y0) {
-                memcpy(&job->pixels[3 * ((size_t)y * job->width + x)],
-                       &job->pixels[3 * ((size_t)(y - 1) * job->width + x)], 3 * sizeof(float));
+                memcpy(pixel_at(job, x, y), pixel_at(job, x, y - 1), 3 * sizeof(float));
                 continue;
             }
             /* One pixel, or the one ray of a block over its whole area. */
             double bw = block < job->width - bx ? block : job->width - bx;
             double bh = block < job->height - by ? block : job->height - by;
-            full_pixel(w, bx, by, bw, bh, &job->pixels[3 * ((size_t)y * job->width + x)]);
+            full_pixel(w, bx, by, bw, bh, pixel_at(job, x, y));
         }
     }
 }
@@ -216,7 +229,7 @@ static void render_tile_adaptive(worker *w, int32_t x0, int32_t y0, int32_t x1, 
         for (int32_t i = 0; i < n; i++) below[i] = sample_corner(w, x0 + i, y + 1);
         for (int32_t x = x0; x < x1; x++) {
             int32_t i = x - x0;
-            float *px = &job->pixels[3 * ((size_t)y * job->width + x)];
+            float *px = pixel_at(job, x, y);
             if (corners_differ(&above[i], &above[i + 1], &below[i], &below[i + 1],
                                job->opt.adaptive_threshold)) {
                 full_pixel(w, x, y, 1.0, 1.0, px);
@@ -236,9 +249,11 @@ static void render_tile(worker *w, int64_t tile)
 {
     render_job *job = w->job;
     int32_t tsize = job->opt.tile_size;
-    int32_t x0 = (int32_t)(tile % job->tiles_x) * tsize, y0 = (int32_t)(tile / job->tiles_x) * tsize;
-    int32_t x1 = x0 + tsize < job->width ? x0 + tsize : job->width;
-    int32_t y1 = y0 + tsize < job->height ? y0 + tsize : job->height;
+    int32_t x0 = job->win_x + (int32_t)(tile % job->tiles_x) * tsize;
+    int32_t y0 = job->win_y + (int32_t)(tile / job->tiles_x) * tsize;
+    int32_t xend = job->win_x + job->win_width, yend = job->win_y + job->win_height;
+    int32_t x1 = tsize < xend - x0 ? x0 + tsize : xend;
+    int32_t y1 = tsize < yend - y0 ? y0 + tsize : yend;
     if (job->opt.adaptive_threshold > 0) render_tile_adaptive(w, x0, y0, x1, y1);
     else render_tile_full(w, x0, y0, x1, y1);
     if (w->tc.status) {
@@ -282,6 +297,30 @@ static int32_t core_count(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int32_t)n;
+}
+
+/* The window, once the image size is known: a width or height of 0 reaches
+ * to the image's edge; what is left must lie inside the image. Sums are
+ * taken in 64 bits, so no window overflows on its way to the check. */
+static hr_status check_window(hr_context *ctx, hr_render_options *o)
+{
+    if (o->window_x < 0 || o->window_y < 0 || o->window_width < 0 || o->window_height < 0)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: window x %d, y %d, width %d, height %d must not be negative",
+                        (int)o->window_x, (int)o->window_y, (int)o->window_width, (int)o->window_height);
+    if (o->window_x >= o->width || o->window_y >= o->height)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: window origin (%d, %d) lies outside the %dx%d image", (int)o->window_x,
+                        (int)o->window_y, (int)o->width, (int)o->height);
+    if (o->window_width == 0) o->window_width = o->width - o->window_x;
+    if (o->window_height == 0) o->window_height = o->height - o->window_y;
+    if ((int64_t)o->window_x + o->window_width > o->width ||
+        (int64_t)o->window_y + o->window_height > o->height)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: window %dx%d at (%d, %d) reaches past the %dx%d image", (int)o->window_width,
+                        (int)o->window_height, (int)o->window_x, (int)o->window_y, (int)o->width,
+                        (int)o->height);
+    return HR_OK;
 }
 
 static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_camera *cam)
@@ -329,7 +368,7 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: exact (trace every contribution) and a minimum weight %g exclude each other",
                         o->min_weight);
-    return HR_OK;
+    return check_window(ctx, o);
 }
 
 HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
@@ -376,16 +415,18 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
             st = hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: no view through it");
     }
     hr_image *image = NULL;
-    if (st == HR_OK) st = hr_image_create(ctx, job->opt.width, job->opt.height, 3, &image);
+    if (st == HR_OK) st = hr_image_create(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
     if (st) {
         free(job);
         return st;
     }
     job->pixels = hr_image_data(image);
     job->width = job->opt.width, job->height = job->opt.height;
+    job->win_x = job->opt.window_x, job->win_y = job->opt.window_y;
+    job->win_width = job->opt.window_width, job->win_height = job->opt.window_height;
     job->max_depth = job->opt.max_depth >= 0 ? job->opt.max_depth : scene->globals.max_recursion_depth;
-    job->tiles_x = (job->width + job->opt.tile_size - 1) / job->opt.tile_size;
-    job->tiles_y = (job->height + job->opt.tile_size - 1) / job->opt.tile_size;
+    job->tiles_x = (job->win_width + job->opt.tile_size - 1) / job->opt.tile_size;
+    job->tiles_y = (job->win_height + job->opt.tile_size - 1) / job->opt.tile_size;
     job->tile_count = job->tiles_x * job->tiles_y;
     pthread_mutex_init(&job->progress_lock, NULL);
 
@@ -443,7 +484,8 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         s.seconds = seconds;
         if (job->opt.samples_per_pixel > 1) s.effects |= HR_EFFECT_SUPERSAMPLING;
         if (adaptive)
-            s.samples_saved = (int64_t)job->width * job->height * job->opt.samples_per_pixel - (int64_t)s.primary;
+            s.samples_saved =
+                (int64_t)job->win_width * job->win_height * job->opt.samples_per_pixel - (int64_t)s.primary;
         memcpy(stats, &s, s.struct_size);
     }
     for (int32_t i = 0; workers && i < nthreads; i++) {

@@ -76,6 +76,22 @@ typedef struct hr_render_options {
                                   however slow its shapes (the progress
                                   callback is asked only every 65536 rays).
                                   hr_render then returns HR_ERROR_CANCELLED. */
+    /* Added with the render window (issue 14). A rectangle of the image of
+     * width x height: pixels window_x .. window_x + window_width - 1 of rows
+     * window_y .. window_y + window_height - 1, counted from the top left.
+     * The output image is the window's size (window_width x window_height),
+     * and each of its pixels is bit for bit the same pixel of the full
+     * render with the same options (samples, adaptive corners and Hill's
+     * blocks are all placed on the full image), so windows that tile the
+     * image give the full image exactly, however they cut tiles or blocks.
+     * The statistics and the progress fraction count the window's work
+     * only. All four 0 (the default): the whole image; a width or height
+     * of 0 reaches to the image's right or bottom edge. The window must lie
+     * inside the image. */
+    int32_t window_x;
+    int32_t window_y;
+    int32_t window_width;
+    int32_t window_height;
 } hr_render_options;
 
 /* The cut-off a render applies by default, 2^-24: POV-Ray's adc_bailout made
@@ -114,8 +130,9 @@ typedef struct hr_render_stats {
                                 have spawned) */
 } hr_render_stats;
 
-/* Render into a new image of width x height x 3 linear floats. `stats` may
- * be NULL. The scene must be committed. */
+/* Render into a new image of width x height x 3 linear floats (the
+ * window's size where a window is set). `stats` may be NULL. The scene must
+ * be committed. */
 HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
                            const hr_render_options *options, hr_image **out_image,
                            hr_render_stats *stats);

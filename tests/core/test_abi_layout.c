@@ -91,7 +91,7 @@ PIN_SIZE(hr_camera, 96);
 PIN_OFF(hr_camera, eye, 16);
 PIN_OFF(hr_camera, view_angle, 88);
 /* Both grew at their ends (older callers pass a smaller struct_size). */
-PIN_SIZE(hr_render_options, 88);
+PIN_SIZE(hr_render_options, 104);
 PIN_OFF(hr_render_options, progress, 40);
 PIN_OFF(hr_render_options, progress_user, 48);
 PIN_OFF(hr_render_options, adaptive_threshold, 56);
@@ -99,6 +99,11 @@ PIN_OFF(hr_render_options, min_weight, 64);
 PIN_OFF(hr_render_options, exact, 72);
 PIN_OFF(hr_render_options, reserved2, 76);
 PIN_OFF(hr_render_options, cancel, 80);
+/* The render window (issue 14), appended after cancel. */
+PIN_OFF(hr_render_options, window_x, 88);
+PIN_OFF(hr_render_options, window_y, 92);
+PIN_OFF(hr_render_options, window_width, 96);
+PIN_OFF(hr_render_options, window_height, 100);
 PIN_SIZE(hr_render_stats, 80);
 PIN_OFF(hr_render_stats, primary, 8);
 PIN_OFF(hr_render_stats, seconds, 40);

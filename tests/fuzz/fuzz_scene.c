@@ -10,7 +10,8 @@
  * default contribution cut-off bounds the rest); the render runs on two
  * threads in tiles of one pixel, so the thread pool and the per-thread
  * trace contexts are in the path (the image must not depend on them: a
- * second render on one thread must give the same bits). Relative mesh names
+ * second render on one thread, in two windows split at a column the input
+ * picks, must give the same bits). Relative mesh names
  * resolve in tests/data/meshes. Never a crash, a hang (-timeout) or a leak. */
 #include <math.h>
 #include <string.h>
@@ -39,12 +40,15 @@ static void require_message(const char *step, hr_status st)
     if (!hr_context_last_error(ctx)[0]) fuzz_fail("scene: %s failed (status %d) without a message", step, (int)st);
 }
 
+/* A render of the WIDTH x HEIGHT image, or of the window of its columns
+ * x0 .. x0 + columns - 1 (columns 0: the whole image). */
 static hr_image *render(const hr_scene *scene, const hr_camera *camera, int32_t threads, int32_t depth,
-                        hr_status *st)
+                        int32_t x0, int32_t columns, hr_status *st)
 {
     hr_render_options o;
     hr_render_options_default(&o);
     o.width = WIDTH, o.height = HEIGHT;
+    o.window_x = x0, o.window_width = columns;
     o.threads = threads;
     o.tile_size = 1;
     o.max_depth = depth;
@@ -76,7 +80,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int32_t depth = MAX_DEPTH;
     if (hr_scene_get_globals(r.scene, &g) == HR_OK && g.max_recursion_depth < MAX_DEPTH)
         depth = g.max_recursion_depth;
-    hr_image *image = render(r.scene, &r.camera, 2, depth, &st);
+    hr_image *image = render(r.scene, &r.camera, 2, depth, 0, 0, &st);
     if (!image) {
         require_message("render", st);
         hr_scene_destroy(r.scene);
@@ -86,11 +90,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (int i = 0; i < WIDTH * HEIGHT * 3; i++)
         if (!isfinite(px[i]))
             fuzz_fail("scene: pixel %d channel %d is %g", i / 3, i % 3, (double)px[i]);
-    hr_image *again = render(r.scene, &r.camera, 1, depth, &st);
-    if (!again) fuzz_fail("scene: the second render failed (status %d): %s", (int)st, hr_context_last_error(ctx));
-    if (memcmp(px, hr_image_data(again), sizeof(float) * WIDTH * HEIGHT * 3) != 0)
-        fuzz_fail("scene: the image on one thread differs from the image on two");
-    hr_image_destroy(again);
+    const int32_t split = 1 + (int32_t)(size % (WIDTH - 1)); /* 1 .. WIDTH - 1 */
+    for (int half = 0; half < 2; half++) {
+        const int32_t x0 = half ? split : 0, columns = half ? WIDTH - split : split;
+        hr_image *again = render(r.scene, &r.camera, 1, depth, x0, columns, &st);
+        if (!again)
+            fuzz_fail("scene: the render of a window failed (status %d): %s", (int)st, hr_context_last_error(ctx));
+        if (hr_image_width(again) != columns || hr_image_height(again) != HEIGHT)
+            fuzz_fail("scene: a window of %d columns gave a %dx%d image", (int)columns, (int)hr_image_width(again),
+                      (int)hr_image_height(again));
+        const float *w = hr_image_data(again);
+        for (int32_t y = 0; y < HEIGHT; y++)
+            if (memcmp(&px[3 * (y * WIDTH + x0)], &w[3 * y * columns], sizeof(float) * 3 * (size_t)columns) != 0)
+                fuzz_fail("scene: row %d of the window at column %d on one thread differs from the image on two",
+                          (int)y, (int)x0);
+        hr_image_destroy(again);
+    }
     hr_image_destroy(image);
     hr_scene_destroy(r.scene);
     return 0;

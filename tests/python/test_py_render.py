@@ -223,6 +223,14 @@ def test_an_exception_in_the_progress_callable_cancels_and_is_raised(demo):
     (dict(camera="cam"), TypeError),
     (dict(camera=hitray.Camera((0, 0, 0), (0, 0, 0), (0, 1, 0), 45)), hitray.ArgumentError),
     (dict(camera=hitray.Camera((0, 0, 5), (0, 0, 0), (0, 1, 0), 180)), hitray.ArgumentError),
+    (dict(window=(0, 0, 0, 4)), ValueError),
+    (dict(window=(6, 0, 3, 1)), ValueError),
+    (dict(window=(-1, 0, 2, 2)), ValueError),
+    (dict(window=(0, 0, 2)), TypeError),
+    (dict(window=(0, 0, 2.0, 2)), TypeError),
+    (dict(adaptive=0.1), hitray.ArgumentError),  # needs spp >= 2
+    (dict(adaptive=1.5, spp=4), hitray.ArgumentError),
+    (dict(min_weight=0.1, exact=True), hitray.ArgumentError),
 ])
 def test_bad_render_arguments_raise(demo, kwargs, error):
     scene, camera = demo
@@ -230,6 +238,20 @@ def test_bad_render_arguments_raise(demo, kwargs, error):
     args.update(kwargs)
     with pytest.raises(error):
         hitray.render(scene, **args)
+
+
+def test_a_window_is_that_part_of_the_full_render(demo):
+    """window=(x, y, w, h): a w x h image, bit for bit those pixels of the
+    full render, for adaptive supersampling and Hill's blocks too (the C
+    tests tile frames in every way; this is the binding's pass-through)."""
+    scene, camera = demo
+    for options in (dict(spp=4, adaptive=0.05), dict(block_size=3, depth=1), dict(spp=2, exact=True)):
+        full = np.asarray(hitray.render(scene, camera, (40, 30), progress=False, **options))
+        part = hitray.render(scene, camera, (40, 30), progress=False, window=(7, 4, 17, 11), **options)
+        assert part.shape == (11, 17, 3)
+        assert np.array_equal(np.asarray(part), full[4:15, 7:24]), options
+    with pytest.raises(ValueError, match=r"window 3x1 at \(6, 0\) must be at least 1x1 and lie inside the 8x8"):
+        hitray.render(scene, camera, (8, 8), progress=False, window=(6, 0, 3, 1))
 
 
 def test_camera_moves_and_rays():

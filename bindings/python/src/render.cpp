@@ -12,6 +12,9 @@
 #include "image_handle.h"
 #include "scene_handle.h"
 
+#include <pybind11/stl.h>
+
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -90,7 +93,8 @@ bool poll_python(const py::object &progress, double fraction, double &reported)
 
 py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_t height, int32_t spp,
                   int32_t threads, int32_t depth, int32_t block_size, bool all_effects,
-                  double adaptive, double min_weight, bool exact, const py::object &progress)
+                  double adaptive, double min_weight, bool exact, const std::array<int32_t, 4> &window,
+                  const py::object &progress)
 {
     auto run = std::make_unique<RenderRun>();
     run->scene = committed_scene(s);
@@ -108,6 +112,10 @@ py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_
     run->options.adaptive_threshold = adaptive;
     run->options.min_weight = min_weight;
     run->options.exact = exact ? 1 : 0;
+    run->options.window_x = window[0];
+    run->options.window_y = window[1];
+    run->options.window_width = window[2];
+    run->options.window_height = window[3];
     run->options.progress = on_progress;
     run->options.progress_user = run.get();
     run->options.cancel = &run->cancel_flag;
@@ -169,7 +177,7 @@ void bind_render(py::module_ &m)
     m.def("render", &render, py::arg("scene"), py::arg("camera"), py::arg("width"), py::arg("height"),
           py::arg("spp"), py::arg("threads"), py::arg("depth"), py::arg("block_size"),
           py::arg("all_effects"), py::arg("adaptive"), py::arg("min_weight"), py::arg("exact"),
-          py::arg("progress"));
+          py::arg("window"), py::arg("progress"));
 }
 
 }  // namespace hitray_py

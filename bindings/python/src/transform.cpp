@@ -6,6 +6,7 @@
 
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstdio>
 
 namespace hitray_py {
@@ -61,6 +62,22 @@ void bind_transform(py::module_ &m)
                             "matrix: singular, not affine (last row must be 0 0 0 1) or not finite");
             return out;
         })
+        // Pickled as the pair itself, matrix and inverse bit for bit (a
+        // scene shipped to another process, hitray.distributed, must trace
+        // the same rays); a pair that is not finite is refused.
+        .def(py::pickle(
+            [](const Transform &self) { return py::make_tuple(as_array(self.t.m), as_array(self.t.inv)); },
+            [](const py::tuple &state) {
+                if (state.size() != 2) throw py::value_error("Transform: expected (matrix, inverse)");
+                auto m = state[0].cast<std::array<double, 16>>(), inv = state[1].cast<std::array<double, 16>>();
+                Transform out;
+                for (size_t i = 0; i < 16; i++) {
+                    if (!std::isfinite(m[i]) || !std::isfinite(inv[i]))
+                        raise_error(HR_ERROR_NUMERIC, "Transform: a pickled matrix is not finite");
+                    out.t.m[i] = m[i], out.t.inv[i] = inv[i];
+                }
+                return out;
+            }))
         .def_property_readonly("matrix", [](const Transform &self) { return as_array(self.t.m); })
         .def_property_readonly("inverse", [](const Transform &self) { return as_array(self.t.inv); });
 }

@@ -56,12 +56,28 @@ class _Bar:
         self._bar.close()
 
 
+def _window(window: Any, width: int, height: int) -> Tuple[int, int, int, int]:
+    """(x, y, width, height) of a render window, checked against the image
+    size here so the error names the window as the caller wrote it."""
+    try:
+        x, y, ww, wh = window
+    except (TypeError, ValueError):
+        raise TypeError(f"render: window must be (x, y, width, height), got {window!r}") from None
+    x, y = _convert.integer(x, "window x"), _convert.integer(y, "window y")
+    ww, wh = _convert.integer(ww, "window width"), _convert.integer(wh, "window height")
+    if x < 0 or y < 0 or ww < 1 or wh < 1 or x + ww > width or y + wh > height:
+        raise ValueError(f"render: window {ww}x{wh} at ({x}, {y}) must be at least 1x1 and lie inside "
+                         f"the {width}x{height} image")
+    return (x, y, ww, wh)
+
+
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480),
            spp: int = 1, threads: Optional[int] = None, depth: Optional[int] = None,
            progress: Progress = True, *, block: Optional[int] = None, effects: str = "auto",
            adaptive: Optional[float] = None, min_weight: Optional[float] = None,
            exact: bool = False, block_size: Optional[int] = None,
-           all_effects: bool = False) -> RenderedImage:
+           all_effects: bool = False,
+           window: Optional[Tuple[int, int, int, int]] = None) -> RenderedImage:
     """Render `scene` through `camera` into a new :class:`Image` of `size`
     (width, height).
 
@@ -90,6 +106,11 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
             the library's default, 2^-24.
         exact: trace every contribution, however small (``--exact``; not
             with min_weight).
+        window: (x, y, width, height): render only this rectangle of the
+            `size` image, into an Image of width x height whose pixels are
+            bit for bit those of the full render (so windows that tile the
+            frame give it exactly; hitray.distributed renders that way).
+            None: the whole image.
 
     The GIL is released while the render runs, so other Python threads run
     and several renders can run at once. Ctrl-C (KeyboardInterrupt), or an
@@ -114,6 +135,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     # against min_weight) and says what is wrong: ArgumentError.
     threshold = 0.0 if adaptive is None else _convert.number(adaptive, "adaptive")
     weight = 0.0 if min_weight is None else _convert.number(min_weight, "min_weight")
+    rect = (0, 0, w, h) if window is None else _window(window, w, h)
     if camera is None:
         camera = scene.frame_camera((w, h))
     elif not isinstance(camera, Camera):
@@ -133,7 +155,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
         raise TypeError("render: progress must be True, False or a callable taking the fraction done")
     try:
         core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, blocks,
-                                  all_paths, threshold, weight, bool(exact), callback)
+                                  all_paths, threshold, weight, bool(exact), rect, callback)
     finally:
         if bar is not None:
             bar.close()

@@ -187,6 +187,23 @@ class Scene:
         scene._live = core
         return scene
 
+    def _description(self) -> Tuple[Optional[_SDLSource], List[Union[_AddObject, _AddLight]],
+                                    Dict[str, Any]]:
+        """What the scene is built from: the scene file source, the objects
+        and lights added, the globals set (copies of the lists, taken under
+        the lock; hitray.distributed ships them)."""
+        with self._lock:
+            return self._sdl, list(self._ops), dict(self._globals)
+
+    @classmethod
+    def _from_description(cls, sdl: Optional[_SDLSource], ops: List[Union[_AddObject, _AddLight]],
+                          globals_: Dict[str, Any]) -> "Scene":
+        """The scene :meth:`_description` describes, built on first use."""
+        scene = cls()
+        scene._sdl, scene._ops, scene._globals = sdl, list(ops), dict(globals_)
+        scene._live = None
+        return scene
+
     # --- the library scene ----------------------------------------------------
     def _build(self) -> Any:
         core = self._sdl.load(warn=False)[0] if self._sdl is not None else _core.Scene()

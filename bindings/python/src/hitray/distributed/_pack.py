@@ -1,0 +1,278 @@
+"""A Scene made portable: its description and every file it references, in
+one picklable object that a worker rebuilds the same scene from, bit for
+bit, with no shared file system.
+
+What a scene references: the files its shapes read (a mesh's ``file``).
+The library knows no shape by name, so neither does this: every string a
+shape is given (a Python-built shape's string parameters, every word of a
+scene file's text) that names a regular file, relative to the scene's
+directory or absolute, is carried. A word that happens to name a file
+costs its bytes and nothing else. On the worker the files are written
+under a private directory at their own absolute paths (so ``../meshes/x``
+from the scene's directory lands where it did on the client), the scene's
+directory becomes that directory's copy, and absolute names are rewritten
+to point into it.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import os
+import pickle
+import shutil
+import stat
+import tempfile
+import threading
+import weakref
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+
+from ..scene import Scene, _AddLight, _AddObject, _SDLSource
+from ..shapes import Shape
+
+__all__ = ["ScenePack", "MAX_SHIPPED_BYTES"]
+
+# The most a scene's files may add up to: a shipped scene is held in memory
+# by the client, the scheduler's messages and every worker.
+MAX_SHIPPED_BYTES = 1 << 30
+
+# Where SDL's lexer ends a word (lib/sdl_lexer.c): white space, braces and
+# the comment mark.
+_SDL_BREAKS = frozenset(b" \t\r\n\v\f{}!")
+
+
+class ShippingError(ValueError):
+    """A scene that cannot be shipped (a referenced file too large, a scene
+    file that can no longer be read)."""
+
+
+def _sdl_words(text: bytes) -> List[Tuple[int, int]]:
+    """The (start, end) byte spans of the words of SDL text, as the
+    library's lexer cuts them (comments skipped)."""
+    spans: List[Tuple[int, int]] = []
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == 0x21:  # '!': a comment to the end of the line
+            end = text.find(b"\n", i)
+            i = n if end < 0 else end
+        elif c in _SDL_BREAKS:
+            i += 1
+        else:
+            start = i
+            while i < n and text[i] not in _SDL_BREAKS:
+                i += 1
+            spans.append((start, i))
+    return spans
+
+
+class _Files:
+    """The files a scene references, gathered on the client."""
+
+    def __init__(self) -> None:
+        self.contents: Dict[bytes, bytes] = {}
+        self.total = 0
+
+    def carry(self, name: bytes, base_dir: Optional[bytes]) -> Optional[bytes]:
+        """If `name` (relative to `base_dir`) names a regular file, carry it
+        and return its place (the normalised absolute path); else None."""
+        if not name or b"\0" in name:
+            return None
+        if os.path.isabs(name):
+            full = name
+        elif base_dir:
+            full = os.path.join(base_dir, name)
+        else:
+            return None
+        try:
+            info = os.stat(full)
+        except (OSError, ValueError):
+            return None
+        if not stat.S_ISREG(info.st_mode):
+            return None
+        place = os.path.normpath(full)
+        if place in self.contents:
+            return place
+        if self.total + info.st_size > MAX_SHIPPED_BYTES:
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(full)}: the scene's files would exceed "
+                                f"{MAX_SHIPPED_BYTES} bytes, the most a shipped scene carries")
+        try:
+            with open(full, "rb") as f:
+                data = f.read(MAX_SHIPPED_BYTES - self.total + 1)
+        except OSError as e:
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(full)}: cannot read it to ship it "
+                                f"with the scene: {e.strerror}") from None
+        if self.total + len(data) > MAX_SHIPPED_BYTES:
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(full)}: the scene's files would exceed "
+                                f"{MAX_SHIPPED_BYTES} bytes, the most a shipped scene carries")
+        self.contents[place] = data
+        self.total += len(data)
+        return place
+
+
+class _ShippedFile:
+    """A shape's string parameter that names a carried file: its place."""
+
+    __slots__ = ("place",)
+
+    def __init__(self, place: bytes) -> None:
+        self.place = place
+
+    def __getstate__(self) -> bytes:
+        return self.place
+
+    def __setstate__(self, state: bytes) -> None:
+        self.place = state
+
+
+def _map_strings(shape: Shape, fn: Callable[[Any], Any]) -> Shape:
+    """A copy of the shape tree with every string parameter (and carried
+    file) mapped by `fn`. The tree is walked with a stack of its own, not by
+    recursion, as Scene adds it (a chain of booleans may be deep)."""
+    order: List[Shape] = []
+    stack = [shape]
+    while stack:
+        node = stack.pop()
+        order.append(node)
+        stack.extend(v for v in node._params.values() if isinstance(v, Shape))
+    copies: Dict[int, Shape] = {}
+    for node in reversed(order):  # operands before what consumes them
+        out = copy.copy(node)
+        out._params = {key: copies[id(v)] if isinstance(v, Shape)
+                       else fn(v) if isinstance(v, (str, bytes, os.PathLike, _ShippedFile)) else v
+                       for key, v in node._params.items()}
+        copies[id(node)] = out
+    return copies[id(shape)]
+
+
+Op = Union[_AddObject, _AddLight]
+
+
+class ScenePack:
+    """Everything a worker needs to rebuild a Scene: the scene file's text
+    (with the spans of its absolute file names), the objects, lights and
+    globals added in Python, and the referenced files by absolute path.
+    ``key`` is a digest of all of it, so the same scene ships once."""
+
+    __slots__ = ("key", "_sdl", "_spans", "_ops", "_globals", "_files", "_lock", "_scene", "__weakref__")
+
+    def __init__(self, scene: Scene) -> None:
+        sdl, ops, globals_ = scene._description()
+        files = _Files()
+        self._spans: List[Tuple[int, int]] = []
+        self._sdl: Optional[_SDLSource] = None
+        if sdl is not None:
+            text = sdl.text
+            if text is None:
+                # The library read it, but it could not be read back then.
+                raise ShippingError(f"hitray.distributed: {os.fsdecode(sdl.path or b'?')}: the scene file "
+                                    "could not be read back to ship it")
+            if not sdl.nff:
+                # NFF names no files; SDL's words may.
+                for start, end in _sdl_words(text):
+                    word = text[start:end]
+                    if files.carry(word, sdl.base_dir) is not None and os.path.isabs(word):
+                        self._spans.append((start, end))
+            self._sdl = _SDLSource(text, sdl.name, sdl.base_dir, None, sdl.nff)
+        self._ops: List[Op] = []
+        for op in ops:
+            if isinstance(op, _AddObject):
+                base = op.base_dir
+
+                def carried(value: Any, base: bytes = base) -> Any:
+                    place = files.carry(os.fsencode(value), base)
+                    return value if place is None else _ShippedFile(place)
+
+                self._ops.append(_AddObject(_map_strings(op.shape, carried), dict(op.material), base))
+            else:
+                self._ops.append(op)
+        self._globals = globals_
+        self._files = files.contents
+        digest = hashlib.sha256(pickle.dumps(self._state(), protocol=pickle.HIGHEST_PROTOCOL))
+        self.key = "hitray-scene-" + digest.hexdigest()
+        self._lock = threading.Lock()
+        self._scene: Optional[Scene] = None
+
+    @property
+    def shipped_bytes(self) -> int:
+        """The bytes of the files carried."""
+        return sum(len(v) for v in self._files.values())
+
+    @property
+    def files(self) -> List[str]:
+        """The absolute paths of the files carried, sorted."""
+        return sorted(os.fsdecode(p) for p in self._files)
+
+    # --- pickling: the description, not what a worker built from it --------
+    def _state(self) -> Tuple[Any, ...]:
+        sdl = None if self._sdl is None else (self._sdl.text, self._sdl.name, self._sdl.base_dir,
+                                               self._sdl.nff)
+        ops = [("object", op.shape, op.material, op.base_dir) if isinstance(op, _AddObject)
+               else ("light", op.position, op.color) for op in self._ops]
+        return (sdl, self._spans, ops, self._globals, self._files)
+
+    def __getstate__(self) -> Tuple[Any, ...]:
+        return (self.key,) + self._state()
+
+    def __setstate__(self, state: Tuple[Any, ...]) -> None:
+        self.key, sdl, self._spans, ops, self._globals, self._files = state
+        self._sdl = None if sdl is None else _SDLSource(sdl[0], sdl[1], sdl[2], None, sdl[3])
+        self._ops = [_AddObject(op[1], op[2], op[3]) if op[0] == "object" else _AddLight(op[1], op[2])
+                     for op in ops]
+        self._lock = threading.Lock()
+        self._scene = None
+
+    def __dask_tokenize__(self) -> str:
+        return self.key
+
+    # --- on the worker -----------------------------------------------------
+    def scene(self) -> Scene:
+        """The scene, rebuilt once per process (its files written under a
+        private directory removed when this pack is dropped)."""
+        with self._lock:
+            if self._scene is None:
+                self._scene = self._rebuild()
+            return self._scene
+
+    def _rebuild(self) -> Scene:
+        root = os.fsencode(tempfile.mkdtemp(prefix="hitray-scene-"))
+        weakref.finalize(self, shutil.rmtree, root, True)
+
+        def place(path: bytes) -> bytes:
+            return os.path.join(root, path.lstrip(b"/"))
+
+        for path, data in self._files.items():
+            target = place(path)
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            with open(target, "wb") as f:
+                f.write(data)
+        sdl = None
+        if self._sdl is not None:
+            text, base_dir = self._sdl.text, self._sdl.base_dir
+            assert text is not None
+            if base_dir:
+                base_dir = place(base_dir)
+                os.makedirs(base_dir, exist_ok=True)
+            if self._spans:
+                if any(c in _SDL_BREAKS for c in root):
+                    raise ShippingError(f"hitray.distributed: the worker's temporary directory "
+                                        f"{os.fsdecode(root)!r} has a character SDL ends a file name at; "
+                                        "set TMPDIR to a plain path")
+                pieces, at = [], 0
+                for start, end in self._spans:
+                    pieces += [text[at:start], place(text[start:end])]
+                    at = end
+                text = b"".join(pieces + [text[at:]])
+            sdl = _SDLSource(text, self._sdl.name, base_dir, None, self._sdl.nff)
+
+        def shipped(value: Any) -> Any:
+            return place(value.place) if isinstance(value, _ShippedFile) else value
+
+        ops: List[Op] = [_AddObject(_map_strings(op.shape, shipped), op.material, place(op.base_dir))
+                         if isinstance(op, _AddObject) else op for op in self._ops]
+        for op in ops:
+            if isinstance(op, _AddObject):
+                os.makedirs(op.base_dir, exist_ok=True)
+        scene = Scene._from_description(sdl, ops, self._globals)
+        scene._committed()  # build and commit now: a bad scene fails here, once
+        return scene

@@ -1,0 +1,442 @@
+"""hitray.distributed on a LocalCluster of 2 worker processes on loopback,
+started once for the module: frames bit-identical to hitray.render (EXR
+bytes compared) for every option and tile size, a worker killed mid-frame,
+a scene whose mesh file only the client can read, animations written,
+skipped and resumed, cancellation, and bad input."""
+
+import os
+import pathlib
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import hitray
+
+from conftest import BUILD, ROOT, TWO_SPHERES_SDL, require_classes
+
+distributed = pytest.importorskip("distributed", reason="dask[distributed] is not installed")
+dask = pytest.importorskip("dask")
+hd = pytest.importorskip("hitray.distributed")
+
+HITRAY = BUILD / "bin" / "hitray"
+MESH_SCENE = ROOT / "tests" / "scenes" / "mesh_solids.sdl"
+CUBE_3VN = ROOT / "tests" / "data" / "meshes" / "cube.3vn"
+
+# ((A | B) - bite) on a mirror floor: booleans nested, shadows and
+# reflections through them.
+CSG_SDL = """\
+camera 0 2 6   0 0.3 0   0 1 0   40
+light 4 6 5   1 1 1
+diffuse 0.9 0.2 0.1 specular 0.5 0.5 0.5 specularExponent 25
+difference
+  union
+    sphere
+    push translate 0.6 0 0.4 diffuse 0.1 0.8 0.2 sphere pop
+  push translate 0 0.4 1.1 scale .6 .6 .6 sphere pop
+push translate 0 -1 0 rotate -90 1 0 0 diffuse 0.5 0.5 0.5 reflectivity 0.6 plane pop
+"""
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       host="127.0.0.1", dashboard_address=":0")
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+def exr_bytes(image, path):
+    image.save(path)
+    return pathlib.Path(path).read_bytes()
+
+
+def two_spheres():
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere().translate(-0.8, 1, 0), diffuse=(0.8, 0.2, 0.2), specular=(0.5, 0.5, 0.5),
+              specularExponent=20)
+    scene.add(hitray.Sphere().translate(1, 1, -0.5), diffuse=(0.1, 0.1, 0.1), transparency=0.8,
+              speedOfLight=0.7)
+    scene.add(hitray.Plane().rotate(-90, 1, 0, 0), diffuse=(0.6, 0.6, 0.6), reflectivity=0.5)
+    scene.light((5, 8, 6), (1, 1, 1))
+    return scene, hitray.Camera((0, 2, 8), (0, 1, 0), (0, 1, 0), 40)
+
+
+def scene_of(kind):
+    if kind == "mesh":
+        require_classes("mesh")
+        return hitray.load_sdl(MESH_SCENE)
+    if kind == "csg":
+        require_classes("union", "difference")
+        return hitray.parse_sdl(CSG_SDL, "csg.sdl")
+    return two_spheres()
+
+
+# (scene, options) of the identity checks: spp 1 and 16, adaptive, blocks
+# and depth, a mesh scene and a CSG scene.
+CASES = {
+    "spp1": ("spheres", {}),
+    "spp16": ("spheres", {"spp": 16}),
+    "adaptive": ("spheres", {"spp": 8, "adaptive": 0.03}),
+    "block3-depth1": ("spheres", {"block_size": 3, "depth": 1}),
+    "mesh": ("mesh", {"spp": 2}),
+    "csg": ("csg", {"spp": 4, "adaptive": 0.05}),
+}
+
+
+@pytest.mark.parametrize("tile", [17, 64])
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_distributed_frame_identity(client, tmp_path, case, tile):
+    """Tiles of 17 (cutting blocks of 3 and adaptive corners) and 64 (one
+    tile in a row, another cut by the edge) give the single render's EXR."""
+    kind, options = CASES[case]
+    scene, camera = scene_of(kind)
+    size = (70, 45)
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    there = hd.render(scene, camera, size, client=client, tile=tile, progress=False, **options)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    # Without adaptive corners or blocks shared by two tiles, the tiles cast
+    # exactly the full render's rays.
+    if "adaptive" not in options and "block_size" not in options:
+        assert there.stats.rays == here.stats.rays
+    assert there.stats.effects == here.stats.effects
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_distributed_frame_identity_one_pixel_tiles(client, tmp_path, case):
+    kind, options = CASES[case]
+    scene, camera = scene_of(kind)
+    size = (19, 13)  # 247 tiles
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    there = hd.render(scene, camera, size, client=client, tile=1, progress=False, **options)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+
+
+def test_distributed_windows_cover_the_frame():
+    tiles = hd.windows((70, 45), 17)
+    covered = np.zeros((45, 70), dtype=int)
+    for x, y, w, h in tiles:
+        covered[y:y + h, x:x + w] += 1
+    assert (covered == 1).all() and len(tiles) == 5 * 3
+
+
+def test_distributed_worker_killed_mid_frame(client, tmp_path):
+    """One worker is killed (SIGKILL) once the first tile is back: its tiles
+    run again on the other and on the worker its nanny restarts, and the
+    frame is the same bits."""
+    scene, camera = two_spheres()
+    size, options = (64, 48), {"spp": 24}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    pids = client.run(os.getpid)
+    victim = sorted(pids)[0]
+    killed = []
+
+    def kill_once(fraction):
+        if not killed:
+            os.kill(pids[victim], signal.SIGKILL)
+            killed.append(fraction)
+
+    # Fetching a finished tile from the dead worker, before the scheduler
+    # knows it is dead, is retried for the connect timeout (30 s by default):
+    # shorter here, so the test does not wait on it.
+    with dask.config.set({"distributed.comm.timeouts.connect": "3s"}):
+        there = hd.render(scene, camera, size, client=client, tile=8, threads=1, progress=kill_once, **options)
+    assert killed and killed[0] < 1.0
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    client.wait_for_workers(2, timeout=120)
+    assert pids[victim] not in client.run(os.getpid).values()
+
+
+def test_distributed_mesh_only_on_the_client(client, tmp_path):
+    """A mesh file in a directory only this process can name
+    (/proc/self/fd/N is each process's own): the workers cannot read it,
+    yet the scene renders there from the copy shipped with it, named
+    relative to the scene's directory and by an absolute path."""
+    require_classes("mesh")
+    shutil.copy(CUBE_3VN, tmp_path / "cube.3vn")
+    fd = os.open(tmp_path, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        private = f"/proc/self/fd/{fd}"
+        assert os.path.isfile(f"{private}/cube.3vn")
+        assert not any(client.run(os.path.isfile, f"{private}/cube.3vn").values())
+        text = ("camera 3 2.5 4 0 0 0 0 1 0 40\nlight 4 6 5 1 1 1\n"
+                "push diffuse 0.8 0.3 0.2 rotate 30 0 1 0 mesh cube.3vn pop\n"
+                f"push translate 0 -1.5 0 scale 0.5 0.5 0.5 diffuse 0.2 0.5 0.9 mesh {private}/cube.3vn pop\n")
+        scene, camera = hitray.parse_sdl(text, "private.sdl", base_dir=private)
+        pack = hd.ScenePack(scene)
+        assert pack.files == [f"{private}/cube.3vn"]
+        here = hitray.render(scene, camera, (40, 30), progress=False)
+        there = hd.render(scene, camera, (40, 30), client=client, tile=16, progress=False)
+        assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+        # A scene built in Python: the mesh's file is a string parameter.
+        built = hitray.Scene()
+        built.add(hitray.Mesh(f"{private}/cube.3vn").rotate(20, 1, 1, 0), diffuse=(0.9, 0.9, 0.2))
+        built.light((4, 6, 5))
+        here = hitray.render(built, camera, (40, 30), progress=False)
+        there = hd.render(built, camera, (40, 30), client=client, tile=16, progress=False)
+        assert exr_bytes(there, tmp_path / "there2.exr") == exr_bytes(here, tmp_path / "here2.exr")
+    finally:
+        os.close(fd)
+
+
+def orbit(i, count=12):
+    scene, _ = two_spheres()
+    angle = 2 * np.pi * i / count
+    return scene, hitray.Camera((8 * np.sin(angle), 2, 8 * np.cos(angle)), (0, 1, 0), (0, 1, 0), 40)
+
+
+def test_distributed_animation_writes_skips_and_resumes(client, tmp_path):
+    pattern = str(tmp_path / "frame_%02d.png")
+    size = (32, 24)
+    written = hd.render_frames(orbit, pattern, count=12, size=size, spp=2, client=client, tile=16,
+                               progress=False)
+    assert sorted(written) == [pattern % i for i in range(12)]  # in the order they completed
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"frame_{i:02d}.png" for i in range(12)]
+    for i in (0, 5, 11):
+        scene, camera = orbit(i)
+        hitray.render(scene, camera, size, spp=2, progress=False).save(tmp_path / "here.png")
+        assert (tmp_path / "here.png").read_bytes() == pathlib.Path(pattern % i).read_bytes()
+    os.remove(tmp_path / "here.png")
+    stamps = {p: p.stat().st_mtime_ns for p in tmp_path.iterdir()}
+    # A rerun has nothing to do.
+    assert hd.render_frames(orbit, pattern, count=12, size=size, spp=2, client=client, tile=16,
+                            progress=False) == []
+    assert {p: p.stat().st_mtime_ns for p in tmp_path.iterdir()} == stamps
+
+    # Interrupted after 4 frames of a fresh run, then resumed: every frame
+    # is written once, the first 4 are left alone, and the images are the
+    # same bits as the uninterrupted run's.
+    first = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    again = tmp_path / "again"
+    again.mkdir()
+    pattern2 = str(again / "frame_%02d.png")
+
+    class Stop(Exception):
+        pass
+
+    def stop_after_four(index, path):
+        if len(os.listdir(again)) == 4:
+            raise Stop
+
+    with pytest.raises(Stop):
+        hd.render_frames(orbit, pattern2, count=12, size=size, spp=2, client=client, tile=16,
+                         progress=False, frames_in_flight=2, on_frame=stop_after_four)
+    done = sorted(os.listdir(again))
+    assert len(done) == 4
+    stamps = {name: (again / name).stat().st_mtime_ns for name in done}
+    rest = hd.render_frames(orbit, pattern2, count=12, size=size, spp=2, client=client, tile=16,
+                            progress=False)
+    assert sorted(os.path.basename(p) for p in rest) == sorted(set(first) - set(done))
+    assert {name: (again / name).stat().st_mtime_ns for name in done} == stamps
+    assert {p.name: p.read_bytes() for p in again.iterdir()} == first
+
+
+def tile_tasks(client):
+    """Keys of hitray tiles the scheduler still knows."""
+    def on_scheduler(dask_scheduler):
+        return [k for k in dask_scheduler.tasks if str(k).startswith("hitray-tile-")]
+    return client.run_on_scheduler(on_scheduler)
+
+
+def test_distributed_interrupt_cancels_the_tiles(client):
+    """Ctrl-C (a KeyboardInterrupt in the waiting loop) cancels every tile
+    still out and is raised."""
+    scene, camera = two_spheres()
+
+    def interrupt(fraction):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        hd.render(scene, camera, (64, 48), spp=16, client=client, tile=4, progress=interrupt)
+    for _ in range(200):  # the scheduler forgets cancelled tasks soon after
+        if not tile_tasks(client):
+            break
+        time.sleep(0.05)
+    assert tile_tasks(client) == []
+
+
+def test_distributed_bad_input_raises_on_the_client(client, tmp_path):
+    scene, camera = two_spheres()
+    with pytest.raises(hitray.ArgumentError, match="adaptive supersampling needs samples per pixel >= 2"):
+        hd.render(scene, camera, (20, 10), adaptive=0.1, client=client, progress=False)
+    with pytest.raises(ValueError, match="tile must be within 1..65536 pixels, not 0"):
+        hd.render(scene, camera, (20, 10), tile=0, client=client, progress=False)
+    with pytest.raises(ValueError, match="cut a 4000x3000 frame into 12000000 tiles, more than 100000"):
+        hd.render(scene, camera, (4000, 3000), tile=1, client=client, progress=False)
+    with pytest.raises(ValueError, match="needs one integer conversion"):
+        hd.render_frames(orbit, str(tmp_path / "frame.png"), count=2, client=client, progress=False)
+    with pytest.raises(FileNotFoundError, match=r"nowhere: no such directory for frame 0"):
+        hd.render_frames(orbit, str(tmp_path / "nowhere" / "f%d.png"), count=2, client=client, progress=False)
+    with pytest.raises(TypeError, match="give count"):
+        hd.render_frames(orbit, str(tmp_path / "f%d.png"), client=client, progress=False)
+    with pytest.raises(TypeError, match="client must be a distributed.Client"):
+        hd.render(scene, camera, (20, 10), client=42, progress=False)
+    assert tile_tasks(client) == []
+
+
+def unused_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_distributed_scheduler_that_does_not_answer():
+    """No scheduler at the address: one SchedulerUnreachable naming it and
+    the timeout, not a hang (the thread guard fails the test if it hangs)."""
+    scene, camera = two_spheres()
+    address = f"tcp://127.0.0.1:{unused_port()}"
+    caught = []
+
+    def attempt():
+        try:
+            hd.render(scene, camera, (8, 8), client=address, timeout=2, progress=False)
+        except BaseException as e:  # noqa: B902 - handed to the test thread
+            caught.append(e)
+
+    t = threading.Thread(target=attempt, daemon=True)
+    t.start()
+    t.join(120)
+    assert not t.is_alive(), "connecting to a silent address hung"
+    assert len(caught) == 1 and isinstance(caught[0], hd.SchedulerUnreachable)
+    assert address in str(caught[0]) and "within 2 s" in str(caught[0])
+
+
+def dist_cli(*args, timeout=300):
+    return subprocess.run([sys.executable, "-m", "hitray.distributed", *map(str, args)], capture_output=True,
+                          text=True, timeout=timeout)
+
+
+def test_distributed_cli_render_matches_hitray_render(client, tmp_path):
+    """`python -m hitray.distributed render` on the module's scheduler gives
+    the EXR bytes of `hitray render` (the C command line) with the same
+    options."""
+    scene_file = tmp_path / "two.sdl"
+    scene_file.write_text(TWO_SPHERES_SDL)
+    options = ["--size", "40x30", "--spp", "4", "--adaptive", "0.05", "--depth", "2"]
+    proc = dist_cli("render", scene_file, "-o", tmp_path / "there.png", "--exr", tmp_path / "there.exr",
+                    "--scheduler", client.scheduler.address, "--tile", 17, "-q", *options)
+    assert proc.returncode == 0, proc.stderr
+    assert "there.png: 40x30" in proc.stdout
+    here = hitray.render(*hitray.load_sdl(scene_file), (40, 30), spp=4, adaptive=0.05, depth=2, progress=False)
+    assert (tmp_path / "there.exr").read_bytes() == exr_bytes(here, tmp_path / "here.exr")
+    if HITRAY.is_file():
+        c_cli = subprocess.run([str(HITRAY), "render", str(scene_file), "-o", str(tmp_path / "c.exr"), *options],
+                               capture_output=True, text=True, timeout=300)
+        assert c_cli.returncode == 0, c_cli.stderr
+        assert (tmp_path / "c.exr").read_bytes() == (tmp_path / "there.exr").read_bytes()
+
+
+def test_distributed_cli_frames_from_a_script(client, tmp_path):
+    script = tmp_path / "orbit.py"
+    script.write_text(
+        "import math, hitray\n"
+        "count = 3\n"
+        "scene = hitray.Scene()\n"
+        "scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2))\n"
+        "scene.light((4, 6, 5))\n"
+        "def frames(i):\n"
+        "    a = 2 * math.pi * i / count\n"
+        "    return scene, hitray.Camera((5 * math.sin(a), 1, 5 * math.cos(a)), (0, 0, 0), (0, 1, 0), 40)\n")
+    pattern = tmp_path / "f_%03d.exr"
+    args = ["frames", script, "-o", pattern, "--scheduler", client.scheduler.address, "--size", "24x16",
+            "--tile", "10", "-q"]
+    proc = dist_cli(*args)
+    assert proc.returncode == 0, proc.stderr
+    assert "3 frames written" in proc.stdout
+    assert sorted(p.name for p in tmp_path.glob("f_*.exr")) == ["f_000.exr", "f_001.exr", "f_002.exr"]
+    again = dist_cli(*args)
+    assert again.returncode == 0 and "0 frames written" in again.stdout
+    missing = dist_cli("frames", tmp_path / "none.py", "-o", pattern, "--scheduler", client.scheduler.address)
+    assert missing.returncode == 1 and "none.py: no such script" in missing.stderr
+
+
+def test_distributed_cli_scheduler_that_does_not_answer(tmp_path):
+    scene_file = tmp_path / "two.sdl"
+    scene_file.write_text(TWO_SPHERES_SDL)
+    address = f"tcp://127.0.0.1:{unused_port()}"
+    proc = dist_cli("render", scene_file, "-o", tmp_path / "x.png", "--scheduler", address, "--timeout", "2",
+                    timeout=120)
+    assert proc.returncode == 1
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and f"no Dask scheduler answered at '{address}' within 2 s" in lines[0], proc.stderr
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_distributed_frames_of_a_scene_changed_between_frames(client, tmp_path):
+    """One Scene changed by the frame function before each frame (its
+    background, an object added): every frame ships what the scene was when
+    the frame was asked for, though frames are in flight together."""
+    scene, camera = two_spheres()
+    expected = {}
+
+    def frame(i):
+        scene.background = (0.2 * i, 0.1, 0.3)
+        if i == 2:
+            scene.add(hitray.Sphere().translate(0, 2.5, 0).scale(0.4, 0.4, 0.4), diffuse=(0.9, 0.9, 0.1))
+        expected[i] = exr_bytes(hitray.render(scene, camera, (24, 16), progress=False), tmp_path / "here.exr")
+        return scene, camera
+
+    pattern = str(tmp_path / "f%d.exr")
+    hd.render_frames(frame, pattern, count=4, size=(24, 16), client=client, tile=8, progress=False)
+    assert len(set(expected.values())) == 4
+    for i in range(4):
+        assert pathlib.Path(pattern % i).read_bytes() == expected[i], i
+
+
+def test_distributed_local_cluster_when_no_client(tmp_path):
+    """client=None: a LocalCluster of `workers` processes on this machine,
+    started for the render and closed after it."""
+    scene, camera = two_spheres()
+    here = hitray.render(scene, camera, (30, 20), spp=2, progress=False)
+    there = hd.render(scene, camera, (30, 20), spp=2, workers=2, tile=16, progress=False)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert there.stats.threads >= 2  # both workers rendered (at least one thread each)
+
+
+def test_distributed_cli_ctrl_c_cancels(client, tmp_path):
+    """SIGINT to the command line once its tiles are on the scheduler: it
+    exits with 130 and one line, writes nothing, and leaves no tile behind."""
+    scene_file = tmp_path / "two.sdl"
+    scene_file.write_text(TWO_SPHERES_SDL)
+    out = tmp_path / "never.png"
+    proc = subprocess.Popen([sys.executable, "-m", "hitray.distributed", "render", str(scene_file), "-o", str(out),
+                             "--scheduler", client.scheduler.address, "--size", "160x120", "--spp", "64",
+                             "--tile", "4", "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        for _ in range(1200):  # until its tiles are scheduled (or it ended early)
+            if tile_tasks(client) or proc.poll() is not None:
+                break
+            time.sleep(0.05)
+        assert proc.poll() is None, proc.communicate()
+        proc.send_signal(signal.SIGINT)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 130, stderr
+    assert stderr.strip().splitlines()[-1] == "python -m hitray.distributed: interrupted"
+    assert not out.exists()
+    for _ in range(200):
+        if not tile_tasks(client):
+            break
+        time.sleep(0.05)
+    assert tile_tasks(client) == []
+
+
+def test_distributed_render_takes_hitray_render_arguments():
+    """hd.render is a drop-in for hitray.render: the same arguments in the
+    same order (all but window: the tiles are windows), then the cluster's."""
+    import inspect
+
+    here = [p for p in inspect.signature(hitray.render).parameters if p != "window"]
+    there = list(inspect.signature(hd.render).parameters)
+    assert there[:len(here)] == here
+    assert there[len(here):] == ["client", "tile", "workers", "timeout"]
