@@ -187,6 +187,38 @@ def test_distributed_mesh_only_on_the_client(client, tmp_path):
         os.close(fd)
 
 
+def test_distributed_textured_scenes(client, tmp_path):
+    """Pixmaps travel with the scene: an SDL scene's makePixmap file in a
+    directory only this process can name, and a Python scene's pixmap made
+    from an array (pickled as its pixels); solid textures need nothing."""
+    require_classes("sphere", "square")
+    pixels = np.zeros((4, 8, 3), dtype=np.float32)
+    pixels[..., 0] = np.linspace(0, 1, 8, dtype=np.float32)
+    pixels[::2, :, 2] = 0.75
+    hitray.Image(pixels).save(tmp_path / "stripes.png", bits=16)
+    fd = os.open(tmp_path, os.O_RDONLY | os.O_DIRECTORY)
+    try:
+        private = f"/proc/self/fd/{fd}"
+        assert not any(client.run(os.path.isfile, f"{private}/stripes.png").values())
+        text = (f"camera 0 0 4 0 0 0 0 1 0 40\nlight 3 4 5 1 1 1\nmakePixmap 1 {private}/stripes.png\n"
+                "push texture 1 sphere pop\n"
+                "push translate 0 -1 0 rotate -90 1 0 0 scale 3 3 3 texture -1 square pop\n")
+        scene, camera = hitray.parse_sdl(text, "textured.sdl", base_dir=private)
+        here = hitray.render(scene, camera, (40, 30), spp=2, progress=False)
+        there = hd.render(scene, camera, (40, 30), spp=2, client=client, tile=16, progress=False)
+        assert "texture" in here.stats.effects
+        assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    finally:
+        os.close(fd)
+    built = hitray.Scene()
+    built.pixmap(1, hitray.Image(pixels))
+    built.add(hitray.Sphere(), texture=1)
+    built.light((3, 4, 5))
+    here = hitray.render(built, camera, (40, 30), progress=False)
+    there = hd.render(built, camera, (40, 30), client=client, tile=16, progress=False)
+    assert exr_bytes(there, tmp_path / "there2.exr") == exr_bytes(here, tmp_path / "here2.exr")
+
+
 def orbit(i, count=12):
     scene, _ = two_spheres()
     angle = 2 * np.pi * i / count

@@ -262,6 +262,8 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         assert shot.read_bytes() == render(tmp_path, "ref.pfm", "--camera", camera_arg)
         # The line is one for the SDL file: the scene with it renders the same.
         moved = tmp_path / "moved.sdl"
+        # The copy names its pixmap by a relative path, as the demo does.
+        shutil.copytree(DEMO.parent / "textures", tmp_path / "textures")
         moved.write_text("".join(after_line + "\n" if line.startswith("camera ") else line
                                  for line in DEMO.read_text().splitlines(keepends=True)))
         r = run("render", moved, "--size", SIZE, "-o", tmp_path / "moved.pfm", env=clean_env())

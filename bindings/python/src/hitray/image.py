@@ -114,6 +114,12 @@ class Image:
         """The render's statistics (None for an image made from an array)."""
         return self._stats
 
+    def __reduce__(self) -> Tuple[Any, Tuple[np.ndarray]]:
+        """Pickled as its pixels (exactly: float32 both ways), so a scene
+        holding an image (a pixmap) travels to other processes
+        (hitray.distributed). Render statistics are not carried."""
+        return (Image, (np.array(self._core, copy=True),))
+
     def __array__(self, dtype: Any = None, copy: Optional[bool] = None) -> np.ndarray:
         view = np.asarray(self._core)  # the buffer protocol: no copy
         if dtype is not None and np.dtype(dtype) != view.dtype:

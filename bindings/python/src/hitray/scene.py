@@ -187,7 +187,7 @@ class Scene:
         scene._live = core
         return scene
 
-    def _description(self) -> Tuple[Optional[_SDLSource], List[Union[_AddObject, _AddLight]],
+    def _description(self) -> Tuple[Optional[_SDLSource], List[Union[_AddObject, _AddLight, _MakePixmap]],
                                     Dict[str, Any]]:
         """What the scene is built from: the scene file source, the objects
         and lights added, the globals set (copies of the lists, taken under
@@ -196,7 +196,7 @@ class Scene:
             return self._sdl, list(self._ops), dict(self._globals)
 
     @classmethod
-    def _from_description(cls, sdl: Optional[_SDLSource], ops: List[Union[_AddObject, _AddLight]],
+    def _from_description(cls, sdl: Optional[_SDLSource], ops: List[Union[_AddObject, _AddLight, _MakePixmap]],
                           globals_: Dict[str, Any]) -> "Scene":
         """The scene :meth:`_description` describes, built on first use."""
         scene = cls()

@@ -27,7 +27,7 @@ import threading
 import weakref
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
-from ..scene import Scene, _AddLight, _AddObject, _SDLSource
+from ..scene import Scene, _AddLight, _AddObject, _MakePixmap, _SDLSource
 from ..shapes import Shape
 
 __all__ = ["ScenePack", "MAX_SHIPPED_BYTES"]
@@ -145,7 +145,7 @@ def _map_strings(shape: Shape, fn: Callable[[Any], Any]) -> Shape:
     return copies[id(shape)]
 
 
-Op = Union[_AddObject, _AddLight]
+Op = Union[_AddObject, _AddLight, _MakePixmap]
 
 
 class ScenePack:
@@ -207,7 +207,9 @@ class ScenePack:
     def _state(self) -> Tuple[Any, ...]:
         sdl = None if self._sdl is None else (self._sdl.text, self._sdl.name, self._sdl.base_dir,
                                                self._sdl.nff)
+        # A pixmap's image pickles as its pixels (hitray.Image.__reduce__).
         ops = [("object", op.shape, op.material, op.base_dir) if isinstance(op, _AddObject)
+               else ("pixmap", op.index, op.image) if isinstance(op, _MakePixmap)
                else ("light", op.position, op.color) for op in self._ops]
         return (sdl, self._spans, ops, self._globals, self._files)
 
@@ -217,7 +219,8 @@ class ScenePack:
     def __setstate__(self, state: Tuple[Any, ...]) -> None:
         self.key, sdl, self._spans, ops, self._globals, self._files = state
         self._sdl = None if sdl is None else _SDLSource(sdl[0], sdl[1], sdl[2], None, sdl[3])
-        self._ops = [_AddObject(op[1], op[2], op[3]) if op[0] == "object" else _AddLight(op[1], op[2])
+        self._ops = [_AddObject(op[1], op[2], op[3]) if op[0] == "object"
+                     else _MakePixmap(op[1], op[2]) if op[0] == "pixmap" else _AddLight(op[1], op[2])
                      for op in ops]
         self._lock = threading.Lock()
         self._scene = None

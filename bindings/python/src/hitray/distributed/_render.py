@@ -72,10 +72,13 @@ def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], option
     return np.array(image, copy=True), rays, where, threads
 
 
-def _options(spp: int, depth: Optional[int], block_size: int, all_effects: bool, adaptive: float,
-             min_weight: float, exact: bool) -> Dict[str, Any]:
-    return {"spp": spp, "depth": depth, "block_size": block_size, "all_effects": bool(all_effects),
-            "adaptive": adaptive, "min_weight": min_weight, "exact": bool(exact)}
+def _options(spp: int, depth: Optional[int], block: Optional[int], effects: str,
+             adaptive: Optional[float], min_weight: Optional[float], exact: bool,
+             block_size: Optional[int], all_effects: bool) -> Dict[str, Any]:
+    """hitray.render's keywords, passed on as given (it checks them)."""
+    return {"spp": spp, "depth": depth, "block": block, "effects": effects, "adaptive": adaptive,
+            "min_weight": min_weight, "exact": bool(exact), "block_size": block_size,
+            "all_effects": bool(all_effects)}
 
 
 def _check_here(scene: Scene, camera: Optional[Camera], size: Tuple[int, int],
@@ -292,8 +295,9 @@ def _tile_size(tile: Any, size: Tuple[int, int]) -> int:
 
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480), spp: int = 1,
            threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = True, *,
-           block_size: int = 1, all_effects: bool = False, adaptive: float = 0.0, min_weight: float = 0.0,
-           exact: bool = False, client: Any = None, tile: int = 64, workers: Optional[int] = None,
+           block: Optional[int] = None, effects: str = "auto", adaptive: Optional[float] = None,
+           min_weight: Optional[float] = None, exact: bool = False, block_size: Optional[int] = None,
+           all_effects: bool = False, client: Any = None, tile: int = 64, workers: Optional[int] = None,
            timeout: float = 10.0) -> Image:
     """Render `scene` through `camera` as :func:`hitray.render` does, on a
     Dask cluster: the frame is cut into tiles of `tile` x `tile` pixels,
@@ -324,7 +328,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     """
     size = _convert.size(size)
     tile = _tile_size(tile, size)
-    options = _options(spp, depth, block_size, all_effects, adaptive, min_weight, exact)
+    options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
     tile_threads = _threads(threads)
     camera = _check_here(scene, camera, size, options)
     with connect(client, workers, timeout) as c:
@@ -354,8 +358,9 @@ def _frame_path(out_pattern: Any, index: int) -> str:
 
 def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = None,
                   size: Tuple[int, int] = (640, 480), spp: int = 1, threads: Optional[int] = None,
-                  depth: Optional[int] = None, progress: Progress = True, *, block_size: int = 1,
-                  all_effects: bool = False, adaptive: float = 0.0, min_weight: float = 0.0, exact: bool = False,
+                  depth: Optional[int] = None, progress: Progress = True, *, block: Optional[int] = None,
+                  effects: str = "auto", adaptive: Optional[float] = None, min_weight: Optional[float] = None,
+                  exact: bool = False, block_size: Optional[int] = None, all_effects: bool = False,
                   client: Any = None, tile: int = 64, workers: Optional[int] = None, timeout: float = 10.0,
                   frames_in_flight: int = 4, bits: int = 8, linear: bool = False, half: bool = False,
                   on_frame: Optional[Callable[[int, str], Any]] = None) -> List[str]:
@@ -393,7 +398,7 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
     in_flight = _convert.integer(frames_in_flight, "frames_in_flight")
     if in_flight < 1:
         raise ValueError(f"render_frames: frames_in_flight must be at least 1, not {in_flight}")
-    options = _options(spp, depth, block_size, all_effects, adaptive, min_weight, exact)
+    options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
     tile_threads = _threads(threads)
     todo = [(i, path) for i, path in ((i, _frame_path(out_pattern, i)) for i in range(total))
             if not os.path.exists(path)]
