@@ -43,6 +43,7 @@ static const spd_scene scenes[] = {
 
 static hr_context *ctx;
 
+#ifndef HR_NFF_SMALL_ONLY /* the sanitizer builds render the small size alone */
 /* Ours against the published count scaled to 512x512 eye rays. */
 static void compare(const char *scene, const char *kind, double ours, double published,
                     int at_most)
@@ -78,6 +79,7 @@ static double eye_hits(const hr_scene *s, hr_camera cam)
         }
     return hits;
 }
+#endif
 
 static hr_render_stats render(const hr_scene *s, const hr_camera *cam, int32_t size)
 {
