@@ -49,8 +49,9 @@ struct view_renderer {
     uint8_t *canvas;     /* width x height sRGB: every tile reported */
     view_rect changed;   /* where canvas and shown differ (empty: none) */
 
-    int32_t width, height;
-    uint8_t *shown;      /* the window's thread's: what it was given */
+    int32_t width, height; /* the image's, set at the start */
+    uint8_t *shown;      /* what the window was given: written by its thread
+                            alone, under the lock (read there by a restart) */
 
     /* hr_render reads it from its threads; set with an atomic store. */
     int32_t cancel;

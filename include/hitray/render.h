@@ -35,8 +35,8 @@ typedef int32_t (*hr_progress_fn)(void *user, double fraction);
  * returns (on success they are the returned image's; on failure the image
  * is freed), and must not be written.
  *
- * Over a render that runs to the end, the rectangles cover every pixel of
- * the output image exactly once. Only finished tiles are reported: a tile
+ * Each rectangle is at most tile_size pixels on a side; over a render that
+ * runs to the end, they cover every pixel of the output image exactly once. Only finished tiles are reported: a tile
  * that a cancel (the progress callback, the `cancel` flag) or a shape's
  * failure may have cut short is not, so a render that ends with an error
  * may have reported some of its tiles (each final, as above) and never
