@@ -245,23 +245,40 @@ static void render_tile_adaptive(worker *w, int32_t x0, int32_t y0, int32_t x1, 
     }
 }
 
-static void render_tile(worker *w, int64_t tile)
+/* Render one tile: pixels x0 .. x1 - 1 of rows y0 .. y1 - 1 of the full
+ * image, a tile_size square of the window's grid cut at its edges. Returns
+ * 1 when every ray of it was traced to the end: neither the render's flag
+ * nor the caller's was seen raised. Each flag is one memory location that
+ * only ever goes from 0 to 1, so a load of 0 here, after the tile, means
+ * every load of it during the tile read 0 too (read-read coherence): no ray
+ * or sample loop was cut short, and the pixels are final. */
+static int render_tile(worker *w, int64_t tile, int32_t *x0, int32_t *y0, int32_t *x1, int32_t *y1)
 {
     render_job *job = w->job;
     int32_t tsize = job->opt.tile_size;
-    int32_t x0 = job->win_x + (int32_t)(tile % job->tiles_x) * tsize;
-    int32_t y0 = job->win_y + (int32_t)(tile / job->tiles_x) * tsize;
+    *x0 = job->win_x + (int32_t)(tile % job->tiles_x) * tsize;
+    *y0 = job->win_y + (int32_t)(tile / job->tiles_x) * tsize;
     int32_t xend = job->win_x + job->win_width, yend = job->win_y + job->win_height;
-    int32_t x1 = tsize < xend - x0 ? x0 + tsize : xend;
-    int32_t y1 = tsize < yend - y0 ? y0 + tsize : yend;
-    if (job->opt.adaptive_threshold > 0) render_tile_adaptive(w, x0, y0, x1, y1);
-    else render_tile_full(w, x0, y0, x1, y1);
+    *x1 = tsize < xend - *x0 ? *x0 + tsize : xend;
+    *y1 = tsize < yend - *y0 ? *y0 + tsize : yend;
+    if (job->opt.adaptive_threshold > 0) render_tile_adaptive(w, *x0, *y0, *x1, *y1);
+    else render_tile_full(w, *x0, *y0, *x1, *y1);
     if (w->tc.status) {
         pthread_mutex_lock(&job->progress_lock);
         if (!job->failure) job->failure = w->tc.status;
         pthread_mutex_unlock(&job->progress_lock);
         atomic_store(&job->cancelled, 1);
     }
+    return !atomic_load(&job->cancelled) && !caller_cancelled(job);
+}
+
+/* Hand a finished tile to the caller (hr_render_options.tile_done), in the
+ * output image's coordinates: the window's, whose origin is (win_x, win_y)
+ * of the full image. */
+static void report_tile(const render_job *job, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    job->opt.tile_done(job->opt.tile_user, x0 - job->win_x, y0 - job->win_y, x1 - x0, y1 - y0,
+                       pixel_at(job, x0, y0), 3 * job->win_width);
 }
 
 static void *worker_main(void *arg)
@@ -274,7 +291,11 @@ static void *worker_main(void *arg)
         if (atomic_load(&job->cancelled) || caller_cancelled(job)) break;
         int64_t tile = atomic_fetch_add(&job->next_tile, 1);
         if (tile >= job->tile_count) break;
-        render_tile(w, tile);
+        int32_t x0, y0, x1, y1;
+        int final = render_tile(w, tile, &x0, &y0, &x1, &y1);
+        /* Before the tile is counted, so no progress fraction counts a tile
+         * whose tile_done has not returned. */
+        if (final && job->opt.tile_done) report_tile(job, x0, y0, x1, y1);
         atomic_fetch_add(&job->tiles_done, 1);
         if (job->opt.progress) {
             pthread_mutex_lock(&job->progress_lock);

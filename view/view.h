@@ -55,8 +55,16 @@ typedef struct view_frame {
 
 typedef struct view_renderer view_renderer;
 
-/* Called on the render thread when a frame is ready or the render failed;
- * must be thread-safe and quick (the window's wake-up). */
+/* A rectangle of the image: columns x .. x + width - 1 of rows y ..
+ * y + height - 1, from the top left; empty where width or height is 0. */
+typedef struct view_rect {
+    int32_t x, y, width, height;
+} view_rect;
+
+/* Called when a frame is ready, the render failed, or finished tiles wait
+ * to be taken (view_renderer_take_pixels): from the render thread and
+ * hr_render's workers, so it must be thread-safe and quick (the window's
+ * wake-up). */
 typedef void (*view_notify_fn)(void *user);
 
 /* Starts the thread on the first camera. `options` are the caller's
@@ -72,6 +80,17 @@ uint64_t view_renderer_restart(view_renderer *r, const hr_camera *camera);
 /* The newest finished frame not taken yet: 1 and *out filled (the caller
  * now owns out->image), or 0. Older frames were dropped unseen. */
 int view_renderer_take(view_renderer *r, view_frame *out);
+/* What the window is to show: the image's size (the options', else the
+ * camera's) in 8-bit sRGB RGB, row by row from the top, 3 x width bytes a
+ * row, every tile of the current camera's passes in place as it finished
+ * (black before the first). `changed` is set to where it changed since the
+ * last call (empty: nowhere). The pixels are the caller's to read until
+ * its next call of this or view_renderer_restart; call both from one
+ * thread (the window's). Every tile of a frame view_renderer_take has
+ * handed out is in place by then. After a restart, no tile of an older
+ * camera comes: the picture stays as it was until the new one's tiles
+ * replace it. */
+const uint8_t *view_renderer_take_pixels(view_renderer *r, view_rect *changed);
 /* Where the refinement stands: the pass running (or `passes` when all are
  * done) and its fraction done. */
 void view_renderer_progress(view_renderer *r, int *pass, double *fraction);
@@ -129,9 +148,12 @@ void view_status_text(const view_status *s, char *buf, size_t size);
 
 /* --- pixels (view_pixels.c) --- */
 
-/* The image as 8-bit sRGB RGB triples for the window, row by row from the
- * top, `pitch` bytes a row. The same curve as the PNG writer's (IEC
- * 61966-2-1); the saved files come from hr_image_write, not from this. */
-void view_pixels_srgb8(const hr_image *image, uint8_t *out, int pitch);
+/* A rectangle of width x height linear RGB pixels (3 floats each, rows
+ * `row_stride` floats apart: a tile as hr_tile_fn hands it over) as 8-bit
+ * sRGB triples for the window, row by row from the top, `pitch` bytes a
+ * row. The same curve as the PNG writer's (IEC 61966-2-1); the saved files
+ * come from hr_image_write, not from this. */
+void view_pixels_srgb8(const float *pixels, int32_t row_stride, int32_t width, int32_t height, uint8_t *out,
+                       int pitch);
 
 #endif

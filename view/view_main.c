@@ -18,8 +18,9 @@ static const char view_help[] =
     "Render the scene file SCENE (Hill's SDL, or NFF if it ends in .nff or\n"
     ".nff.gz) in a window as Hill's raytrace loop does: one ray per 16x16\n"
     "block first, then blocks of 8, 4, 2 and 1 pixels, then the full-quality\n"
-    "pass (--spp), each pass replacing the last when it is done. Keys fly\n"
-    "Hill's camera; every move starts the refinement again. The window's\n"
+    "pass (--spp), each pass replacing the last tile by tile as its tiles\n"
+    "finish. Keys fly Hill's camera; every move starts the refinement again\n"
+    "(the picture stays until the new camera's tiles replace it). The window's\n"
     "title shows the pass, rays per second, the effects that ran and the\n"
     "time to the final pass. Needs a display (X11 or Wayland).\n"
     "\n"
@@ -175,6 +176,8 @@ typedef struct viewer {
     int shown_current;      /* shown is of the newest camera */
     char error[1024];       /* the newest camera's render error, "" if none */
     char title[1024];
+    int woken;              /* the render thread has news (tiles, a frame, an error) */
+    uint32_t last_draw;     /* SDL_GetTicks() of the last draw */
     int quit, status;
 } viewer;
 
@@ -207,15 +210,33 @@ static int save_frame(viewer *v, const char *path, const char *verb)
     return 0;
 }
 
+/* The tiles finished since the last call into the texture, and the window
+ * drawn. `all`: the whole picture (the first draw). */
+static void show_tiles(viewer *v, int all)
+{
+    view_rect changed;
+    const uint8_t *pixels = view_renderer_take_pixels(v->renderer, &changed);
+    if (all) changed = (view_rect){0, 0, v->window.width, v->window.height};
+    view_window_update(&v->window, pixels, &changed);
+    v->last_draw = SDL_GetTicks();
+    v->woken = 0;
+}
+
 static void take_frames(viewer *v)
 {
     view_frame frame;
+    int final = 0;
     while (view_renderer_take(v->renderer, &frame)) {
         hr_image_destroy(v->shown.image);
         v->shown = frame;
         v->shown_current = frame.generation == v->generation;
-        view_window_show(&v->window, frame.image);
-        if (!v->shown_current || frame.pass != frame.passes - 1 || !v->req->screenshot) continue;
+        final = v->shown_current && frame.pass == frame.passes - 1;
+    }
+    /* The window shows the passes tile by tile; a frame's tiles are all in
+     * by the time it is handed out, so the final pass is on the screen
+     * before it is written. */
+    show_tiles(v, 0);
+    if (final && v->req->screenshot) {
         int failed = save_frame(v, v->req->screenshot, "wrote") != 0;
         if (v->req->exit_when_done) v->quit = 1, v->status = failed ? CLI_EXIT_ERROR : CLI_EXIT_OK;
     }
@@ -299,20 +320,29 @@ static void handle(viewer *v, const SDL_Event *e)
     if (e->type == SDL_QUIT) v->quit = 1;
     else if (e->type == SDL_KEYDOWN) on_key(v, e->key.keysym.sym);
     else if (e->type == SDL_WINDOWEVENT) view_window_redraw(&v->window);
+    else if (e->type == v->wake_event) v->woken = 1;
 }
 
 /* Title updates while a pass runs: often enough to read as live. */
 #define TITLE_INTERVAL_MS 100
+/* Tiles finish far faster than a screen shows them (hundreds a second in
+ * the block passes): draw what came at most this often. */
+#define DRAW_INTERVAL_MS 15
 
 static void event_loop(viewer *v)
 {
     while (!v->quit) {
+        int wait = TITLE_INTERVAL_MS;
+        if (v->woken) {
+            int32_t since = (int32_t)(SDL_GetTicks() - v->last_draw);
+            wait = since >= DRAW_INTERVAL_MS ? 0 : DRAW_INTERVAL_MS - since;
+        }
         SDL_Event e;
-        if (SDL_WaitEventTimeout(&e, TITLE_INTERVAL_MS)) {
+        if (SDL_WaitEventTimeout(&e, wait)) {
             handle(v, &e);
             while (!v->quit && SDL_PollEvent(&e)) handle(v, &e);
         }
-        take_frames(v);
+        if (v->woken && (int32_t)(SDL_GetTicks() - v->last_draw) >= DRAW_INTERVAL_MS) take_frames(v);
         update_title(v);
     }
 }
@@ -341,6 +371,7 @@ static int run(viewer *v)
         view_window_close(&v->window);
         return cli_error("view: cannot start the render thread");
     }
+    show_tiles(v, 1); /* black, and whatever tiles are in already */
     event_loop(v);
     view_renderer_stop(v->renderer);
     hr_image_destroy(v->shown.image);

@@ -38,16 +38,13 @@ static uint8_t code_of(float v)
     return (uint8_t)lo;
 }
 
-void view_pixels_srgb8(const hr_image *image, uint8_t *out, int pitch)
+void view_pixels_srgb8(const float *pixels, int32_t row_stride, int32_t width, int32_t height, uint8_t *out,
+                       int pitch)
 {
     pthread_once(&boundary_once, build_boundaries);
-    const int32_t w = hr_image_width(image), h = hr_image_height(image), channels = hr_image_channels(image);
-    /* hr_image_data wants a non-const image but only hands out its pixels. */
-    const float *px = hr_image_data((hr_image *)image);
-    for (int32_t y = 0; y < h; y++) {
+    for (int32_t y = 0; y < height; y++) {
         uint8_t *row = out + (size_t)y * (size_t)pitch;
-        const float *src = px + (size_t)y * (size_t)w * (size_t)channels;
-        for (int32_t x = 0; x < w; x++)
-            for (int k = 0; k < 3; k++) row[3 * x + k] = code_of(src[(size_t)x * (size_t)channels + (size_t)k]);
+        const float *src = pixels + (size_t)y * (size_t)row_stride;
+        for (int32_t i = 0; i < 3 * width; i++) row[i] = code_of(src[i]);
     }
 }

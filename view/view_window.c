@@ -1,7 +1,6 @@
 /* The window (view_window.h): an SDL renderer with one streaming texture
  * the size of the image, scaled to the window with the aspect kept. */
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -33,8 +32,6 @@ int view_window_open(view_window *w, int32_t width, int32_t height, const char *
 {
     memset(w, 0, sizeof *w);
     w->width = width, w->height = height;
-    w->pixels = calloc((size_t)width * (size_t)height, 3);
-    if (!w->pixels) return cli_error("view: out of memory for a %dx%d window", (int)width, (int)height);
     int ww, wh;
     first_size(width, height, &ww, &wh);
     w->window = SDL_CreateWindow(title, SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, ww, wh,
@@ -56,10 +53,14 @@ int view_window_open(view_window *w, int32_t width, int32_t height, const char *
     return 0;
 }
 
-void view_window_show(view_window *w, const hr_image *image)
+void view_window_update(view_window *w, const uint8_t *pixels, const view_rect *changed)
 {
-    view_pixels_srgb8(image, w->pixels, 3 * (int)w->width);
-    SDL_UpdateTexture(w->texture, NULL, w->pixels, 3 * (int)w->width);
+    if (changed->width > 0 && changed->height > 0) {
+        SDL_Rect rect = {changed->x, changed->y, changed->width, changed->height};
+        size_t pitch = 3 * (size_t)w->width;
+        SDL_UpdateTexture(w->texture, &rect, pixels + (size_t)changed->y * pitch + 3 * (size_t)changed->x,
+                          (int)pitch);
+    }
     view_window_redraw(w);
 }
 
@@ -78,6 +79,5 @@ void view_window_close(view_window *w)
     if (w->texture) SDL_DestroyTexture(w->texture);
     if (w->renderer) SDL_DestroyRenderer(w->renderer);
     if (w->window) SDL_DestroyWindow(w->window);
-    free(w->pixels);
     memset(w, 0, sizeof *w);
 }

@@ -20,6 +20,37 @@ extern "C" {
  * hr_render then stops early and returns HR_ERROR_CANCELLED, with no image. */
 typedef int32_t (*hr_progress_fn)(void *user, double fraction);
 
+/* Called as each tile of the output image is finished, so a caller can show
+ * or send a render's pixels before the whole image is done (a viewer draws
+ * each pass as its tiles come, as Hill's raytrace loop paints its blocks).
+ *
+ * The tile is the rectangle of `width` x `height` pixels whose top-left
+ * pixel is (x, y) of the output image, counted from its top left: of the
+ * window where one is set (hr_render_options.window_*), so a window's
+ * tiles are reported in the window's image, not the full one. `pixels` is
+ * that pixel of the output image: 3 linear floats (R, G, B) a pixel, rows
+ * `row_stride` floats apart (3 x the output image's width). They are the
+ * final values, the same bits the returned image will hold, and no pixel
+ * of the tile is written again; they stay readable until hr_render
+ * returns (on success they are the returned image's; on failure the image
+ * is freed), and must not be written.
+ *
+ * Each rectangle is at most tile_size pixels on a side; over a render that
+ * runs to the end, they cover every pixel of the output image exactly once. Only finished tiles are reported: a tile
+ * that a cancel (the progress callback, the `cancel` flag) or a shape's
+ * failure may have cut short is not, so a render that ends with an error
+ * may have reported some of its tiles (each final, as above) and never
+ * reports the rest. The order of tiles is not defined.
+ *
+ * Threading: called from the render's worker thread that finished the
+ * tile, and so from several threads at once (with threads > 1; the calling
+ * thread is one of them): the function must be thread-safe, and quick, as
+ * that thread renders nothing meanwhile. Every call returns before
+ * hr_render does, and each tile's call returns before the progress
+ * callback is given a fraction that counts that tile. */
+typedef void (*hr_tile_fn)(void *user, int32_t x, int32_t y, int32_t width, int32_t height,
+                           const float *pixels, int32_t row_stride);
+
 #define HR_EFFECTS_AUTO 0 /* simulate only what the scene calls for */
 #define HR_EFFECTS_ALL 1  /* run every effect's code path: a shadow ray to every
                              light, a reflected and a transmitted ray at every
@@ -92,6 +123,10 @@ typedef struct hr_render_options {
     int32_t window_y;
     int32_t window_width;
     int32_t window_height;
+    /* Added with the viewer's tile-by-tile passes (issue 18): a caller whose
+     * struct_size ends before tile_done gets no calls. */
+    hr_tile_fn tile_done; /* may be NULL; see hr_tile_fn */
+    void *tile_user;      /* handed to tile_done */
 } hr_render_options;
 
 /* The cut-off a render applies by default, 2^-24: POV-Ray's adc_bailout made

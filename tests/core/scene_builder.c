@@ -1,5 +1,7 @@
 #include "scene_builder.h"
 
+#include "hr_test.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -77,6 +79,17 @@ void tb_add_mirror_glass_set(hr_scene *s, int with_mirror_and_glass)
     if (with_mirror_and_glass) glass.transparency = 0.9, glass.speed_of_light = 0.67;
     hr_transform b = tb_place(1.2, 1, 0.5, 1);
     tb_add(s, "sphere", &glass, &b);
+}
+
+hr_scene *tb_mirror_glass_scene(hr_context *ctx)
+{
+    hr_scene *s = NULL;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    if (!s) return NULL;
+    tb_add_mirror_glass_set(s, 1);
+    tb_light(s, 5, 8, 6, 1, 1, 1);
+    CHECK_OK(hr_scene_commit(s));
+    return s;
 }
 
 hr_camera tb_mirror_glass_view(int32_t width, int32_t height)

@@ -17,6 +17,9 @@ void tb_dark_globals(hr_scene *s, int32_t depth);
 /* A floor (a mirror when `with_mirror_and_glass`), a red specular ball and
  * a ball (glass when `with_mirror_and_glass`): objects 0, 1, 2; no lights. */
 void tb_add_mirror_glass_set(hr_scene *s, int with_mirror_and_glass);
+/* A new committed scene of `ctx`: that set with mirror and glass, lit by
+ * one white light at (5, 8, 6). NULL after a failed check. */
+hr_scene *tb_mirror_glass_scene(hr_context *ctx);
 /* The camera that frames that set at the given size. */
 hr_camera tb_mirror_glass_view(int32_t width, int32_t height);
 

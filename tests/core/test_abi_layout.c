@@ -91,7 +91,7 @@ PIN_SIZE(hr_camera, 96);
 PIN_OFF(hr_camera, eye, 16);
 PIN_OFF(hr_camera, view_angle, 88);
 /* Both grew at their ends (older callers pass a smaller struct_size). */
-PIN_SIZE(hr_render_options, 104);
+PIN_SIZE(hr_render_options, 120);
 PIN_OFF(hr_render_options, progress, 40);
 PIN_OFF(hr_render_options, progress_user, 48);
 PIN_OFF(hr_render_options, adaptive_threshold, 56);
@@ -104,6 +104,9 @@ PIN_OFF(hr_render_options, window_x, 88);
 PIN_OFF(hr_render_options, window_y, 92);
 PIN_OFF(hr_render_options, window_width, 96);
 PIN_OFF(hr_render_options, window_height, 100);
+/* The per-tile callback (issue 18), appended after the window. */
+PIN_OFF(hr_render_options, tile_done, 104);
+PIN_OFF(hr_render_options, tile_user, 112);
 PIN_SIZE(hr_render_stats, 80);
 PIN_OFF(hr_render_stats, primary, 8);
 PIN_OFF(hr_render_stats, seconds, 40);

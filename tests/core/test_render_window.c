@@ -227,10 +227,8 @@ static void test_bad_windows(void)
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
-    CHECK_OK(hr_scene_create(ctx, &scene));
-    tb_add_mirror_glass_set(scene, 1);
-    tb_light(scene, 5, 8, 6, 1, 1, 1);
-    CHECK_OK(hr_scene_commit(scene));
+    scene = tb_mirror_glass_scene(ctx);
+    if (!scene) return hr_test_end();
     test_tilings();
     test_stats();
     test_to_the_edge();

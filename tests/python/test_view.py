@@ -288,9 +288,11 @@ def read_ppm(data):
     return width, height, pixels
 
 
-def window_pixels(display, window, width, height):
+def window_pixels(display, window, width, height, zoom=1):
     """The window's pixels as the X server has them (libX11 through ctypes:
-    Xvfb has no compositor, so this is what is on the screen)."""
+    Xvfb has no compositor, so this is what is on the screen), as 0xRRGGBB:
+    of an image shown at `zoom` screen pixels a pixel, the centre of each
+    image pixel's square (width x height being the window's)."""
     x11 = ctypes.CDLL(ctypes.util.find_library("X11") or "libX11.so.6")
     x11.XOpenDisplay.restype = ctypes.c_void_p
     x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
@@ -299,15 +301,39 @@ def window_pixels(display, window, width, height):
                               ctypes.c_uint, ctypes.c_ulong, ctypes.c_int]
     x11.XGetPixel.restype = ctypes.c_ulong
     x11.XGetPixel.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int]
+    x11.XDestroyImage.argtypes = [ctypes.c_void_p]
     x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
     connection = x11.XOpenDisplay(display.encode())
     assert connection, f"cannot open {display}"
     try:
         image = x11.XGetImage(connection, window, 0, 0, width, height, 0xFFFFFFFF, 2)  # ZPixmap
         assert image, "XGetImage failed"
-        return [[x11.XGetPixel(image, x, y) for x in range(width)] for y in range(height)]
+        half = zoom // 2
+        try:
+            return [[x11.XGetPixel(image, zoom * x + half, zoom * y + half) & 0xFFFFFF
+                     for x in range(width // zoom)] for y in range(height // zoom)]
+        finally:
+            x11.XDestroyImage(image)
     finally:
         x11.XCloseDisplay(connection)
+
+
+def ppm_codes(data):
+    """(width, height, rows of 0xRRGGBB) of a binary PPM as hitray writes it."""
+    width, height, pixels = read_ppm(data)
+    return width, height, [[(pixels[3 * (y * width + x)] << 16) | (pixels[3 * (y * width + x) + 1] << 8)
+                            | pixels[3 * (y * width + x) + 2] for x in range(width)] for y in range(height)]
+
+
+def window_zoom(viewer, image_width, image_height):
+    """The viewer's window id and how many screen pixels an image pixel
+    takes (a small image is shown at a whole multiple of its size)."""
+    window = viewer.xdotool("search", "--sync", "--name", "^hitray view").split()[0]
+    geometry = dict(line.split("=") for line in viewer.xdotool("getwindowgeometry", "--shell", window).split())
+    width, height = int(geometry["WIDTH"]), int(geometry["HEIGHT"])
+    zoom = width // image_width
+    assert zoom >= 1 and (width, height) == (zoom * image_width, zoom * image_height)
+    return int(window), zoom
 
 
 def test_view_window_shows_the_final_pass(display, tmp_path):
@@ -318,21 +344,11 @@ def test_view_window_shows_the_final_pass(display, tmp_path):
     viewer = Viewer(display, DEMO, "--size", SIZE, "--screenshot", shot, cwd=tmp_path)
     try:
         viewer.line("wrote ")  # printed after the pass is drawn
-        window = viewer.xdotool("search", "--sync", "--name", "^hitray view").split()[0]
-        geometry = dict(line.split("=") for line in viewer.xdotool("getwindowgeometry", "--shell", window).split())
-        width, height = int(geometry["WIDTH"]), int(geometry["HEIGHT"])
-        iw, ih, want = read_ppm(render(tmp_path, "ref.ppm"))
-        zoom = width // iw
-        assert zoom >= 1 and (width, height) == (zoom * iw, zoom * ih)
+        iw, ih, want = ppm_codes(render(tmp_path, "ref.ppm"))
+        window, zoom = window_zoom(viewer, iw, ih)
         def wrong_pixels():
-            screen = window_pixels(display, int(window), width, height)
-            wrong = 0
-            for y in range(ih):
-                for x in range(iw):
-                    at = 3 * (y * iw + x)
-                    rgb = (want[at] << 16) | (want[at + 1] << 8) | want[at + 2]
-                    wrong += screen[zoom * y + zoom // 2][zoom * x + zoom // 2] & 0xFFFFFF != rgb
-            return wrong
+            screen = window_pixels(display, window, zoom * iw, zoom * ih, zoom)
+            return sum(screen[y][x] != want[y][x] for y in range(ih) for x in range(iw))
         # The X server draws the viewer's requests in its own time: give it
         # a few seconds to show the pass the viewer has drawn.
         for _ in range(30):
@@ -341,6 +357,52 @@ def test_view_window_shows_the_final_pass(display, tmp_path):
                 break
             time.sleep(0.1)
         assert wrong == 0, f"{wrong} of {iw * ih} pixels on the screen differ from hitray render's PPM"
+        viewer.keys("Escape")
+        assert viewer.proc.wait(timeout=WAIT) == 0
+    finally:
+        viewer.close()
+
+
+TILE = 32  # hr_render's tiles (its default, which the viewer keeps)
+
+
+def tile_sources(screen, sources):
+    """For each 32x32 tile of the screen's image (row-major): the set of the
+    named images in `sources` it equals in every pixel."""
+    height, width = len(screen), len(screen[0])
+    found = []
+    for ty in range(0, height, TILE):
+        for tx in range(0, width, TILE):
+            cells = [(y, x) for y in range(ty, min(ty + TILE, height)) for x in range(tx, min(tx + TILE, width))]
+            found.append({name for name, image in sources.items()
+                          if all(screen[y][x] == image[y][x] for y, x in cells)})
+    return found
+
+
+def test_view_passes_replace_the_last_tile_by_tile(display, tmp_path):
+    """While the full-quality pass runs (128 samples a pixel on one thread:
+    seconds, its 20 tiles one after the other), the window shows its
+    finished tiles and, everywhere else, the pass before it (one ray a
+    pixel): every 32x32 tile on the screen is wholly one of the two, and a
+    screenshot mid-pass holds tiles of each."""
+    spp = "128"
+    iw, ih, previous = ppm_codes(render(tmp_path, "previous.ppm"))
+    _, _, final = ppm_codes(render(tmp_path, "final.ppm", "--spp", spp))
+    sources = {"previous": previous, "final": final}
+    viewer = Viewer(display, DEMO, "--size", SIZE, "--spp", spp, "--threads", "1", cwd=tmp_path)
+    try:
+        window, zoom = window_zoom(viewer, iw, ih)
+        deadline, mixed = time.monotonic() + WAIT, False
+        while time.monotonic() < deadline:
+            tiles = tile_sources(window_pixels(display, window, zoom * iw, zoom * ih, zoom), sources)
+            # Before the final pass the earlier passes show (tiles of
+            # neither); once it runs, every tile is one of the two.
+            if not all(tiles):
+                continue
+            mixed = any(t == {"final"} for t in tiles) and any(t == {"previous"} for t in tiles)
+            if mixed or all("final" in t for t in tiles):  # seen, or the pass is over
+                break
+        assert mixed, f"no screenshot showed tiles of the final pass beside the pass before it (last: {tiles})"
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
     finally:

@@ -242,7 +242,7 @@ static void test_pixels(void)
     const float odd[] = {0.0f, -0.0f, -1.0f, NAN, INFINITY, -INFINITY, 2.0f, 1e-30f, 1.0f, 0.5f};
     for (size_t i = 0; i < sizeof odd / sizeof odd[0]; i++) px[3 * N + i] = odd[i];
     static uint8_t out[2 * 3 * N + 16];
-    view_pixels_srgb8(image, out, 3 * N + 16); /* a pitch longer than the row */
+    view_pixels_srgb8(px, 3 * N, N, 2, out, 3 * N + 16); /* a pitch longer than the row */
     int mismatches = 0;
     for (int i = 0; i < 3 * N; i++) {
         float v = px[i];
@@ -258,6 +258,12 @@ static void test_pixels(void)
     const uint8_t want_odd[] = {0, 0, 0, 0, 255, 0, 255, 0, 255, 188};
     for (size_t i = 0; i < sizeof want_odd; i++)
         CHECK_MSG(row[i] == want_odd[i], "odd value %zu: code %d, expected %d", i, row[i], want_odd[i]);
+    /* A tile inside the image (rows a stride apart, from its own corner):
+     * the same codes as the whole image's conversion has there. */
+    uint8_t tile[2 * 3 * 5];
+    view_pixels_srgb8(px + 3 * 7, 3 * N, 5, 2, tile, 3 * 5);
+    CHECK(memcmp(tile, out + 3 * 7, 3 * 5) == 0);
+    CHECK(memcmp(tile + 3 * 5, out + 3 * N + 16 + 3 * 7, 3 * 5) == 0);
     hr_image_destroy(image);
 }
 

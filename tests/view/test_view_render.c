@@ -3,8 +3,12 @@
  * bit; a restart drops the old camera's frames and refines the new one; a
  * restart or a stop during a pass that would take minutes cancels it (the
  * ctest timeout makes a hang a failure); a render error is reported once
- * and the next camera renders again. */
+ * and the next camera renders again. The pixels for the window hold every
+ * tile of the final pass once it is handed out, and after a restart no
+ * tile of the old camera reaches them, not even one finished before the
+ * restart and not yet taken. */
 #include <pthread.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -64,6 +68,37 @@ static void check_frame(const cli_scene *s, const hr_render_options *base, const
     hr_image_destroy(want);
 }
 
+/* hr_render's image for `pass` of the plan at `cam`, as the window's sRGB. */
+static uint8_t *pass_srgb(const cli_scene *s, const hr_render_options *base, const view_pass *pass,
+                          const hr_camera *cam)
+{
+    hr_render_options o = *base;
+    o.block_size = pass->block_size;
+    o.samples_per_pixel = pass->samples_per_pixel;
+    hr_image *img = NULL;
+    CHECK_OK(hr_render(s->sdl.scene, cam, &o, &img, NULL));
+    if (!img) return NULL;
+    int32_t w = hr_image_width(img), h = hr_image_height(img);
+    uint8_t *out = malloc(3 * (size_t)w * (size_t)h);
+    if (out) view_pixels_srgb8(hr_image_data(img), 3 * w, w, h, out, 3 * w);
+    hr_image_destroy(img);
+    return out;
+}
+
+/* The window's pixels must be the final frame's image in sRGB. */
+static void check_pixels_are(view_renderer *r, const hr_image *image)
+{
+    int32_t w = hr_image_width(image), h = hr_image_height(image);
+    uint8_t *want = malloc(3 * (size_t)w * (size_t)h);
+    if (!want) return;
+    view_pixels_srgb8(hr_image_data((hr_image *)image), 3 * w, w, h, want, 3 * w);
+    view_rect changed;
+    const uint8_t *got = view_renderer_take_pixels(r, &changed);
+    CHECK_MSG(memcmp(got, want, 3 * (size_t)w * (size_t)h) == 0,
+              "the window's pixels are not the final pass when it is handed out");
+    free(want);
+}
+
 /* Take frames until the final pass of `generation`; each is checked, none
  * may be of a later generation, passes of one generation come in order. */
 static void refine_to_the_end(view_renderer *r, const cli_scene *s, const hr_render_options *base,
@@ -84,6 +119,7 @@ static void refine_to_the_end(view_renderer *r, const cli_scene *s, const hr_ren
         }
         check_frame(s, base, &f);
         int final = f.generation == generation && f.pass == f.passes - 1;
+        if (final) check_pixels_are(r, f.image);
         hr_image_destroy(f.image);
         if (final) return;
     }
@@ -135,20 +171,43 @@ int main(void)
     refine_to_the_end(r, &s, &base, 3, &cam);
     view_renderer_stop(r);
 
-    /* A final pass that would take minutes (4096 samples a pixel on one
-     * thread): a move gets the new camera's first pass at once, and a stop
-     * does not wait for the slow pass. */
+    /* A final pass that would take minutes (65536 samples a pixel on one
+     * thread, no tile of it done within seconds): a move gets the new
+     * camera's first pass at once, and a stop does not wait for the slow
+     * pass. */
     view_pass slow[VIEW_MAX_PASSES];
-    int slow_passes = view_pass_plan(1, 4096, slow);
+    int slow_passes = view_pass_plan(1, 65536, slow);
     base.threads = 1;
     r = view_renderer_start(s.sdl.scene, s.ctx, &base, slow, slow_passes, &cam, on_notify, NULL);
     CHECK(r != NULL);
     if (!r) return hr_test_end();
     view_frame f;
+    /* The old camera's passes are in the pixels, none taken yet. */
     CHECK(take_up_to(r, slow_passes - 2, 1, NULL));
     view_apply(VIEW_PITCH_UP, &cam, &steps);
     uint64_t g = view_renderer_restart(r, &cam);
+    /* The window never took anything: each pixel is still black, or a tile
+     * of the new camera's passes (the first may be in already). */
+    view_rect changed;
+    const uint8_t *px = view_renderer_take_pixels(r, &changed);
+    uint8_t *refs[VIEW_MAX_PASSES] = {NULL};
+    for (int p = 0; p < slow_passes - 1; p++) refs[p] = pass_srgb(&s, &base, &slow[p], &cam);
+    size_t n = (size_t)cam.width * (size_t)cam.height;
+    size_t stale = 0;
+    for (size_t i = 0; i < n; i++) {
+        static const uint8_t black[3] = {0, 0, 0};
+        int fits = memcmp(px + 3 * i, black, 3) == 0;
+        for (int p = 0; !fits && p < slow_passes - 1; p++)
+            fits = refs[p] && memcmp(px + 3 * i, refs[p] + 3 * i, 3) == 0;
+        stale += !fits;
+    }
+    CHECK_MSG(stale == 0, "after a restart, %zu pixels of the window's are the old camera's", stale);
     CHECK(take_up_to(r, slow_passes - 2, g, &cam));
+    /* Its last quick pass is all there (the slow pass has no tile yet). */
+    px = view_renderer_take_pixels(r, &changed);
+    CHECK_MSG(refs[slow_passes - 2] && memcmp(px, refs[slow_passes - 2], 3 * n) == 0,
+              "the window's pixels are not the last pass handed out");
+    for (int p = 0; p < slow_passes - 1; p++) free(refs[p]);
     view_renderer_stop(r); /* in the slow pass */
 
     /* A camera the renderer refuses: the error is kept, no frame comes;
