@@ -53,7 +53,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 # contribution cut-off can cut anything: only mirrors and glass spawn rays
 # with a weight below 1)
 RENDER_SCENES = {
-    "demo": ("scenes/demo.sdl", "the demo: mirror, glass ball, shadows, depth 6", True),
+    "demo": ("scenes/demo.sdl", "the demo: textures on a checkerboard floor, a mirror, a glass ball, shadows, depth 6", True),
     "sphere_grid": ("bench/scenes/sphere_grid.sdl",
                     "10,000 small spheres receding to the horizon: detail far below a pixel; no "
                     "mirror or glass, so no --min-weight rows", False),
