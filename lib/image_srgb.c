@@ -1,6 +1,8 @@
 /* Linear light to code values (image_srgb.h). */
 #include "image_srgb.h"
 
+#include <hitray/image.h>
+
 #include <math.h>
 #include <pthread.h>
 #include <string.h>
@@ -115,4 +117,10 @@ uint32_t hr_code_value(float linear, int srgb, uint32_t max_code)
 uint32_t hr_code_value_by_formula(float linear, int srgb, uint32_t max_code)
 {
     return code_by_formula(linear, srgb, max_code);
+}
+
+HR_API void hr_srgb8_encode(const float *linear, size_t count, uint8_t *codes)
+{
+    if (!linear || !codes) return;
+    for (size_t i = 0; i < count; i++) codes[i] = (uint8_t)srgb8_code(linear[i]);
 }

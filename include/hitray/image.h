@@ -36,6 +36,13 @@ HR_API float *hr_image_data(hr_image *image);
 #define HR_IMAGE_READ_MAX_PIXELS 16777216 /* 2^24, 4096 x 4096: 192 MiB of floats */
 HR_API hr_status hr_image_read(hr_context *ctx, const char *path, hr_image **out);
 
+/* `count` linear values as the 8-bit codes an sRGB PNG or a PPM holds for
+ * them, the same codes hr_image_write writes: the exact sRGB curve (IEC
+ * 61966-2-1) rounded to nearest, NaN and values at or below 0 giving 0, at
+ * or above 1 giving 255. For showing pixels on a display (hitray view)
+ * without writing a file. Reentrant; `linear` and `codes` must not overlap. */
+HR_API void hr_srgb8_encode(const float *linear, size_t count, uint8_t *codes);
+
 #define HR_FORMAT_AUTO 0 /* from the file extension */
 #define HR_FORMAT_PNG 1
 #define HR_FORMAT_EXR 2

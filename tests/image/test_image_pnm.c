@@ -58,6 +58,14 @@ static void check_ppm(const char *dir, int32_t channels)
         }
         hr_test_checks++;
         CHECK(data[at] == 0 && data[at + 1] == 0 && data[at + 2] == 255); /* NaN, -1, +inf */
+        /* hr_srgb8_encode gives the file's own bytes, pixel by pixel. */
+        int differ = 0;
+        for (long p = 0; at > 0 && p < (long)w * h && at + 3 * p + 2 < size; p++) {
+            uint8_t codes[3];
+            hr_srgb8_encode(src + p * channels, 3, codes);
+            differ += memcmp(codes, data + at + 3 * p, 3) != 0;
+        }
+        CHECK_MSG(differ == 0, "%d of %d pixels: hr_srgb8_encode differs from the PPM", differ, w * h);
         free(data);
     }
     hr_image_destroy(image);

@@ -9,6 +9,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include <hitray/image.h>
+
 #include "hr_test.h"
 #include "image_srgb.h"
 
@@ -55,5 +57,16 @@ int main(void)
     CHECK_MSG(wrong == 0, "%ld of %ld code values differ from the formula", wrong, checked);
     CHECK(checked > 4000000);
     CHECK(hr_code_value(1.0f, 1, 255) == 255 && hr_code_value(NAN, 1, 255) == 0);
+    /* The public encoder (hr_srgb8_encode, what hitray view shows) is the
+     * same table: the extremes, and a sweep of [0, 1] a step a code. */
+    float sweep[256 + sizeof extremes / sizeof *extremes];
+    for (int i = 0; i < 256; i++) sweep[i] = (float)i / 255.0f;
+    memcpy(sweep + 256, extremes, sizeof extremes);
+    uint8_t codes[sizeof sweep / sizeof *sweep];
+    hr_srgb8_encode(sweep, sizeof sweep / sizeof *sweep, codes);
+    int differ = 0;
+    for (size_t i = 0; i < sizeof sweep / sizeof *sweep; i++)
+        differ += codes[i] != hr_code_value_by_formula(sweep[i], 1, 255);
+    CHECK_MSG(differ == 0, "%d codes of hr_srgb8_encode differ from the formula", differ);
     return hr_test_end();
 }
