@@ -111,7 +111,6 @@ void accel_bvh4_release(accel_bvh4 *bvh);
 typedef struct accel_ray4 {
 #if defined(__SSE2__)
     __m128 o_near[3], o_far[3], inv_near[3], inv_far[3];
-    __m128 tiny, infinity; /* the test's constants, broadcast once a ray */
 #else
     float o_near[3], o_far[3], inv_near[3], inv_far[3];
 #endif
@@ -141,8 +140,8 @@ typedef struct accel_ray4 {
  * float result. */
 #define ACCEL_TINY 0x1p-149f
 
-/* For a walk over [tmin, ...]. */
-static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
+/* For a walk over [tmin, ...]: any ray, any tmin. */
+static inline void accel_ray4_init_any(accel_ray4 *r, const hr_ray *ray, double tmin)
 {
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     /* A negative tmin moves the origin back to where the interval starts;
@@ -157,10 +156,6 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
               isfinite(ray->origin.y + r->t_offset * ray->dir.y) &&
               isfinite(ray->origin.z + r->t_offset * ray->dir.z);
     if (!r->cull) r->t_offset = 0.0;
-#if defined(__SSE2__)
-    r->tiny = _mm_set1_ps(ACCEL_TINY);
-    r->infinity = _mm_set1_ps(INFINITY);
-#endif
     const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
     double big = fabs(d[0]);
     if (fabs(d[1]) > big) big = fabs(d[1]);
@@ -232,14 +227,108 @@ static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin
     if (!usable) r->cull = 0;
 }
 
-/* The float bounds of a ray's interval, in the walk's t. */
+#if defined(__SSE2__)
+/* The same preparation, bit for bit, for the common ray, three axes at a
+ * time: tmin finite and not negative (so t_offset is 0), every direction
+ * component at most 2^39 in size and one at least 2^-39 (so no scaling,
+ * t_scale 1, and that one's 1/d is usable), every origin component within
+ * ACCEL_CULL_RANGE (so float's range needs no clamp). Returns 0, having
+ * written nothing, for any other ray. The arithmetic is
+ * accel_ray4_init_any's, operation for operation, in SSE2 lanes that round
+ * as the scalar operations do; tests/core/test_bvh4_ray_init.c compares
+ * the two on rays around every one of these limits. */
+static inline int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, double tmin)
+{
+    /* Lanes x, y in one double vector, z in another (its upper lane 0). */
+    const __m128d dxy = _mm_loadu_pd(&ray->dir.x), dz = _mm_load_sd(&ray->dir.z);
+    const __m128d oxy = _mm_loadu_pd(&ray->origin.x), oz = _mm_load_sd(&ray->origin.z);
+    const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
+    const __m128d adxy = _mm_and_pd(dxy, abs_mask), adz = _mm_and_pd(dz, abs_mask);
+    /* Every lane within its limits (NaN fails every compare; z's upper
+     * lane, 0, passes), and some direction component large enough. */
+    const __m128d d_most = _mm_set1_pd(0x1p39), d_least = _mm_set1_pd(0x1p-39);
+    const __m128d o_most = _mm_set1_pd(ACCEL_CULL_RANGE);
+    const __m128d within =
+        _mm_and_pd(_mm_and_pd(_mm_cmple_pd(adxy, d_most), _mm_cmple_pd(_mm_and_pd(oxy, abs_mask), o_most)),
+                   _mm_and_pd(_mm_cmple_pd(adz, d_most), _mm_cmple_pd(_mm_and_pd(oz, abs_mask), o_most)));
+    const __m128d large = _mm_or_pd(_mm_cmpge_pd(adxy, d_least), _mm_cmpge_pd(adz, d_least));
+    if (!((tmin >= 0) & (tmin < INFINITY) & (_mm_movemask_pd(within) == 3) & (_mm_movemask_pd(large) != 0)))
+        return 0;
+    const __m128d one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
+    const __m128d ixy = _mm_div_pd(one, dxy), iz = _mm_div_sd(one, dz);
+    /* Where 1/d passes ACCEL_INV_MAX for a non-zero d: NaN, as a mask of
+     * float lanes x, y, z (each double mask's low half). */
+    const __m128d inv_max = _mm_set1_pd(ACCEL_INV_MAX);
+    const __m128d nan_xy = _mm_and_pd(_mm_cmpnle_pd(_mm_and_pd(ixy, abs_mask), inv_max), _mm_cmpneq_pd(dxy, zero));
+    const __m128d nan_z = _mm_and_pd(_mm_cmpnle_pd(_mm_and_pd(iz, abs_mask), inv_max), _mm_cmpneq_pd(dz, zero));
+    const __m128 nan_lanes = _mm_shuffle_ps(_mm_castpd_ps(nan_xy), _mm_castpd_ps(nan_z), _MM_SHUFFLE(2, 0, 2, 0));
+    const __m128d near_scale = _mm_set1_pd(1.0 - ACCEL_SLACK), far_scale = _mm_set1_pd(1.0 + ACCEL_SLACK);
+    const __m128 nan4 = _mm_set1_ps(NAN);
+#define ACCEL_LANES3(xy, z) _mm_movelh_ps(_mm_cvtpd_ps(xy), _mm_cvtpd_ps(z))
+    __m128 inv_near = ACCEL_LANES3(_mm_mul_pd(ixy, near_scale), _mm_mul_pd(iz, near_scale));
+    __m128 inv_far = ACCEL_LANES3(_mm_mul_pd(ixy, far_scale), _mm_mul_pd(iz, far_scale));
+    inv_near = _mm_or_ps(_mm_andnot_ps(nan_lanes, inv_near), _mm_and_ps(nan_lanes, nan4));
+    inv_far = _mm_or_ps(_mm_andnot_ps(nan_lanes, inv_far), _mm_and_ps(nan_lanes, nan4));
+    /* accel_float_bracket, without its clamp (the origin is within
+     * float's range here). */
+    const __m128 f = ACCEL_LANES3(oxy, oz);
+    const __m128 step = _mm_add_ps(_mm_mul_ps(_mm_and_ps(f, _mm_castsi128_ps(_mm_set1_epi32(INT32_MAX))),
+                                              _mm_set1_ps(0x1p-23f)),
+                                   _mm_set1_ps(0x1p-149f));
+    const __m128 dn = _mm_sub_ps(f, step), up = _mm_add_ps(f, step);
+    /* The direction's signs, as lanes and bits (float keeps the sign of
+     * every double, a zero's included). */
+    const __m128 df = ACCEL_LANES3(dxy, dz);
+#undef ACCEL_LANES3
+    const __m128 neg = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(df), 31));
+    const unsigned neg_bits = (unsigned)_mm_movemask_ps(df);
+    const __m128 on = _mm_or_ps(_mm_and_ps(neg, dn), _mm_andnot_ps(neg, up));
+    const __m128 of = _mm_or_ps(_mm_and_ps(neg, up), _mm_andnot_ps(neg, dn));
+#define ACCEL_AXIS(a, lanes)                                                                   \
+    do {                                                                                       \
+        const size_t lo_at = offsetof(accel_bvh4_node, lo) + (size_t)(a) * 4 * sizeof(float);  \
+        const size_t hi_at = offsetof(accel_bvh4_node, hi) + (size_t)(a) * 4 * sizeof(float);  \
+        const int neg_a = (neg_bits >> (a)) & 1;                                               \
+        r->near_at[a] = neg_a ? hi_at : lo_at;                                                 \
+        r->far_at[a] = neg_a ? lo_at : hi_at;                                                  \
+        r->o_near[a] = _mm_shuffle_ps(on, on, lanes);                                          \
+        r->o_far[a] = _mm_shuffle_ps(of, of, lanes);                                           \
+        r->inv_near[a] = _mm_shuffle_ps(inv_near, inv_near, lanes);                            \
+        r->inv_far[a] = _mm_shuffle_ps(inv_far, inv_far, lanes);                               \
+    } while (0)
+    ACCEL_AXIS(0, _MM_SHUFFLE(0, 0, 0, 0));
+    ACCEL_AXIS(1, _MM_SHUFFLE(1, 1, 1, 1));
+    ACCEL_AXIS(2, _MM_SHUFFLE(2, 2, 2, 2));
+#undef ACCEL_AXIS
+    r->t_scale = 1.0;
+    r->t_offset = 0.0;
+    r->cull = 1;
+    return 1;
+}
+#endif
+
+/* For a walk over [tmin, ...]. */
+static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
+{
+#if defined(__SSE2__)
+    if (accel_ray4_init_common(r, ray, tmin)) return;
+#endif
+    accel_ray4_init_any(r, ray, tmin);
+}
+
+/* The float bounds of a ray's interval, in the walk's t. The upper one is
+ * at most the largest float (NaN stays NaN): the test's "an entry of +inf
+ * is a miss" then comes free with "the entry is below the exit", since an
+ * entry at or below FLT_MAX is finite (accel_bvh4_test). An exit clamped
+ * so culls exactly what +inf did: every entry the test passes is finite. */
 static inline float accel_ray4_tmin(const accel_ray4 *r, double tmin)
 {
     return accel_float_at_most((tmin - r->t_offset) * r->t_scale);
 }
 static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
 {
-    return accel_float_at_least((tmax - r->t_offset) * r->t_scale);
+    float t = accel_float_at_least((tmax - r->t_offset) * r->t_scale);
+    return t > FLT_MAX ? FLT_MAX : t;
 }
 
 /* Which of a node's four children the ray may meet within [tmin, tmax]
@@ -249,10 +338,16 @@ static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
  * for those the slack in inv_near (inv_far) makes the entry smaller (the
  * exit larger); a negative distance stays negative.
  *
- * An entry of +inf is a miss: no hit lies there. That is also what keeps
- * an empty slot (lo = +inf, hi = -inf) from ever being met, with no test
- * of its own: along the direction's largest component 1/d is finite, and
- * of that axis's two slab distances at least one is an infinity on the
+ * An entry of +inf is a miss: no hit lies there. The test needs no compare
+ * of its own for it: the exit is at most tmax + 2^-149, which is at most
+ * FLT_MAX (accel_ray4_tmax; rounding is monotone and FLT_MAX + 2^-149
+ * rounds to FLT_MAX), so "entry <= exit" already says "entry < +inf".
+ * Clamping tmax there gives the same mask, bit for bit, as testing
+ * "entry < +inf" beside an unclamped exit: fl(min(h, FLT_MAX) + 2^-149)
+ * is min(fl(h + 2^-149), FLT_MAX) for every h. That is also what keeps an
+ * empty slot (lo = +inf, hi = -inf) from ever being met, with no test of
+ * its own: along the direction's largest component 1/d is finite, and of
+ * that axis's two slab distances at least one is an infinity on the
  * missing side (+inf entering or -inf leaving); the other may be NaN
  * (inf - inf, an origin beyond float's range), which the max/min ignore,
  * but both cannot be, since the origin cannot be beyond both ends. */
@@ -284,11 +379,11 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
     ACCEL_SLAB(1);
     ACCEL_SLAB(2);
 #undef ACCEL_SLAB
-    lo = _mm_sub_ps(lo, r->tiny);
-    hi = _mm_add_ps(hi, r->tiny);
+    const __m128 tiny = _mm_set1_ps(ACCEL_TINY);
+    lo = _mm_sub_ps(lo, tiny);
+    hi = _mm_add_ps(hi, tiny);
     _mm_storeu_ps(entry, lo);
-    const __m128 met = _mm_and_ps(_mm_cmple_ps(lo, hi), _mm_cmplt_ps(lo, r->infinity));
-    return (unsigned)_mm_movemask_ps(met);
+    return (unsigned)_mm_movemask_ps(_mm_cmple_ps(lo, hi));
 #else
     unsigned mask = 0;
     for (int k = 0; k < 4; k++) {
@@ -304,7 +399,7 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
         lo -= ACCEL_TINY;
         hi += ACCEL_TINY;
         entry[k] = lo;
-        if (lo <= hi && lo < INFINITY) mask |= 1u << k;
+        if (lo <= hi) mask |= 1u << k;
     }
     return mask;
 #endif
@@ -314,81 +409,124 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
 #define ACCEL_WALK_GO_ON 0
 #define ACCEL_WALK_STOP 1
 
-/* The walk of accel_bvh4_walk (ordered: nearest entry first) and of
- * accel_bvh4_walk_any (children in slot order). */
-static inline int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
-                                     double *tmax,
-                                     int (*leaf)(void *user, uint32_t first, uint32_t count),
-                                     void *user, int ordered)
+/* Each walk is compiled with its order a constant, so the loop has no
+ * branch on it (nor on whether it culls). */
+#if defined(__GNUC__)
+#define ACCEL_ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define ACCEL_ALWAYS_INLINE static inline
+#endif
+
+/* The walk of a ray with no interval to cull by (accel_ray4_init): every
+ * leaf, in the order the culling walk would take them were every entry
+ * -inf (all ties): depth first, the first child of a node first, then the
+ * others in slot order (ordered) or, as the unordered walk stacks them,
+ * the last first. Out of line: it is rare, and slow anyway. */
+static int accel_bvh4_walk_every(const accel_bvh4 *bvh,
+                                 int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                 void *user, int ordered)
+{
+    uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
+    uint32_t top = 0;
+    uint32_t ref = 0, count = 0; /* the root, an inner node */
+    for (;;) {
+        if (count > 0) {
+            if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
+        } else {
+            const accel_bvh4_node *n = &bvh->nodes[ref];
+            unsigned mask = 0;
+            for (uint32_t k = 0; k < 4; k++)
+                mask |= (uint32_t)(n->count[k] > 0 || n->ref[k] != ACCEL_BVH4_EMPTY) << k;
+            if (mask) {
+                uint32_t k = (uint32_t)__builtin_ctz(mask);
+                mask &= mask - 1;
+                for (uint32_t j = 0; j < 4; j++) {
+                    uint32_t c = ordered ? 3 - j : j;
+                    if (!(mask >> c & 1)) continue;
+                    stack_ref[top] = n->ref[c], stack_count[top++] = n->count[c];
+                }
+                ref = n->ref[k], count = n->count[k];
+                continue;
+            }
+        }
+        if (top == 0) return ACCEL_WALK_GO_ON;
+        --top;
+        ref = stack_ref[top], count = stack_count[top];
+    }
+}
+
+/* The walk of accel_bvh4_walk (ordered: nearest entry first, the earlier
+ * slot on a tie) and of accel_bvh4_walk_any (children in slot order). */
+ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                           double *tmax,
+                                           int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                           void *user, int ordered)
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
     accel_ray4_init(&r, ray, tmin);
     if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init */
+    if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
     accel_f4 tmax4 = accel_f4_set(tmax_f);
     uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
     float stack_entry[ACCEL_BVH4_STACK];
     uint32_t top = 0;
-    uint32_t ref = 0, count = 0; /* the root, an inner node */
+    const accel_bvh4_node *const nodes = bvh->nodes;
+    const accel_bvh4_node *n = nodes; /* the root, an inner node */
+    uint32_t ref, count;
     for (;;) {
-        if (count > 0) {
-            double before = *tmax;
-            if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
-            if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
-        } else {
-            const accel_bvh4_node *n = &bvh->nodes[ref];
-            float entry[4];
-            unsigned mask = 0;
-            if (r.cull) {
-                mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
-            } else {
-                for (uint32_t k = 0; k < 4; k++) {
-                    entry[k] = -INFINITY;
-                    mask |= (uint32_t)(n->count[k] > 0 || n->ref[k] != ACCEL_BVH4_EMPTY) << k;
-                }
+        float entry[4];
+        unsigned mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
+        if (!mask) goto next;
+        uint32_t k = (uint32_t)__builtin_ctz(mask);
+        mask &= mask - 1;
+        if (mask && !ordered) {
+            /* Two or more, any order: stack all but the first. */
+            for (unsigned rest = mask; rest; rest &= rest - 1) {
+                uint32_t c = (uint32_t)__builtin_ctz(rest);
+                stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
+                stack_entry[top++] = entry[c];
             }
-            if (mask) {
-                uint32_t k = (uint32_t)__builtin_ctz(mask);
+        } else if (mask && !(mask & (mask - 1))) {
+            /* Exactly two (the most common case): stack the farther (the
+             * later slot, c, on a tie, as the sort below does). */
+            uint32_t c = (uint32_t)__builtin_ctz(mask);
+            if (entry[c] < entry[k]) {
+                uint32_t t = c;
+                c = k, k = t;
+            }
+            stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
+            stack_entry[top++] = entry[c];
+        } else if (mask) {
+            /* Three or four: stack all but the nearest, farthest first (an
+             * insertion sort, by entry, stable: slot order on a tie). */
+            uint32_t kid[4], hits = 1;
+            float at[4];
+            kid[0] = k, at[0] = entry[k];
+            while (mask) {
+                uint32_t c = (uint32_t)__builtin_ctz(mask), j = hits++;
                 mask &= mask - 1;
-                if (mask && !ordered) {
-                    /* Two or more, any order: stack all but the first. */
-                    for (unsigned rest = mask; rest; rest &= rest - 1) {
-                        uint32_t c = (uint32_t)__builtin_ctz(rest);
-                        stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
-                        stack_entry[top++] = entry[c];
-                    }
-                } else if (mask && !(mask & (mask - 1))) {
-                    /* Exactly two (the most common case): stack the farther
-                     * (the later slot on a tie, as the sort below does). */
-                    uint32_t c = (uint32_t)__builtin_ctz(mask);
-                    uint32_t far = entry[c] < entry[k] ? k : c;
-                    k = far == k ? c : k;
-                    stack_ref[top] = n->ref[far], stack_count[top] = n->count[far];
-                    stack_entry[top++] = entry[far];
-                } else if (mask) {
-                    /* Three or four: stack all but the nearest, farthest
-                     * first (an insertion sort, by entry). */
-                    uint32_t kid[4], hits = 1;
-                    float at[4];
-                    kid[0] = k, at[0] = entry[k];
-                    while (mask) {
-                        uint32_t c = (uint32_t)__builtin_ctz(mask), j = hits++;
-                        mask &= mask - 1;
-                        while (j > 0 && at[j - 1] > entry[c]) kid[j] = kid[j - 1], at[j] = at[j - 1], j--;
-                        kid[j] = c, at[j] = entry[c];
-                    }
-                    for (uint32_t j = hits - 1; j > 0; j--) {
-                        stack_ref[top] = n->ref[kid[j]], stack_count[top] = n->count[kid[j]];
-                        stack_entry[top++] = at[j];
-                    }
-                    k = kid[0];
-                }
-                ref = n->ref[k], count = n->count[k];
-                continue;
+                while (j > 0 && at[j - 1] > entry[c]) kid[j] = kid[j - 1], at[j] = at[j - 1], j--;
+                kid[j] = c, at[j] = entry[c];
             }
+            for (uint32_t j = hits - 1; j > 0; j--) {
+                stack_ref[top] = n->ref[kid[j]], stack_count[top] = n->count[kid[j]];
+                stack_entry[top++] = at[j];
+            }
+            k = kid[0];
         }
+        ref = n->ref[k], count = n->count[k];
+        if (count == 0) {
+            n = nodes + ref;
+            continue;
+        }
+    leaf:;
+        double before = *tmax;
+        if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
+        if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
+    next:
         /* The next stacked child that may still hold something nearer than
          * the best hit, which may have come nearer since it was pushed. */
         do {
@@ -396,6 +534,8 @@ static inline int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, d
             --top;
         } while (stack_entry[top] > tmax_f);
         ref = stack_ref[top], count = stack_count[top];
+        if (count > 0) goto leaf;
+        n = nodes + ref;
     }
 }
 
