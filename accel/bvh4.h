@@ -105,6 +105,14 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
  * released tree. */
 void accel_bvh4_release(accel_bvh4 *bvh);
 
+/* Forced inline where a constant argument (the walk's order) or a value
+ * kept in registers (the prepared ray) is what makes the code lean. */
+#if defined(__GNUC__)
+#define ACCEL_ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define ACCEL_ALWAYS_INLINE static inline
+#endif
+
 /* --- Walking ------------------------------------------------------------- */
 
 /* A ray prepared for accel_bvh4_test. */
@@ -237,7 +245,7 @@ static inline void accel_ray4_init_any(accel_ray4 *r, const hr_ray *ray, double 
  * accel_ray4_init_any's, operation for operation, in SSE2 lanes that round
  * as the scalar operations do; tests/core/test_bvh4_ray_init.c compares
  * the two on rays around every one of these limits. */
-static inline int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, double tmin)
+ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, double tmin)
 {
     /* Lanes x, y in one double vector, z in another (its upper lane 0). */
     const __m128d dxy = _mm_loadu_pd(&ray->dir.x), dz = _mm_load_sd(&ray->dir.z);
@@ -308,7 +316,7 @@ static inline int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, doubl
 #endif
 
 /* For a walk over [tmin, ...]. */
-static inline void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
+ACCEL_ALWAYS_INLINE void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
 {
 #if defined(__SSE2__)
     if (accel_ray4_init_common(r, ray, tmin)) return;
@@ -408,14 +416,6 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
 /* What a walk's leaf callback returns. */
 #define ACCEL_WALK_GO_ON 0
 #define ACCEL_WALK_STOP 1
-
-/* Each walk is compiled with its order a constant, so the loop has no
- * branch on it (nor on whether it culls). */
-#if defined(__GNUC__)
-#define ACCEL_ALWAYS_INLINE static inline __attribute__((always_inline))
-#else
-#define ACCEL_ALWAYS_INLINE static inline
-#endif
 
 /* The walk of a ray with no interval to cull by (accel_ray4_init): every
  * leaf, in the order the culling walk would take them were every entry
