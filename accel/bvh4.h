@@ -29,7 +29,13 @@
  *   distance can overflow float (ACCEL_CULL_RANGE). An exactly zero
  *   component gives +-inf distances (or NaN for an origin exactly on the
  *   slab plane, again ignored), the textbook treatment of a parallel ray;
- * - tmin is rounded down and tmax up to float (after scaling).
+ * - tmin is rounded down and tmax up to float (after scaling), tmax then
+ *   clamped to FLT_MAX: an entry beyond it is +inf, which holds no hit;
+ * - the SSE2 and AVX2 walks compute the same slab distances but for the
+ *   sign of a zero (accel_bvh4_test_as), so the same entries, the same
+ *   boxes met, the same leaves in the same order, on every CPU;
+ * - accel_ray4_init_common is accel_ray4_init_any's arithmetic, lane by
+ *   lane, for the rays it accepts (test_bvh4_ray_init: bit for bit).
  * So a box is skipped only when the exact ray misses it; the hits a walk
  * finds are the shapes' own, in double, and do not depend on the walk. */
 #ifndef HITRAY_ACCEL_BVH4_H
@@ -367,8 +373,16 @@ typedef float accel_f4;
 static inline accel_f4 accel_f4_set(float x) { return x; }
 #endif
 
-static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_node *n,
-                                       accel_f4 tmin, accel_f4 tmax, float entry[4])
+/* flipped: r's inverses are negated (accel_bvh4_walk_core) and each slab
+ * distance is taken as (o - b) * -(1/d) rather than (b - o) * (1/d). That
+ * is the same value, since rounding is symmetric, but for the sign of a
+ * zero, which no compare sees and the entry's and exit's 2^-149 steps
+ * below erase (-0 - 2^-149 and +0 - 2^-149 are both -2^-149): the same
+ * mask and entries, bit for bit. With AVX's three-operand form it reads
+ * the box straight from memory, a load and a copy fewer per slab. */
+ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_as(const accel_ray4 *r, const accel_bvh4_node *n,
+                                                accel_f4 tmin, accel_f4 tmax, float entry[4],
+                                                int flipped)
 {
     const char *base = (const char *)n;
 #if defined(__SSE2__)
@@ -380,8 +394,10 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
     do {                                                                                \
         const __m128 bn_ = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a])); \
         const __m128 bf_ = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));  \
-        lo = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(bn_, r->o_near[a]), r->inv_near[a]), lo);   \
-        hi = _mm_min_ps(_mm_mul_ps(_mm_sub_ps(bf_, r->o_far[a]), r->inv_far[a]), hi);     \
+        const __m128 dn_ = flipped ? _mm_sub_ps(r->o_near[a], bn_) : _mm_sub_ps(bn_, r->o_near[a]); \
+        const __m128 df_ = flipped ? _mm_sub_ps(r->o_far[a], bf_) : _mm_sub_ps(bf_, r->o_far[a]);   \
+        lo = _mm_max_ps(_mm_mul_ps(dn_, r->inv_near[a]), lo);                            \
+        hi = _mm_min_ps(_mm_mul_ps(df_, r->inv_far[a]), hi);                             \
     } while (0)
     ACCEL_SLAB(0);
     ACCEL_SLAB(1);
@@ -409,8 +425,14 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
         entry[k] = lo;
         if (lo <= hi) mask |= 1u << k;
     }
+    (void)flipped; /* the lane-by-lane form has no use for it */
     return mask;
 #endif
+}
+static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_node *n,
+                                       accel_f4 tmin, accel_f4 tmax, float entry[4])
+{
+    return accel_bvh4_test_as(r, n, tmin, tmax, entry, 0);
 }
 
 /* What a walk's leaf callback returns. */
@@ -456,17 +478,27 @@ static int accel_bvh4_walk_every(const accel_bvh4 *bvh,
 }
 
 /* The walk of accel_bvh4_walk (ordered: nearest entry first, the earlier
- * slot on a tie) and of accel_bvh4_walk_any (children in slot order). */
-ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
-                                           double *tmax,
-                                           int (*leaf)(void *user, uint32_t first, uint32_t count),
-                                           void *user, int ordered)
+ * slot on a tie) and of accel_bvh4_walk_any (children in slot order), with
+ * the node test flipped or not (accel_bvh4_test_as). */
+ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                             double *tmax,
+                                             int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                             void *user, int ordered, int flipped)
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
     accel_ray4_init(&r, ray, tmin);
     if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init */
     if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
+#if defined(__SSE2__)
+    if (flipped) {
+        const __m128 sign = _mm_set1_ps(-0.0f);
+        for (int a = 0; a < 3; a++) {
+            r.inv_near[a] = _mm_xor_ps(r.inv_near[a], sign);
+            r.inv_far[a] = _mm_xor_ps(r.inv_far[a], sign);
+        }
+    }
+#endif
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
     accel_f4 tmax4 = accel_f4_set(tmax_f);
@@ -478,7 +510,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *
     uint32_t ref, count;
     for (;;) {
         float entry[4];
-        unsigned mask = accel_bvh4_test(&r, n, tmin4, tmax4, entry);
+        unsigned mask = accel_bvh4_test_as(&r, n, tmin4, tmax4, entry, flipped);
         if (!mask) goto next;
         uint32_t k = (uint32_t)__builtin_ctz(mask);
         mask &= mask - 1;
@@ -537,6 +569,47 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *
         if (count > 0) goto leaf;
         n = nodes + ref;
     }
+}
+
+/* The same walks compiled for AVX2 CPUs, chosen at run time (the build
+ * stays baseline x86-64): the node test flipped, so that each slab reads
+ * its box as a memory operand of a three-operand subtract. No FMA: a fused
+ * (b - o) * (1/d) would round once where the argument at the top counts
+ * two, and would move entries, so the order leaves are visited in. The
+ * same leaves in the same order as the SSE2 walk, entries bit for bit
+ * (accel_bvh4_test_as); test_bvh4 compares the two leaf by leaf. */
+#if defined(__SSE2__) && defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define ACCEL_WALK_AVX2 1
+__attribute__((target("avx2"))) static inline int
+accel_bvh4_walk_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                     int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 1, 1);
+}
+__attribute__((target("avx2"))) static inline int
+accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
+}
+/* Reads the CPU model libgcc filled in at load: a load and a test. */
+static inline int accel_walk_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
+#else
+#define ACCEL_WALK_AVX2 0
+#endif
+
+/* The walk for this CPU. */
+ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                           double *tmax,
+                                           int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                           void *user, int ordered)
+{
+#if ACCEL_WALK_AVX2
+    if (accel_walk_avx2_usable())
+        return ordered ? accel_bvh4_walk_avx2(bvh, ray, tmin, tmax, leaf, user)
+                       : accel_bvh4_walk_any_avx2(bvh, ray, tmin, tmax, leaf, user);
+#endif
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, ordered, 0);
 }
 
 /* Front-to-back walk: calls leaf(user, first, count) for each leaf the ray

@@ -4,6 +4,8 @@
  *   depth within ACCEL_BVH_MAX_DEPTH (the walk's stack is sized from it) on
  *   SAH's worst case, every float child box containing the double boxes of
  *   everything below it, and no overflow or NaN near the ends of the range;
+ * - the walks for SSE2 and AVX2 (accel_bvh4_walk_core, _avx2): the same
+ *   leaves in the same order, with a callback that lowers tmax as hits do;
  * - the walk (nearest first, and in slot order): conservative. For random and hard rays (axis-parallel, tiny
  *   direction components, origins on slab planes, far origins, origins
  *   beyond float's range, rays that just touch a box's face or edge) every
@@ -196,11 +198,67 @@ static int record_leaf(void *user, uint32_t first, uint32_t count)
 
 static long met_total; /* box meetings by the exact test, over every walk */
 
+/* The leaves a walk visits, in order, with a callback that acts as a
+ * scene's would: each leaf's items "hit" where the ray passes nearest their
+ * box's centre, lowering *tmax, so the walk's pruning by tmax is exercised. */
+typedef struct leaf_log {
+    const hr_bounds *boxes;
+    const accel_bvh4 *bvh;
+    const hr_ray *ray;
+    double tmin, *tmax;
+    uint32_t first[4096], count[4096], n;
+} leaf_log;
+
+static int log_leaf(void *user, uint32_t first, uint32_t count)
+{
+    leaf_log *w = user;
+    if (w->n < 4096) w->first[w->n] = first, w->count[w->n] = count;
+    w->n++;
+    const hr_vec3 o = w->ray->origin, d = w->ray->dir;
+    for (uint32_t i = first; i < first + count; i++) {
+        const hr_bounds *b = &w->boxes[w->bvh->items[i]];
+        hr_vec3 c = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
+        double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+        double t = ((c.x - o.x) * d.x + (c.y - o.y) * d.y + (c.z - o.z) * d.z) / dd;
+        if (t > w->tmin && t < *w->tmax) *w->tmax = t;
+    }
+    return ACCEL_WALK_GO_ON;
+}
+
+static long walks_compared, walks_differing;
+
+/* The AVX2 walk must visit the same leaves in the same order as the SSE2
+ * one (accel_bvh4_walk_core), both orders, where the CPU has AVX2. */
+static void compare_isas(const accel_bvh4 *bvh, const hr_bounds *boxes, const hr_ray *ray, double tmin,
+                         double tmax)
+{
+#if ACCEL_WALK_AVX2
+    if (!accel_walk_avx2_usable()) return;
+    static leaf_log a, b;
+    for (int ordered = 0; ordered < 2; ordered++) {
+        double ta = tmax, tb = tmax;
+        a = (leaf_log){boxes, bvh, ray, tmin, &ta, {0}, {0}, 0};
+        b = (leaf_log){boxes, bvh, ray, tmin, &tb, {0}, {0}, 0};
+        accel_bvh4_walk_core(bvh, ray, tmin, &ta, log_leaf, &a, ordered, 0);
+        if (ordered) accel_bvh4_walk_avx2(bvh, ray, tmin, &tb, log_leaf, &b);
+        else accel_bvh4_walk_any_avx2(bvh, ray, tmin, &tb, log_leaf, &b);
+        int same = a.n == b.n && memcmp(&ta, &tb, sizeof ta) == 0;
+        uint32_t kept = a.n < 4096 ? a.n : 4096;
+        for (uint32_t i = 0; same && i < kept; i++) same = a.first[i] == b.first[i] && a.count[i] == b.count[i];
+        walks_compared++;
+        walks_differing += !same;
+    }
+#else
+    (void)bvh, (void)boxes, (void)ray, (void)tmin, (void)tmax;
+#endif
+}
+
 /* Boxes the exact test says the ray meets that a walk did not visit, over
  * both walks: nearest first, and in slot order (shadow rays). */
 static long missed_boxes(const accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t n, const hr_ray *ray,
                          double tmin, double tmax, char *visited)
 {
+    compare_isas(bvh, boxes, ray, tmin, tmax);
     char *meets = malloc(n ? n : 1);
     if (!meets) return 1;
     for (uint32_t i = 0; i < n; i++) met_total += meets[i] = (char)quad_meets(ray, &boxes[i], tmin, tmax);
@@ -322,6 +380,15 @@ static void test_walk(void)
     fprintf(stderr, "walk: %ld rays, %ld box meetings, %ld missed\n", rays, met_total, missed);
     CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
     CHECK(met_total > 20000);
+#if ACCEL_WALK_AVX2
+    if (accel_walk_avx2_usable()) {
+        fprintf(stderr, "walk: AVX2 against SSE2: %ld walks, %ld with other leaves or order\n", walks_compared,
+                walks_differing);
+        CHECK(walks_compared > 20000 && walks_differing == 0);
+    } else {
+        fprintf(stderr, "walk: no AVX2 on this CPU, only the SSE2 walk checked\n");
+    }
+#endif
     free(boxes);
     free(visited);
 }
