@@ -50,6 +50,10 @@ typedef struct mesh {
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */
     int closed;
+    /* Closed, and no triangle a sliver (mesh_faces_round): the any-hit
+     * search may stop at its first clear hit (mesh_trace.c,
+     * closed_any_blocks). */
+    int round_faces;
     /* Texture coordinates and 3 indices into them per triangle (in BVH
      * order), NULL when no triangle has them all: the (u, v) of
      * hr_shape_class.surface_uv (mesh_uv.c). */
@@ -103,6 +107,10 @@ void mesh_destroy(mesh *m);
 /* Whether every edge is used once in each direction (vertices welded by
  * exact position). -1: out of memory. */
 int mesh_is_closed(const mesh *m);
+
+/* Whether every triangle has all its angles above about 2^-16 rad (see
+ * mesh_build.c); 0 for any non-finite or extremely small or large one. */
+int mesh_faces_round(const mesh *m);
 
 /* --- Reading files ------------------------------------------------------- */
 
