@@ -54,6 +54,8 @@ typedef struct mesh {
      * search may stop at its first clear hit (mesh_trace.c,
      * closed_any_blocks). */
     int round_faces;
+    /* mesh_largest_error of a closed mesh, 0 for an open one. */
+    double largest_error;
     /* Texture coordinates and 3 indices into them per triangle (in BVH
      * order), NULL when no triangle has them all: the (u, v) of
      * hr_shape_class.surface_uv (mesh_uv.c). */
@@ -139,6 +141,9 @@ int mesh_solid_build(mesh_builder *b, int solid);
 /* The hits of the ray in args (HR_TRACE_ALL, _FIRST or _ANY), appended to
  * args->out (mesh_trace.c). */
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode);
+
+/* The largest error bound a hit of the mesh can have (mesh_trace.c). */
+double mesh_largest_error(const mesh *m);
 
 /* Builds m->bvh and orders m->corners (and m->corner_normals and
  * m->corner_texcoords) to match. */

@@ -244,6 +244,7 @@ hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t e
         if (closed < 0) st = HR_ERROR_OUT_OF_MEMORY;
         m->closed = closed > 0;
         m->round_faces = m->closed && mesh_faces_round(m);
+        m->largest_error = m->closed ? mesh_largest_error(m) : 0.0;
     }
     if (st) {
         mesh_destroy(m);

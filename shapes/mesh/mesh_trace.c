@@ -216,7 +216,7 @@ static hr_status make_room(const hr_hit_args *args, const hr_host *host)
 /* The largest error bound fill_hit can give a hit of this mesh: the
  * barycentric sum of a coordinate is at most the largest coordinate
  * magnitude (twice that, generously, for the rounding of the weights). */
-static double largest_error(const mesh *m)
+double mesh_largest_error(const mesh *m)
 {
     const hr_bounds *b = &m->bounds;
     const double big =
@@ -285,7 +285,7 @@ typedef struct query {
  *   and a moved hit is never moved again. So X stays in the list unless it
  *   takes the place of a marked h[i] within the slack before it.
  * - That h[i] is not refused for lying at or before tmin: every error
- *   bound is at most tie_error (largest_error), and the rounded slack is
+ *   bound is at most tie_error (mesh_largest_error), and the rounded slack is
  *   monotone in the errors, so for |h[i].t| <= |X.t| the slack is at most
  *   reach / 2, and X.t - reach > tmin (checked as computed, which implies it
  *   exactly) puts h[i].t after tmin, with reach's factor 2 covering the
@@ -320,17 +320,18 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
     return x->t - reach > q->tmin;
 }
 
-/* Tests triangles [first, end), a leaf, in the query's mode. Returns 1
- * when the search is over: an any hit found, or an error (in status). */
-static int visit_leaf(query *q, uint32_t first, uint32_t end)
+/* Tests triangles [first, end), a leaf, in the query's mode, the ray's
+ * axes given as kx, ky, kz (see visit_leaf). Returns 1 when the search is
+ * over: an any hit found, or an error (in status). */
+MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz)
 {
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = m->corners + 3 * (size_t)i;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test(&q->r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
-                                q->tie_check ? -INFINITY : q->tmin, q->tmax, &th))
+        if (!mesh_triangle_test_axes(&q->r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
+                                     q->tie_check ? -INFINITY : q->tmin, q->tmax, &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
@@ -393,6 +394,20 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
         }
     }
     return 0;
+}
+
+/* leaf_loop with the axes as constants: one copy for each order
+ * mesh_ray_init can choose (kz, then kx and ky in turn or swapped). */
+static int visit_leaf(query *q, uint32_t first, uint32_t end)
+{
+    switch (q->r.kz * 3 + q->r.kx) {
+    case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0);
+    case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0);
+    case 1 * 3 + 2: return leaf_loop(q, first, end, 2, 0, 1);
+    case 1 * 3 + 0: return leaf_loop(q, first, end, 0, 2, 1);
+    case 2 * 3 + 0: return leaf_loop(q, first, end, 0, 1, 2);
+    default: return leaf_loop(q, first, end, 1, 0, 2);
+    }
 }
 
 static int leaf_of(void *user, uint32_t first, uint32_t count)
@@ -490,7 +505,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
      * were too many to remember, takes the answer from the all-hits list
      * itself (rare: rays through vertices and edges). */
     q.tie_check = mode == HR_TRACE_FIRST && m->closed;
-    q.tie_error = m->closed ? largest_error(m) : 0.0;
+    q.tie_error = m->largest_error;
     /* A closed mesh's list is put in order over the whole line (see
      * alternate_closed); hits outside (tmin, tmax) are dropped after. */
     q.whole_line = mode == HR_TRACE_ALL && m->closed;
