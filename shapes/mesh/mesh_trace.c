@@ -327,11 +327,16 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
 {
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
+    /* Read once: the stores of hits below keep the compiler from assuming
+     * that these stay put. */
+    const uint32_t *const corners = m->corners;
+    const hr_vec3 *const vertices = m->vertices;
+    const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
     for (uint32_t i = first; i < end; i++) {
-        const uint32_t *c = m->corners + 3 * (size_t)i;
+        const uint32_t *c = corners + 3 * (size_t)i;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test_axes(&q->r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
-                                     q->tie_check ? -INFINITY : q->tmin, q->tmax, &th, kx, ky, kz))
+        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin,
+                                     q->tmax, &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
