@@ -161,7 +161,8 @@ static double ray_speed(const hr_ray *ray)
  * put in the other order by alternate_closed. */
 static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_error, double b_t)
 {
-    return (a_error + b_error) / ray_speed(ray) * 4.0 + 8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t));
+    return (a_error + b_error) / ray_speed(ray) * 4.0 +
+           8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t));
 }
 
 static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
@@ -522,7 +523,8 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     if (q.needs_first) return mesh_trace(m, args, HR_TRACE_FIRST);
     const int32_t start = q.start;
     int near_tie = q.found && q.seen_overflow;
-    for (int k = 0; q.found && !near_tie && k < q.seen_count; k++) near_tie = near_tie_with_best(&q, &q.seen[k]);
+    for (int k = 0; q.found && !near_tie && k < q.seen_count; k++)
+        near_tie = near_tie_with_best(&q, &q.seen[k]);
     if (near_tie) {
         const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
         if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;

@@ -290,10 +290,13 @@ static int write_touching_cubes(const char *path)
         for (int k = 0; k < 8; k++)
             fprintf(f, "v %.17g %.17g %.17g\n", x0 + (k & 1), y0 + ((k >> 1) & 1), z0 + ((k >> 2) & 1));
         const int v = 8 * c + 1;
-        /* Corner k at (k & 1, k >> 1 & 1, k >> 2 & 1); each face counter-clockwise seen from outside. */
-        fprintf(f, "f %d %d %d %d\nf %d %d %d %d\nf %d %d %d %d\nf %d %d %d %d\nf %d %d %d %d\nf %d %d %d %d\n",
-                v + 0, v + 2, v + 3, v + 1, v + 4, v + 5, v + 7, v + 6, v + 0, v + 1, v + 5, v + 4,
-                v + 2, v + 6, v + 7, v + 3, v + 0, v + 4, v + 6, v + 2, v + 1, v + 3, v + 7, v + 5);
+        /* Corner k at (k & 1, k >> 1 & 1, k >> 2 & 1); each face
+         * counter-clockwise seen from outside. */
+        static const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                        {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+        for (int k = 0; k < 6; k++)
+            fprintf(f, "f %d %d %d %d\n", v + faces[k][0], v + faces[k][1], v + faces[k][2],
+                    v + faces[k][3]);
     }
     return fclose(f) == 0;
 }
