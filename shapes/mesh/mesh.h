@@ -50,6 +50,12 @@ typedef struct mesh {
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */
     int closed;
+    /* Closed, and no triangle a sliver (mesh_faces_round): the any-hit
+     * search may stop at its first clear hit (mesh_trace.c,
+     * closed_any_blocks). */
+    int round_faces;
+    /* mesh_largest_error of a closed mesh, 0 for an open one. */
+    double largest_error;
     /* Texture coordinates and 3 indices into them per triangle (in BVH
      * order), NULL when no triangle has them all: the (u, v) of
      * hr_shape_class.surface_uv (mesh_uv.c). */
@@ -104,6 +110,10 @@ void mesh_destroy(mesh *m);
  * exact position). -1: out of memory. */
 int mesh_is_closed(const mesh *m);
 
+/* Whether every triangle has all its angles above about 2^-16 rad (see
+ * mesh_build.c); 0 for any non-finite or extremely small or large one. */
+int mesh_faces_round(const mesh *m);
+
 /* --- Reading files ------------------------------------------------------- */
 
 /* Hill's chapter-6 format (.3vn) and Wavefront OBJ (v, vn, f). `path` is the
@@ -131,6 +141,9 @@ int mesh_solid_build(mesh_builder *b, int solid);
 /* The hits of the ray in args (HR_TRACE_ALL, _FIRST or _ANY), appended to
  * args->out (mesh_trace.c). */
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode);
+
+/* The largest error bound a hit of the mesh can have (mesh_trace.c). */
+double mesh_largest_error(const mesh *m);
 
 /* Builds m->bvh and orders m->corners (and m->corner_normals and
  * m->corner_texcoords) to match. */

@@ -64,6 +64,18 @@ static double dot3(hr_vec3 a, hr_vec3 b)
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
+/* The error bound of a hit's point (see the top of the file), on its own:
+ * the closed mesh's searches need it for crossings they may never report. */
+static double point_error(const mesh *m, uint32_t tri, const double b[3])
+{
+    const uint32_t *c = m->corners + 3 * (size_t)tri;
+    const hr_vec3 *v[3] = {&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]]};
+    double ex = fabs(b[0] * v[0]->x) + fabs(b[1] * v[1]->x) + fabs(b[2] * v[2]->x);
+    double ey = fabs(b[0] * v[0]->y) + fabs(b[1] * v[1]->y) + fabs(b[2] * v[2]->y);
+    double ez = fabs(b[0] * v[0]->z) + fabs(b[1] * v[1]->z) + fabs(b[2] * v[2]->z);
+    return MESH_GAMMA(7) * mesh_max(ex, mesh_max(ey, ez));
+}
+
 /* Writes every field of the hit but `object`, which is the host's. */
 static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_triangle_hit *th,
                      hr_hit *hit)
@@ -75,10 +87,7 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
     hit->point.x = b[0] * v[0]->x + b[1] * v[1]->x + b[2] * v[2]->x;
     hit->point.y = b[0] * v[0]->y + b[1] * v[1]->y + b[2] * v[2]->y;
     hit->point.z = b[0] * v[0]->z + b[1] * v[1]->z + b[2] * v[2]->z;
-    double ex = fabs(b[0] * v[0]->x) + fabs(b[1] * v[1]->x) + fabs(b[2] * v[2]->x);
-    double ey = fabs(b[0] * v[0]->y) + fabs(b[1] * v[1]->y) + fabs(b[2] * v[2]->y);
-    double ez = fabs(b[0] * v[0]->z) + fabs(b[1] * v[1]->z) + fabs(b[2] * v[2]->z);
-    hit->error = MESH_GAMMA(7) * mesh_max(ex, mesh_max(ey, ez));
+    hit->error = point_error(m, tri, b);
     hit->surface = 0;
     hit->entering = th->entering;
     hr_vec3 ng = geometric_normal(v[0], v[1], v[2]);
@@ -150,10 +159,15 @@ static double ray_speed(const hr_ray *ray)
 
 /* How far apart in t two crossings of a closed mesh may lie and still be
  * put in the other order by alternate_closed. */
+static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_error, double b_t)
+{
+    return (a_error + b_error) / ray_speed(ray) * 4.0 +
+           8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t));
+}
+
 static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
 {
-    return (a->error + b->error) / ray_speed(ray) * 4.0 +
-           8.0 * DBL_EPSILON * mesh_max(fabs(a->t), fabs(b->t));
+    return slack_of(ray, a->error, a->t, b->error, b->t);
 }
 
 /* A closed mesh's crossings alternate along the exact line, entering
@@ -203,7 +217,7 @@ static hr_status make_room(const hr_hit_args *args, const hr_host *host)
 /* The largest error bound fill_hit can give a hit of this mesh: the
  * barycentric sum of a coordinate is at most the largest coordinate
  * magnitude (twice that, generously, for the rounding of the weights). */
-static double largest_error(const mesh *m)
+double mesh_largest_error(const mesh *m)
 {
     const hr_bounds *b = &m->bounds;
     const double big =
@@ -212,8 +226,17 @@ static double largest_error(const mesh *m)
     return MESH_GAMMA(7) * 2.0 * big;
 }
 
+
 /* Crossings a closed mesh's first-hit search remembers (see mesh_trace). */
 #define TIE_SEEN 16
+
+/* One of them: the test's answer and its triangle, from which point_error
+ * gives its error bound when the near-tie check needs it (rarely: most
+ * crossings lie far from the best hit, and no hit need be filled for them). */
+typedef struct seen_crossing {
+    mesh_triangle_hit th;
+    uint32_t tri;
+} seen_crossing;
 
 /* One query: the ray, the caller's arguments, and what the leaves found. */
 typedef struct query {
@@ -222,6 +245,8 @@ typedef struct query {
     mesh_ray r;
     int32_t mode;
     int tie_check, whole_line;
+    int closed_any;  /* a closed mesh's any-hit search (closed_any_blocks) */
+    int needs_first; /* it met a hit it cannot decide on: ask the first-hit search */
     double tie_error;
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
@@ -230,21 +255,89 @@ typedef struct query {
     int found;
     mesh_triangle_hit best;
     uint32_t best_tri;
-    hr_hit seen[TIE_SEEN], best_hit;
+    double best_error; /* point_error of best, in a closed mesh's first-hit search */
+    seen_crossing seen[TIE_SEEN];
     int seen_count, seen_overflow;
 } query;
 
-/* Tests triangles [first, end), a leaf, in the query's mode. Returns 1
- * when the search is over: an any hit found, or an error (in status). */
-static int visit_leaf(query *q, uint32_t first, uint32_t end)
+/* How far inside its triangle a crossing must lie (each barycentric weight
+ * at least this) for a closed mesh's any-hit search to stop at it. */
+#define CLOSED_ANY_INSIDE 0x1p-16
+
+/* Whether a hit X of a closed mesh's any-hit search (tmin >= 0, X inside
+ * the caller's interval as the triangle test applies it) settles the
+ * answer: the ray is blocked exactly when the first-hit search (the
+ * answer a closed mesh's any-hit must give, see mesh_trace) reports a hit,
+ * and it does when the mesh has round faces, and X lies clearly inside its
+ * triangle and further than `reach` past tmin.
+ * - The first-hit search finds a hit. Its walk is the any-hit walk's (the
+ *   same ray and interval, the same candidates: the triangle test over
+ *   (-inf, tmax) and then the caller's tmin with the test's own
+ *   expressions) until its first candidate, X, which it takes as its best.
+ *   With no near tie, its best is its answer.
+ * - With a near tie it answers the first hit of the all-hits list. That
+ *   list holds X (its walk of t >= 0 reaches X's leaf, accel's walk being
+ *   conservative as every mode assumes, and the test does the same
+ *   arithmetic on the same triangle), unmarked (see alternate_closed:
+ *   inside the caller's interval). alternate_closed changes a hit's mark in
+ *   one way only: a hit h[j] moved up into the place of a hit h[i] of the
+ *   other kind takes h[i]'s mark, where h[i].t <= h[j].t and h[j].t -
+ *   h[i].t <= closed_slack; every other hit is shifted with its own mark,
+ *   and a moved hit is never moved again. So X stays in the list unless it
+ *   takes the place of a marked h[i] within the slack before it.
+ * - That h[i] is not refused for lying at or before tmin: every error
+ *   bound is at most tie_error (mesh_largest_error), and the rounded slack is
+ *   monotone in the errors, so for |h[i].t| <= |X.t| the slack is at most
+ *   reach / 2, and X.t - reach > tmin (checked as computed, which implies it
+ *   exactly) puts h[i].t after tmin, with reach's factor 2 covering the
+ *   roundings of the differences; for |h[i].t| > |X.t|, h[i].t would be
+ *   negative and the slack, whose part in |t| is 8 DBL_EPSILON |h[i].t|,
+ *   could not reach from below 0 to X.t > reach. Nor is it refused for
+ *   lying at or past tmax: h[i].t <= X.t < tmax.
+ * - Nor for its t error (h[i].t - tmin <= t_error, the one refusal left):
+ *   that error exceeds X.t - tmin - reach only for a triangle the ray sees
+ *   nearly edge on. A sliver is seen so from every side, and a ray
+ *   through a corner of one that lies on a face meets it with an error of
+ *   1 at the face's crossing (a fuzz input found it), so a mesh with any
+ *   triangle less round than mesh_faces_round allows keeps the first-hit
+ *   search. A round triangle is seen edge on only by a ray in its plane;
+ *   its crossing is then where the ray meets its plane's edge with the
+ *   next face, a rounding from X's crossing, which lies clearly inside X's
+ *   triangle (no weight below CLOSED_ANY_INSIDE), where no other face of a
+ *   surface that does not meet itself comes. (A ray along a face through
+ *   the edge that face shares with X's triangle drags X's mark exactly so;
+ *   the test meets it, and it is why X must lie inside.) What no bound
+ *   excludes is a round triangle whose computed t, uncertain as the ray
+ *   runs in its plane, rounds to within the slack before X's, or a surface
+ *   meeting itself at X's crossing: test_mesh_any_hit_closed aims rays at
+ *   vertices, edges and along faces to look for them.
+ * A hit near an edge of its triangle or within reach of tmin (a ray
+ * starting on the mesh) is left to the first-hit search. */
+static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
+{
+    if (!(x->b[0] >= CLOSED_ANY_INSIDE && x->b[1] >= CLOSED_ANY_INSIDE && x->b[2] >= CLOSED_ANY_INSIDE))
+        return 0;
+    const double reach = 2.0 * slack_of(&q->args->ray, q->tie_error, x->t, q->tie_error, x->t);
+    return x->t - reach > q->tmin;
+}
+
+/* Tests triangles [first, end), a leaf, in the query's mode, the ray's
+ * axes given as kx, ky, kz (see visit_leaf). Returns 1 when the search is
+ * over: an any hit found, or an error (in status). */
+MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz)
 {
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
+    /* Read once: the stores of hits below keep the compiler from assuming
+     * that these stay put. */
+    const uint32_t *const corners = m->corners;
+    const hr_vec3 *const vertices = m->vertices;
+    const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
     for (uint32_t i = first; i < end; i++) {
-        const uint32_t *c = m->corners + 3 * (size_t)i;
+        const uint32_t *c = corners + 3 * (size_t)i;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test(&q->r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
-                                q->tie_check ? -INFINITY : q->tmin, q->tmax, &th))
+        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin,
+                                     q->tmax, &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
@@ -264,13 +357,25 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
                                  !(th.t - args->tmin <= th.t_error));
             continue;
         }
-        hr_hit candidate;
         if (q->tie_check) {
-            fill_hit(m, &args->ray, i, &th, &candidate);
-            if (q->seen_count < TIE_SEEN) q->seen[q->seen_count++] = candidate;
-            else q->seen_overflow = 1;
+            if (q->seen_count < TIE_SEEN) {
+                q->seen[q->seen_count].th = th;
+                q->seen[q->seen_count++].tri = i;
+            } else {
+                q->seen_overflow = 1;
+            }
             /* The caller's interval, as mesh_triangle_test applies it. */
             if (!(th.t > q->tmin && !(th.t - q->tmin <= th.t_error))) continue;
+        }
+        if (q->closed_any) {
+            if (closed_any_blocks(q, &th)) {
+                q->found = 1;
+                q->best = th;
+                q->best_tri = i;
+            } else {
+                q->needs_first = 1;
+            }
+            return 1;
         }
         /* A tie goes to the entering hit, as in the all-hits order
          * (hit_before): a ray through a vertex or an edge where it touches
@@ -288,13 +393,27 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
          * on over the slack of a near tie. */
         q->tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
         if (q->tie_check) {
-            q->best_hit = candidate;
-            const double window = (candidate.error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
+            q->best_error = point_error(m, i, th.b);
+            const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
                                   16.0 * DBL_EPSILON * fabs(th.t);
             q->tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
         }
     }
     return 0;
+}
+
+/* leaf_loop with the axes as constants: one copy for each order
+ * mesh_ray_init can choose (kz, then kx and ky in turn or swapped). */
+static int visit_leaf(query *q, uint32_t first, uint32_t end)
+{
+    switch (q->r.kz * 3 + q->r.kx) {
+    case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0);
+    case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0);
+    case 1 * 3 + 2: return leaf_loop(q, first, end, 2, 0, 1);
+    case 1 * 3 + 0: return leaf_loop(q, first, end, 0, 2, 1);
+    case 2 * 3 + 0: return leaf_loop(q, first, end, 0, 1, 2);
+    default: return leaf_loop(q, first, end, 1, 0, 2);
+    }
 }
 
 static int leaf_of(void *user, uint32_t first, uint32_t count)
@@ -336,6 +455,19 @@ static void walk(query *q)
     accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of, q);
 }
 
+/* Whether a crossing the first-hit search saw forms a near tie with its
+ * best: of the other kind and within closed_slack of it. tie_error bounds
+ * every crossing's error and the rounded slack grows with the errors, so
+ * the slack with tie_error rules out most crossings without point_error. */
+static int near_tie_with_best(const query *q, const seen_crossing *s)
+{
+    if (s->th.entering == q->best.entering) return 0;
+    const hr_ray *ray = &q->args->ray;
+    const double apart = fabs(s->th.t - q->best.t);
+    if (apart > slack_of(ray, q->tie_error, s->th.t, q->best_error, q->best.t)) return 0;
+    return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t);
+}
+
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
     /* Field by field: the crossings' array stays unwritten until used. */
@@ -347,15 +479,22 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     q.phase = 0;
     q.found = 0;
     q.best_tri = 0;
+    q.best_error = 0.0;
     q.seen_count = q.seen_overflow = 0;
+    q.needs_first = 0;
     /* A closed mesh's any hit is its first hit: the all-hits repair (see
      * alternate_closed and the first-hit search below) may drop a touch at
      * a vertex whose crossings come out a rounding apart, and a shadow ray
-     * must not be blocked by a touch a camera ray does not see. Any-hit
-     * stops at the first crossing it meets and cannot tell. (The regular
-     * solids are closed and small; large meshes from files are mostly open
-     * surfaces and keep the cheaper search.) */
-    if (mode == HR_TRACE_ANY && m->closed) mode = HR_TRACE_FIRST;
+     * must not be blocked by a touch a camera ray does not see. So any-hit
+     * answers whether the first-hit search finds a hit: it stops at the
+     * first hit it meets where that hit settles the answer
+     * (closed_any_blocks: on a mesh without slivers, all but hits at an
+     * edge or a rounding past tmin), and asks the first-hit search
+     * otherwise, and always for an interval from before 0.
+     * (The regular solids are closed and small; large meshes from files
+     * are mostly open surfaces and keep the plain any-hit search.) */
+    q.closed_any = mode == HR_TRACE_ANY && m->round_faces && args->tmin >= 0.0;
+    if (mode == HR_TRACE_ANY && m->closed && !q.closed_any) mode = HR_TRACE_FIRST;
     q.mode = mode;
     /* A closed mesh's first hit must be the first of its all-hits list,
      * which alternate_closed may have reordered where an entering and an
@@ -372,7 +511,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
      * were too many to remember, takes the answer from the all-hits list
      * itself (rare: rays through vertices and edges). */
     q.tie_check = mode == HR_TRACE_FIRST && m->closed;
-    q.tie_error = q.tie_check ? largest_error(m) : 0.0;
+    q.tie_error = m->largest_error;
     /* A closed mesh's list is put in order over the whole line (see
      * alternate_closed); hits outside (tmin, tmax) are dropped after. */
     q.whole_line = mode == HR_TRACE_ALL && m->closed;
@@ -381,12 +520,11 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     q.start = args->out->count;
     walk(&q);
     if (q.status) return q.status;
+    if (q.needs_first) return mesh_trace(m, args, HR_TRACE_FIRST);
     const int32_t start = q.start;
     int near_tie = q.found && q.seen_overflow;
-    for (int k = 0; q.found && k < q.seen_count; k++)
-        if (q.seen[k].entering != q.best_hit.entering &&
-            fabs(q.seen[k].t - q.best_hit.t) <= closed_slack(&args->ray, &q.seen[k], &q.best_hit))
-            near_tie = 1;
+    for (int k = 0; q.found && !near_tie && k < q.seen_count; k++)
+        near_tie = near_tie_with_best(&q, &q.seen[k]);
     if (near_tie) {
         const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
         if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;

@@ -51,11 +51,9 @@ static inline double mesh_min(double a, double b)
     return a < b || b != b ? a : b;
 }
 
-/* The ray as the test and the BVH need it. */
+/* The ray as the test needs it (accel's walk takes the hr_ray). */
 typedef struct mesh_ray {
     double o[3], d[3];
-    double inv_d[3];
-    int neg[3];
     int kx, ky, kz;
     double sx, sy, sz;
 } mesh_ray;
@@ -66,11 +64,8 @@ static inline int mesh_ray_init(mesh_ray *r, const hr_ray *ray)
     r->o[0] = ray->origin.x, r->o[1] = ray->origin.y, r->o[2] = ray->origin.z;
     r->d[0] = ray->dir.x, r->d[1] = ray->dir.y, r->d[2] = ray->dir.z;
     int kz = 0;
-    for (int a = 0; a < 3; a++) {
-        r->inv_d[a] = 1.0 / r->d[a];
-        r->neg[a] = signbit(r->d[a]) != 0;
+    for (int a = 1; a < 3; a++)
         if (fabs(r->d[a]) > fabs(r->d[kz])) kz = a;
-    }
     if (r->d[kz] == 0.0) return 0;
     int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
     /* Keep the permutation's handedness once z is flipped by sz < 0. */
@@ -85,14 +80,22 @@ static inline int mesh_ray_init(mesh_ray *r, const hr_ray *ray)
     return 1;
 }
 
+/* Always inlined where the axes are constants (the leaf loops of
+ * mesh_trace.c, one for each order of axes mesh_ray_init can choose), so
+ * that a corner's permuted components are registers rather than an array
+ * indexed at run time; the arithmetic is the same for any axes. */
+#define MESH_AXES_INLINE static inline __attribute__((always_inline))
+
 /* A vertex in the ray's sheared space: x and y, and p[kz] in out[2], which
- * mesh_shear_z turns into z (needed only once the edges agree). */
-static inline void mesh_shear(const mesh_ray *r, const hr_vec3 *v, double out[3])
+ * mesh_shear_z turns into z (needed only once the edges agree). kx, ky and
+ * kz are the ray's (r->kx, r->ky, r->kz). */
+MESH_AXES_INLINE void mesh_shear(const mesh_ray *r, const hr_vec3 *v, double out[3], int kx, int ky,
+                                 int kz)
 {
     const double p[3] = {v->x - r->o[0], v->y - r->o[1], v->z - r->o[2]};
-    out[0] = p[r->kx] - r->sx * p[r->kz];
-    out[1] = p[r->ky] - r->sy * p[r->kz];
-    out[2] = p[r->kz];
+    out[0] = p[kx] - r->sx * p[kz];
+    out[1] = p[ky] - r->sy * p[kz];
+    out[2] = p[kz];
 }
 
 static inline void mesh_shear_z(const mesh_ray *r, double out[3])
@@ -204,21 +207,22 @@ static inline double mesh_t_error(const mesh_ray *r, const double A[3], const do
 }
 
 /* The watertight test of triangle (A, B, C) against the ray, for hits
- * with tmin < t < tmax. */
-static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,
-                                     const hr_vec3 *c, double tmin, double tmax,
-                                     mesh_triangle_hit *out)
+ * with tmin < t < tmax, with the ray's axes (r->kx, r->ky, r->kz) given:
+ * see MESH_AXES_INLINE. */
+MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,
+                                             const hr_vec3 *c, double tmin, double tmax,
+                                             mesh_triangle_hit *out, int kx, int ky, int kz)
 {
     /* Each corner and edge function only when the edges before agree
      * (most triangles a ray is tested against lie beside it); the edge
      * signs need x and y alone. */
     double A[3], B[3], C[3];
-    mesh_shear(r, b, B);
-    mesh_shear(r, c, C);
+    mesh_shear(r, b, B, kx, ky, kz);
+    mesh_shear(r, c, C, kx, ky, kz);
     const double U = mesh_edge_function(C[0], B[1], C[1], B[0]);
     const int su = mesh_sign_of(U, C, B);
     if (su == 0) return 0;
-    mesh_shear(r, a, A);
+    mesh_shear(r, a, A, kx, ky, kz);
     const double V = mesh_edge_function(A[0], C[1], A[1], C[0]);
     if (mesh_sign_of(V, A, C) != su) return 0;
     const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
@@ -242,6 +246,14 @@ static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const 
     out->b[2] = W / det;
     out->entering = det > 0.0;
     return 1;
+}
+
+/* The same with the ray's own axes. */
+static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,
+                                     const hr_vec3 *c, double tmin, double tmax,
+                                     mesh_triangle_hit *out)
+{
+    return mesh_triangle_test_axes(r, a, b, c, tmin, tmax, out, r->kx, r->ky, r->kz);
 }
 
 #endif
