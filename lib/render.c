@@ -24,6 +24,7 @@
 
 #include "camera_frame.h"
 #include "errors.h"
+#include "image_internal.h"
 #include "image_srgb.h"
 #include "query_nesting.h"
 #include "scene_internal.h"
@@ -42,6 +43,15 @@ HR_API void hr_render_options_default(hr_render_options *o)
     o->max_depth = -1;
 }
 
+/* What threads write and what they only read kept on different cache
+ * lines: every thread reads the job (the frame, the options, the pixels and
+ * `cancelled`) on every ray, and a write to a line another core holds takes
+ * it away from that core. The tile counter is written each time a thread
+ * takes a tile, the progress fields each time one finishes, by whichever
+ * thread; each has a line of its own, so taking a tile costs the other
+ * thread nothing. */
+#define HR_CACHE_LINE 64
+
 typedef struct render_job {
     const hr_scene *scene;
     hr_camera camera;
@@ -53,10 +63,10 @@ typedef struct render_job {
     /* 65536 x 65536 pixels in tiles of 1 is 2^32 tiles: past int32. */
     int64_t tiles_x, tiles_y, tile_count;
     int32_t max_depth;
-    atomic_llong next_tile;
-    atomic_llong tiles_done;
-    atomic_int cancelled;
     int32_t query_level; /* every render thread's query nesting (query_nesting.h) */
+    atomic_int cancelled; /* written once, when the render stops early */
+    _Alignas(HR_CACHE_LINE) atomic_llong next_tile;
+    _Alignas(HR_CACHE_LINE) atomic_llong tiles_done;
     pthread_mutex_t progress_lock;
     hr_status failure; /* first shape failure (guarded by progress_lock) */
 } render_job;
@@ -68,12 +78,9 @@ typedef struct corner_sample {
     double shown[3];
 } corner_sample;
 
-/* Each worker on cache lines of its own: a worker writes its counters and
- * its context (the shadow cache, the ray counts) on every ray, and the next
- * worker reads its own job and scene pointers as often; sharing a line would
- * bounce it between the cores. */
-#define HR_CACHE_LINE 64
-
+/* Each worker on cache lines of its own, for the same reason: a worker
+ * writes its counters and its context (the shadow cache, the ray counts) on
+ * every ray. */
 typedef struct worker {
     _Alignas(HR_CACHE_LINE) render_job *job;
     pthread_t thread;
@@ -411,8 +418,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     if (nesting) return nesting;
     int32_t query_level = hr_query_nesting();
     hr_query_leave();
-    render_job *job = calloc(1, sizeof *job);
+    /* Aligned, or the job's lines would be split differently from its
+     * fields (sizeof is a multiple of the alignment, as aligned_alloc needs). */
+    render_job *job = aligned_alloc(HR_CACHE_LINE, sizeof *job);
     if (!job) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    memset(job, 0, sizeof *job);
     job->scene = scene;
     job->query_level = query_level;
     hr_camera_default(&job->camera);
@@ -436,7 +446,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
             st = hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: no view through it");
     }
     hr_image *image = NULL;
-    if (st == HR_OK) st = hr_image_create(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
+    if (st == HR_OK) st = hr_image_create_unset(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
     if (st) {
         free(job);
         return st;
@@ -470,7 +480,10 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->tc.poll = poll_progress;
         w->tc.poll_user = job;
         if (adaptive) {
-            w->corners = malloc(2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners);
+            /* Whole lines, so the two workers' rows, written on every
+             * corner, never meet on one. */
+            size_t bytes = 2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners;
+            w->corners = aligned_alloc(HR_CACHE_LINE, (bytes + HR_CACHE_LINE - 1) / HR_CACHE_LINE * HR_CACHE_LINE);
             ready = w->corners != NULL;
         }
     }

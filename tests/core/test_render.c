@@ -1,5 +1,6 @@
 /* The renderer: pixel centres, the same image whatever the thread count,
  * Hill's block size, supersampling, cancelling, and the ray statistics. */
+#include <stdint.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
@@ -31,6 +32,8 @@ static hr_image *render(hr_scene *s, const hr_camera *c, hr_render_options *o, h
     hr_image *img = NULL;
     hr_status status = hr_render(s, c, o, &img, st);
     CHECK_MSG(status == HR_OK, "render: %s", hr_context_last_error(ctx));
+    /* A rendered image starts on a cache line too (image.h). */
+    CHECK(!img || (uintptr_t)hr_image_data(img) % 64 == 0);
     return img;
 }
 
