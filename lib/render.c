@@ -86,6 +86,7 @@ typedef struct worker {
     pthread_t thread;
     hr_trace_ctx tc;         /* for every tile this thread renders */
     corner_sample *corners;  /* adaptive: two rows of tile_size + 1 */
+    double *columns;         /* centres: the plane's x of each column of a tile */
     uint64_t primary, pixels_refined;
 } worker;
 
@@ -170,6 +171,30 @@ static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, 
         sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh));
     }
     px[0] = (float)(sum.r / spp), px[1] = (float)(sum.g / spp), px[2] = (float)(sum.b / spp);
+}
+
+/* One ray through each pixel's centre (one sample a pixel, no blocks), the
+ * common render: the bits full_pixel gives such a pixel (its one sample is
+ * the centre, x + 0.5 * 1.0, and its sum +0 plus the colour, divided by 1),
+ * with the plane's x worked out once for each column of the tile and its y
+ * once for each row, not both for every ray. No cancel test per pixel:
+ * shade makes one per ray. */
+static void render_tile_centres(worker *w, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    render_job *job = w->job;
+    const hr_camera_frame *f = &job->frame;
+    for (int32_t x = x0; x < x1; x++) w->columns[x - x0] = hr_camera_frame_x(f, x + 0.5);
+    for (int32_t y = y0; y < y1; y++) {
+        const double plane_y = hr_camera_frame_y(f, y + 0.5);
+        float *px = pixel_at(job, x0, y);
+        for (int32_t i = 0; i < x1 - x0; i++, px += 3) {
+            hr_ray ray;
+            hr_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
+            hr_color c = hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
+            px[0] = (float)(0.0 + c.r), px[1] = (float)(0.0 + c.g), px[2] = (float)(0.0 + c.b);
+        }
+        w->primary += (uint64_t)(x1 - x0);
+    }
 }
 
 static void render_tile_full(worker *w, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
@@ -269,6 +294,7 @@ static int render_tile(worker *w, int64_t tile, int32_t *x0, int32_t *y0, int32_
     *x1 = tsize < xend - *x0 ? *x0 + tsize : xend;
     *y1 = tsize < yend - *y0 ? *y0 + tsize : yend;
     if (job->opt.adaptive_threshold > 0) render_tile_adaptive(w, *x0, *y0, *x1, *y1);
+    else if (w->columns) render_tile_centres(w, *x0, *y0, *x1, *y1);
     else render_tile_full(w, *x0, *y0, *x1, *y1);
     if (w->tc.status) {
         pthread_mutex_lock(&job->progress_lock);
@@ -312,6 +338,14 @@ static void *worker_main(void *arg)
     }
     hr_query_set_nesting(outer_level);
     return NULL;
+}
+
+/* A worker's own buffer, on whole cache lines: read or written on every
+ * ray, it must not share a line with what another thread writes as often
+ * (its neighbour on the heap may be the other worker's). */
+static void *worker_alloc(size_t bytes)
+{
+    return aligned_alloc(HR_CACHE_LINE, (bytes + HR_CACHE_LINE - 1) / HR_CACHE_LINE * HR_CACHE_LINE);
 }
 
 static double now_seconds(void)
@@ -467,6 +501,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     worker *workers = aligned_alloc(HR_CACHE_LINE, (size_t)nthreads * sizeof *workers);
     if (workers) memset(workers, 0, (size_t)nthreads * sizeof *workers);
     int adaptive = job->opt.adaptive_threshold > 0.0;
+    int centres = !adaptive && job->opt.samples_per_pixel == 1 && job->opt.block_size == 1;
     int ready = workers != NULL;
     for (int32_t i = 0; ready && i < nthreads; i++) {
         worker *w = &workers[i];
@@ -480,11 +515,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->tc.poll = poll_progress;
         w->tc.poll_user = job;
         if (adaptive) {
-            /* Whole lines, so the two workers' rows, written on every
-             * corner, never meet on one. */
-            size_t bytes = 2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners;
-            w->corners = aligned_alloc(HR_CACHE_LINE, (bytes + HR_CACHE_LINE - 1) / HR_CACHE_LINE * HR_CACHE_LINE);
+            w->corners = worker_alloc(2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners);
             ready = w->corners != NULL;
+        } else if (centres) {
+            w->columns = worker_alloc((size_t)job->opt.tile_size * sizeof *w->columns);
+            ready = w->columns != NULL;
         }
     }
     double t0 = now_seconds();
@@ -525,6 +560,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     for (int32_t i = 0; workers && i < nthreads; i++) {
         hr_trace_ctx_release(&workers[i].tc);
         free(workers[i].corners);
+        free(workers[i].columns);
     }
     free(workers);
     pthread_mutex_destroy(&job->progress_lock);
