@@ -75,15 +75,6 @@ int hr_camera_frame_init(hr_camera_frame *f, const hr_camera *cam)
     return 1;
 }
 
-void hr_camera_frame_ray(const hr_camera_frame *f, double px, double py, hr_ray *out)
-{
-    double x = f->half_width * (2.0 * px / f->width - 1.0);
-    double y = f->half_height * (1.0 - 2.0 * py / f->height);
-    hr_vec3 dir = v3_add(v3_add(v3_scale(f->u, x), v3_scale(f->v, y)), v3_neg(f->n));
-    out->origin = f->eye;
-    out->dir = v3_normalize(dir);
-}
-
 HR_API hr_status hr_camera_ray(const hr_camera *cam, double px, double py, hr_ray *out)
 {
     hr_camera_frame f;

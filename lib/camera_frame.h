@@ -8,6 +8,8 @@
 
 #include <hitray/camera.h>
 
+#include "vec.h"
+
 typedef struct hr_camera_frame {
     hr_vec3 eye, u, v, n;
     double half_width, half_height; /* W and H of the plane at distance 1 */
@@ -17,7 +19,31 @@ typedef struct hr_camera_frame {
 /* 0 (and the frame unset) where hr_camera_ray refuses the camera. */
 int hr_camera_frame_init(hr_camera_frame *f, const hr_camera *cam);
 
+/* The ray's two coordinates on the image plane, each of one image
+ * coordinate alone, so a caller that makes a row of rays works each column's
+ * and the row's out once: x of px, y of py (pixels from the top left). */
+static inline double hr_camera_frame_x(const hr_camera_frame *f, double px)
+{
+    return f->half_width * (2.0 * px / f->width - 1.0);
+}
+
+static inline double hr_camera_frame_y(const hr_camera_frame *f, double py)
+{
+    return f->half_height * (1.0 - 2.0 * py / f->height);
+}
+
+/* The ray through the image plane's point (x, y). */
+static inline void hr_camera_frame_ray_xy(const hr_camera_frame *f, double x, double y, hr_ray *out)
+{
+    hr_vec3 dir = v3_add(v3_add(v3_scale(f->u, x), v3_scale(f->v, y)), v3_neg(f->n));
+    out->origin = f->eye;
+    out->dir = v3_normalize(dir);
+}
+
 /* The ray through image position (px, py), pixels from the top left. */
-void hr_camera_frame_ray(const hr_camera_frame *f, double px, double py, hr_ray *out);
+static inline void hr_camera_frame_ray(const hr_camera_frame *f, double px, double py, hr_ray *out)
+{
+    hr_camera_frame_ray_xy(f, hr_camera_frame_x(f, px), hr_camera_frame_y(f, py), out);
+}
 
 #endif

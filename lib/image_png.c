@@ -57,6 +57,11 @@ static void flush_bytes(png_structp png)
 static void encode_row(const float *src, int32_t width, int32_t channels, int srgb, int bits,
                        png_bytep dst)
 {
+    if (srgb && bits == 8 && channels == 3) {
+        /* The common case, by the table all at once. */
+        hr_srgb8_encode_rgb(src, (size_t)width, channels, dst);
+        return;
+    }
     uint32_t max_code = bits == 16 ? 65535u : 255u;
     for (int32_t x = 0; x < width; x++) {
         for (int32_t c = 0; c < channels; c++) {

@@ -27,8 +27,7 @@ hr_status hr_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_fil
     if (fprintf(out->fp, "P6\n%d %d\n255\n", (int)px->width, (int)px->height) < 0) st = write_failed(ctx, out);
     for (int32_t y = 0; y < px->height && st == HR_OK; y++) {
         const float *src = px->data + (size_t)y * (size_t)px->width * (size_t)px->channels;
-        for (int32_t x = 0; x < px->width; x++, src += px->channels)
-            for (int c = 0; c < 3; c++) row[(size_t)x * 3 + (size_t)c] = (unsigned char)hr_code_value(src[c], 1, 255);
+        hr_srgb8_encode_rgb(src, (size_t)px->width, px->channels, row);
         if (fwrite(row, 1, row_bytes, out->fp) != row_bytes) st = write_failed(ctx, out);
     }
     free(row);

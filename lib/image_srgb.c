@@ -95,12 +95,13 @@ static void srgb8_build(void)
     }
 }
 
+/* The code of `linear` once the table is built (srgb8_once): callers that
+ * encode many values make sure of the table once, not per value. */
 static uint32_t srgb8_code(float linear)
 {
     /* NaN, zero and below: 0; 1 and above: 255. */
     if (!(linear > 0.0f)) return 0;
     if (linear >= 1.0f) return 255;
-    pthread_once(&srgb8_once, srgb8_build);
     const uint32_t bucket = float_bits(linear) >> SRGB8_BUCKET_SHIFT;
     if (bucket < srgb8_first_bucket) return 0;
     uint32_t code = srgb8_buckets[bucket];
@@ -110,7 +111,10 @@ static uint32_t srgb8_code(float linear)
 
 uint32_t hr_code_value(float linear, int srgb, uint32_t max_code)
 {
-    if (srgb && max_code == 255) return srgb8_code(linear);
+    if (srgb && max_code == 255) {
+        pthread_once(&srgb8_once, srgb8_build);
+        return srgb8_code(linear);
+    }
     return code_by_formula(linear, srgb, max_code);
 }
 
@@ -122,5 +126,16 @@ uint32_t hr_code_value_by_formula(float linear, int srgb, uint32_t max_code)
 HR_API void hr_srgb8_encode(const float *linear, size_t count, uint8_t *codes)
 {
     if (!linear || !codes) return;
+    pthread_once(&srgb8_once, srgb8_build);
     for (size_t i = 0; i < count; i++) codes[i] = (uint8_t)srgb8_code(linear[i]);
+}
+
+void hr_srgb8_encode_rgb(const float *pixels, size_t count, int32_t channels, uint8_t *codes)
+{
+    pthread_once(&srgb8_once, srgb8_build);
+    for (size_t i = 0; i < count; i++, pixels += channels, codes += 3) {
+        codes[0] = (uint8_t)srgb8_code(pixels[0]);
+        codes[1] = (uint8_t)srgb8_code(pixels[1]);
+        codes[2] = (uint8_t)srgb8_code(pixels[2]);
+    }
 }

@@ -24,6 +24,7 @@
 
 #include "camera_frame.h"
 #include "errors.h"
+#include "image_internal.h"
 #include "image_srgb.h"
 #include "query_nesting.h"
 #include "scene_internal.h"
@@ -42,6 +43,15 @@ HR_API void hr_render_options_default(hr_render_options *o)
     o->max_depth = -1;
 }
 
+/* What threads write and what they only read kept on different cache
+ * lines: every thread reads the job (the frame, the options, the pixels and
+ * `cancelled`) on every ray, and a write to a line another core holds takes
+ * it away from that core. The tile counter is written each time a thread
+ * takes a tile, the progress fields each time one finishes, by whichever
+ * thread; each has a line of its own, so taking a tile costs the other
+ * thread nothing. */
+#define HR_CACHE_LINE 64
+
 typedef struct render_job {
     const hr_scene *scene;
     hr_camera camera;
@@ -53,10 +63,10 @@ typedef struct render_job {
     /* 65536 x 65536 pixels in tiles of 1 is 2^32 tiles: past int32. */
     int64_t tiles_x, tiles_y, tile_count;
     int32_t max_depth;
-    atomic_llong next_tile;
-    atomic_llong tiles_done;
-    atomic_int cancelled;
     int32_t query_level; /* every render thread's query nesting (query_nesting.h) */
+    atomic_int cancelled; /* written once, when the render stops early */
+    _Alignas(HR_CACHE_LINE) atomic_llong next_tile;
+    _Alignas(HR_CACHE_LINE) atomic_llong tiles_done;
     pthread_mutex_t progress_lock;
     hr_status failure; /* first shape failure (guarded by progress_lock) */
 } render_job;
@@ -68,17 +78,15 @@ typedef struct corner_sample {
     double shown[3];
 } corner_sample;
 
-/* Each worker on cache lines of its own: a worker writes its counters and
- * its context (the shadow cache, the ray counts) on every ray, and the next
- * worker reads its own job and scene pointers as often; sharing a line would
- * bounce it between the cores. */
-#define HR_CACHE_LINE 64
-
+/* Each worker on cache lines of its own, for the same reason: a worker
+ * writes its counters and its context (the shadow cache, the ray counts) on
+ * every ray. */
 typedef struct worker {
     _Alignas(HR_CACHE_LINE) render_job *job;
     pthread_t thread;
     hr_trace_ctx tc;         /* for every tile this thread renders */
     corner_sample *corners;  /* adaptive: two rows of tile_size + 1 */
+    double *columns;         /* centres: the plane's x of each column of a tile */
     uint64_t primary, pixels_refined;
 } worker;
 
@@ -163,6 +171,30 @@ static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, 
         sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh));
     }
     px[0] = (float)(sum.r / spp), px[1] = (float)(sum.g / spp), px[2] = (float)(sum.b / spp);
+}
+
+/* One ray through each pixel's centre (one sample a pixel, no blocks), the
+ * common render: the bits full_pixel gives such a pixel (its one sample is
+ * the centre, x + 0.5 * 1.0, and its sum +0 plus the colour, divided by 1),
+ * with the plane's x worked out once for each column of the tile and its y
+ * once for each row, not both for every ray. No cancel test per pixel:
+ * shade makes one per ray. */
+static void render_tile_centres(worker *w, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+{
+    render_job *job = w->job;
+    const hr_camera_frame *f = &job->frame;
+    for (int32_t x = x0; x < x1; x++) w->columns[x - x0] = hr_camera_frame_x(f, x + 0.5);
+    for (int32_t y = y0; y < y1; y++) {
+        const double plane_y = hr_camera_frame_y(f, y + 0.5);
+        float *px = pixel_at(job, x0, y);
+        for (int32_t i = 0; i < x1 - x0; i++, px += 3) {
+            hr_ray ray;
+            hr_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
+            hr_color c = hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
+            px[0] = (float)(0.0 + c.r), px[1] = (float)(0.0 + c.g), px[2] = (float)(0.0 + c.b);
+        }
+        w->primary += (uint64_t)(x1 - x0);
+    }
 }
 
 static void render_tile_full(worker *w, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
@@ -262,6 +294,7 @@ static int render_tile(worker *w, int64_t tile, int32_t *x0, int32_t *y0, int32_
     *x1 = tsize < xend - *x0 ? *x0 + tsize : xend;
     *y1 = tsize < yend - *y0 ? *y0 + tsize : yend;
     if (job->opt.adaptive_threshold > 0) render_tile_adaptive(w, *x0, *y0, *x1, *y1);
+    else if (w->columns) render_tile_centres(w, *x0, *y0, *x1, *y1);
     else render_tile_full(w, *x0, *y0, *x1, *y1);
     if (w->tc.status) {
         pthread_mutex_lock(&job->progress_lock);
@@ -305,6 +338,14 @@ static void *worker_main(void *arg)
     }
     hr_query_set_nesting(outer_level);
     return NULL;
+}
+
+/* A worker's own buffer, on whole cache lines: read or written on every
+ * ray, it must not share a line with what another thread writes as often
+ * (its neighbour on the heap may be the other worker's). */
+static void *worker_alloc(size_t bytes)
+{
+    return aligned_alloc(HR_CACHE_LINE, (bytes + HR_CACHE_LINE - 1) / HR_CACHE_LINE * HR_CACHE_LINE);
 }
 
 static double now_seconds(void)
@@ -411,8 +452,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     if (nesting) return nesting;
     int32_t query_level = hr_query_nesting();
     hr_query_leave();
-    render_job *job = calloc(1, sizeof *job);
+    /* Aligned, or the job's lines would be split differently from its
+     * fields (sizeof is a multiple of the alignment, as aligned_alloc needs). */
+    render_job *job = aligned_alloc(HR_CACHE_LINE, sizeof *job);
     if (!job) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    memset(job, 0, sizeof *job);
     job->scene = scene;
     job->query_level = query_level;
     hr_camera_default(&job->camera);
@@ -436,7 +480,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
             st = hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: no view through it");
     }
     hr_image *image = NULL;
-    if (st == HR_OK) st = hr_image_create(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
+    if (st == HR_OK) st = hr_image_create_unset(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
     if (st) {
         free(job);
         return st;
@@ -457,6 +501,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     worker *workers = aligned_alloc(HR_CACHE_LINE, (size_t)nthreads * sizeof *workers);
     if (workers) memset(workers, 0, (size_t)nthreads * sizeof *workers);
     int adaptive = job->opt.adaptive_threshold > 0.0;
+    int centres = !adaptive && job->opt.samples_per_pixel == 1 && job->opt.block_size == 1;
     int ready = workers != NULL;
     for (int32_t i = 0; ready && i < nthreads; i++) {
         worker *w = &workers[i];
@@ -470,8 +515,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->tc.poll = poll_progress;
         w->tc.poll_user = job;
         if (adaptive) {
-            w->corners = malloc(2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners);
+            w->corners = worker_alloc(2 * ((size_t)job->opt.tile_size + 1) * sizeof *w->corners);
             ready = w->corners != NULL;
+        } else if (centres) {
+            w->columns = worker_alloc((size_t)job->opt.tile_size * sizeof *w->columns);
+            ready = w->columns != NULL;
         }
     }
     double t0 = now_seconds();
@@ -512,6 +560,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     for (int32_t i = 0; workers && i < nthreads; i++) {
         hr_trace_ctx_release(&workers[i].tc);
         free(workers[i].corners);
+        free(workers[i].columns);
     }
     free(workers);
     pthread_mutex_destroy(&job->progress_lock);

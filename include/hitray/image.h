@@ -21,7 +21,8 @@ HR_API void hr_image_destroy(hr_image *image);
 HR_API int32_t hr_image_width(const hr_image *image);
 HR_API int32_t hr_image_height(const hr_image *image);
 HR_API int32_t hr_image_channels(const hr_image *image);
-/* width * height * channels floats; stays valid until destroy. */
+/* width * height * channels floats, starting on a 64-byte boundary (a
+ * cache line); stays valid until destroy. */
 HR_API float *hr_image_data(hr_image *image);
 
 /* Read a PNG (libpng: any bit depth, palette or grey, its gAMA/sRGB

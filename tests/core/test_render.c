@@ -1,5 +1,6 @@
 /* The renderer: pixel centres, the same image whatever the thread count,
  * Hill's block size, supersampling, cancelling, and the ray statistics. */
+#include <stdint.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
@@ -31,6 +32,8 @@ static hr_image *render(hr_scene *s, const hr_camera *c, hr_render_options *o, h
     hr_image *img = NULL;
     hr_status status = hr_render(s, c, o, &img, st);
     CHECK_MSG(status == HR_OK, "render: %s", hr_context_last_error(ctx));
+    /* A rendered image starts on a cache line too (image.h). */
+    CHECK(!img || (uintptr_t)hr_image_data(img) % 64 == 0);
     return img;
 }
 
@@ -48,17 +51,21 @@ static void centres_and_threads(void)
     CHECK(st.primary == 61u * 37u);
     CHECK(st.shadow > 0 && st.reflected > 0 && st.refracted > 0);
     CHECK(st.threads == 1);
-    /* One sample per pixel: the ray through the pixel's centre, exactly. */
+    /* One sample per pixel: the ray through the pixel's centre, exactly,
+     * at every pixel (the renderer works the camera's plane out by rows
+     * and columns, hr_camera_ray per ray: the same bits). */
     const float *px = hr_image_data(one);
-    const int32_t probes[3][2] = {{0, 0}, {30, 20}, {60, 36}};
-    for (int i = 0; i < 3; i++) {
-        hr_ray r;
-        hr_camera_ray(&c, probes[i][0] + 0.5, probes[i][1] + 0.5, &r);
-        hr_color want;
-        CHECK_OK(hr_scene_shade(s, &r, -1, &want));
-        const float *p = px + 3 * (probes[i][1] * 61 + probes[i][0]);
-        CHECK(p[0] == (float)want.r && p[1] == (float)want.g && p[2] == (float)want.b);
-    }
+    int32_t wrong = 0;
+    for (int32_t y = 0; y < 37; y++)
+        for (int32_t x = 0; x < 61; x++) {
+            hr_ray r;
+            hr_camera_ray(&c, x + 0.5, y + 0.5, &r);
+            hr_color want;
+            CHECK_OK(hr_scene_shade(s, &r, -1, &want));
+            const float *p = px + 3 * (y * 61 + x);
+            wrong += !(p[0] == (float)want.r && p[1] == (float)want.g && p[2] == (float)want.b);
+        }
+    CHECK_MSG(wrong == 0, "%d pixels are not their centre ray's colour", (int)wrong);
     /* 2 and 3 threads, and supersampling with 2 threads against 1. */
     for (int threads = 2; threads <= 3; threads++) {
         o.threads = threads;

@@ -2,6 +2,7 @@
  * default options, options from an older (shorter) struct, extensions in any
  * case, and an explicit format winning over the extension. */
 #include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -43,6 +44,21 @@ static void check_create(void)
     hr_image_destroy(NULL);
     /* A NULL context is allowed: the status still comes back. */
     CHECK(hr_image_create(NULL, 0, 0, 3, &image) == HR_ERROR_INVALID_ARGUMENT);
+}
+
+/* The pixels start on a cache line (image.h), whatever the size, so a
+ * render's threads writing neighbouring tiles of rows of whole lines never
+ * write one line from two cores. */
+static void check_alignment(void)
+{
+    const int32_t sizes[][2] = {{1, 1}, {5, 3}, {16, 16}, {480, 270}, {1024, 1024}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
+        for (int32_t channels = 3; channels <= 4; channels++) {
+            hr_image *image = NULL;
+            CHECK_OK(hr_image_create(ctx, sizes[i][0], sizes[i][1], channels, &image));
+            CHECK((uintptr_t)hr_image_data(image) % 64 == 0);
+            hr_image_destroy(image);
+        }
 }
 
 static void check_default_options(void)
@@ -130,6 +146,7 @@ int main(void)
     char dir[4096];
     fixture_format(dir, sizeof dir, "%s", fixture_dir("basics"));
     check_create();
+    check_alignment();
     check_default_options();
     check_format_choice(dir);
     hr_context_destroy(ctx);

@@ -68,5 +68,21 @@ int main(void)
     for (size_t i = 0; i < sizeof sweep / sizeof *sweep; i++)
         differ += codes[i] != hr_code_value_by_formula(sweep[i], 1, 255);
     CHECK_MSG(differ == 0, "%d codes of hr_srgb8_encode differ from the formula", differ);
+    /* The writers' row encoder (hr_srgb8_encode_rgb): the same codes, three
+     * a pixel, of RGB and of RGBA pixels whose alpha it must skip. */
+    enum { PIXELS = sizeof sweep / sizeof *sweep / 3 };
+    for (int32_t channels = 3; channels <= 4; channels++) {
+        float pixels[PIXELS * 4];
+        for (int i = 0; i < PIXELS; i++)
+            for (int c = 0; c < channels; c++) pixels[i * channels + c] = c < 3 ? sweep[i * 3 + c] : 0.5f;
+        uint8_t rgb[PIXELS * 3 + 1];
+        rgb[PIXELS * 3] = 0xa5; /* must stay: three bytes a pixel, no more */
+        hr_srgb8_encode_rgb(pixels, PIXELS, channels, rgb);
+        int off = 0;
+        for (int i = 0; i < PIXELS * 3; i++) off += rgb[i] != hr_code_value_by_formula(sweep[i], 1, 255);
+        CHECK_MSG(off == 0, "%d codes of hr_srgb8_encode_rgb (%d channels) differ from the formula", off,
+                  (int)channels);
+        CHECK(rgb[PIXELS * 3] == 0xa5);
+    }
     return hr_test_end();
 }
