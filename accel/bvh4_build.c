@@ -62,7 +62,9 @@ typedef struct builder {
     uint32_t max_leaf;
     double traversal_cost;
     /* One node's bins, used before build_binary recurses: here rather than
-     * in its frame, which the recursion would multiply. */
+     * in its frame, which the recursion would multiply. Between nodes every
+     * bin is empty (count 0, box empty_box()): a node empties the ones it
+     * filled, so it pays for the bins its items reach, not for all 48. */
     hr_bounds bin_box[3][BINS], right_box[BINS];
     uint32_t bin_count[3][BINS];
 } builder;
@@ -101,9 +103,8 @@ static inline void grow_point(hr_bounds *b, const double c[3])
  * and whose centroids' bounds are cbox. One pass bins the items on all
  * three axes; the sweep over the bins gives each side's box of the best
  * split, and the partition gathers each side's centroid bounds, so a
- * child's bounds cost no pass of their own. An empty bin is skipped in the
- * sweeps: its boundary splits the items as the one before it does, at the
- * same cost, so the choice is the one a sweep over every boundary makes. */
+ * child's bounds cost no pass of their own. The sweeps skip empty bins, so
+ * the choice is the one a sweep over every boundary makes (below). */
 static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth,
                          const hr_bounds *box, const hr_bounds *cbox)
 {
@@ -123,9 +124,6 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
     }
     hr_bounds (*bin_box)[BINS] = b->bin_box;
     uint32_t (*bin_count)[BINS] = b->bin_count;
-    memset(b->bin_count, 0, sizeof b->bin_count);
-    for (int axis = 0; axis < 3; axis++)
-        for (int k = 0; k < BINS; k++) bin_box[axis][k] = empty_box();
     if (binned[0] || binned[1] || binned[2]) {
         for (uint32_t i = first; i < first + count; i++) {
             const double *c = b->centroids + 3 * (size_t)items[i];
@@ -138,43 +136,53 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
             }
         }
     }
+    /* The sweeps visit only the filled bins (filled[0 .. m), in bin order):
+     * an empty bin's boundary splits the items as the one before it does,
+     * at the same cost, and adds nothing to a side's box. */
     double best_cost = DBL_MAX;
     int best_axis = -1, best_split = 0;
     hr_bounds best_left = empty_box(), best_right = empty_box();
+    uint8_t filled[3][BINS];
+    int filled_count[3] = {0, 0, 0};
     for (int axis = 0; axis < 3; axis++) {
         if (!binned[axis]) continue;
         const hr_bounds *bins = bin_box[axis];
         const uint32_t *counts = bin_count[axis];
+        uint8_t *f = filled[axis];
+        int m = 0;
+        for (int k = 0; k < BINS; k++)
+            if (counts[k]) f[m++] = (uint8_t)k;
+        filled_count[axis] = m;
+        /* right_*[j]: the union of filled bins j .. m - 1. */
         hr_bounds *right_box = b->right_box;
         double right_area[BINS];
         uint32_t right_count[BINS];
         hr_bounds acc = empty_box();
-        double acc_area = 0.0;
         uint32_t n = 0;
-        for (int k = BINS - 1; k > 0; k--) {
-            if (counts[k]) {
-                grow(&acc, &bins[k]);
-                n += counts[k];
-                acc_area = area(&acc);
-            }
-            right_box[k] = acc;
-            right_area[k] = acc_area;
-            right_count[k] = n;
+        for (int j = m - 1; j > 0; j--) {
+            grow(&acc, &bins[f[j]]);
+            n += counts[f[j]];
+            right_box[j] = acc;
+            right_area[j] = area(&acc);
+            right_count[j] = n;
         }
         acc = empty_box();
         n = 0;
-        for (int k = 0; k < BINS - 1; k++) {
-            if (!counts[k]) continue;
-            grow(&acc, &bins[k]);
-            n += counts[k];
-            if (right_count[k + 1] == 0) break;
-            double cost = area(&acc) * n + right_area[k + 1] * right_count[k + 1];
+        for (int j = 0; j + 1 < m; j++) {
+            grow(&acc, &bins[f[j]]);
+            n += counts[f[j]];
+            double cost = area(&acc) * n + right_area[j + 1] * right_count[j + 1];
             if (cost < best_cost) {
-                best_cost = cost, best_axis = axis, best_split = k;
-                best_left = acc, best_right = right_box[k + 1];
+                best_cost = cost, best_axis = axis, best_split = f[j];
+                best_left = acc, best_right = right_box[j + 1];
             }
         }
     }
+    for (int axis = 0; axis < 3; axis++)
+        for (int j = 0; j < filled_count[axis]; j++) {
+            bin_count[axis][filled[axis][j]] = 0;
+            bin_box[axis][filled[axis][j]] = empty_box();
+        }
     double parent_area = area(box);
     double split_cost = parent_area > 0 ? b->traversal_cost + best_cost / parent_area : DBL_MAX;
     uint32_t mid;
@@ -310,6 +318,8 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         c[2] = 0.5 * ib->lo.z + 0.5 * ib->hi.z;
         b.items[i] = i;
     }
+    for (int axis = 0; axis < 3; axis++)
+        for (int k = 0; k < BINS; k++) b.bin_box[axis][k] = empty_box();
     b.node_count = 1;
     hr_bounds box, cbox;
     gather(&b, 0, count, &box, &cbox);
