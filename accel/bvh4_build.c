@@ -8,8 +8,12 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #define BINS 16
 
@@ -33,12 +37,29 @@ static hr_bounds empty_box(void)
 static inline double lower(double acc, double v) { return v < acc ? v : acc; }
 static inline double higher(double acc, double v) { return v > acc ? v : acc; }
 
+/* b <- b grown by o. SSE2's minpd(v, acc) is exactly lower(acc, v) (v < acc
+ * ? v : acc, NaN and signed zeros included) and maxpd(v, acc) higher(acc,
+ * v): the six doubles lo.x .. hi.z go as three pairs, the middle one
+ * (lo.z, hi.x) taking its low lane from the min and its high from the max. */
+_Static_assert(sizeof(hr_bounds) == 6 * sizeof(double) && offsetof(hr_bounds, hi) == 3 * sizeof(double),
+               "hr_bounds is six doubles, lo then hi");
+
 static inline void grow(hr_bounds *b, const hr_bounds *o)
 {
+#ifdef __SSE2__
+    double *bd = &b->lo.x;
+    const double *od = &o->lo.x;
+    const __m128d o01 = _mm_loadu_pd(od), o23 = _mm_loadu_pd(od + 2), o45 = _mm_loadu_pd(od + 4);
+    const __m128d b01 = _mm_loadu_pd(bd), b23 = _mm_loadu_pd(bd + 2), b45 = _mm_loadu_pd(bd + 4);
+    _mm_storeu_pd(bd, _mm_min_pd(o01, b01));
+    _mm_storeu_pd(bd + 2, _mm_move_sd(_mm_max_pd(o23, b23), _mm_min_pd(o23, b23)));
+    _mm_storeu_pd(bd + 4, _mm_max_pd(o45, b45));
+#else
     b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
     b->lo.z = lower(b->lo.z, o->lo.z);
     b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
     b->hi.z = higher(b->hi.z, o->hi.z);
+#endif
 }
 
 static double area(const hr_bounds *b)
@@ -124,6 +145,27 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
     }
     hr_bounds (*bin_box)[BINS] = b->bin_box;
     uint32_t (*bin_count)[BINS] = b->bin_count;
+#ifdef __SSE2__
+    if (binned[0] && binned[1] && binned[2]) {
+        /* The usual node: x and y binned together. maxpd(x, 0) sends
+         * negatives and NaN to 0 as bin_of does, minpd(., 15) the rest past
+         * the last bin to it, and the truncation is bin_of's. */
+        const __m128d lo01 = _mm_loadu_pd(lo), scale01 = _mm_loadu_pd(scale);
+        const __m128d zero = _mm_setzero_pd(), last = _mm_set1_pd(BINS - 1);
+        for (uint32_t i = first; i < first + count; i++) {
+            const double *c = b->centroids + 3 * (size_t)items[i];
+            const hr_bounds *ib = &b->boxes[items[i]];
+            const __m128d x01 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(c), lo01), scale01);
+            const __m128i k01 = _mm_cvttpd_epi32(_mm_min_pd(_mm_max_pd(x01, zero), last));
+            const int k0 = _mm_cvtsi128_si32(k01), k1 = _mm_cvtsi128_si32(_mm_srli_si128(k01, 4));
+            const int k2 = bin_of(c[2], lo[2], scale[2]);
+            bin_count[0][k0]++, bin_count[1][k1]++, bin_count[2][k2]++;
+            grow(&bin_box[0][k0], ib);
+            grow(&bin_box[1][k1], ib);
+            grow(&bin_box[2][k2], ib);
+        }
+    } else
+#endif
     if (binned[0] || binned[1] || binned[2]) {
         for (uint32_t i = first; i < first + count; i++) {
             const double *c = b->centroids + 3 * (size_t)items[i];
