@@ -324,7 +324,8 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     }
 
     /* The resolved parameters live only through create: on the stack for
-     * the usual few, so a scene of many objects pays no allocation for them. */
+     * the usual few, so a scene of many objects pays no allocation for them.
+     * hr_params_resolve sets all n entries of both before anything reads them. */
     enum { FEW_PARAMS = 16 };
     hr_param few_params[FEW_PARAMS];
     const void *few_children[FEW_PARAMS];
@@ -340,14 +341,12 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
             object_free(o);
             return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         }
-    } else {
-        memset(few_params, 0, sizeof few_params);
-        memset(few_children, 0, sizeof few_children);
     }
     st = hr_params_resolve(s, cls, module_path, desc.params, desc.param_count, full, children);
     if (st == HR_OK) st = set_composite_depth(s, o, children);
     if (st == HR_OK) {
-        char message[512] = "";
+        char message[512];
+        message[0] = '\0';
         hr_create_args args = {0};
         args.struct_size = sizeof args;
         args.param_count = n;
