@@ -8,8 +8,12 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #define BINS 16
 
@@ -33,12 +37,29 @@ static hr_bounds empty_box(void)
 static inline double lower(double acc, double v) { return v < acc ? v : acc; }
 static inline double higher(double acc, double v) { return v > acc ? v : acc; }
 
+/* b <- b grown by o. SSE2's minpd(v, acc) is exactly lower(acc, v) (v < acc
+ * ? v : acc, NaN and signed zeros included) and maxpd(v, acc) higher(acc,
+ * v): the six doubles lo.x .. hi.z go as three pairs, the middle one
+ * (lo.z, hi.x) taking its low lane from the min and its high from the max. */
+_Static_assert(sizeof(hr_bounds) == 6 * sizeof(double) && offsetof(hr_bounds, hi) == 3 * sizeof(double),
+               "hr_bounds is six doubles, lo then hi");
+
 static inline void grow(hr_bounds *b, const hr_bounds *o)
 {
+#ifdef __SSE2__
+    double *bd = &b->lo.x;
+    const double *od = &o->lo.x;
+    const __m128d o01 = _mm_loadu_pd(od), o23 = _mm_loadu_pd(od + 2), o45 = _mm_loadu_pd(od + 4);
+    const __m128d b01 = _mm_loadu_pd(bd), b23 = _mm_loadu_pd(bd + 2), b45 = _mm_loadu_pd(bd + 4);
+    _mm_storeu_pd(bd, _mm_min_pd(o01, b01));
+    _mm_storeu_pd(bd + 2, _mm_move_sd(_mm_max_pd(o23, b23), _mm_min_pd(o23, b23)));
+    _mm_storeu_pd(bd + 4, _mm_max_pd(o45, b45));
+#else
     b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
     b->lo.z = lower(b->lo.z, o->lo.z);
     b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
     b->hi.z = higher(b->hi.z, o->hi.z);
+#endif
 }
 
 static double area(const hr_bounds *b)
@@ -62,7 +83,9 @@ typedef struct builder {
     uint32_t max_leaf;
     double traversal_cost;
     /* One node's bins, used before build_binary recurses: here rather than
-     * in its frame, which the recursion would multiply. */
+     * in its frame, which the recursion would multiply. Between nodes every
+     * bin is empty (count 0, box empty_box()): a node empties the ones it
+     * filled, so it pays for the bins its items reach, not for all 48. */
     hr_bounds bin_box[3][BINS], right_box[BINS];
     uint32_t bin_count[3][BINS];
 } builder;
@@ -101,9 +124,8 @@ static inline void grow_point(hr_bounds *b, const double c[3])
  * and whose centroids' bounds are cbox. One pass bins the items on all
  * three axes; the sweep over the bins gives each side's box of the best
  * split, and the partition gathers each side's centroid bounds, so a
- * child's bounds cost no pass of their own. An empty bin is skipped in the
- * sweeps: its boundary splits the items as the one before it does, at the
- * same cost, so the choice is the one a sweep over every boundary makes. */
+ * child's bounds cost no pass of their own. The sweeps skip empty bins, so
+ * the choice is the one a sweep over every boundary makes (below). */
 static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t count, uint32_t depth,
                          const hr_bounds *box, const hr_bounds *cbox)
 {
@@ -123,9 +145,27 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
     }
     hr_bounds (*bin_box)[BINS] = b->bin_box;
     uint32_t (*bin_count)[BINS] = b->bin_count;
-    memset(b->bin_count, 0, sizeof b->bin_count);
-    for (int axis = 0; axis < 3; axis++)
-        for (int k = 0; k < BINS; k++) bin_box[axis][k] = empty_box();
+#ifdef __SSE2__
+    if (binned[0] && binned[1] && binned[2]) {
+        /* The usual node: x and y binned together. maxpd(x, 0) sends
+         * negatives and NaN to 0 as bin_of does, minpd(., 15) the rest past
+         * the last bin to it, and the truncation is bin_of's. */
+        const __m128d lo01 = _mm_loadu_pd(lo), scale01 = _mm_loadu_pd(scale);
+        const __m128d zero = _mm_setzero_pd(), last = _mm_set1_pd(BINS - 1);
+        for (uint32_t i = first; i < first + count; i++) {
+            const double *c = b->centroids + 3 * (size_t)items[i];
+            const hr_bounds *ib = &b->boxes[items[i]];
+            const __m128d x01 = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(c), lo01), scale01);
+            const __m128i k01 = _mm_cvttpd_epi32(_mm_min_pd(_mm_max_pd(x01, zero), last));
+            const int k0 = _mm_cvtsi128_si32(k01), k1 = _mm_cvtsi128_si32(_mm_srli_si128(k01, 4));
+            const int k2 = bin_of(c[2], lo[2], scale[2]);
+            bin_count[0][k0]++, bin_count[1][k1]++, bin_count[2][k2]++;
+            grow(&bin_box[0][k0], ib);
+            grow(&bin_box[1][k1], ib);
+            grow(&bin_box[2][k2], ib);
+        }
+    } else
+#endif
     if (binned[0] || binned[1] || binned[2]) {
         for (uint32_t i = first; i < first + count; i++) {
             const double *c = b->centroids + 3 * (size_t)items[i];
@@ -138,43 +178,53 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
             }
         }
     }
+    /* The sweeps visit only the filled bins (filled[0 .. m), in bin order):
+     * an empty bin's boundary splits the items as the one before it does,
+     * at the same cost, and adds nothing to a side's box. */
     double best_cost = DBL_MAX;
     int best_axis = -1, best_split = 0;
     hr_bounds best_left = empty_box(), best_right = empty_box();
+    uint8_t filled[3][BINS];
+    int filled_count[3] = {0, 0, 0};
     for (int axis = 0; axis < 3; axis++) {
         if (!binned[axis]) continue;
         const hr_bounds *bins = bin_box[axis];
         const uint32_t *counts = bin_count[axis];
+        uint8_t *f = filled[axis];
+        int m = 0;
+        for (int k = 0; k < BINS; k++)
+            if (counts[k]) f[m++] = (uint8_t)k;
+        filled_count[axis] = m;
+        /* right_*[j]: the union of filled bins j .. m - 1. */
         hr_bounds *right_box = b->right_box;
         double right_area[BINS];
         uint32_t right_count[BINS];
         hr_bounds acc = empty_box();
-        double acc_area = 0.0;
         uint32_t n = 0;
-        for (int k = BINS - 1; k > 0; k--) {
-            if (counts[k]) {
-                grow(&acc, &bins[k]);
-                n += counts[k];
-                acc_area = area(&acc);
-            }
-            right_box[k] = acc;
-            right_area[k] = acc_area;
-            right_count[k] = n;
+        for (int j = m - 1; j > 0; j--) {
+            grow(&acc, &bins[f[j]]);
+            n += counts[f[j]];
+            right_box[j] = acc;
+            right_area[j] = area(&acc);
+            right_count[j] = n;
         }
         acc = empty_box();
         n = 0;
-        for (int k = 0; k < BINS - 1; k++) {
-            if (!counts[k]) continue;
-            grow(&acc, &bins[k]);
-            n += counts[k];
-            if (right_count[k + 1] == 0) break;
-            double cost = area(&acc) * n + right_area[k + 1] * right_count[k + 1];
+        for (int j = 0; j + 1 < m; j++) {
+            grow(&acc, &bins[f[j]]);
+            n += counts[f[j]];
+            double cost = area(&acc) * n + right_area[j + 1] * right_count[j + 1];
             if (cost < best_cost) {
-                best_cost = cost, best_axis = axis, best_split = k;
-                best_left = acc, best_right = right_box[k + 1];
+                best_cost = cost, best_axis = axis, best_split = f[j];
+                best_left = acc, best_right = right_box[j + 1];
             }
         }
     }
+    for (int axis = 0; axis < 3; axis++)
+        for (int j = 0; j < filled_count[axis]; j++) {
+            bin_count[axis][filled[axis][j]] = 0;
+            bin_box[axis][filled[axis][j]] = empty_box();
+        }
     double parent_area = area(box);
     double split_cost = parent_area > 0 ? b->traversal_cost + best_cost / parent_area : DBL_MAX;
     uint32_t mid;
@@ -310,6 +360,8 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         c[2] = 0.5 * ib->lo.z + 0.5 * ib->hi.z;
         b.items[i] = i;
     }
+    for (int axis = 0; axis < 3; axis++)
+        for (int k = 0; k < BINS; k++) b.bin_box[axis][k] = empty_box();
     b.node_count = 1;
     hr_bounds box, cbox;
     gather(&b, 0, count, &box, &cbox);

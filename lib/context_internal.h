@@ -40,6 +40,13 @@ struct hr_context {
     hr_class_entry *registered; /* in-process classes (origin strings owned) */
     int32_t registered_count;
     hr_host host;             /* the services table given to every module */
+    /* The last class hr_context_find_shape_class found, and the counts of
+     * classes and modules it was found among: both only grow until
+     * hr_modules_unload_all (which clears this), so while they are the same
+     * the first match for that name is still this one. A scene adds its
+     * objects class after class, mostly of one class. */
+    hr_class_entry last_found;
+    int32_t last_found_class_count, last_found_module_count;
 };
 
 /* The host services table (lib/host_services.c). */

@@ -38,6 +38,7 @@ void hr_modules_unload_all(hr_context *ctx)
     free(ctx->classes);
     ctx->classes = NULL;
     ctx->class_count = 0;
+    ctx->last_found.cls = NULL;
 }
 
 static void refuse(hr_module *m, const char *fmt, ...) HR_PRINTF(2, 3);
@@ -352,10 +353,21 @@ HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
     hr_class_entry scratch;
     char msg[MESSAGE_SIZE];
     pthread_mutex_lock(&ctx->lock);
-    const hr_class_entry *e = find_loaded(ctx, name, &scratch);
-    if (!e) {
-        scan_search_path(ctx);
+    const hr_class_entry *e = NULL;
+    if (ctx->last_found.cls && ctx->last_found_class_count == ctx->class_count &&
+        ctx->last_found_module_count == ctx->module_count && strcmp(ctx->last_found.cls->name, name) == 0) {
+        e = &ctx->last_found;
+    } else {
         e = find_loaded(ctx, name, &scratch);
+        if (!e) {
+            scan_search_path(ctx);
+            e = find_loaded(ctx, name, &scratch);
+        }
+        if (e) {
+            ctx->last_found = *e;
+            ctx->last_found_class_count = ctx->class_count;
+            ctx->last_found_module_count = ctx->module_count;
+        }
     }
     hr_status st = HR_OK;
     if (e) {

@@ -323,19 +323,30 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         return st;
     }
 
+    /* The resolved parameters live only through create: on the stack for
+     * the usual few, so a scene of many objects pays no allocation for them.
+     * hr_params_resolve sets all n entries of both before anything reads them. */
+    enum { FEW_PARAMS = 16 };
+    hr_param few_params[FEW_PARAMS];
+    const void *few_children[FEW_PARAMS];
     int32_t n = cls->param_count;
-    hr_param *full = calloc((size_t)(n > 0 ? n : 1), sizeof *full);
-    const void **children = calloc((size_t)(n > 0 ? n : 1), sizeof *children);
-    if (!full || !children) {
-        free(full);
-        free(children);
-        object_free(o);
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    hr_param *full = few_params;
+    const void **children = few_children;
+    if (n > FEW_PARAMS) {
+        full = calloc((size_t)n, sizeof *full);
+        children = calloc((size_t)n, sizeof *children);
+        if (!full || !children) {
+            free(full);
+            free(children);
+            object_free(o);
+            return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        }
     }
     st = hr_params_resolve(s, cls, module_path, desc.params, desc.param_count, full, children);
     if (st == HR_OK) st = set_composite_depth(s, o, children);
     if (st == HR_OK) {
-        char message[512] = "";
+        char message[512];
+        message[0] = '\0';
         hr_create_args args = {0};
         args.struct_size = sizeof args;
         args.param_count = n;
@@ -361,8 +372,10 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
                 ((hr_object *)children[i])->parent = o;
             }
     }
-    free(full);
-    free(children);
+    if (full != few_params) {
+        free(full);
+        free(children);
+    }
     if (st) {
         object_free(o);
         return st;

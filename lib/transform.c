@@ -3,6 +3,9 @@
  * inverse, so M * M^-1 stays as close to identity as the steps allow. */
 #include <math.h>
 #include <string.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "errors.h"
 #include "transform_inline.h"
@@ -13,32 +16,58 @@ static void mat_identity(double m[16])
     m[0] = m[5] = m[10] = m[15] = 1.0;
 }
 
-/* r = a * b (r may alias neither). */
+/* r = a * b (r may alias neither). Each entry is summed as
+ * ((((0 + a_i0 b_0j) + a_i1 b_1j) + a_i2 b_2j) + a_i3 b_3j): the same
+ * operations in the same order as the textbook triple loop (the leading
+ * 0 + keeps a -0 sum +0, as that loop's does). With SSE2 two entries of a
+ * row go together, each lane rounding as the scalar code does. */
 static void mat_mul(double r[16], const double a[16], const double b[16])
 {
+#ifdef __SSE2__
+    for (int i = 0; i < 4; i++) {
+        __m128d left = _mm_setzero_pd(), right = _mm_setzero_pd();
+        for (int k = 0; k < 4; k++) {
+            const __m128d aik = _mm_set1_pd(a[4 * i + k]);
+            left = _mm_add_pd(left, _mm_mul_pd(aik, _mm_loadu_pd(b + 4 * k)));
+            right = _mm_add_pd(right, _mm_mul_pd(aik, _mm_loadu_pd(b + 4 * k + 2)));
+        }
+        _mm_storeu_pd(r + 4 * i, left);
+        _mm_storeu_pd(r + 4 * i + 2, right);
+    }
+#else
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++) {
             double s = 0.0;
             for (int k = 0; k < 4; k++) s += a[4 * i + k] * b[4 * k + j];
             r[4 * i + j] = s;
         }
+#endif
+}
+
+/* The pair after a step: t * step and step^-1 * t^-1. */
+static void stepped(const hr_transform *t, const double step[16], const double step_inv[16],
+                    double m[16], double inv[16])
+{
+    mat_mul(m, t->m, step);
+    mat_mul(inv, step_inv, t->inv);
 }
 
 /* t <- t * step; t^-1 <- step^-1 * t^-1. */
 static void apply_step(hr_transform *t, const double step[16], const double step_inv[16])
 {
     double m[16], inv[16];
-    mat_mul(m, t->m, step);
-    mat_mul(inv, step_inv, t->inv);
+    stepped(t, step, step_inv, m, inv);
     memcpy(t->m, m, sizeof m);
     memcpy(t->inv, inv, sizeof inv);
 }
 
+/* x - x is 0 for a finite x and NaN for an infinite or NaN one, and a sum
+ * with a NaN in it is NaN: one test for all 16, without a branch each. */
 static int all_finite(const double m[16])
 {
-    for (int i = 0; i < 16; i++)
-        if (!isfinite(m[i])) return 0;
-    return 1;
+    double z = 0.0;
+    for (int i = 0; i < 16; i++) z += m[i] - m[i];
+    return z == 0.0;
 }
 
 /* apply_step for the calls that can refuse: a step whose own inverse is not
@@ -49,12 +78,11 @@ static int all_finite(const double m[16])
 static hr_status checked_step(hr_transform *t, const double step[16], const double step_inv[16])
 {
     if (!all_finite(step) || !all_finite(step_inv)) return HR_ERROR_NUMERIC;
-    hr_transform before = *t;
-    apply_step(t, step, step_inv);
-    if (!all_finite(t->m) || !all_finite(t->inv)) {
-        *t = before;
-        return HR_ERROR_NUMERIC;
-    }
+    double m[16], inv[16];
+    stepped(t, step, step_inv, m, inv);
+    if (!all_finite(m) || !all_finite(inv)) return HR_ERROR_NUMERIC;
+    memcpy(t->m, m, sizeof m);
+    memcpy(t->inv, inv, sizeof inv);
     return HR_OK;
 }
 

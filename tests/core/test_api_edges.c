@@ -181,6 +181,30 @@ static void empty_shape_dir(void)
     rmdir(dir);
 }
 
+/* A look-up answers as a fresh search would after every change to the
+ * classes (the context remembers its last answer): a class registered
+ * under a loaded class's name is found in its place, on the next look-up. */
+static void class_lookup_after_registration(void)
+{
+    hr_context *c;
+    CHECK_OK(hr_context_create(&c));
+    const hr_shape_class *sphere, *found, *cube;
+    const char *origin = NULL;
+    CHECK_OK(hr_context_find_shape_class(c, "sphere", &sphere, &origin));
+    CHECK_OK(hr_context_find_shape_class(c, "sphere", &found, NULL));
+    CHECK(found == sphere);
+    CHECK_OK(hr_context_find_shape_class(c, "cube", &cube, NULL));
+    CHECK(cube != sphere && strcmp(cube->name, "cube") == 0);
+    hr_shape_class mine = *sphere;
+    CHECK_OK(hr_context_register_shape_class(c, &mine, "test_api_edges.c"));
+    CHECK_OK(hr_context_find_shape_class(c, "sphere", &found, &origin));
+    CHECK(found != sphere && strcmp(found->name, "sphere") == 0);
+    CHECK(origin && strcmp(origin, "test_api_edges.c") == 0);
+    CHECK_OK(hr_context_find_shape_class(c, "cube", &found, NULL));
+    CHECK(found == cube);
+    hr_context_destroy(c);
+}
+
 /* An error callback may call back into its context (list the modules, say)
  * for every error, including those raised while the context looks up,
  * loads or registers shape classes. (A deadlock ends the test by alarm.) */
@@ -220,6 +244,7 @@ int main(void)
     unrepresentable_transforms();
     camera_ray_arguments();
     empty_shape_dir();
+    class_lookup_after_registration();
     reentrant_error_callback();
     hr_context_destroy(ctx);
     return hr_test_end();
