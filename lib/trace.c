@@ -163,7 +163,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
             out->count = start + 1;
             return HR_OK;
         }
-        if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
+        if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
         /* A composite's hit names its leaf; one naming no object of the scene
          * is taken as the composite's own, so shading never indexes past the
          * object list. Any other shape leaves `object` unset: it is not read
@@ -179,7 +179,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
             h.point = hr_xform_point(obj->m, h.point);
             h.normal = hr_xform_normal(obj->inv, h.normal);
             h.normal = v3_unit_exponent(h.normal);
-            if (!v3_is_finite(h.point) || !v3_is_finite(h.normal) || !isfinite(h.error)) continue;
+            if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
         }
         if (unit_normals) h.normal = v3_normalize(h.normal);
         out->hits[kept++] = h;
@@ -307,7 +307,7 @@ static hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, 
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "the scene is not committed (call hr_scene_commit)");
     if (!ray) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: NULL");
-    if (!v3_is_finite(ray->origin) || !v3_is_finite(ray->dir))
+    if (!v3_pair_is_finite(ray->origin, ray->dir, 0.0))
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: origin and direction must be finite");
     if (ray->dir.x == 0 && ray->dir.y == 0 && ray->dir.z == 0)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: direction is the zero vector");

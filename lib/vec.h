@@ -34,6 +34,16 @@ static inline hr_vec3 v3_madd(hr_vec3 a, hr_vec3 b, double s)
     return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s);
 }
 static inline int v3_is_finite(hr_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+/* Whether every component of a and b and the number e is finite, in one
+ * comparison instead of a branch per value: x - x is +0 (or -0) for a
+ * finite x and NaN for an infinite or NaN one, and a sum with a NaN in it
+ * is NaN. Exact for every input (no overflow: each term is 0 or NaN). */
+static inline int v3_pair_is_finite(hr_vec3 a, hr_vec3 b, double e)
+{
+    double zero = (a.x - a.x) + (a.y - a.y) + (a.z - a.z) + (b.x - b.x) + (b.y - b.y) + (b.z - b.z) +
+                  (e - e);
+    return zero == 0.0;
+}
 /* Largest |component| (inline: fmax is a libm call on the hot path). */
 static inline double v3_max_abs(hr_vec3 a)
 {

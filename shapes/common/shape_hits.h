@@ -113,10 +113,14 @@ static inline int shape_span_crossings(shape_span s, shape_crossing out[2])
  * are already set. */
 typedef void (*shape_fill_fn)(const void *shape, const hr_ray *ray, hr_hit *hit);
 
+/* One comparison for all eight values: x - x is 0 for a finite x and NaN
+ * for an infinite or NaN one, and a sum with a NaN in it is NaN. */
 static inline int shape_hit_is_finite(const hr_hit *h)
 {
-    return isfinite(h->t) && isfinite(h->error) && shape_vec3_is_finite(h->point) &&
-           shape_vec3_is_finite(h->normal);
+    const hr_vec3 p = h->point, n = h->normal;
+    const double zero = (h->t - h->t) + (h->error - h->error) + (p.x - p.x) + (p.y - p.y) +
+                        (p.z - p.z) + (n.x - n.x) + (n.y - n.y) + (n.z - n.z);
+    return zero == 0.0;
 }
 
 /* Appends the crossings (sorted by t) that lie strictly inside (tmin, tmax):
