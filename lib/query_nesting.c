@@ -5,20 +5,17 @@
 
 static _Thread_local int32_t level;
 
-hr_status hr_query_enter(const hr_context *ctx, const char *what)
+hr_status hr_query_enter(const hr_context *ctx, const char *what, int32_t **level_out)
 {
-    if (level >= HR_MAX_QUERY_NESTING)
+    int32_t *l = &level;
+    if (*l >= HR_MAX_QUERY_NESTING)
         return hr_error(ctx, HR_ERROR_STATE,
                         "%s: scene queries nested more than %d deep (a shape's hit that queries "
                         "the scene it is part of calls itself without end)",
                         what, HR_MAX_QUERY_NESTING);
-    level++;
+    ++*l;
+    *level_out = l;
     return HR_OK;
-}
-
-void hr_query_leave(void)
-{
-    if (level > 0) level--;
 }
 
 HR_API int32_t hr_query_nesting(void) { return level; }

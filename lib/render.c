@@ -448,10 +448,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     /* The render's threads trace one level deeper than the caller: a shape
      * that renders its own scene from its hit is stopped like one that
      * queries it. */
-    hr_status nesting = hr_query_enter(ctx, "render");
+    int32_t *level;
+    hr_status nesting = hr_query_enter(ctx, "render", &level);
     if (nesting) return nesting;
-    int32_t query_level = hr_query_nesting();
-    hr_query_leave();
+    int32_t query_level = *level;
+    hr_query_leave(level);
     /* Aligned, or the job's lines would be split differently from its
      * fields (sizeof is a multiple of the alignment, as aligned_alloc needs). */
     render_job *job = aligned_alloc(HR_CACHE_LINE, sizeof *job);

@@ -316,10 +316,10 @@ static hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, 
     return HR_OK;
 }
 
-/* Ends a query begun with hr_query_enter. */
-static hr_status finish_query(hr_trace_ctx *tc)
+/* Ends a query begun with hr_query_enter, which gave `level`. */
+static hr_status finish_query(hr_trace_ctx *tc, int32_t *level)
 {
-    hr_query_leave();
+    hr_query_leave(level);
     hr_status st = tc->status;
     hr_trace_ctx_release(tc);
     if (st) return hr_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
@@ -332,7 +332,8 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     hr_status st = check_query(s, ray, tmin, tmax);
     if (st) return st;
     if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
-    if ((st = hr_query_enter(s->ctx, "first hit"))) return st;
+    int32_t *level;
+    if ((st = hr_query_enter(s->ctx, "first hit", &level))) return st;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
     /* One ray: the list of candidate hits lives on the stack, so the query
@@ -342,7 +343,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     tc.borrowed = room;
     *found = trace_nearest_into(&tc, ray, tmin, tmax, out, 0, &tmp, NULL);
     if (tmp.hits != room) free(tmp.hits);
-    return finish_query(&tc);
+    return finish_query(&tc, level);
 }
 
 HR_API void hr_intersection_init(hr_intersection *list)
@@ -370,7 +371,8 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     if (st) return st;
     if (!out || out->count < 0 || out->capacity < 0 || out->count > out->capacity)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "intersection: NULL or not initialised");
-    if ((st = hr_query_enter(s->ctx, "all hits"))) return st;
+    int32_t *level;
+    if ((st = hr_query_enter(s->ctx, "all hits", &level))) return st;
     out->count = 0;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
@@ -382,7 +384,7 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
      * object never gave the list storage). */
     if (out->count > 1) qsort(out->hits, (size_t)out->count, sizeof *out->hits, compare_hits);
     if (tc.status) out->count = 0;
-    return finish_query(&tc);
+    return finish_query(&tc, level);
 }
 
 HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t max_depth, hr_color *out)
@@ -393,7 +395,8 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
     if (max_depth > HR_MAX_RECURSION_DEPTH)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
                         (int)max_depth, HR_MAX_RECURSION_DEPTH);
-    if ((st = hr_query_enter(s->ctx, "shade"))) return st;
+    int32_t *level;
+    if ((st = hr_query_enter(s->ctx, "shade", &level))) return st;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
     tc.min_weight = hr_default_min_weight(); /* as a render's default */
@@ -403,7 +406,7 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
      * of two) so any finite length works, as the header promises. */
     hr_ray r = {ray->origin, v3_unit_exponent(ray->dir)};
     *out = hr_shade_ray(&tc, &r, 0, depth);
-    return finish_query(&tc);
+    return finish_query(&tc, level);
 }
 
 /* --- Host services given to shape modules -------------------------------- */
