@@ -7,6 +7,7 @@
 #include <hitray/hitray.h>
 
 #include "bvh4.h"
+#include "transform_inline.h"
 
 /* Per-material flags worked out at commit, so shade() tests one bit. */
 #define HR_MAT_EMITS 1u
@@ -39,6 +40,7 @@ typedef struct hr_object {
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
     const struct hr_object *parent; /* the composite that consumed it, or NULL */
     struct hr_texture *texture; /* lib/texture.h; NULL: untextured */
+    hr_xform_error_terms m_error; /* hr_xform_error_terms_of(m) */
 } hr_object;
 
 struct hr_scene {

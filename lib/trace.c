@@ -175,7 +175,7 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
          * neither M^-T nor normalising overflows or underflows. */
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
-            h.error = hr_xform_error(obj->m, h.point, h.error);
+            h.error = hr_xform_error_with(obj->m, &obj->m_error, h.point, h.error);
             h.point = hr_xform_point(obj->m, h.point);
             h.normal = hr_xform_normal(obj->inv, h.normal);
             h.normal = v3_unit_exponent(h.normal);

@@ -37,22 +37,49 @@ static inline hr_vec3 hr_xform_normal(const double inv[16], hr_vec3 n)
     return r;
 }
 
+/* What the error bound of M p (hr_xform_error) takes from M alone, per row:
+ * the sum of |linear part| and |translation|. An object works them out
+ * once, when its transform is set, instead of on every hit. */
+typedef struct hr_xform_error_terms {
+    double row_abs[3]; /* |m[4r]| + |m[4r+1]| + |m[4r+2]| */
+    double shift_abs[3]; /* |m[4r+3]| */
+} hr_xform_error_terms;
+
+static inline hr_xform_error_terms hr_xform_error_terms_of(const double m[16])
+{
+    hr_xform_error_terms k;
+    for (int r = 0; r < 3; r++) {
+        const double *row = m + 4 * r;
+        k.row_abs[r] = fabs(row[0]) + fabs(row[1]) + fabs(row[2]);
+        k.shift_abs[r] = fabs(row[3]);
+    }
+    return k;
+}
+
 /* The error bound of a point after p' = M p, where p carried `e` per
  * coordinate: |M| e carried through, plus the rounding of the product,
- * gamma(3) (|M| |p| + |translation|) per row. */
-static inline double hr_xform_error(const double m[16], hr_vec3 p, double e)
+ * gamma(3) (|M| |p| + |translation|) per row; k = hr_xform_error_terms_of(m). */
+static inline double hr_xform_error_with(const double m[16], const hr_xform_error_terms *k,
+                                         hr_vec3 p, double e)
 {
     const double gamma3 = 3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5);
     double worst = 0.0;
     for (int r = 0; r < 3; r++) {
         const double *row = m + 4 * r;
-        double carried = (fabs(row[0]) + fabs(row[1]) + fabs(row[2])) * e;
+        double carried = k->row_abs[r] * e;
         double rounding = gamma3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
-                                    fabs(row[3]));
+                                    k->shift_abs[r]);
         double total = carried + rounding;
         if (total > worst) worst = total;
     }
     return worst;
+}
+
+/* hr_xform_error_with for a matrix whose terms are not kept. */
+static inline double hr_xform_error(const double m[16], hr_vec3 p, double e)
+{
+    const hr_xform_error_terms k = hr_xform_error_terms_of(m);
+    return hr_xform_error_with(m, &k, p, e);
 }
 
 #endif
