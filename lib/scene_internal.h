@@ -68,16 +68,18 @@ struct hr_scene {
 #define HR_SCRATCH_MAX 64
 #define HR_OCCLUDER_SLOTS 8
 typedef struct hr_trace_ctx {
+    /* What tracing reads (hr_object_trace and the host services a shape's
+     * hit calls); hr_trace_ctx_init_tracing sets only these. */
     const hr_scene *scene;
-    hr_intersection scratch[HR_SCRATCH_MAX];
-    int32_t scratch_used;
-    int32_t scratch_ready;      /* scratch[0 .. scratch_ready) are initialised
-                                   (set up on first use, so a context costs
-                                   nothing for lists a query never needs) */
     const hr_hit *borrowed;     /* storage of a list on a caller's stack (one
                                    public query's): growing that list copies
                                    it to the heap instead of realloc'ing */
     hr_status status;           /* first failure inside a shape, if any */
+    int32_t scratch_used;
+    int32_t scratch_ready;      /* scratch[0 .. scratch_ready) are initialised
+                                   (set up on first use, so a context costs
+                                   nothing for lists a query never needs) */
+    /* What shading reads besides. */
     uint64_t rays_shadow, rays_reflected, rays_refracted;
     int32_t force_all_effects;
     /* Cancelling from inside a pixel: a render can spend forever in one
@@ -101,11 +103,24 @@ typedef struct hr_trace_ctx {
      * threads share them; they change how fast a shadow ray is answered,
      * never the answer. */
     const hr_object *occluder[HR_OCCLUDER_SLOTS];
+    /* Last, so that setting up a context skips them (scratch_ready). */
+    hr_intersection scratch[HR_SCRATCH_MAX];
 } hr_trace_ctx;
 
 #define HR_POLL_INTERVAL 65536u
 
 void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene);
+/* hr_trace_ctx_init's tracing part alone, for a query that never shades
+ * (first hit, all hits): the shading fields are left unset, and nothing
+ * such a query runs reads them. */
+static inline void hr_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *scene)
+{
+    tc->scene = scene;
+    tc->borrowed = NULL;
+    tc->status = HR_OK;
+    tc->scratch_used = 0;
+    tc->scratch_ready = 0;
+}
 void hr_trace_ctx_release(hr_trace_ctx *tc);
 
 /* Grow a list to hold at least `capacity` hits. */

@@ -45,13 +45,11 @@ static hr_status list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t c
 }
 
 /* Everything but the scratch lists is zeroed; a list is set up when it is
- * first acquired (scratch_ready), so a one-ray query (hr_scene_first_hit)
- * neither clears nor frees 64 lists it never touches. */
+ * first acquired (scratch_ready), so a query neither clears nor frees 64
+ * lists it never touches. */
 void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
 {
     memset(tc, 0, offsetof(hr_trace_ctx, scratch));
-    memset((char *)tc + offsetof(hr_trace_ctx, scratch_used), 0,
-           sizeof *tc - offsetof(hr_trace_ctx, scratch_used));
     tc->scene = scene;
 }
 
@@ -335,7 +333,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     int32_t *level;
     if ((st = hr_query_enter(s->ctx, "first hit", &level))) return st;
     hr_trace_ctx tc;
-    hr_trace_ctx_init(&tc, s);
+    hr_trace_ctx_init_tracing(&tc, s);
     /* One ray: the list of candidate hits lives on the stack, so the query
      * allocates nothing unless a shape asks for more room (list_reserve). */
     hr_hit room[4 * HR_MIN_HIT_CAPACITY];
@@ -375,7 +373,7 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     if ((st = hr_query_enter(s->ctx, "all hits", &level))) return st;
     out->count = 0;
     hr_trace_ctx tc;
-    hr_trace_ctx_init(&tc, s);
+    hr_trace_ctx_init_tracing(&tc, s);
     for (int64_t i = 0; i < s->object_count && tc.status == HR_OK; i++) {
         const hr_object *o = s->objects[i];
         if (o->top_level) hr_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
