@@ -60,8 +60,9 @@ SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing o
 
     const double qa = shape_sum_value(a), qb = shape_sum_value(b), qc = shape_sum_value(c);
     const double qdisc = shape_sum_value(disc);
-    /* Coefficients overflow only for rays beyond 1e150 or so: call it a miss. */
-    if (!(isfinite(qa) && isfinite(qb) && isfinite(qc) && isfinite(qdisc))) return 0;
+    /* Coefficients overflow only for rays beyond 1e150 or so: call it a miss.
+     * One test for the four (x - x is 0 for a finite x, NaN otherwise). */
+    if (!((qa - qa) + (qb - qb) + (qc - qc) + (qdisc - qdisc) == 0.0)) return 0;
 
     double roots[2];
     /* a > 0 for any usable direction; a == 0 (|d| < 1e-162 underflows) gives
