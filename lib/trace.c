@@ -91,9 +91,11 @@ static void sort_tail_by_t(hr_intersection *list, int32_t start)
 }
 
 
-hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
-                          double tmin, double tmax, int32_t mode, int unit_normals,
-                          hr_intersection *out)
+/* hr_object_trace's body, inline so that the scene walk (visit_object)
+ * gets a copy specialised to its mode. */
+static inline __attribute__((always_inline)) hr_status
+object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double tmin, double tmax,
+             int32_t mode, int unit_normals, hr_intersection *out)
 {
     const hr_shape_class *cls = obj->cls;
     hr_status st;
@@ -194,6 +196,13 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
     return HR_OK;
 }
 
+hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
+                          double tmin, double tmax, int32_t mode, int unit_normals,
+                          hr_intersection *out)
+{
+    return object_trace(tc, obj, ray, tmin, tmax, mode, unit_normals, out);
+}
+
 /* --- Whole-scene queries ------------------------------------------------- */
 
 typedef struct first_state {
@@ -211,9 +220,9 @@ typedef struct first_state {
 static int visit_object(first_state *fs, const hr_object *o)
 {
     fs->tmp->count = 0;
-    int32_t mode = fs->any ? HR_TRACE_ANY : HR_TRACE_FIRST;
-    if (hr_object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, mode, !fs->any, fs->tmp) != HR_OK)
-        return 0;
+    hr_status st = fs->any ? object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_ANY, 0, fs->tmp)
+                           : object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_FIRST, 1, fs->tmp);
+    if (st != HR_OK) return 0;
     if (fs->tmp->count == 0) return 0;
     fs->found = 1;
     if (fs->any) {
