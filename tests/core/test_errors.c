@@ -1,5 +1,7 @@
 /* Errors: kept per context and per thread, passed to the callback, with
  * the file position parts for scene files. */
+#include <float.h>
+#include <math.h>
 #include <pthread.h>
 #include <string.h>
 
@@ -69,6 +71,27 @@ int main(void)
     CHECK(strstr(hr_context_last_error(shared), "zero vector") != NULL);
     ray.dir.x = NAN;
     CHECK(hr_scene_first_hit(s, &ray, 0, 1, &h, &found) == HR_ERROR_INVALID_ARGUMENT);
+    /* Any one of the six numbers infinite or NaN is refused by every
+     * query, with the same message; the largest finite numbers are not. */
+    const double bad[3] = {INFINITY, -INFINITY, NAN};
+    for (int k = 0; k < 6; k++)
+        for (int v = 0; v < 3; v++) {
+            hr_ray r = {{1, 2, 3}, {0, 0, -1}};
+            double *field[6] = {&r.origin.x, &r.origin.y, &r.origin.z, &r.dir.x, &r.dir.y, &r.dir.z};
+            *field[k] = bad[v];
+            hr_intersection all;
+            hr_intersection_init(&all);
+            hr_color c;
+            hr_status st[3] = {hr_scene_first_hit(s, &r, 0, 1, &h, &found),
+                               hr_scene_all_hits(s, &r, 0, 1, &all), hr_scene_shade(s, &r, 0, &c)};
+            for (int q = 0; q < 3; q++)
+                CHECK_MSG(st[q] == HR_ERROR_INVALID_ARGUMENT, "component %d = %g, query %d: status %d",
+                          k, bad[v], q, (int)st[q]);
+            CHECK(strcmp(hr_context_last_error(shared), "ray: origin and direction must be finite") == 0);
+            hr_intersection_release(&all);
+        }
+    hr_ray huge = {{DBL_MAX, -DBL_MAX, DBL_MAX}, {-DBL_MAX, DBL_MAX, -0.0}};
+    CHECK_OK(hr_scene_first_hit(s, &huge, 0, 1, &h, &found));
     CHECK(strcmp(hr_status_name(HR_ERROR_SDL), "scene file error") == 0);
     hr_scene_destroy(s);
     hr_context_destroy(shared);

@@ -6,6 +6,7 @@
  * their own promises (nearest hit, unit normals, finite values) or report
  * an error. Registered in process, so no module file is needed. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,13 +26,19 @@ static hr_context *ctx;
 #define ROGUE_TINY_NORMAL 7    /* a hit at t = 2 with normal (0, 0, 1e-200) */
 #define ROGUE_HUGE_NORMAL 8    /* a hit at t = 2 with normal (0, 0, 1e300) */
 #define ROGUE_SHRINK 9         /* lowers out->count below where it started */
+/* ROGUE_BAD_FIELD + 3 field + kind: a hit at t = 1 whose field (0-2: point,
+ * 3-5: normal, 6: error) is +inf, -inf or NaN (kind 0, 1, 2), then a good
+ * hit at t = 2. ROGUE_FAR_POINT: a hit at t = 1 whose point is finite but
+ * overflows under a large transform, then the good hit. */
+#define ROGUE_BAD_FIELD 100
+#define ROGUE_FAR_POINT 130
 
 typedef struct rogue {
     int mode;
 } rogue;
 
 static const hr_param_spec rogue_params[] = {
-    {"mode", HR_PARAM_NUMBER, 1, 0, 0, 100, "which rule to break"},
+    {"mode", HR_PARAM_NUMBER, 1, 0, 0, 200, "which rule to break"},
 };
 
 static hr_status rogue_create(const hr_create_args *a, void **out)
@@ -83,7 +90,23 @@ static hr_status rogue_hit(const hr_hit_args *a)
     case ROGUE_TINY_NORMAL: put(a, 2, (hr_vec3){0, 0, 1e-200}); break;
     case ROGUE_HUGE_NORMAL: put(a, 2, (hr_vec3){0, 0, 1e300}); break;
     case ROGUE_SHRINK: a->out->count = -5; break;
-    default: break;
+    case ROGUE_FAR_POINT:
+        put(a, 1, up);
+        a->out->hits[a->out->count - 1].point.x = 1e300;
+        put(a, 2, up);
+        break;
+    default:
+        if (r->mode >= ROGUE_BAD_FIELD && r->mode < ROGUE_BAD_FIELD + 21) {
+            const int field = (r->mode - ROGUE_BAD_FIELD) / 3, kind = (r->mode - ROGUE_BAD_FIELD) % 3;
+            const double bad = kind == 0 ? INFINITY : kind == 1 ? -INFINITY : NAN;
+            put(a, 1, up);
+            hr_hit *h = &a->out->hits[a->out->count - 1];
+            double *fields[7] = {&h->point.x,  &h->point.y,  &h->point.z, &h->normal.x,
+                                 &h->normal.y, &h->normal.z, &h->error};
+            *fields[field] = bad;
+            put(a, 2, up);
+        }
+        break;
     }
     return HR_OK;
 }
@@ -243,6 +266,50 @@ static void extreme_normals(void)
     hr_scene_destroy(s);
 }
 
+/* A hit with any one non-finite field, in object space or after the
+ * transform to the world, is dropped whichever field it is, and the good
+ * hit behind it is the answer. */
+static void first_and_all_are_the_good_hit(hr_scene *s, const char *what)
+{
+    CHECK_OK(hr_scene_commit(s));
+    hr_hit h;
+    int32_t found = 0;
+    CHECK_OK(hr_scene_first_hit(s, &down, 0, INFINITY, &h, &found));
+    CHECK_MSG(found == 1 && h.t == 2.0, "%s: found %d at t = %g, expected the hit at t = 2", what,
+              (int)found, found ? h.t : NAN);
+    hr_intersection all;
+    hr_intersection_init(&all);
+    CHECK_OK(hr_scene_all_hits(s, &down, 0, INFINITY, &all));
+    CHECK_MSG(all.count == 1 && all.hits[0].t == 2.0, "%s: all hits gave %d hits", what,
+              (int)all.count);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
+static void non_finite_fields(void)
+{
+    static const char *const names[7] = {"point.x",  "point.y",  "point.z", "normal.x",
+                                         "normal.y", "normal.z", "error"};
+    static const char *const kinds[3] = {"+inf", "-inf", "NaN"};
+    hr_transform scale;
+    hr_transform_identity(&scale);
+    CHECK_OK(hr_transform_scale(&scale, 2, 2, 2));
+    for (int field = 0; field < 7; field++)
+        for (int kind = 0; kind < 3; kind++)
+            for (int moved = 0; moved < 2; moved++) {
+                char what[80];
+                snprintf(what, sizeof what, "%s = %s%s", names[field], kinds[kind],
+                         moved ? " (scaled)" : "");
+                first_and_all_are_the_good_hit(
+                    rogue_scene(ROGUE_BAD_FIELD + 3 * field + kind, moved ? &scale : NULL), what);
+            }
+    /* 1e300 is finite, 1e300 * 1e10 is not: caught after the transform. */
+    hr_transform big;
+    hr_transform_identity(&big);
+    CHECK_OK(hr_transform_scale(&big, 1e10, 1, 1));
+    first_and_all_are_the_good_hit(rogue_scene(ROGUE_FAR_POINT, &big), "point overflowing to the world");
+}
+
 /* A committed scene with no objects: every query answers "nothing". */
 static void empty_scene(void)
 {
@@ -300,6 +367,7 @@ int main(void)
     overflowing_count(ROGUE_OVERFLOW);
     overflowing_count(ROGUE_SHRINK);
     extreme_normals();
+    non_finite_fields();
     composite_bad_leaf();
     hr_context_destroy(ctx);
     return hr_test_end();
