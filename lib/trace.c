@@ -309,7 +309,7 @@ int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doub
 
 /* --- Public queries ------------------------------------------------------ */
 
-static hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
+static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "the scene is not committed (call hr_scene_commit)");
