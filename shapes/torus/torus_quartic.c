@@ -132,11 +132,10 @@ static double g_of(const torus_geometry *g, hr_vec3 p)
 static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *fr)
 {
     const hr_vec3 d = ray->dir;
-    const double m = shape_max3(fabs(d.x), fabs(d.y), fabs(d.z));
-    if (!(m > 0.0) || !isfinite(m)) return 0;
-    int k;
-    (void)frexp(m, &k); /* m = f 2^k, f in [0.5, 1) */
-    fr->scale = ldexp(1.0, 1 - k);
+    int k; /* max |d_i| = f 2^k, f in [0.5, 1) */
+    if (!shape_vec3_scale_exponent(d, &k)) return 0;
+    /* Both without the libm calls (frexp, ldexp) on every ray. */
+    fr->scale = shape_ldexp(1.0, 1 - k);
     if (!isfinite(fr->scale)) return 0;
     const hr_vec3 e = shape_vec3(d.x * fr->scale, d.y * fr->scale, d.z * fr->scale);
     hr_vec3 o = ray->origin;
