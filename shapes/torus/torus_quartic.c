@@ -97,7 +97,7 @@ typedef struct torus_frame {
     double lo, hi;                /* every root lies in [lo, hi] */
 } torus_frame;
 
-static double compensated_dot(hr_vec3 a, hr_vec3 b, double start)
+static inline double compensated_dot(hr_vec3 a, hr_vec3 b, double start)
 {
     shape_sum s = shape_sum_start(start);
     shape_sum_add_product(&s, a.x, b.x);
@@ -107,7 +107,7 @@ static double compensated_dot(hr_vec3 a, hr_vec3 b, double start)
 }
 
 /* z^2 - r^2, compensated (it cancels on top of the tube). */
-static double z2_minus_r2(const torus_geometry *g, double z)
+static inline double z2_minus_r2(const torus_geometry *g, double z)
 {
     shape_sum s = shape_sum_start(-g->r_high);
     shape_sum_add_product(&s, z, z);
@@ -116,7 +116,7 @@ static double z2_minus_r2(const torus_geometry *g, double z)
 }
 
 /* |p|^2 - 1 - r^2, compensated (it cancels near the ring). */
-static double g_of(const torus_geometry *g, hr_vec3 p)
+static inline double g_of(const torus_geometry *g, hr_vec3 p)
 {
     shape_sum s = shape_sum_start(-1.0);
     s.low -= g->r_low;
@@ -128,8 +128,11 @@ static double g_of(const torus_geometry *g, hr_vec3 p)
 }
 
 /* The frame of a ray, its quartic and its bracket; 0 when the line misses the
- * bounding sphere or slab (or the ray is unusable: zero, NaN, overflowing). */
-static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *fr)
+ * bounding sphere or slab (or the ray is unusable: zero, NaN, overflowing).
+ * It and torus_eval, which run for every ray, are built with
+ * SHAPE_FMA_CLONES, and the compensated sums they use are inlined into them,
+ * so that their fma() is one instruction where the CPU has FMA. */
+SHAPE_FMA_CLONES static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *fr)
 {
     const hr_vec3 d = ray->dir;
     int k; /* max |d_i| = f 2^k, f in [0.5, 1) */
@@ -217,7 +220,7 @@ static double frame_t(const torus_frame *fr, double u)
  * f = G^2 + 4 W adds 2 |G| dG and u |f|. Summed and doubled for the
  * second-order terms and the bound's own rounding:
  *   E = 4 u (|G| (3 S + |o|^2 + 2 |G|) + 4 |Z| (|Z| + r) + 8 |W|). */
-static double torus_eval(const torus_frame *fr, double u, double *deriv, double *bound)
+SHAPE_FMA_CLONES static double torus_eval(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const hr_vec3 o = fr->o, e = fr->e;
     const hr_vec3 p = shape_vec3(fma(u, e.x, o.x), fma(u, e.y, o.y), fma(u, e.z, o.z));
