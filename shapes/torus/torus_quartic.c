@@ -295,7 +295,7 @@ typedef double (*eval_fn)(const torus_frame *fr, double u, double *deriv, double
  * the same function, from the same point (Horner's f is noise at 1e-14 near
  * the tube, torus_eval's at 1e-16), and stops at x, without the step, once
  * that too is noise. */
-static double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise, double x0,
+static inline double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise, double x0,
                              double x1, double f0, double f1)
 {
     double lo = x0, hi = x1;
