@@ -241,7 +241,7 @@ SHAPE_FMA_CLONES static double torus_eval(const torus_frame *fr, double u, doubl
  * each coefficient is a sum of at most three rounded products, within 4 u of
  * the sum of its terms' magnitudes (c_size), and Horner adds 2 n = 8
  * roundings; 16 u covers both with room for the second-order terms. */
-static double horner_bound(const torus_frame *fr, double au)
+static inline double horner_bound(const torus_frame *fr, double au)
 {
     const double *m = fr->c_size;
     return 16.0 * SHAPE_UNIT_ROUNDOFF * ((((m[4] * au + m[3]) * au + m[2]) * au + m[1]) * au + m[0]);
@@ -251,7 +251,7 @@ static double horner_bound(const torus_frame *fr, double au)
  * torus_eval's cost), with horner_bound. Good enough to bracket and
  * approach a root; the last steps use torus_eval, whose error is relative
  * to the tube (see polish_root). */
-static double eval_f_horner(const torus_frame *fr, double u, double *deriv, double *bound)
+static inline double eval_f_horner(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const double *c = fr->c;
     *deriv = ((4.0 * c[4] * u + 3.0 * c[3]) * u + 2.0 * c[2]) * u + c[1];
@@ -262,7 +262,7 @@ static double eval_f_horner(const torus_frame *fr, double u, double *deriv, doub
 /* f'(u) and f''(u) by Horner from the expanded coefficients, with a bound on
  * the rounding of f' (as horner_bound: 4 u for the coefficients, 2 n = 6
  * roundings for Horner, rounded up to 12 u). */
-static double eval_df(const torus_frame *fr, double u, double *deriv, double *bound)
+static inline double eval_df(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const double *c = fr->c, *m = fr->c_size;
     const double au = fabs(u);
@@ -295,23 +295,26 @@ typedef double (*eval_fn)(const torus_frame *fr, double u, double *deriv, double
  * the same function, from the same point (Horner's f is noise at 1e-14 near
  * the tube, torus_eval's at 1e-16), and stops at x, without the step, once
  * that too is noise. */
-static inline double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise, double x0,
-                             double x1, double f0, double f1)
+static inline double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise,
+                                    double x0, double x1, double f0, double f1)
 {
     double lo = x0, hi = x1;
     const int rising = f1 > 0.0;
     double x = x0 - f0 * ((x1 - x0) / (f1 - f0));
     if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    /* A flag rather than assigning `precise` to `fn`: inlined at its call
+     * sites, both calls are then direct. */
+    int use_precise = 0;
     for (int i = 0; i < 80; i++) {
         double dfx, bound;
-        const double fx = fn(fr, x, &dfx, &bound);
+        const double fx = use_precise ? precise(fr, x, &dfx, &bound) : fn(fr, x, &dfx, &bound);
         if (fx == 0.0) return x;
         double next = x - fx / dfx;
         if (fabs(fx) <= bound) {
             if (next >= lo && next <= hi && fabs(next - x) <= SETTLED_STEP * (fabs(x) + 1.0))
                 return next;
-            if (!precise || fn == precise) return x;
-            fn = precise; /* the sign of fx is noise too: the bracket stays */
+            if (!precise || use_precise) return x;
+            use_precise = 1; /* the sign of fx is noise too: the bracket stays */
             continue;
         }
         if ((fx > 0.0) == rising) hi = x;
