@@ -116,7 +116,7 @@ static inline double z2_minus_r2(const torus_geometry *g, double z)
 }
 
 /* |p|^2 - 1 - r^2, compensated (it cancels near the ring). */
-static inline double g_of(const torus_geometry *g, hr_vec3 p)
+static inline __attribute__((always_inline)) double g_of(const torus_geometry *g, hr_vec3 p)
 {
     shape_sum s = shape_sum_start(-1.0);
     s.low -= g->r_low;
