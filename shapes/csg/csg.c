@@ -34,11 +34,15 @@
  * Fast paths. The first hit is the walk stopped at its first hit: an
  * operand's own first hit is not enough (the ray may start inside the
  * other operand, or a tangent group may cancel), so operands are traced in
- * full. The any hit (shadow rays) first asks each operand that is a leaf
- * for any hit in (tmin, tmax): the result's hits are hits of its operands,
- * so with none from either the answer is no, at the cost of two any-hit
- * calls; otherwise it is the first hit. (A composite operand is not asked:
- * see operand_any.) In every mode, b is not traced at all when the ray
+ * full. The any hit (shadow rays) of a union first asks each operand that
+ * is a leaf for any hit in (tmin, tmax): the result's hits are hits of its
+ * operands, so with none from either the answer is no, at the cost of two
+ * any-hit calls; otherwise it is the first hit. (A composite operand is not
+ * asked: see operand_any.) An intersection or a difference skips that
+ * question and takes its first hit: its walk already stops after a alone
+ * when the ray is never inside a, and where a has a hit the question only
+ * repeats a's trace (on torus_csg.sdl and scenes/csg.sdl the question cost
+ * more than it saved). In every mode, b is not traced at all when the ray
  * is never inside a and the result lies within a (intersection,
  * difference), and an operand whose box the ray misses is not traced (see
  * trace_operand).
@@ -303,7 +307,7 @@ static hr_status csg_trace(const hr_hit_args *args, int32_t mode)
     hr_intersection *out = args->out;
     const int32_t start = out->count;
     hr_status st;
-    if (mode == HR_TRACE_ANY) {
+    if (mode == HR_TRACE_ANY && shape->op == CSG_UNION) {
         int found_a = 0, found_b = 0;
         if ((st = operand_any(shape, args, shape->a, shape->a_composite, &found_a))) return st;
         if (!found_a &&
