@@ -34,14 +34,15 @@
  * Fast paths. The first hit is the walk stopped at its first hit: an
  * operand's own first hit is not enough (the ray may start inside the
  * other operand, or a tangent group may cancel), so operands are traced in
- * full. The any hit (shadow rays) first asks each operand that is a leaf
- * for any hit in (tmin, tmax): the result's hits are hits of its operands,
- * so with none from either the answer is no, at the cost of two any-hit
- * calls; otherwise it is the first hit. (A composite operand is not asked:
- * see operand_any.) In every mode, b is not traced at all when the ray
- * is never inside a and the result lies within a (intersection,
- * difference), and an operand whose box the ray misses is not traced (see
- * trace_operand).
+ * full. The any hit (shadow rays) is the first hit. Asking the leaf
+ * operands for any hit in (tmin, tmax) first, to answer no without the walk
+ * when neither has one, costs more than it saves: a built-in solid's any
+ * hit costs about what its every hit does, and wherever an operand has a
+ * hit the question only repeats its trace (measured on torus_csg.sdl,
+ * scenes/csg.sdl and a union of a cube and a torus). In every mode, b is
+ * not traced at all when the ray is never inside a and the result lies
+ * within a (intersection, difference), and an operand whose box the ray
+ * misses is not traced (see trace_operand).
  *
  * No limit on the number of hits: the list grows through hr_host.reserve.
  *
@@ -61,7 +62,6 @@ typedef struct csg_shape {
     const hr_host *host;
     const void *a, *b;                /* child handles for trace_child */
     int32_t op;                       /* CSG_* */
-    int32_t a_composite, b_composite; /* operand is itself a composite */
     hr_bounds a_box, b_box;           /* operands' bounds, fixed once made */
     int32_t a_box_finite, b_box_finite;
 } csg_shape;
@@ -75,11 +75,9 @@ static int bounds_finite(const hr_bounds *b)
 }
 
 /* The child given as parameter `name`, checked to be a solid. */
-static hr_status find_operand(const hr_create_args *args, const char *name, const void **out,
-                              int32_t *composite)
+static hr_status find_operand(const hr_create_args *args, const char *name, const void **out)
 {
     *out = NULL;
-    *composite = 0;
     for (int32_t i = 0; i < args->param_count; i++)
         if (strcmp(args->params[i].name, name) == 0 && args->params[i].type == HR_PARAM_OBJECT)
             *out = args->objects ? args->objects[i] : NULL;
@@ -91,7 +89,6 @@ static hr_status find_operand(const hr_create_args *args, const char *name, cons
      * as solids. */
     if (!HR_HOST_HAS(args->host, child_class) || !args->host->child_class) return HR_OK;
     const hr_shape_class *cls = args->host->child_class(*out);
-    *composite = cls && (cls->flags & HR_SHAPE_COMPOSITE) != 0;
     if (cls && !(cls->flags & HR_SHAPE_CLOSED)) {
         snprintf(args->error, args->error_size,
                  "parameter '%s' is a '%s', which is not a solid (its class lacks "
@@ -107,9 +104,8 @@ static hr_status csg_create(const hr_create_args *args, int32_t op, void **out_s
 {
     *out_shape = NULL;
     const void *a, *b;
-    int32_t a_composite, b_composite;
-    hr_status st = find_operand(args, "a", &a, &a_composite);
-    if (st == HR_OK) st = find_operand(args, "b", &b, &b_composite);
+    hr_status st = find_operand(args, "a", &a);
+    if (st == HR_OK) st = find_operand(args, "b", &b);
     if (st) return st;
     csg_shape *shape = args->host->alloc(sizeof *shape);
     if (!shape) return HR_ERROR_OUT_OF_MEMORY;
@@ -117,8 +113,6 @@ static hr_status csg_create(const hr_create_args *args, int32_t op, void **out_s
     shape->a = a;
     shape->b = b;
     shape->op = op;
-    shape->a_composite = a_composite;
-    shape->b_composite = b_composite;
     args->host->child_bounds(a, &shape->a_box);
     args->host->child_bounds(b, &shape->b_box);
     shape->a_box_finite = bounds_finite(&shape->a_box);
@@ -278,39 +272,12 @@ static hr_status trace_operand(const csg_shape *shape, const hr_hit_args *args, 
     return probe_inside(shape, args->call, child, p, out, inside);
 }
 
-/* Whether `child` may have a hit in (tmin, tmax); `out` is left as it
- * was. A leaf is asked through its any-hit path. A composite is not asked:
- * its any hit would trace its own operands in full, and the walk after it
- * would do so again, so down a chain of booleans the work would grow with
- * the square of the depth. */
-static hr_status operand_any(const csg_shape *shape, const hr_hit_args *args, const void *child,
-                             int32_t composite, int *found)
-{
-    *found = 1;
-    if (composite) return HR_OK;
-    hr_intersection *out = args->out;
-    const int32_t start = out->count;
-    hr_status st = shape->host->trace_child(args->call, child, &args->ray, args->tmin, args->tmax,
-                                            HR_TRACE_ANY, out);
-    *found = out->count > start;
-    out->count = start;
-    return st;
-}
-
 static hr_status csg_trace(const hr_hit_args *args, int32_t mode)
 {
     const csg_shape *shape = args->shape;
     hr_intersection *out = args->out;
     const int32_t start = out->count;
     hr_status st;
-    if (mode == HR_TRACE_ANY) {
-        int found_a = 0, found_b = 0;
-        if ((st = operand_any(shape, args, shape->a, shape->a_composite, &found_a))) return st;
-        if (!found_a &&
-            (st = operand_any(shape, args, shape->b, shape->b_composite, &found_b)))
-            return st;
-        if (!found_a && !found_b) return HR_OK;
-    }
     /* The operands' hits go after what the list held: a's, then b's, then
      * the result, which is finally moved down to `start`. */
     csg_operand a, b;

@@ -54,7 +54,7 @@ typedef struct torus_shape {
     int solver;
 } torus_shape;
 
-static void torus_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+SHAPE_FMA_CLONES static void torus_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
     const torus_shape *torus = shape;
     const double r = torus->geometry.r;
@@ -179,9 +179,9 @@ static void torus_destroy(void *shape)
  *
  *   solver          instructions         ns         worst |t error|      wrong counts on
  *                   all        first     all        (u * condition)      20000 near rays
- *   ferrari         850-1320   850-1290  120-220    4.2e9 (2.0e-6 rel.)  6 spurious
- *   ferrari-newton  870-1870   860-1850  130-290    4.1                  6 spurious
- *   bracketing      820-4510   800-3110  100-600    2.4                  none
+ *   ferrari         600-1000   600-970   100-170    4.2e9 (2.0e-6 rel.)  6 spurious
+ *   ferrari-newton  610-1240   610-1210  110-210    4.1                  6 spurious
+ *   bracketing      530-3450   520-2250   70-490    2.4                  none
  *
  * The ranges run from the thin tube's rays, whose bracket (the slab
  * |z| <= tube) is short and mostly empty, to the grazing rays. Within 1e-12
@@ -195,9 +195,9 @@ static const hr_param_spec torus_params[] = {
      "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole"},
     {"solver", HR_PARAM_STRING, 0, 0.0, 0.0, 0.0,
      "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent, "
-     "t within 2.4 u*condition, 820-4510 instructions (100-600 ns) per ray; 'ferrari-newton' "
-     "(closed form + Newton) 870-1870 (130-290 ns), as accurate where it finds the roots but "
-     "may invent or lose a close pair; 'ferrari' (closed form) 850-1320 (120-220 ns), t errors "
+     "t within 2.4 u*condition, 530-3450 instructions (70-490 ns) per ray; 'ferrari-newton' "
+     "(closed form + Newton) 610-1240 (110-210 ns), as accurate where it finds the roots but "
+     "may invent or lose a close pair; 'ferrari' (closed form) 600-1000 (100-170 ns), t errors "
      "up to 2e-6 relative near tangents"},
 };
 

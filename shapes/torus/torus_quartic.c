@@ -97,7 +97,7 @@ typedef struct torus_frame {
     double lo, hi;                /* every root lies in [lo, hi] */
 } torus_frame;
 
-static double compensated_dot(hr_vec3 a, hr_vec3 b, double start)
+static inline double compensated_dot(hr_vec3 a, hr_vec3 b, double start)
 {
     shape_sum s = shape_sum_start(start);
     shape_sum_add_product(&s, a.x, b.x);
@@ -107,7 +107,7 @@ static double compensated_dot(hr_vec3 a, hr_vec3 b, double start)
 }
 
 /* z^2 - r^2, compensated (it cancels on top of the tube). */
-static double z2_minus_r2(const torus_geometry *g, double z)
+static inline double z2_minus_r2(const torus_geometry *g, double z)
 {
     shape_sum s = shape_sum_start(-g->r_high);
     shape_sum_add_product(&s, z, z);
@@ -116,7 +116,7 @@ static double z2_minus_r2(const torus_geometry *g, double z)
 }
 
 /* |p|^2 - 1 - r^2, compensated (it cancels near the ring). */
-static double g_of(const torus_geometry *g, hr_vec3 p)
+static inline __attribute__((always_inline)) double g_of(const torus_geometry *g, hr_vec3 p)
 {
     shape_sum s = shape_sum_start(-1.0);
     s.low -= g->r_low;
@@ -128,15 +128,17 @@ static double g_of(const torus_geometry *g, hr_vec3 p)
 }
 
 /* The frame of a ray, its quartic and its bracket; 0 when the line misses the
- * bounding sphere or slab (or the ray is unusable: zero, NaN, overflowing). */
-static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *fr)
+ * bounding sphere or slab (or the ray is unusable: zero, NaN, overflowing).
+ * It and torus_eval, which run for every ray, are built with
+ * SHAPE_FMA_CLONES, and the compensated sums they use are inlined into them,
+ * so that their fma() is one instruction where the CPU has FMA. */
+SHAPE_FMA_CLONES static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *fr)
 {
     const hr_vec3 d = ray->dir;
-    const double m = shape_max3(fabs(d.x), fabs(d.y), fabs(d.z));
-    if (!(m > 0.0) || !isfinite(m)) return 0;
-    int k;
-    (void)frexp(m, &k); /* m = f 2^k, f in [0.5, 1) */
-    fr->scale = ldexp(1.0, 1 - k);
+    int k; /* max |d_i| = f 2^k, f in [0.5, 1) */
+    if (!shape_vec3_scale_exponent(d, &k)) return 0;
+    /* Both without the libm calls (frexp, ldexp) on every ray. */
+    fr->scale = shape_ldexp(1.0, 1 - k);
     if (!isfinite(fr->scale)) return 0;
     const hr_vec3 e = shape_vec3(d.x * fr->scale, d.y * fr->scale, d.z * fr->scale);
     hr_vec3 o = ray->origin;
@@ -218,7 +220,7 @@ static double frame_t(const torus_frame *fr, double u)
  * f = G^2 + 4 W adds 2 |G| dG and u |f|. Summed and doubled for the
  * second-order terms and the bound's own rounding:
  *   E = 4 u (|G| (3 S + |o|^2 + 2 |G|) + 4 |Z| (|Z| + r) + 8 |W|). */
-static double torus_eval(const torus_frame *fr, double u, double *deriv, double *bound)
+SHAPE_FMA_CLONES static double torus_eval(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const hr_vec3 o = fr->o, e = fr->e;
     const hr_vec3 p = shape_vec3(fma(u, e.x, o.x), fma(u, e.y, o.y), fma(u, e.z, o.z));
@@ -239,7 +241,7 @@ static double torus_eval(const torus_frame *fr, double u, double *deriv, double 
  * each coefficient is a sum of at most three rounded products, within 4 u of
  * the sum of its terms' magnitudes (c_size), and Horner adds 2 n = 8
  * roundings; 16 u covers both with room for the second-order terms. */
-static double horner_bound(const torus_frame *fr, double au)
+static inline double horner_bound(const torus_frame *fr, double au)
 {
     const double *m = fr->c_size;
     return 16.0 * SHAPE_UNIT_ROUNDOFF * ((((m[4] * au + m[3]) * au + m[2]) * au + m[1]) * au + m[0]);
@@ -249,7 +251,7 @@ static double horner_bound(const torus_frame *fr, double au)
  * torus_eval's cost), with horner_bound. Good enough to bracket and
  * approach a root; the last steps use torus_eval, whose error is relative
  * to the tube (see polish_root). */
-static double eval_f_horner(const torus_frame *fr, double u, double *deriv, double *bound)
+static inline double eval_f_horner(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const double *c = fr->c;
     *deriv = ((4.0 * c[4] * u + 3.0 * c[3]) * u + 2.0 * c[2]) * u + c[1];
@@ -260,7 +262,7 @@ static double eval_f_horner(const torus_frame *fr, double u, double *deriv, doub
 /* f'(u) and f''(u) by Horner from the expanded coefficients, with a bound on
  * the rounding of f' (as horner_bound: 4 u for the coefficients, 2 n = 6
  * roundings for Horner, rounded up to 12 u). */
-static double eval_df(const torus_frame *fr, double u, double *deriv, double *bound)
+static inline double eval_df(const torus_frame *fr, double u, double *deriv, double *bound)
 {
     const double *c = fr->c, *m = fr->c_size;
     const double au = fabs(u);
@@ -293,23 +295,26 @@ typedef double (*eval_fn)(const torus_frame *fr, double u, double *deriv, double
  * the same function, from the same point (Horner's f is noise at 1e-14 near
  * the tube, torus_eval's at 1e-16), and stops at x, without the step, once
  * that too is noise. */
-static double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise, double x0,
-                             double x1, double f0, double f1)
+static inline double bracketed_root(const torus_frame *fr, eval_fn fn, eval_fn precise,
+                                    double x0, double x1, double f0, double f1)
 {
     double lo = x0, hi = x1;
     const int rising = f1 > 0.0;
     double x = x0 - f0 * ((x1 - x0) / (f1 - f0));
     if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    /* A flag rather than assigning `precise` to `fn`: inlined at its call
+     * sites, both calls are then direct. */
+    int use_precise = 0;
     for (int i = 0; i < 80; i++) {
         double dfx, bound;
-        const double fx = fn(fr, x, &dfx, &bound);
+        const double fx = use_precise ? precise(fr, x, &dfx, &bound) : fn(fr, x, &dfx, &bound);
         if (fx == 0.0) return x;
         double next = x - fx / dfx;
         if (fabs(fx) <= bound) {
             if (next >= lo && next <= hi && fabs(next - x) <= SETTLED_STEP * (fabs(x) + 1.0))
                 return next;
-            if (!precise || fn == precise) return x;
-            fn = precise; /* the sign of fx is noise too: the bracket stays */
+            if (!precise || use_precise) return x;
+            use_precise = 1; /* the sign of fx is noise too: the bracket stays */
             continue;
         }
         if ((fx > 0.0) == rising) hi = x;
