@@ -329,15 +329,16 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
     /* Read once: the stores of hits below keep the compiler from assuming
-     * that these stay put. */
+     * that these stay put; tmax is written back where a hit narrows it. */
     const uint32_t *const corners = m->corners;
     const hr_vec3 *const vertices = m->vertices;
     const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
+    double tmax = q->tmax;
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = corners + 3 * (size_t)i;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin,
-                                     q->tmax, &th, kx, ky, kz))
+        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin, tmax,
+                                     &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
@@ -391,13 +392,14 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
         /* Nearer hits only from here on; an exiting best still lets an
          * entering hit at the same t in, and a closed mesh's search runs
          * on over the slack of a near tie. */
-        q->tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
+        tmax = th.entering ? th.t : mesh_next_up(th.t);
         if (q->tie_check) {
             q->best_error = point_error(m, i, th.b);
             const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
                                   16.0 * DBL_EPSILON * fabs(th.t);
-            q->tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
+            tmax = fmin(args->tmax, mesh_next_up(th.t + window));
         }
+        q->tmax = tmax;
     }
     return 0;
 }

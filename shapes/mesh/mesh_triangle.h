@@ -33,6 +33,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include <hitray/common.h>
 
@@ -49,6 +51,24 @@ static inline double mesh_max(double a, double b)
 static inline double mesh_min(double a, double b)
 {
     return a < b || b != b ? a : b;
+}
+
+/* nextafter(x, INFINITY) from x's bits, as the compiler can inline it
+ * (nextafter is a libm call, made for every hit that narrows a first-hit
+ * search): the next double up; -0 and +0 go to the smallest subnormal,
+ * -DBL_TRUE_MIN to -0, and +inf and NaN stay as they are. */
+static inline double mesh_next_up(double x)
+{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    if ((bits & 0x7fffffffffffffffull) >= 0x7ff0000000000000ull) {
+        /* -inf steps to -DBL_MAX; +inf and NaN stay. */
+        return bits == 0xfff0000000000000ull ? -DBL_MAX : x;
+    }
+    if ((bits & 0x7fffffffffffffffull) == 0) return DBL_TRUE_MIN;
+    bits += (bits >> 63) ? (uint64_t)-1 : 1;
+    memcpy(&x, &bits, sizeof x);
+    return x;
 }
 
 /* The ray as the test needs it (accel's walk takes the hr_ray). */
