@@ -76,9 +76,9 @@ static double point_error(const mesh *m, uint32_t tri, const double b[3])
     return MESH_GAMMA(7) * mesh_max(ex, mesh_max(ey, ez));
 }
 
-/* Writes every field of the hit but `object`, which is the host's. */
-static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_triangle_hit *th,
-                     hr_hit *hit)
+/* The fields of a hit every mode writes: t, the point and its error bound,
+ * the surface and the entering flag. */
+static void fill_point(const mesh *m, uint32_t tri, const mesh_triangle_hit *th, hr_hit *hit)
 {
     const uint32_t *c = m->corners + 3 * (size_t)tri;
     const hr_vec3 *v[3] = {&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]]};
@@ -90,6 +90,31 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
     hit->error = point_error(m, tri, b);
     hit->surface = 0;
     hit->entering = th->entering;
+}
+
+/* An any-hit answer: only its t is meaningful (HR_TRACE_ANY: the host
+ * reads nothing else of a shadow ray's hit), yet every field must be
+ * valid. So fill_point's fields, and for the normal the axis the ray runs
+ * most along, facing the ray as the entering flag says (against it when
+ * entering, as the geometric normal does): the geometric normal and the
+ * interpolated vertex normals, most of fill_hit, are not worked out. */
+static void fill_any_hit(const mesh *m, const mesh_ray *r, uint32_t tri, const mesh_triangle_hit *th,
+                         hr_hit *hit)
+{
+    fill_point(m, tri, th, hit);
+    double n[3] = {0.0, 0.0, 0.0};
+    n[r->kz] = (r->d[r->kz] > 0.0) == th->entering ? -1.0 : 1.0;
+    hit->normal.x = n[0], hit->normal.y = n[1], hit->normal.z = n[2];
+}
+
+/* Writes every field of the hit but `object`, which is the host's. */
+static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_triangle_hit *th,
+                     hr_hit *hit)
+{
+    fill_point(m, tri, th, hit);
+    const uint32_t *c = m->corners + 3 * (size_t)tri;
+    const hr_vec3 *v[3] = {&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]]};
+    const double *b = th->b;
     hr_vec3 ng = geometric_normal(v[0], v[1], v[2]);
     if (ng.x == 0.0 && ng.y == 0.0 && ng.z == 0.0) {
         /* Collinear corners the test still saw with area (rounding): face
@@ -534,7 +559,9 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     }
     if (mode != HR_TRACE_ALL) {
         if (!q.found) return HR_OK;
-        fill_hit(m, &args->ray, q.best_tri, &q.best, &args->out->hits[args->out->count++]);
+        hr_hit *hit = &args->out->hits[args->out->count++];
+        if (mode == HR_TRACE_ANY) fill_any_hit(m, &q.r, q.best_tri, &q.best, hit);
+        else fill_hit(m, &args->ray, q.best_tri, &q.best, hit);
         return HR_OK;
     }
     hr_hit *hits = args->out->hits + start;

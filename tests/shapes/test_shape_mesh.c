@@ -101,6 +101,21 @@ static void test_cube_agrees(void)
         CHECK(f == (m > 0) && a == (m > 0));
         if (f && m) CHECK(first[0].t == got[0].t && first[0].entering == got[0].entering);
         if (a && m) CHECK(any[0].t == got[0].t || (m > 1 && any[0].t == got[1].t));
+        /* An any-hit answer skips the normals (only t is meaningful), but
+         * its fields stay valid: the point of the crossing it names within
+         * its bound, and a normal facing the ray as its entering flag says. */
+        for (int k = 0; a && k < m && k < 2; k++) {
+            if (any[0].t != got[k].t) continue;
+            CHECK(any[0].entering == got[k].entering);
+            CHECK(any[0].point.x == got[k].point.x && any[0].point.y == got[k].point.y &&
+                  any[0].point.z == got[k].point.z && any[0].error == got[k].error);
+            const double facing = any[0].normal.x * ray.dir.x + any[0].normal.y * ray.dir.y +
+                                  any[0].normal.z * ray.dir.z;
+            CHECK_MSG(any[0].entering ? facing < 0.0 : facing > 0.0,
+                      "ray %d: any-hit normal (%g, %g, %g), entering %d", i, any[0].normal.x,
+                      any[0].normal.y, any[0].normal.z, (int)any[0].entering);
+            break;
+        }
     }
     CHECK_MSG(compared > 15000 && hit_rays > 5000, "only %d rays compared, %d hitting", compared,
               hit_rays);
