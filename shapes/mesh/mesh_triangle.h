@@ -87,7 +87,9 @@ static inline int mesh_ray_init(mesh_ray *r, const hr_ray *ray)
     for (int a = 1; a < 3; a++)
         if (fabs(r->d[a]) > fabs(r->d[kz])) kz = a;
     if (r->d[kz] == 0.0) return 0;
-    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    /* The next axes in turn, (kz + 1) % 3 and (kz + 2) % 3, without the
+     * divisions (this runs for every query). */
+    int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
     /* Keep the permutation's handedness once z is flipped by sz < 0. */
     if (r->d[kz] < 0.0) {
         int t = kx;
