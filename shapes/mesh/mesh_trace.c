@@ -76,9 +76,9 @@ static double point_error(const mesh *m, uint32_t tri, const double b[3])
     return MESH_GAMMA(7) * mesh_max(ex, mesh_max(ey, ez));
 }
 
-/* Writes every field of the hit but `object`, which is the host's. */
-static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_triangle_hit *th,
-                     hr_hit *hit)
+/* The fields of a hit every mode writes: t, the point and its error bound,
+ * the surface and the entering flag. */
+static void fill_point(const mesh *m, uint32_t tri, const mesh_triangle_hit *th, hr_hit *hit)
 {
     const uint32_t *c = m->corners + 3 * (size_t)tri;
     const hr_vec3 *v[3] = {&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]]};
@@ -90,6 +90,31 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
     hit->error = point_error(m, tri, b);
     hit->surface = 0;
     hit->entering = th->entering;
+}
+
+/* An any-hit answer: only its t is meaningful (HR_TRACE_ANY: the host
+ * reads nothing else of a shadow ray's hit), yet every field must be
+ * valid. So fill_point's fields, and for the normal the axis the ray runs
+ * most along, facing the ray as the entering flag says (against it when
+ * entering, as the geometric normal does): the geometric normal and the
+ * interpolated vertex normals, most of fill_hit, are not worked out. */
+static void fill_any_hit(const mesh *m, const mesh_ray *r, uint32_t tri, const mesh_triangle_hit *th,
+                         hr_hit *hit)
+{
+    fill_point(m, tri, th, hit);
+    double n[3] = {0.0, 0.0, 0.0};
+    n[r->kz] = (r->d[r->kz] > 0.0) == th->entering ? -1.0 : 1.0;
+    hit->normal.x = n[0], hit->normal.y = n[1], hit->normal.z = n[2];
+}
+
+/* Writes every field of the hit but `object`, which is the host's. */
+static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_triangle_hit *th,
+                     hr_hit *hit)
+{
+    fill_point(m, tri, th, hit);
+    const uint32_t *c = m->corners + 3 * (size_t)tri;
+    const hr_vec3 *v[3] = {&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]]};
+    const double *b = th->b;
     hr_vec3 ng = geometric_normal(v[0], v[1], v[2]);
     if (ng.x == 0.0 && ng.y == 0.0 && ng.z == 0.0) {
         /* Collinear corners the test still saw with area (rounding): face
@@ -329,15 +354,16 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
     /* Read once: the stores of hits below keep the compiler from assuming
-     * that these stay put. */
+     * that these stay put; tmax is written back where a hit narrows it. */
     const uint32_t *const corners = m->corners;
     const hr_vec3 *const vertices = m->vertices;
     const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
+    double tmax = q->tmax;
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = corners + 3 * (size_t)i;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin,
-                                     q->tmax, &th, kx, ky, kz))
+        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin, tmax,
+                                     &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
@@ -391,13 +417,14 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
         /* Nearer hits only from here on; an exiting best still lets an
          * entering hit at the same t in, and a closed mesh's search runs
          * on over the slack of a near tie. */
-        q->tmax = th.entering ? th.t : nextafter(th.t, INFINITY);
+        tmax = th.entering ? th.t : mesh_next_up(th.t);
         if (q->tie_check) {
             q->best_error = point_error(m, i, th.b);
             const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
                                   16.0 * DBL_EPSILON * fabs(th.t);
-            q->tmax = fmin(args->tmax, nextafter(th.t + window, INFINITY));
+            tmax = fmin(args->tmax, mesh_next_up(th.t + window));
         }
+        q->tmax = tmax;
     }
     return 0;
 }
@@ -532,7 +559,9 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     }
     if (mode != HR_TRACE_ALL) {
         if (!q.found) return HR_OK;
-        fill_hit(m, &args->ray, q.best_tri, &q.best, &args->out->hits[args->out->count++]);
+        hr_hit *hit = &args->out->hits[args->out->count++];
+        if (mode == HR_TRACE_ANY) fill_any_hit(m, &q.r, q.best_tri, &q.best, hit);
+        else fill_hit(m, &args->ray, q.best_tri, &q.best, hit);
         return HR_OK;
     }
     hr_hit *hits = args->out->hits + start;

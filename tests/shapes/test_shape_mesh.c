@@ -101,6 +101,21 @@ static void test_cube_agrees(void)
         CHECK(f == (m > 0) && a == (m > 0));
         if (f && m) CHECK(first[0].t == got[0].t && first[0].entering == got[0].entering);
         if (a && m) CHECK(any[0].t == got[0].t || (m > 1 && any[0].t == got[1].t));
+        /* An any-hit answer skips the normals (only t is meaningful), but
+         * its fields stay valid: the point of the crossing it names within
+         * its bound, and a normal facing the ray as its entering flag says. */
+        for (int k = 0; a && k < m && k < 2; k++) {
+            if (any[0].t != got[k].t) continue;
+            CHECK(any[0].entering == got[k].entering);
+            CHECK(any[0].point.x == got[k].point.x && any[0].point.y == got[k].point.y &&
+                  any[0].point.z == got[k].point.z && any[0].error == got[k].error);
+            const double facing = any[0].normal.x * ray.dir.x + any[0].normal.y * ray.dir.y +
+                                  any[0].normal.z * ray.dir.z;
+            CHECK_MSG(any[0].entering ? facing < 0.0 : facing > 0.0,
+                      "ray %d: any-hit normal (%g, %g, %g), entering %d", i, any[0].normal.x,
+                      any[0].normal.y, any[0].normal.z, (int)any[0].entering);
+            break;
+        }
     }
     CHECK_MSG(compared > 15000 && hit_rays > 5000, "only %d rays compared, %d hitting", compared,
               hit_rays);
@@ -595,6 +610,39 @@ static void test_exact_signs(void)
     CHECK_MSG(wrong_plain > 1000, "only %d plain signs wrong: the inputs do not cancel", wrong_plain);
 }
 
+/* mesh_next_up (the step a first-hit search narrows tmax by) is
+ * nextafter(x, INFINITY) on every kind of double: zeros, subnormals, the
+ * largest finite values, infinities, NaN, and random bit patterns of both
+ * signs. Compared by bits, so -0 and +0 are told apart. */
+static int same_bits(double a, double b)
+{
+    if (isnan(a) && isnan(b)) return 1;
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+static void test_next_up(void)
+{
+    static const double special[] = {0.0, -0.0, DBL_TRUE_MIN, -DBL_TRUE_MIN, DBL_MIN, -DBL_MIN,
+                                     DBL_MIN - DBL_TRUE_MIN, -(DBL_MIN - DBL_TRUE_MIN), 1.0, -1.0,
+                                     DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, NAN, 0x1p-1022, -0x1p-1021};
+    for (size_t i = 0; i < sizeof special / sizeof special[0]; i++) {
+        const double x = special[i], want = nextafter(x, INFINITY), got = mesh_next_up(x);
+        CHECK_MSG(same_bits(got, want), "mesh_next_up(%a) = %a, nextafter %a", x, got, want);
+    }
+    ray_rng rng;
+    rng_seed(&rng, 23);
+    long wrong = 0;
+    for (int i = 0; i < 1000000; i++) {
+        const uint64_t bits = rng_next(&rng);
+        double x;
+        memcpy(&x, &bits, sizeof x);
+        const double want = nextafter(x, INFINITY), got = mesh_next_up(x);
+        if (!same_bits(got, want) && ++wrong <= 5)
+            CHECK_MSG(0, "mesh_next_up(%a) = %a, nextafter %a", x, got, want);
+    }
+    CHECK_MSG(wrong == 0, "%ld of 10^6 random doubles step differently", wrong);
+}
+
 /* The module's table: eight classes, complete vtables, one surface each;
  * the solids closed and without parameters; `mesh` takes one required
  * string `file` (the name the SDL reader and the Python binding use);
@@ -854,6 +902,7 @@ int main(void)
         return hr_test_end() | 1;
     test_classes();
     test_exact_signs();
+    test_next_up();
     test_cube_agrees();
     test_edge_sweeps();
     test_vertices();
