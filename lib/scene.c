@@ -252,9 +252,8 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     if (d->transform && d->inverse) {
         memcpy(t.m, d->transform, sizeof t.m);
         memcpy(t.inv, d->inverse, sizeof t.inv);
-        for (int i = 0; i < 16; i++)
-            if (!isfinite(t.m[i]) || !isfinite(t.inv[i]))
-                return hr_error(ctx, HR_ERROR_NUMERIC, "object transform has a non-finite entry");
+        if (!doubles_are_finite(t.m, 16) || !doubles_are_finite(t.inv, 16))
+            return hr_error(ctx, HR_ERROR_NUMERIC, "object transform has a non-finite entry");
         if (t.m[12] != 0 || t.m[13] != 0 || t.m[14] != 0 || t.m[15] != 1)
             return hr_error(ctx, HR_ERROR_NUMERIC, "object transform is not affine (last row must be 0 0 0 1)");
     } else if (d->transform) {

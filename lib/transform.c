@@ -9,6 +9,7 @@
 
 #include "errors.h"
 #include "transform_inline.h"
+#include "vec.h"
 
 static void mat_identity(double m[16])
 {
@@ -61,15 +62,6 @@ static void apply_step(hr_transform *t, const double step[16], const double step
     memcpy(t->inv, inv, sizeof inv);
 }
 
-/* x - x is 0 for a finite x and NaN for an infinite or NaN one, and a sum
- * with a NaN in it is NaN: one test for all 16, without a branch each. */
-static int all_finite(const double m[16])
-{
-    double z = 0.0;
-    for (int i = 0; i < 16; i++) z += m[i] - m[i];
-    return z == 0.0;
-}
-
 /* apply_step for the calls that can refuse: a step whose own inverse is not
  * representable (a factor of 1e-310 has none in double) is refused like a
  * zero factor, and so is a step after which the pair over- or underflows
@@ -77,10 +69,10 @@ static int all_finite(const double m[16])
  * names the step that caused it. A refused step leaves `t` as it was. */
 static hr_status checked_step(hr_transform *t, const double step[16], const double step_inv[16])
 {
-    if (!all_finite(step) || !all_finite(step_inv)) return HR_ERROR_NUMERIC;
+    if (!doubles_are_finite(step, 16) || !doubles_are_finite(step_inv, 16)) return HR_ERROR_NUMERIC;
     double m[16], inv[16];
     stepped(t, step, step_inv, m, inv);
-    if (!all_finite(m) || !all_finite(inv)) return HR_ERROR_NUMERIC;
+    if (!doubles_are_finite(m, 16) || !doubles_are_finite(inv, 16)) return HR_ERROR_NUMERIC;
     memcpy(t->m, m, sizeof m);
     memcpy(t->inv, inv, sizeof inv);
     return HR_OK;
@@ -200,7 +192,7 @@ HR_API hr_status hr_transform_from_matrix(hr_transform *t, const double m[16])
     inv[15] = 1.0;
     /* Well conditioned but tiny (all factors ~1e-310): the inverse is not
      * representable in double. */
-    if (!all_finite(inv)) return HR_ERROR_NUMERIC;
+    if (!doubles_are_finite(inv, 16)) return HR_ERROR_NUMERIC;
     memcpy(t->m, m, sizeof t->m);
     memcpy(t->inv, inv, sizeof t->inv);
     return HR_OK;

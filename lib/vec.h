@@ -44,6 +44,13 @@ static inline int v3_pair_is_finite(hr_vec3 a, hr_vec3 b, double e)
                   (e - e);
     return zero == 0.0;
 }
+/* Whether all n numbers of x are finite, by the same sum of x - x. */
+static inline int doubles_are_finite(const double *x, int n)
+{
+    double zero = 0.0;
+    for (int i = 0; i < n; i++) zero += x[i] - x[i];
+    return zero == 0.0;
+}
 /* Largest |component| (inline: fmax is a libm call on the hot path). */
 static inline double v3_max_abs(hr_vec3 a)
 {
