@@ -11,6 +11,7 @@
 #include "scene_params.h"
 #include "specular.h"
 #include "texture.h"
+#include "unbounded_cull.h"
 #include "vec.h"
 
 /* Copy a caller's struct that starts with struct_size into a defaulted full
@@ -381,6 +382,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         return st;
     }
     cls->bounds(o->shape, &o->local_bounds);
+    unbounded_cull_prepare(o);
     o->bounded = transform_bounds(o->m, &o->local_bounds, &o->world_bounds);
     if (o->bounded && cls->transformed_bounds) tighten_bounds(o);
     s->objects[s->object_count++] = o;

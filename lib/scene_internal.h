@@ -37,6 +37,11 @@ typedef struct hr_object {
     uint32_t mat_flags;       /* HR_MAT_* */
     double specular_cutoff;   /* hr_specular_cutoff of the material's exponent */
     hr_bounds local_bounds;   /* object space */
+    /* For an unbounded object's cull in object space (lib/unbounded_cull.h):
+     * bit k when local_bounds has a finite end on axis k, and the largest
+     * row sum of |inv|'s linear part. */
+    uint32_t slab_axes;
+    double inv_gain;
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
     const struct hr_object *parent; /* the composite that consumed it, or NULL */
     struct hr_texture *texture; /* lib/texture.h; NULL: untextured */

@@ -13,6 +13,7 @@
 #include "query_nesting.h"
 #include "scene_internal.h"
 #include "transform_inline.h"
+#include "unbounded_cull.h"
 #include "vec.h"
 
 hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
@@ -245,15 +246,41 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
     return ACCEL_WALK_GO_ON;
 }
 
-/* Unbounded objects (planes) first, then the BVH front to back; boxes
- * further than the best hit so far are skipped. */
+/* A shadow ray: the unbounded objects (planes), each culled first by
+ * unbounded_misses, then the BVH, children in slot order, stopping at the
+ * first hit.
+ * A first hit: the BVH front to back, boxes further than the best hit so
+ * far skipped, then the unbounded objects within the best hit's t, so that
+ * one an object hides costs its shape a miss, not a hit taken back to world
+ * space. The answer is the one of testing the unbounded objects first, as
+ * this walk once did: the BVH's nearest hit below an unbounded object's t is
+ * the same with or without that t as its bound (a shape's hits do not
+ * depend on tmax but for which it keeps), and on a tie the object tested
+ * first kept the hit, so an unbounded object wins a tie with the BVH's best
+ * (its window then ends just after it) and loses one with an unbounded
+ * object before it. */
 static void traverse(first_state *fs)
 {
     const hr_scene *s = fs->tc->scene;
-    for (int32_t i = 0; i < s->unbounded_count; i++)
-        if (visit_object(fs, s->unbounded[i])) return;
-    if (fs->any) accel_bvh4_walk_any(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
-    else accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    if (fs->any) {
+        for (int32_t i = 0; i < s->unbounded_count; i++) {
+            const hr_object *o = s->unbounded[i];
+            if (o->slab_axes && unbounded_misses(o, fs->ray, fs->tmin, fs->best)) continue;
+            if (visit_object(fs, o)) return;
+        }
+        accel_bvh4_walk_any(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+        return;
+    }
+    accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    int tie_wins = fs->found; /* the best so far is the BVH's */
+    for (int32_t i = 0; i < s->unbounded_count; i++) {
+        const double best = fs->best;
+        const double window = tie_wins ? step_towards(best, 1.0) : best;
+        fs->best = window;
+        visit_object(fs, s->unbounded[i]);
+        if (fs->best == window) fs->best = best; /* no hit (every hit is below the window's end) */
+        else tie_wins = 0;
+    }
 }
 
 static hr_intersection *host_scratch_acquire(void *call);
