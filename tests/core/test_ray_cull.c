@@ -1,7 +1,14 @@
-/* A shadow ray passes an unbounded object (a plane) without tracing it when
- * unbounded_misses (lib/unbounded_cull.h) says, from the object's
- * object-space bounds, that the ray has no hit in its window. That must
- * never drop a hit: on 3,000,000 random rays through randomly placed
+/* The culls of lib/ray_cull.h must never drop a hit.
+ *
+ * The box around a scene's BVH (box_misses on cull_box_widened): on
+ * 2,000,000 random rays against random boxes (thin ones, far ones), a culled
+ * ray must not meet the box as given within its window, decided in long
+ * double; rays start inside, outside and on faces, run parallel to faces
+ * (+0 and -0) or nearly, and have windows ending on a face's own t.
+ *
+ * A shadow ray passes an unbounded object (a plane) without tracing it when
+ * unbounded_misses says, from the object's object-space bounds, that the ray
+ * has no hit in its window: on 3,000,000 random rays through randomly placed
  * objects (a plane z = 0, a half-space's face, a slab and a slab crossed
  * with another), any culled ray must have no hit on any plane inside the
  * bounds (their faces included), computed as object_trace and the plane
@@ -21,7 +28,7 @@
 #include <hitray/transform.h>
 
 #include "hr_test.h"
-#include "unbounded_cull.h"
+#include "ray_cull.h"
 
 static uint64_t state = 0x9e3779b97f4a7c15ull;
 
@@ -93,8 +100,105 @@ static double random_component(void)
     return symmetric(1.0);
 }
 
+/* Whether o + t d, t in (tmin, tmax), meets the closed box b: slab by slab
+ * in long double (64 bits of mantissa), far finer than the cull's margins. */
+static int box_met(const hr_bounds *b, const hr_ray *r, double tmin, double tmax)
+{
+    const double *lo = &b->lo.x, *hi = &b->hi.x, *o = &r->origin.x, *d = &r->dir.x;
+    long double a = -INFINITY, z = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (d[k] == 0.0) {
+            if (o[k] < lo[k] || o[k] > hi[k]) return 0;
+            continue;
+        }
+        long double t0 = ((long double)lo[k] - o[k]) / d[k], t1 = ((long double)hi[k] - o[k]) / d[k];
+        if (t0 > t1) {
+            const long double w = t0;
+            t0 = t1, t1 = w;
+        }
+        if (t0 > a) a = t0;
+        if (t1 < z) z = t1;
+    }
+    return a <= z && a < tmax && z > tmin;
+}
+
+static void box_cull_keeps_every_box(void)
+{
+    long rays = 0, culled = 0, wrong = 0;
+    for (int scene = 0; scene < 1000; scene++) {
+        const double far = scene % 3 == 0 ? 1e6 : 1.0, size = scene % 5 == 0 ? 1e-9 : 1.0 + 3 * uniform();
+        hr_bounds box;
+        box.lo = (hr_vec3){symmetric(5 * far), symmetric(5 * far), symmetric(5 * far)};
+        box.hi = (hr_vec3){box.lo.x + size * uniform(), box.lo.y + size * uniform(),
+                           box.lo.z + (scene % 7 == 0 ? 0.0 : size * uniform())};
+        const hr_bounds widened = cull_box_widened(box);
+        for (int i = 0; i < 2000; i++, rays++) {
+            hr_ray r;
+            const double how = uniform();
+            const hr_vec3 inside = {box.lo.x + uniform() * (box.hi.x - box.lo.x),
+                                    box.lo.y + uniform() * (box.hi.y - box.lo.y),
+                                    box.lo.z + uniform() * (box.hi.z - box.lo.z)};
+            if (how < 0.3) { /* on a face, or just off it */
+                r.origin = inside;
+                const int k = (int)(uniform() * 3);
+                (&r.origin.x)[k] = uniform() < 0.5 ? (&box.lo.x)[k] : (&box.hi.x)[k];
+                if (uniform() < 0.5) (&r.origin.x)[k] += symmetric(1e-12 * far);
+            } else if (how < 0.4) {
+                r.origin = inside;
+            } else {
+                r.origin = (hr_vec3){inside.x + symmetric(10 * far), inside.y + symmetric(10 * far),
+                                     inside.z + symmetric(10 * far)};
+            }
+            /* Aimed at the box's inside most of the time, so it is met or
+             * nearly met; some components zero (of either sign) or tiny. */
+            const hr_vec3 target = {box.lo.x + uniform() * (box.hi.x - box.lo.x),
+                                    box.lo.y + uniform() * (box.hi.y - box.lo.y),
+                                    box.lo.z + uniform() * (box.hi.z - box.lo.z)};
+            r.dir = uniform() < 0.7 ? (hr_vec3){target.x - r.origin.x, target.y - r.origin.y,
+                                                target.z - r.origin.z}
+                                    : (hr_vec3){symmetric(1), symmetric(1), symmetric(1)};
+            for (int k = 0; k < 3; k++) {
+                const double u = uniform();
+                if (u < 0.05) (&r.dir.x)[k] = 0.0;
+                else if (u < 0.1) (&r.dir.x)[k] = -0.0;
+                else if (u < 0.13) (&r.dir.x)[k] = symmetric(1e-300);
+            }
+            if (r.dir.x == 0 && r.dir.y == 0 && r.dir.z == 0) r.dir.x = 1.0;
+            double tmin = uniform() < 0.5 ? 0.0 : symmetric(1e-3), tmax = INFINITY;
+            const double pick = uniform();
+            if (pick < 0.4) { /* the window ends on a face's own t */
+                const int k = (int)(uniform() * 3);
+                const double dk = (&r.dir.x)[k];
+                if (dk != 0.0) {
+                    const double face = uniform() < 0.5 ? (&box.lo.x)[k] : (&box.hi.x)[k];
+                    const double t = (face - (&r.origin.x)[k]) / dk, step = uniform();
+                    const double end = step < 0.4 ? t : step < 0.7 ? nextafter(t, INFINITY) : nextafter(t, -INFINITY);
+                    if (uniform() < 0.5) tmax = end;
+                    else tmin = end;
+                }
+            } else if (pick < 0.6) {
+                tmax = uniform() * 2;
+            }
+            if (!(tmin <= tmax)) continue;
+            if (!box_misses(&widened, &r, tmin, tmax)) continue;
+            culled++;
+            if (box_met(&box, &r, tmin, tmax)) {
+                if (wrong < 5)
+                    fprintf(stderr, "box culled but met: scene %d ray %d o (%a %a %a) d (%a %a %a) (%a, %a)\n",
+                            scene, i, r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, tmin,
+                            tmax);
+                wrong++;
+            }
+        }
+    }
+    fprintf(stderr, "boxes: %ld rays, %ld culled, %ld culled but met\n", rays, culled, wrong);
+    CHECK_MSG(wrong == 0, "%ld culled rays met the box", wrong);
+    CHECK(culled > rays / 5);
+}
+
 int main(void)
 {
+    box_cull_keeps_every_box();
     /* Bounds: the plane, a half-space's face, a slab, a slab by a slab. */
     const hr_bounds shapes[4] = {
         {{-INFINITY, -INFINITY, 0.0}, {INFINITY, INFINITY, 0.0}},
@@ -178,7 +282,7 @@ int main(void)
             }
         }
     }
-    fprintf(stderr, "%ld rays, %ld culled, %ld culled with a hit\n", rays, culled, wrong);
+    fprintf(stderr, "planes: %ld rays, %ld culled, %ld culled with a hit\n", rays, culled, wrong);
     CHECK_MSG(wrong == 0, "%ld culled rays had a hit", wrong);
     CHECK(culled > rays / 4);
     return hr_test_end();
