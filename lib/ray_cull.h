@@ -14,8 +14,8 @@
 #include "vec.h"
 
 /* Sets o->slab_axes, the axes on which its object-space bounds have a finite
- * end (and no NaN), and o->inv_gain, the largest row sum of |inv|'s linear
- * part, from local_bounds and inv. */
+ * end (and no NaN), and o->cull_dir_limit, 2^190 over the largest row sum
+ * of |inv|'s linear part (unbounded_misses), from local_bounds and inv. */
 static inline void unbounded_cull_prepare(hr_object *o)
 {
     const double *lo = &o->local_bounds.lo.x, *hi = &o->local_bounds.hi.x;
@@ -24,7 +24,8 @@ static inline void unbounded_cull_prepare(hr_object *o)
         if (!isnan(lo[k]) && !isnan(hi[k]) && lo[k] <= hi[k] && (isfinite(lo[k]) || isfinite(hi[k])))
             o->slab_axes |= 1u << k;
     const hr_xform_error_terms terms = hr_xform_error_terms_of(o->inv);
-    o->inv_gain = fmax(terms.row_abs[0], fmax(terms.row_abs[1], terms.row_abs[2]));
+    const double gain = fmax(terms.row_abs[0], fmax(terms.row_abs[1], terms.row_abs[2]));
+    o->cull_dir_limit = gain > 0.0 ? 0x1p190 / gain : 0.0; /* NaN or 0: never culled */
 }
 
 /* Relative and absolute widening of a slab's entry and exit: as the BVH's
@@ -75,8 +76,9 @@ static inline int cull_window_missed(double t_near, double t_far, double tmin, d
  * for that row, so they have its bits. object_trace then scales the
  * direction by a power of two (and the window with it) only when its
  * largest component is beyond 2^-200 or 2^200 (v3_rescale_exponent); every
- * component is at most inv_gain * max |world d| times (1 + u)^3, so below
- * 2^190 for that product none is too large, and |d_k| >= 2^-200 says the
+ * component is at most gain * max |world d| times (1 + u)^3, where gain is
+ * the largest row sum of |inv|'s linear part, so with max |world d| at most
+ * cull_dir_limit = 2^190 / gain (rounded) none is too large, and |d_k| >= 2^-200 says the
  * largest is not too small. Outside those limits (and for a ray that is not
  * finite) nothing is culled.
  *
@@ -87,9 +89,10 @@ static inline int cull_window_missed(double t_near, double t_far, double tmin, d
  * no NaN) and moved outward (cull_slab; the plane's t is -o_z / d_z,
  * exactly the distance computed here). A ray parallel to the slab (d_k == 0, which the shape sees too)
  * stays at o_k: culled only when o_k is outside [lo, hi] by that margin. */
-static inline int unbounded_misses(const hr_object *o, const hr_ray *ray, double tmin, double tmax)
+static inline __attribute__((always_inline)) int unbounded_misses(const hr_object *o, const hr_ray *ray,
+                                                                   double tmin, double tmax)
 {
-    if (!(o->inv_gain * v3_max_abs(ray->dir) <= 0x1p190)) return 0;
+    if (!(v3_max_abs(ray->dir) <= o->cull_dir_limit)) return 0;
     const double *lo = &o->local_bounds.lo.x, *hi = &o->local_bounds.hi.x;
     double t_near = -INFINITY, t_far = INFINITY;
     uint32_t axes = o->slab_axes;

@@ -39,9 +39,9 @@ typedef struct hr_object {
     hr_bounds local_bounds;   /* object space */
     /* For an unbounded object's cull in object space (lib/ray_cull.h):
      * bit k when local_bounds has a finite end on axis k, and the largest
-     * row sum of |inv|'s linear part. */
+     * world direction it reads as object_trace would. */
     uint32_t slab_axes;
-    double inv_gain;
+    double cull_dir_limit;
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
     const struct hr_object *parent; /* the composite that consumed it, or NULL */
     struct hr_texture *texture; /* lib/texture.h; NULL: untextured */

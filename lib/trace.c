@@ -297,7 +297,7 @@ int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
 }
 
 /* Whether a shadow ray certainly misses the unbounded object `o`. */
-static inline int shadow_passes(const hr_object *o, const hr_ray *ray, double tmin, double tmax)
+static inline __attribute__((always_inline)) int shadow_passes(const hr_object *o, const hr_ray *ray, double tmin, double tmax)
 {
     return o->slab_axes && unbounded_misses(o, ray, tmin, tmax);
 }
