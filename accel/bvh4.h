@@ -621,6 +621,21 @@ accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
 {
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
 }
+/* The SSE2 walks out of line as well: choosing between the two is then a
+ * test and a tail call, with no stack frame of its own to set up on every
+ * walk (inlined, the SSE2 walk's frame was built before the test). */
+__attribute__((noinline, unused)) static int
+accel_bvh4_walk_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                     int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 1, 0);
+}
+__attribute__((noinline, unused)) static int
+accel_bvh4_walk_any_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 0);
+}
 /* Reads the CPU model libgcc filled in at load: a load and a test. */
 static inline int accel_walk_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
 #else
@@ -637,8 +652,11 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *
     if (accel_walk_avx2_usable())
         return ordered ? accel_bvh4_walk_avx2(bvh, ray, tmin, tmax, leaf, user)
                        : accel_bvh4_walk_any_avx2(bvh, ray, tmin, tmax, leaf, user);
-#endif
+    return ordered ? accel_bvh4_walk_sse2(bvh, ray, tmin, tmax, leaf, user)
+                   : accel_bvh4_walk_any_sse2(bvh, ray, tmin, tmax, leaf, user);
+#else
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, ordered, 0);
+#endif
 }
 
 /* Front-to-back walk: calls leaf(user, first, count) for each leaf the ray
