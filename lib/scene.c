@@ -266,6 +266,7 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     memcpy(o->m, t.m, sizeof o->m);
     memcpy(o->inv, t.inv, sizeof o->inv);
     o->identity = is_identity(o->m);
+    o->diagonal = !o->identity && hr_xform_is_diagonal(o->m) && hr_xform_is_diagonal(o->inv);
     o->m_error = hr_xform_error_terms_of(o->m);
     return HR_OK;
 }

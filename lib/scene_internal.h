@@ -31,6 +31,8 @@ typedef struct hr_object {
     double *params_copy;
     double m[16], inv[16];    /* object -> world and back (for a child: -> parent) */
     int32_t identity;         /* m is the identity: skip the transforms */
+    int32_t diagonal;         /* m's and inv's linear parts are diagonal
+                                 (hr_xform_is_diagonal): one term a row */
     int32_t top_level;        /* 0 once consumed by a composite */
     int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;

@@ -107,8 +107,8 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
     if (obj->identity) {
         args.ray = *ray;
     } else {
-        args.ray.origin = hr_xform_point(obj->inv, ray->origin);
-        args.ray.dir = hr_xform_vector(obj->inv, ray->dir);
+        args.ray.origin = hr_xform_point_as(obj->inv, obj->diagonal, ray->origin);
+        args.ray.dir = hr_xform_vector_as(obj->inv, obj->diagonal, ray->dir);
     }
     /* A direction whose squared length would under- or overflow (a sphere
      * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
@@ -175,9 +175,10 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
          * neither M^-T nor normalising overflows or underflows. */
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
-            h.error = hr_xform_error_with(obj->m, &obj->m_error, h.point, h.error);
-            h.point = hr_xform_point(obj->m, h.point);
-            h.normal = hr_xform_normal(obj->inv, h.normal);
+            /* h.point is finite here, as hr_xform_error_as needs. */
+            h.error = hr_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h.point, h.error);
+            h.point = hr_xform_point_as(obj->m, obj->diagonal, h.point);
+            h.normal = hr_xform_normal_as(obj->inv, obj->diagonal, h.normal);
             h.normal = v3_unit_exponent(h.normal);
             if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
         }
