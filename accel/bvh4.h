@@ -9,7 +9,7 @@
  *
  * The traversal is conservative: it may visit a box the ray misses, never
  * skip one the ray meets within [tmin, tmax]. Why that holds in float (the
- * argument accel_ray4_init and accel_bvh4_test rely on):
+ * argument accel_ray4_init_as and accel_bvh4_test rely on):
  * - the ray's direction is scaled by a power of two so its largest
  *   component is in [1, 2): exact, and t along it is t * 2^scale_exp;
  * - the origin is rounded up and down to float, and each slab distance uses
@@ -242,6 +242,19 @@ static inline void accel_ray4_init_any(accel_ray4 *r, const hr_ray *ray, double 
 }
 
 #if defined(__SSE2__)
+/* A prepared ray for the flipped node test (accel_bvh4_test_as): its
+ * inverses negated, NaN lanes included (a sign flip, exact). */
+static inline void accel_ray4_flip(accel_ray4 *r)
+{
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    for (int a = 0; a < 3; a++) {
+        r->inv_near[a] = _mm_xor_ps(r->inv_near[a], sign);
+        r->inv_far[a] = _mm_xor_ps(r->inv_far[a], sign);
+    }
+}
+#endif
+
+#if defined(__SSE2__)
 /* The same preparation, bit for bit, for the common ray, three axes at a
  * time: tmin finite and not negative (so t_offset is 0), every direction
  * component at most 2^39 in size and one at least 2^-39 (so no scaling,
@@ -250,8 +263,14 @@ static inline void accel_ray4_init_any(accel_ray4 *r, const hr_ray *ray, double 
  * written nothing, for any other ray. The arithmetic is
  * accel_ray4_init_any's, operation for operation, in SSE2 lanes that round
  * as the scalar operations do; tests/core/test_bvh4_ray_init.c compares
- * the two on rays around every one of these limits. */
-ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, double tmin)
+ * the two on rays around every one of these limits.
+ *
+ * flipped (a constant): the inverses come out negated, as accel_ray4_flip
+ * makes them, bit for bit: -1/d is -(1/d), and a product and a conversion
+ * round a negated value to the negated result; NaN lanes get NaN with its
+ * sign flipped. One division by -1 instead of six xors after the stores. */
+ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *ray, double tmin,
+                                                  int flipped)
 {
     /* Lanes x, y in one double vector, z in another (its upper lane 0). */
     const __m128d dxy = _mm_loadu_pd(&ray->dir.x), dz = _mm_load_sd(&ray->dir.z);
@@ -268,7 +287,7 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray,
     const __m128d large = _mm_or_pd(_mm_cmpge_pd(adxy, d_least), _mm_cmpge_pd(adz, d_least));
     if (!((tmin >= 0) & (tmin < INFINITY) & (_mm_movemask_pd(within) == 3) & (_mm_movemask_pd(large) != 0)))
         return 0;
-    const __m128d one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
+    const __m128d one = _mm_set1_pd(flipped ? -1.0 : 1.0), zero = _mm_setzero_pd();
     const __m128d ixy = _mm_div_pd(one, dxy), iz = _mm_div_sd(one, dz);
     /* Where 1/d passes ACCEL_INV_MAX for a non-zero d: NaN, as a mask of
      * float lanes x, y, z (each double mask's low half). */
@@ -277,7 +296,7 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray,
     const __m128d nan_z = _mm_and_pd(_mm_cmpnle_pd(_mm_and_pd(iz, abs_mask), inv_max), _mm_cmpneq_pd(dz, zero));
     const __m128 nan_lanes = _mm_shuffle_ps(_mm_castpd_ps(nan_xy), _mm_castpd_ps(nan_z), _MM_SHUFFLE(2, 0, 2, 0));
     const __m128d near_scale = _mm_set1_pd(1.0 - ACCEL_SLACK), far_scale = _mm_set1_pd(1.0 + ACCEL_SLACK);
-    const __m128 nan4 = _mm_set1_ps(NAN);
+    const __m128 nan4 = _mm_set1_ps(flipped ? -NAN : NAN);
 #define ACCEL_LANES3(xy, z) _mm_movelh_ps(_mm_cvtpd_ps(xy), _mm_cvtpd_ps(z))
     __m128 inv_near = ACCEL_LANES3(_mm_mul_pd(ixy, near_scale), _mm_mul_pd(iz, near_scale));
     __m128 inv_far = ACCEL_LANES3(_mm_mul_pd(ixy, far_scale), _mm_mul_pd(iz, far_scale));
@@ -295,16 +314,21 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray,
     const __m128 df = ACCEL_LANES3(dxy, dz);
 #undef ACCEL_LANES3
     const __m128 neg = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(df), 31));
-    const unsigned neg_bits = (unsigned)_mm_movemask_ps(df);
     const __m128 on = _mm_or_ps(_mm_and_ps(neg, dn), _mm_andnot_ps(neg, up));
     const __m128 of = _mm_or_ps(_mm_and_ps(neg, up), _mm_andnot_ps(neg, dn));
+    /* Each axis's plane offsets in a node: lo's and hi's rows swapped where
+     * the direction is negative, as integer lanes (one and, an add and a
+     * subtract for the three axes; each offset is below 2^16, so one
+     * 16-bit extract reads it). */
+    const int lo_at = (int)offsetof(accel_bvh4_node, lo), hi_at = (int)offsetof(accel_bvh4_node, hi);
+    const int row = 4 * (int)sizeof(float);
+    const __m128i swap = _mm_and_si128(_mm_castps_si128(neg), _mm_set1_epi32(hi_at - lo_at));
+    const __m128i near_at = _mm_add_epi32(_mm_setr_epi32(lo_at, lo_at + row, lo_at + 2 * row, 0), swap);
+    const __m128i far_at = _mm_sub_epi32(_mm_setr_epi32(hi_at, hi_at + row, hi_at + 2 * row, 0), swap);
 #define ACCEL_AXIS(a, lanes)                                                                   \
     do {                                                                                       \
-        const size_t lo_at = offsetof(accel_bvh4_node, lo) + (size_t)(a) * 4 * sizeof(float);  \
-        const size_t hi_at = offsetof(accel_bvh4_node, hi) + (size_t)(a) * 4 * sizeof(float);  \
-        const int neg_a = (neg_bits >> (a)) & 1;                                               \
-        r->near_at[a] = neg_a ? hi_at : lo_at;                                                 \
-        r->far_at[a] = neg_a ? lo_at : hi_at;                                                  \
+        r->near_at[a] = (size_t)_mm_extract_epi16(near_at, 2 * (a));                           \
+        r->far_at[a] = (size_t)_mm_extract_epi16(far_at, 2 * (a));                             \
         r->o_near[a] = _mm_shuffle_ps(on, on, lanes);                                          \
         r->o_far[a] = _mm_shuffle_ps(of, of, lanes);                                           \
         r->inv_near[a] = _mm_shuffle_ps(inv_near, inv_near, lanes);                            \
@@ -319,15 +343,29 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray,
     r->cull = 1;
     return 1;
 }
+ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, double tmin)
+{
+    return accel_ray4_init_common_as(r, ray, tmin, 0);
+}
 #endif
 
-/* For a walk over [tmin, ...]. */
-ACCEL_ALWAYS_INLINE void accel_ray4_init(accel_ray4 *r, const hr_ray *ray, double tmin)
+/* For a walk over [tmin, ...], with the node test flipped or not
+ * (accel_bvh4_test_as; flipped only where SSE2 is). */
+ACCEL_ALWAYS_INLINE void accel_ray4_init_as(accel_ray4 *r, const hr_ray *ray, double tmin, int flipped)
 {
 #if defined(__SSE2__)
-    if (accel_ray4_init_common(r, ray, tmin)) return;
-#endif
+    if (accel_ray4_init_common_as(r, ray, tmin, flipped)) return;
+    /* The general form writes a copy of its own: *r's address then never
+     * leaves the caller, whose compiler may keep the common ray's fields
+     * in registers instead of storing and reloading them. */
+    accel_ray4 any;
+    accel_ray4_init_any(&any, ray, tmin);
+    if (flipped) accel_ray4_flip(&any);
+    *r = any;
+#else
+    (void)flipped;
     accel_ray4_init_any(r, ray, tmin);
+#endif
 }
 
 /* The float bounds of a ray's interval, in the walk's t. The upper one is
@@ -439,7 +477,7 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
 #define ACCEL_WALK_GO_ON 0
 #define ACCEL_WALK_STOP 1
 
-/* The walk of a ray with no interval to cull by (accel_ray4_init): every
+/* The walk of a ray with no interval to cull by (accel_ray4_init_as): every
  * leaf, in the order the culling walk would take them were every entry
  * -inf (all ties): depth first, the first child of a node first, then the
  * others in slot order (ordered) or, as the unordered walk stacks them,
@@ -487,18 +525,9 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
-    accel_ray4_init(&r, ray, tmin);
-    if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init */
+    accel_ray4_init_as(&r, ray, tmin, flipped);
+    if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init_as */
     if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
-#if defined(__SSE2__)
-    if (flipped) {
-        const __m128 sign = _mm_set1_ps(-0.0f);
-        for (int a = 0; a < 3; a++) {
-            r.inv_near[a] = _mm_xor_ps(r.inv_near[a], sign);
-            r.inv_far[a] = _mm_xor_ps(r.inv_far[a], sign);
-        }
-    }
-#endif
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
     accel_f4 tmax4 = accel_f4_set(tmax_f);
@@ -592,6 +621,21 @@ accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
 {
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
 }
+/* The SSE2 walks out of line as well: choosing between the two is then a
+ * test and a tail call, with no stack frame of its own to set up on every
+ * walk (inlined, the SSE2 walk's frame was built before the test). */
+__attribute__((noinline, unused)) static int
+accel_bvh4_walk_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                     int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 1, 0);
+}
+__attribute__((noinline, unused)) static int
+accel_bvh4_walk_any_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 0);
+}
 /* Reads the CPU model libgcc filled in at load: a load and a test. */
 static inline int accel_walk_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
 #else
@@ -608,8 +652,11 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_as(const accel_bvh4 *bvh, const hr_ray *
     if (accel_walk_avx2_usable())
         return ordered ? accel_bvh4_walk_avx2(bvh, ray, tmin, tmax, leaf, user)
                        : accel_bvh4_walk_any_avx2(bvh, ray, tmin, tmax, leaf, user);
-#endif
+    return ordered ? accel_bvh4_walk_sse2(bvh, ray, tmin, tmax, leaf, user)
+                   : accel_bvh4_walk_any_sse2(bvh, ray, tmin, tmax, leaf, user);
+#else
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, ordered, 0);
+#endif
 }
 
 /* Front-to-back walk: calls leaf(user, first, count) for each leaf the ray

@@ -104,6 +104,29 @@ def run_measured(cmd, cwd):
     return wall, usage.ru_maxrss, out, err, usage.ru_utime + usage.ru_stime
 
 
+def run_pair(cmds, cwd):
+    """Run the commands at once, each a process of its own; returns each
+    one's stdout. Two one-thread renders side by side show what this
+    machine gives two independent workers (shared caches, memory bandwidth,
+    a hypervisor's cores): the most a two-thread render could gain here."""
+    procs = []
+    for i, cmd in enumerate(cmds):
+        fo = open(os.path.join(WORK, f".pair{i}.stdout"), "wb")
+        fe = open(os.path.join(WORK, f".pair{i}.stderr"), "wb")
+        procs.append((subprocess.Popen(cmd, cwd=cwd, stdout=fo, stderr=fe), fo, fe, cmd))
+    failed = None
+    for proc, fo, fe, cmd in procs:
+        proc.wait()
+        fo.close()
+        fe.close()
+        if proc.returncode != 0 and failed is None:
+            with open(fe.name, errors="replace") as f:
+                failed = f"{' '.join(cmd)} failed ({proc.returncode}):\n{f.read()[-2000:]}"
+    if failed:
+        raise RuntimeError(failed)
+    return [open(fo.name, errors="replace").read() for _, fo, _, _ in procs]
+
+
 def pov_seconds(text, label):
     m = re.search(label + r" Time:.*?\(([0-9.]+) seconds\)", text)
     return float(m.group(1)) if m else 0.0
@@ -190,6 +213,7 @@ def bench_scene(name, d, camera, hitray, scene_file=None, size=None):
                "pov_mem": []}
            for t in ARGS.threads}
     rays = {"hitray": {}, "pov": {}}
+    res["pair"] = []  # render-only seconds of two 1-thread hitray renders run at once
     for rnd in range(ARGS.runs):
         for t in ARGS.threads:
             order = ("hr", "pov") if rnd % 2 == 0 else ("pov", "hr")
@@ -215,6 +239,13 @@ def bench_scene(name, d, camera, hitray, scene_file=None, size=None):
             pov_time = f"{res[t]['pov'][-1]:.2f} s" if res[t]["pov"] else "not run"
             print(f"  {name} round {rnd + 1}/{ARGS.runs} threads {t}: hitray {res[t]['hr'][-1]:.2f} s, "
                   f"POV-Ray {pov_time}", flush=True)
+        if len(ARGS.threads) > 1:
+            stats = [os.path.join(d, f"pair{i}.json") for i in range(2)]
+            run_pair([hitray_cmd(hitray, scene_file, f"pair{i}.ppm", size, 1, camera, stats[i])
+                      for i in range(2)], d)
+            for path in stats:
+                with open(path) as f:
+                    res["pair"].append(json_number(f.read(), "seconds"))
     return res, rays
 
 
@@ -504,9 +535,14 @@ def scaling_table(rows):
          f"Speed-up = render-only time at {base} thread(s) / at N threads (the target: at least "
          f"1.85 at 2). CPU = the whole process's user + system time at N threads / at {base}: "
          "1.00 means the threads did no more work between them than one did alone, so a "
-         "speed-up below N with CPU near 1.00 is the machine's other load, not the renderer.",
-         "", "| scene | " + " | ".join(f"speed-up {t} thr | CPU {t} thr" for t in more) + " |",
-         "|---|" + "---|---|" * len(more)]
+         "speed-up below N with CPU near 1.00 is the machine's other load, not the renderer. "
+         "Side by side = 2 x the render-only time of one 1-thread render / the mean of two "
+         "1-thread renders run at once as separate processes (sharing nothing but the "
+         "machine): what two independent workers gain on this machine, the ceiling of a "
+         "2-thread speed-up here. POV-Ray = its own Trace Time at 1 / at N threads.",
+         "", "| scene | " + " | ".join(f"speed-up {t} thr | CPU {t} thr" for t in more) +
+         " | side by side | POV-Ray " + " | POV-Ray ".join(f"{t} thr" for t in more) + " |",
+         "|---|" + "---|---|" * len(more) + "---|" + "---|" * len(more)]
     for name, res, _ in rows:
         one = res[base]
         cells = []
@@ -514,6 +550,11 @@ def scaling_table(rows):
             r = res[t]
             cells.append(f"{median(one['hr_render']) / median(r['hr_render']):.2f}")
             cells.append(f"{median(r['hr_cpu']) / median(one['hr_cpu']):.2f}")
+        pair = res.get("pair") or []
+        cells.append(f"{2 * median(one['hr_render']) / statistics.mean(pair):.2f}" if pair else "-")
+        for t in more:
+            pv1, pvt = median(one["pov_render"]), median(res[t]["pov_render"])
+            cells.append(f"{pv1 / pvt:.2f}" if pv1 == pv1 and pvt == pvt and pvt > 0 else "-")
         L.append(f"| {name} | " + " | ".join(cells) + " |")
     return L
 

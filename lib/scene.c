@@ -56,6 +56,17 @@ HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
     return HR_OK;
 }
 
+/* A zeroed object on cache lines of its own (HR_OBJECT_ALIGN), so that its
+ * fields tracing reads first share the fewest lines (hr_object); free()
+ * releases it. */
+static hr_object *object_alloc(void)
+{
+    const size_t size = (sizeof(hr_object) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN;
+    hr_object *o = aligned_alloc(HR_OBJECT_ALIGN, size);
+    if (o) memset(o, 0, size);
+    return o;
+}
+
 static void object_free(hr_object *o)
 {
     if (!o) return;
@@ -267,6 +278,7 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     memcpy(o->m, t.m, sizeof o->m);
     memcpy(o->inv, t.inv, sizeof o->inv);
     o->identity = is_identity(o->m);
+    o->diagonal = !o->identity && hr_xform_is_diagonal(o->m) && hr_xform_is_diagonal(o->inv);
     o->m_error = hr_xform_error_terms_of(o->m);
     return HR_OK;
 }
@@ -313,7 +325,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     const char *module_path = "";
     if ((st = hr_context_find_shape_class(ctx, desc.shape, &cls, &module_path))) return st;
 
-    hr_object *o = calloc(1, sizeof *o);
+    hr_object *o = object_alloc();
     if (!o) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     o->cls = cls;
     o->module_path = module_path;

@@ -22,15 +22,27 @@
 /* Shading works on an adjusted copy of the material (lib/shade.c). */
 #define HR_MAT_ADJUSTED (HR_MAT_COOK_TORRANCE | HR_MAT_TEXTURED)
 
+/* The cache line size objects are aligned to. */
+#define HR_OBJECT_ALIGN 64
+
 typedef struct hr_object {
+    /* What tracing reads first, together: a ray that misses the object
+     * reads cls, shape, the flags and the top three rows of inv, which sit
+     * in the first two of the object's cache lines (lib/scene.c allocates
+     * it on a line of its own, HR_OBJECT_ALIGN); a hit reads index, m's
+     * rows and m_error, the lines after. */
     int64_t index;
     const hr_shape_class *cls;
-    const char *module_path;
     void *shape;              /* what the class's create returned */
+    int32_t identity;         /* m is the identity: skip the transforms */
+    int32_t diagonal;         /* m's and inv's linear parts are diagonal
+                                 (hr_xform_is_diagonal): one term a row */
+    double inv[16], m[16];    /* m: object -> world (for a child: -> parent); inv: back */
+    hr_xform_error_terms m_error; /* hr_xform_error_terms_of(m) */
+    /* What tracing does not read. */
+    const char *module_path;
     hr_material material;     /* `parameters` points at params_copy */
     double *params_copy;
-    double m[16], inv[16];    /* object -> world and back (for a child: -> parent) */
-    int32_t identity;         /* m is the identity: skip the transforms */
     int32_t top_level;        /* 0 once consumed by a composite */
     int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
@@ -45,7 +57,6 @@ typedef struct hr_object {
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
     const struct hr_object *parent; /* the composite that consumed it, or NULL */
     struct hr_texture *texture; /* lib/texture.h; NULL: untextured */
-    hr_xform_error_terms m_error; /* hr_xform_error_terms_of(m) */
 } hr_object;
 
 struct hr_scene {

@@ -108,8 +108,8 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
     if (obj->identity) {
         args.ray = *ray;
     } else {
-        args.ray.origin = hr_xform_point(obj->inv, ray->origin);
-        args.ray.dir = hr_xform_vector(obj->inv, ray->dir);
+        args.ray.origin = hr_xform_point_as(obj->inv, obj->diagonal, ray->origin);
+        args.ray.dir = hr_xform_vector_as(obj->inv, obj->diagonal, ray->dir);
     }
     /* A direction whose squared length would under- or overflow (a sphere
      * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
@@ -164,7 +164,15 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
             out->count = start + 1;
             return HR_OK;
         }
-        if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
+        /* A non-finite point or normal stays non-finite through the
+         * transform (each row has a term in every coordinate, and inf * 0 is
+         * NaN) and through v3_unit_exponent, so a transformed object's hit
+         * is dropped for it by the test after the transform; only a
+         * non-finite error could vanish there (a NaN row loses the max), so
+         * that is the one value tested first. An untransformed object's hit
+         * is tested whole, here. */
+        if (obj->identity ? !v3_pair_is_finite(h.point, h.normal, h.error) : !(h.error - h.error == 0.0))
+            continue;
         /* A composite's hit names its leaf; one naming no object of the scene
          * is taken as the composite's own, so shading never indexes past the
          * object list. Any other shape leaves `object` unset: it is not read
@@ -176,9 +184,11 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
          * neither M^-T nor normalising overflows or underflows. */
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
-            h.error = hr_xform_error_with(obj->m, &obj->m_error, h.point, h.error);
-            h.point = hr_xform_point(obj->m, h.point);
-            h.normal = hr_xform_normal(obj->inv, h.normal);
+            /* hr_xform_error_as gives the full bound's bits for a finite
+             * point; a hit whose point is not finite is dropped below. */
+            h.error = hr_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h.point, h.error);
+            h.point = hr_xform_point_as(obj->m, obj->diagonal, h.point);
+            h.normal = hr_xform_normal_as(obj->inv, obj->diagonal, h.normal);
             h.normal = v3_unit_exponent(h.normal);
             if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
         }

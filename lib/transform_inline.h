@@ -8,6 +8,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include <hitray/common.h>
 
@@ -82,6 +84,87 @@ static inline double hr_xform_error_with(const double m[16], const hr_xform_erro
         double carried = k->row_abs[r] * e;
         double rounding = gamma3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
                                     k->shift_abs[r]);
+        double total = carried + rounding;
+        if (total > worst) worst = total;
+    }
+    return worst;
+}
+
+/* --- Diagonal linear parts --------------------------------------------------
+ *
+ * A translate and a scale (most objects of Hill's scenes) leave the linear
+ * part diagonal: every off-diagonal entry is +0 or -0. Each product above
+ * then has one term a row that can matter, and the others add nothing,
+ * bit for bit, wherever that term (or the translation) makes the row
+ * non-zero: a zero entry times a finite coordinate is +0 or -0, and x + (+-0)
+ * is x for every x != 0; only a row that comes out zero may depend on the
+ * signs of the zeros added. So the one-term forms below are the full
+ * products' bits whenever every coordinate they give is non-zero and
+ * finite; a finite coordinate also says the coordinate it came from was
+ * finite (an infinity or NaN there would have reached it through the
+ * diagonal entry, or through 0 * inf = NaN). Otherwise they return the
+ * full product. test_transform_diagonal compares the two on many millions
+ * of points, zeros, subnormals, infinities and NaN among them. */
+
+/* Every off-diagonal entry of m's linear part is zero. */
+static inline int hr_xform_is_diagonal(const double m[16])
+{
+    return m[1] == 0 && m[2] == 0 && m[4] == 0 && m[6] == 0 && m[8] == 0 && m[9] == 0;
+}
+
+/* Every coordinate non-zero and finite, by one test of their product: a
+ * zero, infinite or NaN coordinate makes it 0, an infinity or NaN (0 * inf
+ * included), and an under- or overflow of the product can only turn a yes
+ * into a no, which costs the full product and nothing else. Read from the
+ * bits, 0 < |prod| <= DBL_MAX is one unsigned compare. */
+static inline int hr_xform_nonzero_finite(hr_vec3 r)
+{
+    const double prod = r.x * r.y * r.z;
+    uint64_t bits;
+    memcpy(&bits, &prod, sizeof bits);
+    return (bits & ~(UINT64_C(1) << 63)) - 1 < UINT64_C(0x7fefffffffffffff);
+}
+
+/* hr_xform_point, hr_xform_vector and hr_xform_normal, the same bits, one
+ * term a row when `diagonal` (hr_xform_is_diagonal of the matrix given). */
+static inline hr_vec3 hr_xform_point_as(const double m[16], int diagonal, hr_vec3 p)
+{
+    if (diagonal) {
+        const hr_vec3 r = {m[0] * p.x + m[3], m[5] * p.y + m[7], m[10] * p.z + m[11]};
+        if (hr_xform_nonzero_finite(r)) return r;
+    }
+    return hr_xform_point(m, p);
+}
+static inline hr_vec3 hr_xform_vector_as(const double m[16], int diagonal, hr_vec3 v)
+{
+    if (diagonal) {
+        const hr_vec3 r = {m[0] * v.x, m[5] * v.y, m[10] * v.z};
+        if (hr_xform_nonzero_finite(r)) return r;
+    }
+    return hr_xform_vector(m, v);
+}
+static inline hr_vec3 hr_xform_normal_as(const double inv[16], int diagonal, hr_vec3 n)
+{
+    if (diagonal) {
+        const hr_vec3 r = {inv[0] * n.x, inv[5] * n.y, inv[10] * n.z};
+        if (hr_xform_nonzero_finite(r)) return r;
+    }
+    return hr_xform_normal(inv, n);
+}
+
+/* hr_xform_error_with, the same bits, for a FINITE p: with m diagonal, a
+ * row's |products| are +0 but for the diagonal one, and adding +0 to a sum
+ * of magnitudes changes nothing (+0 + +0 is +0). */
+static inline double hr_xform_error_as(const double m[16], const hr_xform_error_terms *k, int diagonal,
+                                       hr_vec3 p, double e)
+{
+    if (!diagonal) return hr_xform_error_with(m, k, p, e);
+    const double gamma3 = 3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5);
+    const double at[3] = {p.x, p.y, p.z};
+    double worst = 0.0;
+    for (int r = 0; r < 3; r++) {
+        double carried = k->row_abs[r] * e;
+        double rounding = gamma3 * (fabs(m[5 * r] * at[r]) + k->shift_abs[r]);
         double total = carried + rounding;
         if (total > worst) worst = total;
     }

@@ -35,30 +35,24 @@
 #include "../common/shape_instance.h"
 #include "../common/shape_math.h"
 #include "../common/shape_uv.h"
+#include "sphere_coefficients.h"
 
-SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
+/* The crossings from the coefficients: the discriminant by Lagrange's
+ * identity, then the stable root pair. Inline into each form below. */
+static inline __attribute__((always_inline)) int sphere_crossings_from(const hr_ray *ray,
+                                                                       sphere_coefficients k,
+                                                                       shape_crossing out[2])
 {
     const hr_vec3 o = ray->origin, d = ray->dir;
-    shape_sum a = shape_sum_start(0.0), b = shape_sum_start(0.0), c = shape_sum_start(-1.0);
-    shape_sum_add_product(&a, d.x, d.x);
-    shape_sum_add_product(&a, d.y, d.y);
-    shape_sum_add_product(&a, d.z, d.z);
-    shape_sum_add_product(&b, o.x, d.x);
-    shape_sum_add_product(&b, o.y, d.y);
-    shape_sum_add_product(&b, o.z, d.z);
-    shape_sum_add_product(&c, o.x, o.x);
-    shape_sum_add_product(&c, o.y, o.y);
-    shape_sum_add_product(&c, o.z, o.z);
-
     const hr_vec3 cross = shape_vec3(shape_difference_of_products(o.y, d.z, o.z, d.y),
                                      shape_difference_of_products(o.z, d.x, o.x, d.z),
                                      shape_difference_of_products(o.x, d.y, o.y, d.x));
-    shape_sum disc = a;
+    shape_sum disc = k.a;
     shape_sum_add_product(&disc, -cross.x, cross.x);
     shape_sum_add_product(&disc, -cross.y, cross.y);
     shape_sum_add_product(&disc, -cross.z, cross.z);
 
-    const double qa = shape_sum_value(a), qb = shape_sum_value(b), qc = shape_sum_value(c);
+    const double qa = shape_sum_value(k.a), qb = shape_sum_value(k.b), qc = shape_sum_value(k.c);
     const double qdisc = shape_sum_value(disc);
     /* Coefficients overflow only for rays beyond 1e150 or so: call it a miss.
      * One test for the four (x - x is 0 for a finite x, NaN otherwise). */
@@ -70,6 +64,20 @@ SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing o
     if (shape_solve_half_quadratic(qa, qb, qc, qdisc, roots) != 2) return 0;
     return shape_span_crossings(shape_span_make(roots[0], 0, roots[1], 0), out);
 }
+
+SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
+{
+    return sphere_crossings_from(ray, sphere_coefficients_scalar(ray), out);
+}
+
+#if SPHERE_COEFFICIENT_LANES
+/* The same bits with a, b and c in the lanes of one vector
+ * (sphere_coefficients.h), where the CPU has AVX and FMA. */
+__attribute__((target("avx,fma"))) static int sphere_crossings_lanes(const hr_ray *ray, shape_crossing out[2])
+{
+    return sphere_crossings_from(ray, sphere_coefficients_lanes(ray), out);
+}
+#endif
 
 static void sphere_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
@@ -98,7 +106,12 @@ static void sphere_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 static hr_status sphere_trace(const hr_hit_args *args, int32_t mode)
 {
     shape_crossing crossings[2];
+#if SPHERE_COEFFICIENT_LANES
+    const int count = sphere_coefficient_lanes_usable() ? sphere_crossings_lanes(&args->ray, crossings)
+                                                        : sphere_crossings(&args->ray, crossings);
+#else
     const int count = sphere_crossings(&args->ray, crossings);
+#endif
     return shape_report(args, mode, crossings, count, sphere_fill);
 }
 

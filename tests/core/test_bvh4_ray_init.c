@@ -7,6 +7,9 @@
  * a ray, so that every slab distance, every entry and with them the order
  * leaves are visited in (and every image) is the same whichever ran.
  *
+ * The flipped form (accel_ray4_init_common_as with flipped set, what the
+ * AVX2 walk runs) must equal the general one followed by accel_ray4_flip.
+ *
  * Rays are drawn around every limit of the common case: direction
  * components of every size from 2^-80 to 2^80 and exactly at and next to
  * 2^-39, 2^39 and 1/ACCEL_INV_MAX (where 1/d turns to NaN), zeros of both
@@ -75,6 +78,7 @@ static void test_common_matches_any(void)
     const double tmin_edges[] = {0.0, 0x1p-1074, 1e-9, 1.0, 1e300};
     const long rays = HR_TEST_SANITIZED ? 200000 : 2000000;
     long accepted = 0, rejected = 0, with_nan_axis = 0, with_zero_axis = 0, mismatched = 0;
+    long flipped_mismatched = 0;
     for (long i = 0; i < rays; i++) {
         hr_ray ray;
         /* Mostly one direction scale for all three components, so the
@@ -107,11 +111,20 @@ static void test_common_matches_any(void)
         if (!same_ray4(&fast, &any) && mismatched++ < 5)
             CHECK_MSG(0, "ray %ld: origin (%a, %a, %a) dir (%a, %a, %a) tmin %a: the common preparation differs", i,
                       ray.origin.x, ray.origin.y, ray.origin.z, d[0], d[1], d[2], tmin);
+        /* The flipped form (the AVX2 walk's) against the general one then
+         * flipped, NaN lanes' signs included. */
+        accel_ray4 fast_flipped;
+        memset(&fast_flipped, 0, sizeof fast_flipped);
+        CHECK(accel_ray4_init_common_as(&fast_flipped, &ray, tmin, 1));
+        accel_ray4_flip(&any);
+        if (!same_ray4(&fast_flipped, &any) && flipped_mismatched++ < 5)
+            CHECK_MSG(0, "ray %ld: origin (%a, %a, %a) dir (%a, %a, %a) tmin %a: the flipped preparation differs",
+                      i, ray.origin.x, ray.origin.y, ray.origin.z, d[0], d[1], d[2], tmin);
     }
     printf("ray preparation: %ld rays, %ld common (%ld with a NaN axis, %ld with a zero axis), %ld not, "
-           "%ld differ\n",
-           rays, accepted, with_nan_axis, with_zero_axis, rejected, mismatched);
-    CHECK(mismatched == 0);
+           "%ld differ, %ld flipped differ\n",
+           rays, accepted, with_nan_axis, with_zero_axis, rejected, mismatched, flipped_mismatched);
+    CHECK(mismatched == 0 && flipped_mismatched == 0);
     /* The draw reaches both sides of the common case's limits, and its
      * NaN and zero axes. */
     CHECK(accepted > rays / 10 && rejected > rays / 10);
@@ -145,6 +158,7 @@ static void test_common_declines(void)
         memset(&r, 0x5a, sizeof r);
         accel_ray4 untouched = r;
         CHECK_MSG(!accel_ray4_init_common(&r, &cases[i].ray, cases[i].tmin), "case %zu accepted", i);
+        CHECK_MSG(!accel_ray4_init_common_as(&r, &cases[i].ray, cases[i].tmin, 1), "case %zu accepted", i);
         CHECK_MSG(memcmp(&r, &untouched, sizeof r) == 0, "case %zu written to", i);
     }
     accel_ray4 r;
