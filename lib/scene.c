@@ -11,6 +11,7 @@
 #include "scene_params.h"
 #include "specular.h"
 #include "texture.h"
+#include "ray_cull.h"
 #include "vec.h"
 
 /* Copy a caller's struct that starts with struct_size into a defaulted full
@@ -393,6 +394,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         return st;
     }
     cls->bounds(o->shape, &o->local_bounds);
+    unbounded_cull_prepare(o);
     o->bounded = transform_bounds(o->m, &o->local_bounds, &o->world_bounds);
     if (o->bounded && cls->transformed_bounds) tighten_bounds(o);
     s->objects[s->object_count++] = o;
@@ -545,6 +547,14 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
     /* Leaves of up to 4 objects: a node visit costs about half an object
      * test (a transform and a shape call). */
     const accel_bvh4_options bvh_options = {.max_leaf = 4, .traversal_cost = 0.5};
+    hr_bounds around = {v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)};
+    for (int32_t i = 0; i < nb; i++) {
+        around.lo = v3(fmin(around.lo.x, boxes[i].lo.x), fmin(around.lo.y, boxes[i].lo.y),
+                       fmin(around.lo.z, boxes[i].lo.z));
+        around.hi = v3(fmax(around.hi.x, boxes[i].hi.x), fmax(around.hi.y, boxes[i].hi.y),
+                       fmax(around.hi.z, boxes[i].hi.z));
+    }
+    s->bvh_box = cull_box_widened(around);
     int built = accel_bvh4_build(&s->bvh, boxes, (uint32_t)nb, &bvh_options);
     free(boxes);
     s->leaf_objects = built == 0 ? malloc((size_t)(nb ? nb : 1) * sizeof *s->leaf_objects) : NULL;

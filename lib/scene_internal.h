@@ -49,6 +49,11 @@ typedef struct hr_object {
     uint32_t mat_flags;       /* HR_MAT_* */
     double specular_cutoff;   /* hr_specular_cutoff of the material's exponent */
     hr_bounds local_bounds;   /* object space */
+    /* For an unbounded object's cull in object space (lib/ray_cull.h):
+     * bit k when local_bounds has a finite end on axis k, and the largest
+     * world direction it reads as object_trace would. */
+    uint32_t slab_axes;
+    double cull_dir_limit;
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
     const struct hr_object *parent; /* the composite that consumed it, or NULL */
     struct hr_texture *texture; /* lib/texture.h; NULL: untextured */
@@ -67,6 +72,7 @@ struct hr_scene {
                                    at any depth (a render or shade may ask for
                                    more depth than the scene's) */
     accel_bvh4 bvh;             /* over bounded top-level objects */
+    hr_bounds bvh_box;          /* around them, widened (lib/ray_cull.h) */
     const hr_object **leaf_objects; /* those objects in the BVH's leaf order */
     const hr_object **unbounded; /* top-level objects outside the BVH */
     int32_t unbounded_count;

@@ -21,25 +21,6 @@
  * origin, hiding surfaces closer than that (tests/numerics, P-cases).
  * Each coordinate is then rounded one ulp further away from the surface, so
  * the offset survives the addition's own rounding. */
-/* nextafter(x, copysign(INFINITY, dir)) for dir != 0, x itself for dir 0,
- * from x's bits: nextafter is a libm call, and this runs for every spawned
- * ray. Infinite and NaN x stay as they are, as nextafter leaves them. */
-static inline double step_towards(double x, double dir)
-{
-    if (dir == 0) return x;
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    const uint64_t magnitude = bits & 0x7fffffffffffffffull;
-    if (magnitude >= 0x7ff0000000000000ull) return isnan(x) ? x : nextafter(x, dir * INFINITY);
-    /* Zero steps to the smallest subnormal of dir's sign; any other x one
-     * unit of its magnitude up when dir points away from zero, else down. */
-    const int away = magnitude == 0 || (bits >> 63) == (dir < 0);
-    if (magnitude == 0) bits = dir < 0 ? 0x8000000000000000ull : 0;
-    bits += away ? 1 : (uint64_t)-1;
-    memcpy(&x, &bits, sizeof x);
-    return x;
-}
-
 HR_API hr_vec3 hr_hit_spawn_origin(const hr_hit *hit, hr_vec3 side)
 {
     hr_vec3 p = hit->point;

@@ -13,6 +13,7 @@
 #include "query_nesting.h"
 #include "scene_internal.h"
 #include "transform_inline.h"
+#include "ray_cull.h"
 #include "vec.h"
 
 hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
@@ -255,28 +256,41 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
     return ACCEL_WALK_GO_ON;
 }
 
-/* Unbounded objects (planes) first, then the BVH front to back; boxes
- * further than the best hit so far are skipped. */
+/* A first hit: the BVH front to back, boxes further than the best hit so
+ * far skipped (the whole walk when the ray misses the box around the BVH's
+ * objects, box_misses), then the unbounded objects within the best hit's t,
+ * so that one an object hides costs its shape a miss, not a hit taken back
+ * to world space. The answer is the one of testing the unbounded objects
+ * first, as this walk once did: the BVH's nearest hit below an unbounded
+ * object's t is the same with or without that t as its bound (a shape's
+ * hits do not depend on tmax but for which it keeps), and on a tie the
+ * object tested first kept the hit, so an unbounded object wins a tie with
+ * the BVH's best (its window then ends just after it) and loses one with an
+ * unbounded object before it. */
 static void traverse(first_state *fs)
 {
     const hr_scene *s = fs->tc->scene;
-    for (int32_t i = 0; i < s->unbounded_count; i++)
-        if (visit_object(fs, s->unbounded[i])) return;
-    if (fs->any) accel_bvh4_walk_any(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
-    else accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    if (!box_misses(&s->bvh_box, fs->ray, fs->tmin, fs->best))
+        accel_bvh4_walk(&s->bvh, fs->ray, fs->tmin, &fs->best, visit_leaf, fs);
+    int tie_wins = fs->found; /* the best so far is the BVH's */
+    for (int32_t i = 0; i < s->unbounded_count; i++) {
+        const double best = fs->best;
+        const double window = tie_wins ? step_towards(best, 1.0) : best;
+        fs->best = window;
+        visit_object(fs, s->unbounded[i]);
+        if (fs->best == window) fs->best = best; /* no hit (every hit is below the window's end) */
+        else tie_wins = 0;
+    }
 }
 
 static hr_intersection *host_scratch_acquire(void *call);
 static void host_scratch_release(void *call, hr_intersection *list);
 
 static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
-                              hr_hit *out, int any, hr_intersection *tmp,
-                              const hr_object **blocker)
+                              hr_hit *out, hr_intersection *tmp)
 {
-    hr_hit dummy;
-    first_state fs = {tc, ray, tmin, tmax, out ? out : &dummy, tmp, 0, any, NULL};
+    first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL};
     traverse(&fs);
-    if (blocker) *blocker = fs.hit_object;
     return fs.found;
 }
 
@@ -287,34 +301,61 @@ int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doubl
         tc->status = HR_ERROR_OUT_OF_MEMORY;
         return 0;
     }
-    int found = trace_nearest_into(tc, ray, tmin, tmax, out, 0, tmp, NULL);
+    int found = trace_nearest_into(tc, ray, tmin, tmax, out, tmp);
     host_scratch_release(tc, tmp);
     return found;
+}
+
+/* Whether a shadow ray certainly misses the unbounded object `o`. */
+static inline __attribute__((always_inline)) int shadow_passes(const hr_object *o, const hr_ray *ray, double tmin, double tmax)
+{
+    return o->slab_axes && unbounded_misses(o, ray, tmin, tmax);
 }
 
 /* A shadow ray asks first the object that blocked the last shadow ray
  * towards the same light (the shadow cache of Haines and Greenberg): a
  * shadow falls across many neighbouring pixels, so that object often
- * blocks this ray too, and one object test replaces the walk. The answer
- * is the same either way: the ray is blocked if any object has a hit in
- * (tmin, tmax), whichever is asked first. */
+ * blocks this ray too, and one object test replaces the walk. Then the
+ * unbounded objects (planes) that unbounded_misses does not cull, and the
+ * BVH, children in slot order, unless the ray misses the box around its
+ * objects (box_misses), stopping at the first hit. The answer is the same
+ * in any order: the ray is blocked if any object has a hit in (tmin, tmax).
+ * A ray that the culls leave nothing to ask (most shadow rays over a floor)
+ * takes no scratch list. */
 int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                           int32_t light)
 {
-    hr_intersection *tmp = host_scratch_acquire(tc);
-    if (!tmp) {
-        tc->status = HR_ERROR_OUT_OF_MEMORY;
-        return 0;
-    }
+    const hr_scene *s = tc->scene;
     const hr_object **slot = &tc->occluder[(uint32_t)light % HR_OCCLUDER_SLOTS];
-    int blocked = *slot && hr_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK &&
-                  tmp->count > 0;
-    if (!blocked) {
+    hr_intersection *tmp = NULL;
+    if (*slot) {
+        if (!(tmp = host_scratch_acquire(tc))) {
+            tc->status = HR_ERROR_OUT_OF_MEMORY;
+            return 0;
+        }
+        if (hr_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK && tmp->count > 0) {
+            host_scratch_release(tc, tmp);
+            return 1;
+        }
         tmp->count = 0;
-        blocked = trace_nearest_into(tc, ray, tmin, tmax, NULL, 1, tmp, slot);
     }
-    host_scratch_release(tc, tmp);
-    return blocked;
+    int32_t first = 0;
+    while (first < s->unbounded_count && shadow_passes(s->unbounded[first], ray, tmin, tmax)) first++;
+    const int walk = !box_misses(&s->bvh_box, ray, tmin, tmax);
+    first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL};
+    if (first < s->unbounded_count || walk) {
+        if (!tmp && !(fs.tmp = tmp = host_scratch_acquire(tc))) {
+            tc->status = HR_ERROR_OUT_OF_MEMORY;
+            return 0;
+        }
+        for (int32_t i = first; i < s->unbounded_count && !fs.found; i++)
+            if (i == first || !shadow_passes(s->unbounded[i], ray, tmin, tmax))
+                visit_object(&fs, s->unbounded[i]);
+        if (!fs.found && walk) accel_bvh4_walk_any(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
+    }
+    *slot = fs.hit_object;
+    if (tmp) host_scratch_release(tc, tmp);
+    return fs.found;
 }
 
 /* --- Public queries ------------------------------------------------------ */
@@ -358,7 +399,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     hr_hit room[4 * HR_MIN_HIT_CAPACITY];
     hr_intersection tmp = {room, 0, 4 * HR_MIN_HIT_CAPACITY};
     tc.borrowed = room;
-    *found = trace_nearest_into(&tc, ray, tmin, tmax, out, 0, &tmp, NULL);
+    *found = trace_nearest_into(&tc, ray, tmin, tmax, out, &tmp);
     if (tmp.hits != room) free(tmp.hits);
     return finish_query(&tc, level);
 }

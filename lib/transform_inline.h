@@ -13,20 +13,33 @@
 
 #include <hitray/common.h>
 
+/* Coordinate r (0, 1, 2) of M p and of M v: the operations of
+ * hr_xform_point and hr_xform_vector for that row, in their order, so one
+ * coordinate has the same bits as the whole product's. */
+static inline double hr_xform_point_row(const double m[16], hr_vec3 p, int r)
+{
+    const double *row = m + 4 * r;
+    return row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3];
+}
+static inline double hr_xform_vector_row(const double m[16], hr_vec3 v, int r)
+{
+    const double *row = m + 4 * r;
+    return row[0] * v.x + row[1] * v.y + row[2] * v.z;
+}
+
 /* M p (with translation). */
 static inline hr_vec3 hr_xform_point(const double m[16], hr_vec3 p)
 {
-    hr_vec3 r = {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
-                 m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-                 m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
+    hr_vec3 r = {hr_xform_point_row(m, p, 0), hr_xform_point_row(m, p, 1),
+                 hr_xform_point_row(m, p, 2)};
     return r;
 }
 
 /* M v (no translation). */
 static inline hr_vec3 hr_xform_vector(const double m[16], hr_vec3 v)
 {
-    hr_vec3 r = {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
-                 m[8] * v.x + m[9] * v.y + m[10] * v.z};
+    hr_vec3 r = {hr_xform_vector_row(m, v, 0), hr_xform_vector_row(m, v, 1),
+                 hr_xform_vector_row(m, v, 2)};
     return r;
 }
 

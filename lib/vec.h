@@ -51,6 +51,26 @@ static inline int doubles_are_finite(const double *x, int n)
     for (int i = 0; i < n; i++) zero += x[i] - x[i];
     return zero == 0.0;
 }
+/* nextafter(x, copysign(INFINITY, dir)) for dir != 0, x itself for dir 0,
+ * from x's bits: nextafter is a libm call, and this runs for every spawned
+ * ray (lib/spawn.c) and for many first hits (lib/trace.c). Infinite and
+ * NaN x stay as they are, as nextafter leaves them. */
+static inline double step_towards(double x, double dir)
+{
+    if (dir == 0) return x;
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    const uint64_t magnitude = bits & 0x7fffffffffffffffull;
+    if (magnitude >= 0x7ff0000000000000ull) return isnan(x) ? x : nextafter(x, dir * INFINITY);
+    /* Zero steps to the smallest subnormal of dir's sign; any other x one
+     * unit of its magnitude up when dir points away from zero, else down. */
+    const int away = magnitude == 0 || (bits >> 63) == (dir < 0);
+    if (magnitude == 0) bits = dir < 0 ? 0x8000000000000000ull : 0;
+    bits += away ? 1 : (uint64_t)-1;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
 /* Largest |component| (inline: fmax is a libm call on the hot path). */
 static inline double v3_max_abs(hr_vec3 a)
 {
