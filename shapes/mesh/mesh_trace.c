@@ -497,6 +497,13 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
 
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
+    /* A ray that leaves a flat mesh behind (one from the floor that is this
+     * mesh, or its neighbour, which the scene's walk asks too): every walk
+     * below would find no leaf, being from args->tmin but for a closed
+     * mesh's all-hits list. */
+    if (m->flat_axis >= 0 && !(mode == HR_TRACE_ALL && m->closed) &&
+        accel_bvh4_root_missed_on(&m->bvh, &args->ray, args->tmin, m->flat_axis, m->flat_lo, m->flat_hi))
+        return HR_OK;
     /* Field by field: the crossings' array stays unwritten until used. */
     query q;
     if (!mesh_ray_init(&q.r, &args->ray)) return HR_OK;
