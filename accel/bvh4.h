@@ -724,16 +724,23 @@ static inline int accel_bvh4_root_missed_on(const accel_bvh4 *bvh, const hr_ray 
                                             float lo, float hi)
 {
     if (!bvh->nodes) return 1; /* the walk returns at once */
+#if defined(__SSE2__)
+    /* The axis first: most rays the caller asks about run towards the tree
+     * and fail here, at a few instructions; then init_common's conditions
+     * (as scalar compares: fewer instructions here than its lanes). */
     const hr_vec3 o = ray->origin, d = ray->dir;
-    if (!(tmin >= 0 && tmin < INFINITY && bvh->extent <= ACCEL_CULL_RANGE)) return 0;
-    if (!(fabs(d.x) <= 0x1p39 && fabs(d.y) <= 0x1p39 && fabs(d.z) <= 0x1p39 && fabs(o.x) <= ACCEL_CULL_RANGE &&
-          fabs(o.y) <= ACCEL_CULL_RANGE && fabs(o.z) <= ACCEL_CULL_RANGE))
-        return 0;
     const double oa = a == 0 ? o.x : a == 1 ? o.y : o.z, da = a == 0 ? d.x : a == 1 ? d.y : d.z;
     if (!(fabs(da) >= 0x1p-39)) return 0;
     float dn, up;
     accel_float_bracket(oa, &dn, &up);
-    return da > 0 ? hi - dn <= -0x1p-100f : lo - up >= 0x1p-100f;
+    if (!(da > 0 ? hi - dn <= -0x1p-100f : lo - up >= 0x1p-100f)) return 0;
+    return tmin >= 0 && tmin < INFINITY && bvh->extent <= ACCEL_CULL_RANGE && fabs(d.x) <= 0x1p39 &&
+           fabs(d.y) <= 0x1p39 && fabs(d.z) <= 0x1p39 && fabs(o.x) <= ACCEL_CULL_RANGE &&
+           fabs(o.y) <= ACCEL_CULL_RANGE && fabs(o.z) <= ACCEL_CULL_RANGE;
+#else
+    (void)ray, (void)tmin, (void)a, (void)lo, (void)hi;
+    return 0; /* no accel_ray4_init_common to reason from */
+#endif
 }
 
 #endif
