@@ -37,6 +37,9 @@
 #include <string.h>
 
 #include <hitray/common.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #define MESH_UNIT_ROUNDOFF (DBL_EPSILON * 0.5)
 #define MESH_GAMMA(n) (((n) * MESH_UNIT_ROUNDOFF) / (1.0 - (n) * MESH_UNIT_ROUNDOFF))
@@ -273,6 +276,70 @@ MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a
     out->b[2] = W / det;
     out->entering = det > 0.0;
     return 1;
+}
+
+/* Two triangles' first steps at once, as a filter in front of the test:
+ * bit k set when triangle k (corners c[3 k], c[3 k + 1], c[3 k + 2] into v)
+ * is certain to fail mesh_triangle_test_axes, whatever the interval. In
+ * SSE2 lanes the test's own operations in its order (the shear of each
+ * corner, and the three edge functions' products, difference and error
+ * bound; no FMA in either), so each lane holds the scalar path's values
+ * bit for bit. A lane is certain when its three differences all exceed
+ * their bounds (so mesh_edge_function returns them, not zero: no tie and
+ * no exact evaluation) and their signs do not all agree: the scalar test
+ * returns 0 at the first edge that disagrees. Every other lane (signs
+ * agreeing, a bound not passed, a NaN) is left to the test itself, which
+ * is then the whole answer. The edges and corners the scalar test would
+ * not reach are worked out too: a few wasted operations against one
+ * corner's loads and shears for two triangles. Without SSE2: 0, test
+ * every triangle. test_shape_mesh compares the filter with the test. */
+MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *c,
+                                                   int kx, int ky, int kz)
+{
+#if defined(__SSE2__)
+    const __m128d o[3] = {_mm_set1_pd(r->o[0]), _mm_set1_pd(r->o[1]), _mm_set1_pd(r->o[2])};
+    const __m128d sx = _mm_set1_pd(r->sx), sy = _mm_set1_pd(r->sy);
+    /* Corner k of both triangles sheared (mesh_shear): x into X, y into Y.
+     * Written out corner by corner, so that all six stay in registers. */
+#define MESH_PAIR_CORNER(k, X, Y)                                                                  \
+    do {                                                                                           \
+        const hr_vec3 *p0_ = &v[c[k]], *p1_ = &v[c[3 + (k)]];                                      \
+        const __m128d p_[3] = {_mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->x), &p1_->x), o[0]),     \
+                               _mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->y), &p1_->y), o[1]),     \
+                               _mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->z), &p1_->z), o[2])};    \
+        X = _mm_sub_pd(p_[kx], _mm_mul_pd(sx, p_[kz]));                                            \
+        Y = _mm_sub_pd(p_[ky], _mm_mul_pd(sy, p_[kz]));                                            \
+    } while (0)
+    __m128d ax, ay, bx, by, cx, cy;
+    MESH_PAIR_CORNER(0, ax, ay);
+    MESH_PAIR_CORNER(1, bx, by);
+    MESH_PAIR_CORNER(2, cx, cy);
+#undef MESH_PAIR_CORNER
+    const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
+    const __m128d gamma3 = _mm_set1_pd(MESH_GAMMA(3)), zero = _mm_setzero_pd();
+    /* mesh_edge_function(a, b, c, d): the difference, and whether it
+     * passes its bound; then its sign. */
+#define MESH_PAIR_EDGE(a, b, c, d, clean, positive)                                              \
+    do {                                                                                         \
+        const __m128d ab_ = _mm_mul_pd(a, b), cd_ = _mm_mul_pd(c, d);                            \
+        const __m128d e_ = _mm_sub_pd(ab_, cd_);                                                 \
+        const __m128d bound_ =                                                                   \
+            _mm_mul_pd(gamma3, _mm_add_pd(_mm_and_pd(ab_, abs_mask), _mm_and_pd(cd_, abs_mask))); \
+        clean = _mm_cmpgt_pd(_mm_and_pd(e_, abs_mask), bound_);                                  \
+        positive = _mm_cmpgt_pd(e_, zero);                                                       \
+    } while (0)
+    __m128d clean_u, pos_u, clean_v, pos_v, clean_w, pos_w;
+    MESH_PAIR_EDGE(cx, by, cy, bx, clean_u, pos_u); /* U = cross(C, B) */
+    MESH_PAIR_EDGE(ax, cy, ay, cx, clean_v, pos_v); /* V = cross(A, C) */
+    MESH_PAIR_EDGE(bx, ay, by, ax, clean_w, pos_w); /* W = cross(B, A) */
+#undef MESH_PAIR_EDGE
+    const __m128d clean = _mm_and_pd(clean_u, _mm_and_pd(clean_v, clean_w));
+    const __m128d differ = _mm_or_pd(_mm_xor_pd(pos_u, pos_v), _mm_xor_pd(pos_u, pos_w));
+    return (unsigned)_mm_movemask_pd(_mm_and_pd(clean, differ));
+#else
+    (void)r, (void)v, (void)c, (void)kx, (void)ky, (void)kz;
+    return 0;
+#endif
 }
 
 /* The same with the ray's own axes. */

@@ -7,7 +7,8 @@
  * self-hits from spawned rays); more hits than the host's free space;
  * meshes that defeat the SAH; closed meshes thinner than rounding; the
  * BVH against every triangle on triangle soups from 2^-70 to past float's
- * range, over intervals from -inf. */
+ * range, over intervals from -inf; the two-triangle filter in front of the
+ * triangle test against the test itself on millions of pairs. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -894,6 +895,99 @@ static void test_bvh_matches_brute_force(void)
         soup_matches_brute_force(77 + k, 1000, HR_TEST_SANITIZED ? 3000 : 30000, scales[k]);
 }
 
+
+/* mesh_triangle_pair_fails (the leaf loop's filter) against the test it
+ * stands in front of: a lane it calls certain to fail must fail
+ * mesh_triangle_test_axes over every interval, here the widest ones. Pairs
+ * of random triangles around random rays at scales from 2^-60 to 2^60 and
+ * 1e-300 to 1e300; pairs sharing an edge that the ray runs through (aimed
+ * at a point of it, at a shared vertex exactly, or with axis-parallel rays
+ * and triangles in axis planes, where edge functions are exactly zero);
+ * degenerate triangles (collinear or repeated corners); non-finite
+ * corners. The filter must also reject most random pairs, and the test
+ * must hit some lanes the filter let through. */
+static void test_pair_filter(void)
+{
+    ray_rng rng;
+    rng_seed(&rng, 77);
+    long pairs = 0, filtered = 0, hits = 0, wrong = 0;
+    const double intervals[3][2] = {{-INFINITY, INFINITY}, {-1e300, 1e300}, {0.0, INFINITY}};
+    for (int i = 0; i < 1500000; i++) {
+        const int kind = (int)(rng_next(&rng) % 8);
+        const double scale = kind == 7 ? (rng_chance(&rng, 0.5) ? 1e300 : 1e-300)
+                                       : ldexp(1.0, (int)(rng_next(&rng) % 121) - 60);
+        hr_vec3 o = {rng_uniform(&rng, -2, 2) * scale, rng_uniform(&rng, -2, 2) * scale,
+                     rng_uniform(&rng, -2, 2) * scale};
+        hr_vec3 d = rng_unit_vector(&rng);
+        if (kind == 5) { /* along an axis, or in an axis plane */
+            if (rng_chance(&rng, 0.5)) d.x = 0.0;
+            if (rng_chance(&rng, 0.5)) d.y = rng_chance(&rng, 0.5) ? 0.0 : -0.0;
+            if (d.x == 0 && d.y == 0) d.z = rng_chance(&rng, 0.5) ? 1.0 : -1.0;
+        }
+        /* Six corners: two triangles around the point the ray reaches at
+         * t = 1 (its direction at the scale). */
+        d.x *= scale, d.y *= scale, d.z *= scale;
+        const hr_vec3 at = {o.x + d.x, o.y + d.y, o.z + d.z};
+        hr_vec3 v[6];
+        for (int k = 0; k < 6; k++)
+            v[k] = (hr_vec3){at.x + rng_uniform(&rng, -1, 1) * scale, at.y + rng_uniform(&rng, -1, 1) * scale,
+                             at.z + rng_uniform(&rng, -1, 1) * scale};
+        uint32_t c[6] = {0, 1, 2, 3, 4, 5};
+        if (kind == 1 || kind == 2) { /* a shared edge 1-2, the second wound the other way */
+            c[3] = 2, c[4] = 1;
+            if (kind == 1) { /* aimed at a point of the edge */
+                const double u = rng_uniform(&rng, 0, 1);
+                const hr_vec3 e = {v[1].x + u * (v[2].x - v[1].x), v[1].y + u * (v[2].y - v[1].y),
+                                   v[1].z + u * (v[2].z - v[1].z)};
+                d = (hr_vec3){e.x - o.x, e.y - o.y, e.z - o.z};
+            } else { /* through corner 1 exactly: o = v1 - d with d a small power of two per axis */
+                d = (hr_vec3){ldexp(1.0, (int)(rng_next(&rng) % 5)) * scale,
+                              -ldexp(1.0, (int)(rng_next(&rng) % 5)) * scale, scale};
+                o = (hr_vec3){v[1].x - d.x, v[1].y - d.y, v[1].z - d.z};
+            }
+        }
+        if (kind == 3) { /* degenerate: collinear, and a repeated corner */
+            v[2] = (hr_vec3){2 * v[1].x - v[0].x, 2 * v[1].y - v[0].y, 2 * v[1].z - v[0].z};
+            c[4] = c[3];
+        }
+        if (kind == 4) { /* a non-finite corner */
+            const double bad = rng_chance(&rng, 0.5) ? NAN : rng_chance(&rng, 0.5) ? INFINITY : -INFINITY;
+            if (rng_chance(&rng, 0.5)) v[0].x = bad;
+            else v[4].z = bad;
+        }
+        if (kind == 5) { /* triangles in the axis plane through the point */
+            for (int k = 0; k < 6; k++) v[k].z = at.z;
+        }
+        if (kind == 6) { /* sharing corner 0 with the ray through it */
+            c[3] = 0;
+            o = (hr_vec3){v[0].x - d.x, v[0].y - d.y, v[0].z - d.z};
+        }
+        mesh_ray r;
+        const hr_ray ray = {o, d};
+        if (!mesh_ray_init(&r, &ray)) continue;
+        const unsigned fails = mesh_triangle_pair_fails(&r, v, c, r.kx, r.ky, r.kz);
+        pairs++;
+        for (int lane = 0; lane < 2; lane++) {
+            const uint32_t *t = c + 3 * lane;
+            int hit = 0;
+            for (int k = 0; k < 3; k++) {
+                mesh_triangle_hit th;
+                hit |= mesh_triangle_test(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0], intervals[k][1], &th);
+            }
+            hits += hit;
+            if (fails >> lane & 1) {
+                filtered++;
+                if (hit && wrong++ < 5)
+                    fprintf(stderr, "pair filter: kind %d lane %d filtered, yet the test hits\n", kind, lane);
+            }
+        }
+    }
+    fprintf(stderr, "pair filter: %ld pairs, %ld lanes filtered, %ld lanes hit, %ld wrongly filtered\n", pairs,
+            filtered, hits, wrong);
+    CHECK(wrong == 0);
+    CHECK(filtered > pairs / 2 && hits > pairs / 20);
+}
+
 int main(void)
 {
     char path[1024];
@@ -903,6 +997,7 @@ int main(void)
     test_classes();
     test_exact_signs();
     test_next_up();
+    test_pair_filter();
     test_cube_agrees();
     test_edge_sweeps();
     test_vertices();
