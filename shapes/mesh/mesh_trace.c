@@ -361,12 +361,13 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     double tmax = q->tmax;
     /* Triangles two by two through the filter first (most fail it), each
      * left in turn to the test, so hits are taken in the same order with
-     * the same narrowing of tmax as one by one. */
+     * the same narrowing of tmax as one by one; a leaf's odd last triangle
+     * goes through it in both lanes. */
     unsigned fails = 0;
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = corners + 3 * (size_t)i;
         const uint32_t lane = (i - first) & 1;
-        if (!lane) fails = i + 1 < end ? mesh_triangle_pair_fails(&q->r, vertices, c, kx, ky, kz) : 0;
+        if (!lane) fails = mesh_triangle_pair_fails(&q->r, vertices, c, i + 1 < end ? c + 3 : c, kx, ky, kz);
         if (fails >> lane & 1) continue;
         mesh_triangle_hit th;
         if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin, tmax,

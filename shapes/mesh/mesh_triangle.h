@@ -279,7 +279,7 @@ MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a
 }
 
 /* Two triangles' first steps at once, as a filter in front of the test:
- * bit k set when triangle k (corners c[3 k], c[3 k + 1], c[3 k + 2] into v)
+ * bit k set when triangle k (corners ck[0], ck[1], ck[2] into v: c0, c1)
  * is certain to fail mesh_triangle_test_axes, whatever the interval. In
  * SSE2 lanes the test's own operations in its order (the shear of each
  * corner, and the three edge functions' products, difference and error
@@ -293,8 +293,8 @@ MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a
  * not reach are worked out too: a few wasted operations against one
  * corner's loads and shears for two triangles. Without SSE2: 0, test
  * every triangle. test_shape_mesh compares the filter with the test. */
-MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *c,
-                                                   int kx, int ky, int kz)
+MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *c0,
+                                                   const uint32_t *c1, int kx, int ky, int kz)
 {
 #if defined(__SSE2__)
     const __m128d o[3] = {_mm_set1_pd(r->o[0]), _mm_set1_pd(r->o[1]), _mm_set1_pd(r->o[2])};
@@ -303,7 +303,7 @@ MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_v
      * Written out corner by corner, so that all six stay in registers. */
 #define MESH_PAIR_CORNER(k, X, Y)                                                                  \
     do {                                                                                           \
-        const hr_vec3 *p0_ = &v[c[k]], *p1_ = &v[c[3 + (k)]];                                      \
+        const hr_vec3 *p0_ = &v[c0[k]], *p1_ = &v[c1[k]];                                          \
         const __m128d p_[3] = {_mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->x), &p1_->x), o[0]),     \
                                _mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->y), &p1_->y), o[1]),     \
                                _mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->z), &p1_->z), o[2])};    \
@@ -337,7 +337,7 @@ MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_v
     const __m128d differ = _mm_or_pd(_mm_xor_pd(pos_u, pos_v), _mm_xor_pd(pos_u, pos_w));
     return (unsigned)_mm_movemask_pd(_mm_and_pd(clean, differ));
 #else
-    (void)r, (void)v, (void)c, (void)kx, (void)ky, (void)kz;
+    (void)r, (void)v, (void)c0, (void)c1, (void)kx, (void)ky, (void)kz;
     return 0;
 #endif
 }

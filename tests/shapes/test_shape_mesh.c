@@ -965,7 +965,7 @@ static void test_pair_filter(void)
         mesh_ray r;
         const hr_ray ray = {o, d};
         if (!mesh_ray_init(&r, &ray)) continue;
-        const unsigned fails = mesh_triangle_pair_fails(&r, v, c, r.kx, r.ky, r.kz);
+        const unsigned fails = mesh_triangle_pair_fails(&r, v, c, c + 3, r.kx, r.ky, r.kz);
         pairs++;
         for (int lane = 0; lane < 2; lane++) {
             const uint32_t *t = c + 3 * lane;
