@@ -267,7 +267,8 @@ typedef struct seen_crossing {
 typedef struct query {
     const mesh *m;
     const hr_hit_args *args;
-    mesh_ray r;
+    mesh_ray r;     /* set up at the first leaf (visit_leaf): many walks meet none */
+    int ray_ready;
     int32_t mode;
     int tie_check, whole_line;
     int closed_any;  /* a closed mesh's any-hit search (closed_any_blocks) */
@@ -441,6 +442,11 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
  * mesh_ray_init can choose (kz, then kx and ky in turn or swapped). */
 static int visit_leaf(query *q, uint32_t first, uint32_t end)
 {
+    if (!q->ray_ready) {
+        /* A zero direction meets no triangle: the search is over. */
+        if (!mesh_ray_init(&q->r, &q->args->ray)) return 1;
+        q->ray_ready = 1;
+    }
     switch (q->r.kz * 3 + q->r.kx) {
     case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0);
     case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0);
@@ -514,7 +520,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
         return HR_OK;
     /* Field by field: the crossings' array stays unwritten until used. */
     query q;
-    if (!mesh_ray_init(&q.r, &args->ray)) return HR_OK;
+    q.ray_ready = 0;
     q.m = m;
     q.args = args;
     q.status = HR_OK;
