@@ -348,9 +348,13 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
 }
 
 /* Tests triangles [first, end), a leaf, in the query's mode, the ray's
- * axes given as kx, ky, kz (see visit_leaf). Returns 1 when the search is
+ * axes given as kx, ky, kz (see visit_leaf), through the SSE2 filter two
+ * by two or, given quad (a constant, so inlined: the AVX2 filter), four by
+ * four where three or more are left. Returns 1 when the search is
  * over: an any hit found, or an error (in status). */
-MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz)
+typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], int kx, int ky,
+                              int kz);
+MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz, filter_fn quad)
 {
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
@@ -360,16 +364,22 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     const hr_vec3 *const vertices = m->vertices;
     const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
     double tmax = q->tmax;
-    /* Triangles two by two through the filter first (most fail it), each
-     * left in turn to the test, so hits are taken in the same order with
-     * the same narrowing of tmax as one by one; a leaf's odd last triangle
-     * goes through it in both lanes. */
+    /* Triangles a pair or a quad at a time through the filter first (most
+     * fail it), each left in turn to the test, so hits are taken in the
+     * same order with the same narrowing of tmax as one by one; lanes past
+     * the leaf's end take its first triangle again. */
     unsigned fails = 0;
+    uint32_t group = first, next = first; /* the filter's lanes: from group, until next */
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = corners + 3 * (size_t)i;
-        const uint32_t lane = (i - first) & 1;
-        if (!lane) fails = mesh_triangle_pair_fails(&q->r, vertices, c, i + 1 < end ? c + 3 : c, kx, ky, kz);
-        if (fails >> lane & 1) continue;
+        if (i == next) {
+            const uint32_t left = end - i;
+            const uint32_t *const lanes[4] = {c, left > 1 ? c + 3 : c, left > 2 ? c + 6 : c, left > 3 ? c + 9 : c};
+            if (quad && left > 2) fails = quad(&q->r, vertices, lanes, kx, ky, kz), next = i + 4;
+            else fails = mesh_triangle_pair_fails(&q->r, vertices, lanes, kx, ky, kz), next = i + 2;
+            group = i;
+        }
+        if (fails >> (i - group) & 1) continue;
         mesh_triangle_hit th;
         if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin, tmax,
                                      &th, kx, ky, kz))
@@ -440,6 +450,26 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
 
 /* leaf_loop with the axes as constants: one copy for each order
  * mesh_ray_init can choose (kz, then kx and ky in turn or swapped). */
+#define LEAF_LOOPS(quad)                                                                           \
+    switch (q->r.kz * 3 + q->r.kx) {                                                               \
+    case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0, quad);                                \
+    case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0, quad);                                \
+    case 1 * 3 + 2: return leaf_loop(q, first, end, 2, 0, 1, quad);                                \
+    case 1 * 3 + 0: return leaf_loop(q, first, end, 0, 2, 1, quad);                                \
+    case 2 * 3 + 0: return leaf_loop(q, first, end, 0, 1, 2, quad);                                \
+    default: return leaf_loop(q, first, end, 1, 0, 2, quad);                                       \
+    }
+
+#if MESH_FILTER_AVX2
+/* The same compiled for AVX2 CPUs, with the four-lane filter: the scalar
+ * test is the same code (AVX2 brings no FMA), the filter's lanes the same
+ * values. */
+__attribute__((target("avx2"))) static int visit_leaf_avx2(query *q, uint32_t first, uint32_t end)
+{
+    LEAF_LOOPS(mesh_triangle_quad_fails)
+}
+#endif
+
 static int visit_leaf(query *q, uint32_t first, uint32_t end)
 {
     if (!q->ray_ready) {
@@ -447,15 +477,12 @@ static int visit_leaf(query *q, uint32_t first, uint32_t end)
         if (!mesh_ray_init(&q->r, &q->args->ray)) return 1;
         q->ray_ready = 1;
     }
-    switch (q->r.kz * 3 + q->r.kx) {
-    case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0);
-    case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0);
-    case 1 * 3 + 2: return leaf_loop(q, first, end, 2, 0, 1);
-    case 1 * 3 + 0: return leaf_loop(q, first, end, 0, 2, 1);
-    case 2 * 3 + 0: return leaf_loop(q, first, end, 0, 1, 2);
-    default: return leaf_loop(q, first, end, 1, 0, 2);
-    }
+#if MESH_FILTER_AVX2
+    if (mesh_filter_avx2_usable()) return visit_leaf_avx2(q, first, end);
+#endif
+    LEAF_LOOPS(NULL)
 }
+#undef LEAF_LOOPS
 
 static int leaf_of(void *user, uint32_t first, uint32_t count)
 {

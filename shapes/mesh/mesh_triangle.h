@@ -278,69 +278,118 @@ MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a
     return 1;
 }
 
-/* Two triangles' first steps at once, as a filter in front of the test:
- * bit k set when triangle k (corners ck[0], ck[1], ck[2] into v: c0, c1)
- * is certain to fail mesh_triangle_test_axes, whatever the interval. In
- * SSE2 lanes the test's own operations in its order (the shear of each
- * corner, and the three edge functions' products, difference and error
- * bound; no FMA in either), so each lane holds the scalar path's values
- * bit for bit. A lane is certain when its three differences all exceed
- * their bounds (so mesh_edge_function returns them, not zero: no tie and
- * no exact evaluation) and their signs do not all agree: the scalar test
- * returns 0 at the first edge that disagrees. Every other lane (signs
- * agreeing, a bound not passed, a NaN) is left to the test itself, which
- * is then the whole answer. The edges and corners the scalar test would
- * not reach are worked out too: a few wasted operations against one
- * corner's loads and shears for two triangles. Without SSE2: 0, test
- * every triangle. test_shape_mesh compares the filter with the test. */
-MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *c0,
-                                                   const uint32_t *c1, int kx, int ky, int kz)
+/* Two or four triangles' first steps at once, as a filter in front of the
+ * test: bit k set when triangle k (corners c[k][0], c[k][1], c[k][2] into
+ * v) is certain to fail mesh_triangle_test_axes, whatever the interval.
+ * In SSE2 lanes (two triangles) or AVX2 lanes (four, mesh_triangle_quad_
+ * fails, for CPUs that have AVX2, chosen at run time) the test's own
+ * operations in its order (the shear of each corner, and the three edge
+ * functions' products, difference and error bound; no FMA in any), so
+ * each lane holds the scalar path's values bit for bit. A lane is certain
+ * when its three differences all exceed their bounds (so
+ * mesh_edge_function returns them, not zero: no tie and no exact
+ * evaluation) and their signs do not all agree: the scalar test returns 0
+ * at the first edge that disagrees. Every other lane (signs agreeing, a
+ * bound not passed, a NaN) is left to the test itself, which is then the
+ * whole answer. The edges and corners the scalar test would not reach are
+ * worked out too: a few wasted operations against one corner's loads and
+ * shears for several triangles. Without SSE2: 0, test every triangle.
+ * test_shape_mesh compares both filters with the test.
+ *
+ * One body for both widths: MESH_FILTER_BODY(P), over the vector type
+ * P##VT and its operations P##SET1, SUB, MUL, ADD, AND, OR, XOR, GT, MASK
+ * and ABS_MASK, and P##LOAD(k, field), the field of corner k of every
+ * lane: MESH_SSE2_ and MESH_AVX2_. */
+#define MESH_FILTER_BODY(P)                                                                         \
+    const P##VT o_[3] = {P##SET1(r->o[0]), P##SET1(r->o[1]), P##SET1(r->o[2])};                   \
+    const P##VT sx_ = P##SET1(r->sx), sy_ = P##SET1(r->sy);                                        \
+    /* Corner k of every triangle sheared (mesh_shear), written out corner                         \
+     * by corner so that all stay in registers. */                                                 \
+    P##VT x_[3], y_[3];                                                                            \
+    MESH_FILTER_CORNER(P, 0);                                                                      \
+    MESH_FILTER_CORNER(P, 1);                                                                      \
+    MESH_FILTER_CORNER(P, 2);                                                                      \
+    const P##VT abs_ = P##ABS_MASK, gamma3_ = P##SET1(MESH_GAMMA(3)), zero_ = P##SET1(0.0);        \
+    P##VT clean_u, pos_u, clean_v, pos_v, clean_w, pos_w;                                          \
+    MESH_FILTER_EDGE(P, x_[2], y_[1], y_[2], x_[1], clean_u, pos_u); /* U = cross(C, B) */         \
+    MESH_FILTER_EDGE(P, x_[0], y_[2], y_[0], x_[2], clean_v, pos_v); /* V = cross(A, C) */         \
+    MESH_FILTER_EDGE(P, x_[1], y_[0], y_[1], x_[0], clean_w, pos_w); /* W = cross(B, A) */         \
+    const P##VT clean_ = P##AND(clean_u, P##AND(clean_v, clean_w));                                \
+    const P##VT differ_ = P##OR(P##XOR(pos_u, pos_v), P##XOR(pos_u, pos_w));                       \
+    return (unsigned)P##MASK(P##AND(clean_, differ_));
+#define MESH_FILTER_CORNER(P, k)                                                                    \
+    do {                                                                                           \
+        const P##VT p_[3] = {P##SUB(P##LOAD(k, x), o_[0]), P##SUB(P##LOAD(k, y), o_[1]),           \
+                             P##SUB(P##LOAD(k, z), o_[2])};                                        \
+        x_[k] = P##SUB(p_[kx], P##MUL(sx_, p_[kz]));                                               \
+        y_[k] = P##SUB(p_[ky], P##MUL(sy_, p_[kz]));                                               \
+    } while (0)
+/* mesh_edge_function(a, b, c, d): the difference, and whether it passes
+ * its bound; then its sign. */
+#define MESH_FILTER_EDGE(P, a, b, c, d, clean, positive)                                            \
+    do {                                                                                           \
+        const P##VT ab_ = P##MUL(a, b), cd_ = P##MUL(c, d);                                        \
+        const P##VT e_ = P##SUB(ab_, cd_);                                                         \
+        const P##VT bound_ = P##MUL(gamma3_, P##ADD(P##AND(ab_, abs_), P##AND(cd_, abs_)));        \
+        clean = P##GT(P##AND(e_, abs_), bound_);                                                   \
+        positive = P##GT(e_, zero_);                                                               \
+    } while (0)
+
+#if defined(__SSE2__)
+#define MESH_SSE2_VT __m128d
+#define MESH_SSE2_SET1 _mm_set1_pd
+#define MESH_SSE2_SUB _mm_sub_pd
+#define MESH_SSE2_MUL _mm_mul_pd
+#define MESH_SSE2_ADD _mm_add_pd
+#define MESH_SSE2_AND _mm_and_pd
+#define MESH_SSE2_OR _mm_or_pd
+#define MESH_SSE2_XOR _mm_xor_pd
+#define MESH_SSE2_GT _mm_cmpgt_pd
+#define MESH_SSE2_MASK _mm_movemask_pd
+#define MESH_SSE2_ABS_MASK _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX))
+#define MESH_SSE2_LOAD(k, f) _mm_loadh_pd(_mm_load_sd(&v[c[0][k]].f), &v[c[1][k]].f)
+#endif
+
+MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[2],
+                                                   int kx, int ky, int kz)
 {
 #if defined(__SSE2__)
-    const __m128d o[3] = {_mm_set1_pd(r->o[0]), _mm_set1_pd(r->o[1]), _mm_set1_pd(r->o[2])};
-    const __m128d sx = _mm_set1_pd(r->sx), sy = _mm_set1_pd(r->sy);
-    /* Corner k of both triangles sheared (mesh_shear): x into X, y into Y.
-     * Written out corner by corner, so that all six stay in registers. */
-#define MESH_PAIR_CORNER(k, X, Y)                                                                  \
-    do {                                                                                           \
-        const hr_vec3 *p0_ = &v[c0[k]], *p1_ = &v[c1[k]];                                          \
-        const __m128d p_[3] = {_mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->x), &p1_->x), o[0]),     \
-                               _mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->y), &p1_->y), o[1]),     \
-                               _mm_sub_pd(_mm_loadh_pd(_mm_load_sd(&p0_->z), &p1_->z), o[2])};    \
-        X = _mm_sub_pd(p_[kx], _mm_mul_pd(sx, p_[kz]));                                            \
-        Y = _mm_sub_pd(p_[ky], _mm_mul_pd(sy, p_[kz]));                                            \
-    } while (0)
-    __m128d ax, ay, bx, by, cx, cy;
-    MESH_PAIR_CORNER(0, ax, ay);
-    MESH_PAIR_CORNER(1, bx, by);
-    MESH_PAIR_CORNER(2, cx, cy);
-#undef MESH_PAIR_CORNER
-    const __m128d abs_mask = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX));
-    const __m128d gamma3 = _mm_set1_pd(MESH_GAMMA(3)), zero = _mm_setzero_pd();
-    /* mesh_edge_function(a, b, c, d): the difference, and whether it
-     * passes its bound; then its sign. */
-#define MESH_PAIR_EDGE(a, b, c, d, clean, positive)                                              \
-    do {                                                                                         \
-        const __m128d ab_ = _mm_mul_pd(a, b), cd_ = _mm_mul_pd(c, d);                            \
-        const __m128d e_ = _mm_sub_pd(ab_, cd_);                                                 \
-        const __m128d bound_ =                                                                   \
-            _mm_mul_pd(gamma3, _mm_add_pd(_mm_and_pd(ab_, abs_mask), _mm_and_pd(cd_, abs_mask))); \
-        clean = _mm_cmpgt_pd(_mm_and_pd(e_, abs_mask), bound_);                                  \
-        positive = _mm_cmpgt_pd(e_, zero);                                                       \
-    } while (0)
-    __m128d clean_u, pos_u, clean_v, pos_v, clean_w, pos_w;
-    MESH_PAIR_EDGE(cx, by, cy, bx, clean_u, pos_u); /* U = cross(C, B) */
-    MESH_PAIR_EDGE(ax, cy, ay, cx, clean_v, pos_v); /* V = cross(A, C) */
-    MESH_PAIR_EDGE(bx, ay, by, ax, clean_w, pos_w); /* W = cross(B, A) */
-#undef MESH_PAIR_EDGE
-    const __m128d clean = _mm_and_pd(clean_u, _mm_and_pd(clean_v, clean_w));
-    const __m128d differ = _mm_or_pd(_mm_xor_pd(pos_u, pos_v), _mm_xor_pd(pos_u, pos_w));
-    return (unsigned)_mm_movemask_pd(_mm_and_pd(clean, differ));
+    MESH_FILTER_BODY(MESH_SSE2_)
 #else
-    (void)r, (void)v, (void)c0, (void)c1, (void)kx, (void)ky, (void)kz;
+    (void)r, (void)v, (void)c, (void)kx, (void)ky, (void)kz;
     return 0;
 #endif
 }
+
+#if defined(__SSE2__) && defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define MESH_FILTER_AVX2 1
+#include <immintrin.h>
+#define MESH_AVX2_VT __m256d
+#define MESH_AVX2_SET1 _mm256_set1_pd
+#define MESH_AVX2_SUB _mm256_sub_pd
+#define MESH_AVX2_MUL _mm256_mul_pd
+#define MESH_AVX2_ADD _mm256_add_pd
+#define MESH_AVX2_AND _mm256_and_pd
+#define MESH_AVX2_OR _mm256_or_pd
+#define MESH_AVX2_XOR _mm256_xor_pd
+#define MESH_AVX2_GT(a, b) _mm256_cmp_pd(a, b, _CMP_GT_OQ) /* false on NaN, as SSE2's cmpgt */
+#define MESH_AVX2_MASK _mm256_movemask_pd
+#define MESH_AVX2_ABS_MASK _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX))
+#define MESH_AVX2_LOAD(k, f)                                                                         \
+    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadh_pd(_mm_load_sd(&v[c[0][k]].f), &v[c[1][k]].f)), \
+                         _mm_loadh_pd(_mm_load_sd(&v[c[2][k]].f), &v[c[3][k]].f), 1)
+/* Four lanes. Always inlined, so callable from AVX2 code only
+ * (__attribute__((target("avx2"))), after mesh_filter_avx2_usable). */
+__attribute__((target("avx2"))) static inline __attribute__((always_inline)) unsigned
+mesh_triangle_quad_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[4], int kx, int ky, int kz)
+{
+    MESH_FILTER_BODY(MESH_AVX2_)
+}
+/* Reads the CPU model libgcc filled in at load: a load and a test. */
+static inline int mesh_filter_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
+#else
+#define MESH_FILTER_AVX2 0
+#endif
 
 /* The same with the ray's own axes. */
 static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,

@@ -897,7 +897,8 @@ static void test_bvh_matches_brute_force(void)
 
 
 /* mesh_triangle_pair_fails (the leaf loop's filter) against the test it
- * stands in front of: a lane it calls certain to fail must fail
+ * stands in front of, and the AVX2 filter (where the CPU has it) against
+ * it lane for lane: a lane it calls certain to fail must fail
  * mesh_triangle_test_axes over every interval, here the widest ones. Pairs
  * of random triangles around random rays at scales from 2^-60 to 2^60 and
  * 1e-300 to 1e300; pairs sharing an edge that the ray runs through (aimed
@@ -906,11 +907,20 @@ static void test_bvh_matches_brute_force(void)
  * degenerate triangles (collinear or repeated corners); non-finite
  * corners. The filter must also reject most random pairs, and the test
  * must hit some lanes the filter let through. */
+#if MESH_FILTER_AVX2
+/* The four-lane filter has to be called from AVX2 code. */
+__attribute__((target("avx2"))) static unsigned quad_fails(const mesh_ray *r, const hr_vec3 *v,
+                                                           const uint32_t *const c[4])
+{
+    return mesh_triangle_quad_fails(r, v, c, r->kx, r->ky, r->kz);
+}
+#endif
+
 static void test_pair_filter(void)
 {
     ray_rng rng;
     rng_seed(&rng, 77);
-    long pairs = 0, filtered = 0, hits = 0, wrong = 0;
+    long pairs = 0, filtered = 0, hits = 0, wrong = 0, quads_compared = 0, quads_differing = 0;
     const double intervals[3][2] = {{-INFINITY, INFINITY}, {-1e300, 1e300}, {0.0, INFINITY}};
     for (int i = 0; i < 1500000; i++) {
         const int kind = (int)(rng_next(&rng) % 8);
@@ -965,8 +975,21 @@ static void test_pair_filter(void)
         mesh_ray r;
         const hr_ray ray = {o, d};
         if (!mesh_ray_init(&r, &ray)) continue;
-        const unsigned fails = mesh_triangle_pair_fails(&r, v, c, c + 3, r.kx, r.ky, r.kz);
+        const uint32_t *const lanes[2] = {c, c + 3};
+        const unsigned fails = mesh_triangle_pair_fails(&r, v, lanes, r.kx, r.ky, r.kz);
         pairs++;
+#if MESH_FILTER_AVX2
+        /* The four-lane filter on the two triangles and again swapped:
+         * the same answer lane by lane. */
+        if (mesh_filter_avx2_usable()) {
+            const uint32_t *const four_lanes[4] = {c, c + 3, c + 3, c};
+            const unsigned four = quad_fails(&r, v, four_lanes);
+            const unsigned want = fails | (fails >> 1 & 1) << 2 | (fails & 1) << 3;
+            quads_compared++;
+            if (four != want && quads_differing++ < 5)
+                fprintf(stderr, "quad filter: kind %d: %x where the pair filter gives %x\n", kind, four, want);
+        }
+#endif
         for (int lane = 0; lane < 2; lane++) {
             const uint32_t *t = c + 3 * lane;
             int hit = 0;
@@ -986,6 +1009,9 @@ static void test_pair_filter(void)
             filtered, hits, wrong);
     CHECK(wrong == 0);
     CHECK(filtered > pairs / 2 && hits > pairs / 20);
+    fprintf(stderr, "quad filter: %ld compared with the pair filter, %ld differing%s\n", quads_compared,
+            quads_differing, quads_compared ? "" : " (no AVX2 here)");
+    CHECK(quads_differing == 0);
 }
 
 int main(void)
