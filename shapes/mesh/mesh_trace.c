@@ -267,7 +267,7 @@ typedef struct seen_crossing {
 typedef struct query {
     const mesh *m;
     const hr_hit_args *args;
-    mesh_ray r;     /* set up at the first leaf (visit_leaf): many walks meet none */
+    mesh_ray r;     /* set up at the first leaf (ray_ready) */
     int ray_ready;
     int32_t mode;
     int tie_check, whole_line;
@@ -460,6 +460,25 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     default: return leaf_loop(q, first, end, 1, 0, 2, quad);                                       \
     }
 
+/* The triangle test's ray, set up at the first leaf: many walks meet
+ * none. 0 for a zero direction, which meets no triangle. */
+static int ray_ready(query *q)
+{
+    if (!q->ray_ready) q->ray_ready = mesh_ray_init(&q->r, &q->args->ray);
+    return q->ray_ready;
+}
+
+static int visit_leaf(query *q, uint32_t first, uint32_t end)
+{
+    LEAF_LOOPS(NULL)
+}
+
+static int leaf_of(void *user, uint32_t first, uint32_t count)
+{
+    if (!ray_ready(user)) return ACCEL_WALK_STOP;
+    return visit_leaf(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
+}
+
 #if MESH_FILTER_AVX2
 /* The same compiled for AVX2 CPUs, with the four-lane filter: the scalar
  * test is the same code (AVX2 brings no FMA), the filter's lanes the same
@@ -468,26 +487,14 @@ __attribute__((target("avx2"))) static int visit_leaf_avx2(query *q, uint32_t fi
 {
     LEAF_LOOPS(mesh_triangle_quad_fails)
 }
-#endif
 
-static int visit_leaf(query *q, uint32_t first, uint32_t end)
+static int leaf_of_avx2(void *user, uint32_t first, uint32_t count)
 {
-    if (!q->ray_ready) {
-        /* A zero direction meets no triangle: the search is over. */
-        if (!mesh_ray_init(&q->r, &q->args->ray)) return 1;
-        q->ray_ready = 1;
-    }
-#if MESH_FILTER_AVX2
-    if (mesh_filter_avx2_usable()) return visit_leaf_avx2(q, first, end);
-#endif
-    LEAF_LOOPS(NULL)
+    if (!ray_ready(user)) return ACCEL_WALK_STOP;
+    return visit_leaf_avx2(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
 }
+#endif
 #undef LEAF_LOOPS
-
-static int leaf_of(void *user, uint32_t first, uint32_t count)
-{
-    return visit_leaf(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
-}
 
 /* Every leaf whose box the ray may meet over the query's interval, which
  * the leaves narrow as they find hits. An interval from 0 or later is one
@@ -501,11 +508,15 @@ static int leaf_of(void *user, uint32_t first, uint32_t count)
  * triangle test. */
 static void walk(query *q)
 {
+    int (*leaf_of_cpu)(void *user, uint32_t first, uint32_t count) = leaf_of;
+#if MESH_FILTER_AVX2
+    if (mesh_filter_avx2_usable()) leaf_of_cpu = leaf_of_avx2;
+#endif
     const accel_bvh4 *bvh = &q->m->bvh;
     const hr_ray *ray = &q->args->ray;
     if (isnan(q->tmin) || isnan(q->tmax)) return;
     if (q->tmin >= 0.0) {
-        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of, q);
+        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of_cpu, q);
         return;
     }
     hr_ray back = *ray;
@@ -515,12 +526,12 @@ static void walk(query *q)
      * ahead of it, so the walk's end stays put. */
     double back_end = -q->tmin;
     q->phase = -1;
-    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &back_end, leaf_of, q) ==
+    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &back_end, leaf_of_cpu, q) ==
         ACCEL_WALK_STOP)
         return;
     if (!(q->tmax >= 0.0)) return;
     q->phase = 1;
-    accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of, q);
+    accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of_cpu, q);
 }
 
 /* Whether a crossing the first-hit search saw forms a near tie with its
