@@ -347,13 +347,15 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
     return x->t - reach > q->tmin;
 }
 
+/* A filter of mesh_triangle.h: mesh_triangle_quad_fails, or none. */
+typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], int kx, int ky,
+                              int kz);
+
 /* Tests triangles [first, end), a leaf, in the query's mode, the ray's
  * axes given as kx, ky, kz (see visit_leaf), through the SSE2 filter two
  * by two or, given quad (a constant, so inlined: the AVX2 filter), four by
  * four where three or more are left. Returns 1 when the search is
  * over: an any hit found, or an error (in status). */
-typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], int kx, int ky,
-                              int kz);
 MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz, filter_fn quad)
 {
     const mesh *m = q->m;
@@ -367,7 +369,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     /* Triangles a pair or a quad at a time through the filter first (most
      * fail it), each left in turn to the test, so hits are taken in the
      * same order with the same narrowing of tmax as one by one; lanes past
-     * the leaf's end take its first triangle again. */
+     * the leaf's end repeat the group's first triangle, and are not read. */
     unsigned fails = 0;
     uint32_t group = first, next = first; /* the filter's lanes: from group, until next */
     for (uint32_t i = first; i < end; i++) {
