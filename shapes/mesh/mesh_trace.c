@@ -549,15 +549,10 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
     return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t);
 }
 
-hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
+/* mesh_trace past its first question: out of line, so that the rays a
+ * flat mesh turns away never enter its large frame. */
+static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
-    /* A ray that leaves a flat mesh behind (one from the floor that is this
-     * mesh, or its neighbour, which the scene's walk asks too): every walk
-     * below would find no leaf, being from args->tmin but for a closed
-     * mesh's all-hits list. */
-    if (m->flat_axis >= 0 && !(mode == HR_TRACE_ALL && m->closed) &&
-        accel_bvh4_root_missed_on(&m->bvh, &args->ray, args->tmin, m->flat_axis, m->flat_lo, m->flat_hi))
-        return HR_OK;
     /* Field by field: the crossings' array stays unwritten until used. */
     query q;
     q.ray_ready = 0;
@@ -608,7 +603,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     q.start = args->out->count;
     walk(&q);
     if (q.status) return q.status;
-    if (q.needs_first) return mesh_trace(m, args, HR_TRACE_FIRST);
+    if (q.needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q.start;
     int near_tie = q.found && q.seen_overflow;
     for (int k = 0; q.found && !near_tie && k < q.seen_count; k++)
@@ -639,4 +634,16 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
         args->out->count = kept;
     }
     return HR_OK;
+}
+
+hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
+{
+    /* A ray that leaves a flat mesh behind (one from the floor that is this
+     * mesh, or its neighbour, which the scene's walk asks too): every walk
+     * would find no leaf, being from args->tmin but for a closed mesh's
+     * all-hits list. */
+    if (m->flat_axis >= 0 && !(mode == HR_TRACE_ALL && m->closed) &&
+        accel_bvh4_root_missed_on(&m->bvh, &args->ray, args->tmin, m->flat_axis, m->flat_lo, m->flat_hi))
+        return HR_OK;
+    return trace_query(m, args, mode);
 }
