@@ -348,8 +348,8 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
 }
 
 /* A filter of mesh_triangle.h: mesh_triangle_quad_fails, or none. */
-typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], int kx, int ky,
-                              int kz);
+typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], mesh_lanes *out,
+                              int kx, int ky, int kz);
 
 /* Tests triangles [first, end), a leaf, in the query's mode, the ray's
  * axes given as kx, ky, kz (see visit_leaf), through the SSE2 filter two
@@ -367,24 +367,29 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
     double tmax = q->tmax;
     /* Triangles a pair or a quad at a time through the filter first (most
-     * fail it), each left in turn to the test, so hits are taken in the
-     * same order with the same narrowing of tmax as one by one; lanes past
-     * the leaf's end repeat the group's first triangle, and are not read. */
+     * fail it), each left in turn to the test, or to the test's last steps
+     * on the filter's values where its edges agree, so hits are taken in
+     * the same order with the same narrowing of tmax as one by one; lanes
+     * past the leaf's end repeat the group's first triangle, and are not
+     * read. */
     unsigned fails = 0;
     uint32_t group = first, next = first; /* the filter's lanes: from group, until next */
+    mesh_lanes lanes_at;
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = corners + 3 * (size_t)i;
         if (i == next) {
             const uint32_t left = end - i;
             const uint32_t *const lanes[4] = {c, left > 1 ? c + 3 : c, left > 2 ? c + 6 : c, left > 3 ? c + 9 : c};
-            if (quad && left > 2) fails = quad(&q->r, vertices, lanes, kx, ky, kz), next = i + 4;
-            else fails = mesh_triangle_pair_fails(&q->r, vertices, lanes, kx, ky, kz), next = i + 2;
+            if (quad && left > 2) fails = quad(&q->r, vertices, lanes, &lanes_at, kx, ky, kz), next = i + 4;
+            else fails = mesh_triangle_pair_fails(&q->r, vertices, lanes, &lanes_at, kx, ky, kz), next = i + 2;
             group = i;
         }
-        if (fails >> (i - group) & 1) continue;
+        const int lane = (int)(i - group);
+        if (fails >> lane & 1) continue;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin, tmax,
-                                     &th, kx, ky, kz))
+        if (fails >> (4 + lane) & 1 ? !mesh_filter_finish(&q->r, &lanes_at, lane, test_tmin, tmax, &th)
+                                    : !mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]],
+                                                               &vertices[c[2]], test_tmin, tmax, &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;

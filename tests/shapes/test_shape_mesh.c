@@ -897,8 +897,9 @@ static void test_bvh_matches_brute_force(void)
 
 
 /* mesh_triangle_pair_fails (the leaf loop's filter) against the test it
- * stands in front of, and the AVX2 filter (where the CPU has it) against
- * it lane for lane: a lane it calls certain to fail must fail
+ * stands in front of (lanes it fails, and its agreeing lanes finished by
+ * mesh_filter_finish, bit for bit), and the AVX2 filter (where the CPU has
+ * it) against it lane for lane: a lane it calls certain to fail must fail
  * mesh_triangle_test_axes over every interval, here the widest ones. Pairs
  * of random triangles around random rays at scales from 2^-60 to 2^60 and
  * 1e-300 to 1e300; pairs sharing an edge that the ray runs through (aimed
@@ -910,9 +911,19 @@ static void test_bvh_matches_brute_force(void)
 #if MESH_FILTER_AVX2
 /* The four-lane filter has to be called from AVX2 code. */
 __attribute__((target("avx2"))) static unsigned quad_fails(const mesh_ray *r, const hr_vec3 *v,
-                                                           const uint32_t *const c[4])
+                                                           const uint32_t *const c[4], mesh_lanes *out)
 {
-    return mesh_triangle_quad_fails(r, v, c, r->kx, r->ky, r->kz);
+    return mesh_triangle_quad_fails(r, v, c, out, r->kx, r->ky, r->kz);
+}
+
+/* Whether lane a of x and lane b of y hold the same values, bit for bit. */
+static int same_lane(const mesh_lanes *x, int a, const mesh_lanes *y, int b)
+{
+    for (int k = 0; k < 3; k++)
+        if (!same_bits(x->x[k][a], y->x[k][b]) || !same_bits(x->y[k][a], y->y[k][b]) ||
+            !same_bits(x->z[k][a], y->z[k][b]) || !same_bits(x->e[k][a], y->e[k][b]))
+            return 0;
+    return 1;
 }
 #endif
 
@@ -921,6 +932,7 @@ static void test_pair_filter(void)
     ray_rng rng;
     rng_seed(&rng, 77);
     long pairs = 0, filtered = 0, hits = 0, wrong = 0, quads_compared = 0, quads_differing = 0;
+    long agreeing = 0, finished_differing = 0;
     const double intervals[3][2] = {{-INFINITY, INFINITY}, {-1e300, 1e300}, {0.0, INFINITY}};
     for (int i = 0; i < 1500000; i++) {
         const int kind = (int)(rng_next(&rng) % 8);
@@ -976,15 +988,24 @@ static void test_pair_filter(void)
         const hr_ray ray = {o, d};
         if (!mesh_ray_init(&r, &ray)) continue;
         const uint32_t *const lanes[2] = {c, c + 3};
-        const unsigned fails = mesh_triangle_pair_fails(&r, v, lanes, r.kx, r.ky, r.kz);
+        mesh_lanes lanes_at;
+        const unsigned fails = mesh_triangle_pair_fails(&r, v, lanes, &lanes_at, r.kx, r.ky, r.kz);
         pairs++;
 #if MESH_FILTER_AVX2
         /* The four-lane filter on the two triangles and again swapped:
          * the same answer lane by lane. */
         if (mesh_filter_avx2_usable()) {
             const uint32_t *const four_lanes[4] = {c, c + 3, c + 3, c};
-            const unsigned four = quad_fails(&r, v, four_lanes);
-            const unsigned want = fails | (fails >> 1 & 1) << 2 | (fails & 1) << 3;
+            mesh_lanes quad_at;
+            const unsigned four = quad_fails(&r, v, four_lanes, &quad_at);
+            /* Agreeing lanes hold the pair filter's values. */
+            for (int lane = 0; lane < 4; lane++) {
+                const int from = lane == 0 || lane == 3 ? 0 : 1;
+                if (four >> (4 + lane) & 1 && fails >> (4 + from) & 1 && !same_lane(&quad_at, lane, &lanes_at, from))
+                    quads_differing++;
+            }
+            const unsigned want = (fails & 1) | (fails & 2) | (fails >> 1 & 1) << 2 | (fails & 1) << 3 |
+                                  (fails >> 4 & 3) << 4 | (fails >> 5 & 1) << 6 | (fails >> 4 & 1) << 7;
             quads_compared++;
             if (four != want && quads_differing++ < 5)
                 fprintf(stderr, "quad filter: kind %d: %x where the pair filter gives %x\n", kind, four, want);
@@ -998,6 +1019,28 @@ static void test_pair_filter(void)
                 hit |= mesh_triangle_test(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0], intervals[k][1], &th);
             }
             hits += hit;
+            if (fails >> (4 + lane) & 1) {
+                /* An agreeing lane: the rest of the test on the filter's
+                 * values, against the whole test, field by field. */
+                agreeing++;
+                for (int k = 0; k < 3; k++) {
+                    mesh_triangle_hit want_th, got_th;
+                    memset(&want_th, 0, sizeof want_th), memset(&got_th, 0, sizeof got_th);
+                    const int want_hit = mesh_triangle_test(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0],
+                                                            intervals[k][1], &want_th);
+                    const int got_hit = mesh_filter_finish(&r, &lanes_at, lane, intervals[k][0], intervals[k][1], &got_th);
+                    const int same = want_hit == got_hit &&
+                                     (!want_hit || (same_bits(want_th.t, got_th.t) &&
+                                                    same_bits(want_th.t_error, got_th.t_error) &&
+                                                    same_bits(want_th.b[0], got_th.b[0]) &&
+                                                    same_bits(want_th.b[1], got_th.b[1]) &&
+                                                    same_bits(want_th.b[2], got_th.b[2]) &&
+                                                    want_th.entering == got_th.entering));
+                    if (!same && finished_differing++ < 5)
+                        fprintf(stderr, "pair filter: kind %d lane %d: the agreeing lane's finish differs\n", kind,
+                                lane);
+                }
+            }
             if (fails >> lane & 1) {
                 filtered++;
                 if (hit && wrong++ < 5)
@@ -1009,6 +1052,9 @@ static void test_pair_filter(void)
             filtered, hits, wrong);
     CHECK(wrong == 0);
     CHECK(filtered > pairs / 2 && hits > pairs / 20);
+    fprintf(stderr, "pair filter: %ld agreeing lanes finished, %ld differing from the test\n", agreeing,
+            finished_differing);
+    CHECK(finished_differing == 0 && agreeing > pairs / 10);
     fprintf(stderr, "quad filter: %ld compared with the pair filter, %ld differing%s\n", quads_compared,
             quads_differing, quads_compared ? "" : " (no AVX2 here)");
     CHECK(quads_differing == 0);
