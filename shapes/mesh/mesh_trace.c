@@ -352,7 +352,7 @@ typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_
                               int kx, int ky, int kz);
 
 /* Tests triangles [first, end), a leaf, in the query's mode, the ray's
- * axes given as kx, ky, kz (see visit_leaf), through the SSE2 filter two
+ * axes given as kx, ky, kz (see LEAF_LOOPS), through the SSE2 filter two
  * by two or, given quad (a constant, so inlined: the AVX2 filter), four by
  * four where three or more are left. Returns 1 when the search is
  * over: an any hit found, or an error (in status). */
@@ -456,16 +456,19 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
 }
 
 /* leaf_loop with the axes as constants: one copy for each order
- * mesh_ray_init can choose (kz, then kx and ky in turn or swapped). */
+ * mesh_ray_init can choose (kz, then kx and ky in turn or swapped); the
+ * walk's answer from leaf_loop's. */
 #define LEAF_LOOPS(quad)                                                                           \
+    int over;                                                                                      \
     switch (q->r.kz * 3 + q->r.kx) {                                                               \
-    case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0, quad);                                \
-    case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0, quad);                                \
-    case 1 * 3 + 2: return leaf_loop(q, first, end, 2, 0, 1, quad);                                \
-    case 1 * 3 + 0: return leaf_loop(q, first, end, 0, 2, 1, quad);                                \
-    case 2 * 3 + 0: return leaf_loop(q, first, end, 0, 1, 2, quad);                                \
-    default: return leaf_loop(q, first, end, 1, 0, 2, quad);                                       \
-    }
+    case 0 * 3 + 1: over = leaf_loop(q, first, end, 1, 2, 0, quad); break;                         \
+    case 0 * 3 + 2: over = leaf_loop(q, first, end, 2, 1, 0, quad); break;                         \
+    case 1 * 3 + 2: over = leaf_loop(q, first, end, 2, 0, 1, quad); break;                         \
+    case 1 * 3 + 0: over = leaf_loop(q, first, end, 0, 2, 1, quad); break;                         \
+    case 2 * 3 + 0: over = leaf_loop(q, first, end, 0, 1, 2, quad); break;                         \
+    default: over = leaf_loop(q, first, end, 1, 0, 2, quad); break;                                \
+    }                                                                                              \
+    return over ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON
 
 /* The triangle test's ray, set up at the first leaf: many walks meet
  * none. 0 for a zero direction, which meets no triangle. */
@@ -475,30 +478,25 @@ static int ray_ready(query *q)
     return q->ray_ready;
 }
 
-static int visit_leaf(query *q, uint32_t first, uint32_t end)
-{
-    LEAF_LOOPS(NULL)
-}
-
+/* The walk's leaf callback: triangles [first, first + count). */
 static int leaf_of(void *user, uint32_t first, uint32_t count)
 {
-    if (!ray_ready(user)) return ACCEL_WALK_STOP;
-    return visit_leaf(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
+    query *q = user;
+    const uint32_t end = first + count;
+    if (!ray_ready(q)) return ACCEL_WALK_STOP;
+    LEAF_LOOPS(NULL);
 }
 
 #if MESH_FILTER_AVX2
 /* The same compiled for AVX2 CPUs, with the four-lane filter: the scalar
  * test is the same code (AVX2 brings no FMA), the filter's lanes the same
  * values. */
-__attribute__((target("avx2"))) static int visit_leaf_avx2(query *q, uint32_t first, uint32_t end)
+__attribute__((target("avx2"))) static int leaf_of_avx2(void *user, uint32_t first, uint32_t count)
 {
-    LEAF_LOOPS(mesh_triangle_quad_fails)
-}
-
-static int leaf_of_avx2(void *user, uint32_t first, uint32_t count)
-{
-    if (!ray_ready(user)) return ACCEL_WALK_STOP;
-    return visit_leaf_avx2(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
+    query *q = user;
+    const uint32_t end = first + count;
+    if (!ray_ready(q)) return ACCEL_WALK_STOP;
+    LEAF_LOOPS(mesh_triangle_quad_fails);
 }
 #endif
 #undef LEAF_LOOPS
