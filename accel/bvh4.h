@@ -684,4 +684,63 @@ static inline int accel_bvh4_walk_any(const accel_bvh4 *bvh, const hr_ray *ray, 
     return accel_bvh4_walk_as(bvh, ray, tmin, tmax, leaf, user, 0);
 }
 
+/* The root children's boxes merged on axis a (an empty tree: lo +inf, hi
+ * -inf): what accel_bvh4_root_missed_on is given, worked out once. */
+static inline void accel_bvh4_root_span(const accel_bvh4 *bvh, int a, float *lo, float *hi)
+{
+    *lo = INFINITY, *hi = -INFINITY;
+    if (!bvh->nodes) return;
+    for (int k = 0; k < 4; k++) {
+        if (bvh->nodes[0].lo[a][k] < *lo) *lo = bvh->nodes[0].lo[a][k];
+        if (bvh->nodes[0].hi[a][k] > *hi) *hi = bvh->nodes[0].hi[a][k];
+    }
+}
+
+/* Whether a walk from tmin (either walk, any tmax) would meet none of the
+ * root's children, and so call no leaf, for the ray's progress along axis
+ * a alone; lo and hi are accel_bvh4_root_span's for a. 1 only when that is
+ * certain, 0 when it cannot tell (then walk). A few compares where the
+ * walk prepares the whole ray first, for a caller whose tree is flat on an
+ * axis, so that rays start beside it and run away from it (a ray leaving
+ * a floor, in a scene whose BVH gives the floor's object a box a rounding
+ * thick, so that the scene's walk asks it). It answers 1 when:
+ * - the ray is one accel_ray4_init_common takes (tmin finite and not
+ *   negative, |d| <= 2^39 and |o| <= ACCEL_CULL_RANGE on every axis, and
+ *   |d[a]| >= 2^-39) and the tree culls (extent within ACCEL_CULL_RANGE),
+ *   so the walk tests the root with that preparation, unscaled;
+ * - d[a] > 0 and fl(hi - dn) <= -2^-100, dn being the origin's lower float
+ *   bracket (accel_float_bracket, which init_common reproduces bit for
+ *   bit). Each child's exit distance on a is then fl(fl(h - dn) * inv_far)
+ *   (or the same value from the flipped form) for its h <= hi (-inf for an
+ *   empty slot), with fl(h - dn) <= -2^-100 by monotone rounding and
+ *   inv_far >= 2^-39 (1/d >= 2^-39, and not NaN as 1/d <= 2^39): at most
+ *   -2^-139. The exit the test compares is a min that only falls (a NaN
+ *   distance leaves it) plus 2^-149; the entry is a max that only rises,
+ *   from tmin rounded down (>= -2^-149), less 2^-149, so >= -2^-148, which
+ *   is above -2^-139 + 2^-149: no child is met.
+ * - or d[a] < 0 the same way round: fl(lo - up) >= 2^-100, inv_far <= -2^-39.
+ * test_bvh4 checks it against the walk on random trees and rays. */
+static inline int accel_bvh4_root_missed_on(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, int a,
+                                            float lo, float hi)
+{
+    if (!bvh->nodes) return 1; /* the walk returns at once */
+#if defined(__SSE2__)
+    /* The axis first: most rays the caller asks about run towards the tree
+     * and fail here, at a few instructions; then init_common's conditions
+     * (as scalar compares: fewer instructions here than its lanes). */
+    const hr_vec3 o = ray->origin, d = ray->dir;
+    const double oa = a == 0 ? o.x : a == 1 ? o.y : o.z, da = a == 0 ? d.x : a == 1 ? d.y : d.z;
+    if (!(fabs(da) >= 0x1p-39)) return 0;
+    float dn, up;
+    accel_float_bracket(oa, &dn, &up);
+    if (!(da > 0 ? hi - dn <= -0x1p-100f : lo - up >= 0x1p-100f)) return 0;
+    return tmin >= 0 && tmin < INFINITY && bvh->extent <= ACCEL_CULL_RANGE && fabs(d.x) <= 0x1p39 &&
+           fabs(d.y) <= 0x1p39 && fabs(d.z) <= 0x1p39 && fabs(o.x) <= ACCEL_CULL_RANGE &&
+           fabs(o.y) <= ACCEL_CULL_RANGE && fabs(o.z) <= ACCEL_CULL_RANGE;
+#else
+    (void)ray, (void)tmin, (void)a, (void)lo, (void)hi;
+    return 0; /* no accel_ray4_init_common to reason from */
+#endif
+}
+
 #endif

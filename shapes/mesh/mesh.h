@@ -47,6 +47,11 @@ typedef struct mesh {
      * array is dropped once the corners are reordered). */
     accel_bvh4 bvh;
     hr_bounds bounds;
+    /* The axis the mesh lies flat across (its bounds' sides equal), or -1,
+     * and the root's span on it (accel_bvh4_root_span): mesh_trace turns
+     * away the rays that leave it behind without walking. */
+    int flat_axis;
+    float flat_lo, flat_hi;
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */
     int closed;

@@ -105,6 +105,8 @@ hr_status mesh_bvh_build(mesh *m)
     }
     m->bounds.lo = lo;
     m->bounds.hi = hi;
+    m->flat_axis = lo.z == hi.z ? 2 : lo.y == hi.y ? 1 : lo.x == hi.x ? 0 : -1;
+    if (m->flat_axis >= 0) accel_bvh4_root_span(&m->bvh, m->flat_axis, &m->flat_lo, &m->flat_hi);
 done:
     host->free(boxes);
     host->free(corners);

@@ -267,7 +267,8 @@ typedef struct seen_crossing {
 typedef struct query {
     const mesh *m;
     const hr_hit_args *args;
-    mesh_ray r;
+    mesh_ray r;     /* set up at the first leaf (ray_ready) */
+    int ray_ready;
     int32_t mode;
     int tie_check, whole_line;
     int closed_any;  /* a closed mesh's any-hit search (closed_any_blocks) */
@@ -346,10 +347,16 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
     return x->t - reach > q->tmin;
 }
 
+/* A filter of mesh_triangle.h: mesh_triangle_quad_fails, or none. */
+typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], mesh_lanes *out,
+                              int kx, int ky, int kz);
+
 /* Tests triangles [first, end), a leaf, in the query's mode, the ray's
- * axes given as kx, ky, kz (see visit_leaf). Returns 1 when the search is
+ * axes given as kx, ky, kz (see LEAF_LOOPS), through the SSE2 filter two
+ * by two or, given quad (a constant, so inlined: the AVX2 filter), four by
+ * four where three or more are left. Returns 1 when the search is
  * over: an any hit found, or an error (in status). */
-MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz)
+MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, int ky, int kz, filter_fn quad)
 {
     const mesh *m = q->m;
     const hr_hit_args *args = q->args;
@@ -359,11 +366,30 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
     const hr_vec3 *const vertices = m->vertices;
     const double test_tmin = q->tie_check ? -INFINITY : q->tmin;
     double tmax = q->tmax;
+    /* Triangles a pair or a quad at a time through the filter first (most
+     * fail it), each left in turn to the test, or to the test's last steps
+     * on the filter's values where its edges agree, so hits are taken in
+     * the same order with the same narrowing of tmax as one by one; lanes
+     * past the leaf's end repeat the group's first triangle, and are not
+     * read. */
+    unsigned fails = 0;
+    uint32_t group = first, next = first; /* the filter's lanes: from group, until next */
+    mesh_lanes lanes_at;
     for (uint32_t i = first; i < end; i++) {
         const uint32_t *c = corners + 3 * (size_t)i;
+        if (i == next) {
+            const uint32_t left = end - i;
+            const uint32_t *const lanes[4] = {c, left > 1 ? c + 3 : c, left > 2 ? c + 6 : c, left > 3 ? c + 9 : c};
+            if (quad && left > 2) fails = quad(&q->r, vertices, lanes, &lanes_at, kx, ky, kz), next = i + 4;
+            else fails = mesh_triangle_pair_fails(&q->r, vertices, lanes, &lanes_at, kx, ky, kz), next = i + 2;
+            group = i;
+        }
+        const int lane = (int)(i - group);
+        if (fails >> lane & 1) continue;
         mesh_triangle_hit th;
-        if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin, tmax,
-                                     &th, kx, ky, kz))
+        if (fails >> (4 + lane) & 1 ? !mesh_filter_finish(&q->r, &lanes_at, lane, test_tmin, tmax, &th)
+                                    : !mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]],
+                                                               &vertices[c[2]], test_tmin, tmax, &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
@@ -430,23 +456,50 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
 }
 
 /* leaf_loop with the axes as constants: one copy for each order
- * mesh_ray_init can choose (kz, then kx and ky in turn or swapped). */
-static int visit_leaf(query *q, uint32_t first, uint32_t end)
+ * mesh_ray_init can choose (kz, then kx and ky in turn or swapped); the
+ * walk's answer from leaf_loop's. */
+#define LEAF_LOOPS(quad)                                                                           \
+    int over;                                                                                      \
+    switch (q->r.kz * 3 + q->r.kx) {                                                               \
+    case 0 * 3 + 1: over = leaf_loop(q, first, end, 1, 2, 0, quad); break;                         \
+    case 0 * 3 + 2: over = leaf_loop(q, first, end, 2, 1, 0, quad); break;                         \
+    case 1 * 3 + 2: over = leaf_loop(q, first, end, 2, 0, 1, quad); break;                         \
+    case 1 * 3 + 0: over = leaf_loop(q, first, end, 0, 2, 1, quad); break;                         \
+    case 2 * 3 + 0: over = leaf_loop(q, first, end, 0, 1, 2, quad); break;                         \
+    default: over = leaf_loop(q, first, end, 1, 0, 2, quad); break;                                \
+    }                                                                                              \
+    return over ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON
+
+/* The triangle test's ray, set up at the first leaf: many walks meet
+ * none. 0 for a zero direction, which meets no triangle. */
+static int ray_ready(query *q)
 {
-    switch (q->r.kz * 3 + q->r.kx) {
-    case 0 * 3 + 1: return leaf_loop(q, first, end, 1, 2, 0);
-    case 0 * 3 + 2: return leaf_loop(q, first, end, 2, 1, 0);
-    case 1 * 3 + 2: return leaf_loop(q, first, end, 2, 0, 1);
-    case 1 * 3 + 0: return leaf_loop(q, first, end, 0, 2, 1);
-    case 2 * 3 + 0: return leaf_loop(q, first, end, 0, 1, 2);
-    default: return leaf_loop(q, first, end, 1, 0, 2);
-    }
+    if (!q->ray_ready) q->ray_ready = mesh_ray_init(&q->r, &q->args->ray);
+    return q->ray_ready;
 }
 
+/* The walk's leaf callback: triangles [first, first + count). */
 static int leaf_of(void *user, uint32_t first, uint32_t count)
 {
-    return visit_leaf(user, first, first + count) ? ACCEL_WALK_STOP : ACCEL_WALK_GO_ON;
+    query *q = user;
+    const uint32_t end = first + count;
+    if (!ray_ready(q)) return ACCEL_WALK_STOP;
+    LEAF_LOOPS(NULL);
 }
+
+#if MESH_FILTER_AVX2
+/* The same compiled for AVX2 CPUs, with the four-lane filter: the scalar
+ * test is the same code (AVX2 brings no FMA), the filter's lanes the same
+ * values. */
+__attribute__((target("avx2"))) static int leaf_of_avx2(void *user, uint32_t first, uint32_t count)
+{
+    query *q = user;
+    const uint32_t end = first + count;
+    if (!ray_ready(q)) return ACCEL_WALK_STOP;
+    LEAF_LOOPS(mesh_triangle_quad_fails);
+}
+#endif
+#undef LEAF_LOOPS
 
 /* Every leaf whose box the ray may meet over the query's interval, which
  * the leaves narrow as they find hits. An interval from 0 or later is one
@@ -460,11 +513,15 @@ static int leaf_of(void *user, uint32_t first, uint32_t count)
  * triangle test. */
 static void walk(query *q)
 {
+    int (*leaf_of_cpu)(void *user, uint32_t first, uint32_t count) = leaf_of;
+#if MESH_FILTER_AVX2
+    if (mesh_filter_avx2_usable()) leaf_of_cpu = leaf_of_avx2;
+#endif
     const accel_bvh4 *bvh = &q->m->bvh;
     const hr_ray *ray = &q->args->ray;
     if (isnan(q->tmin) || isnan(q->tmax)) return;
     if (q->tmin >= 0.0) {
-        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of, q);
+        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of_cpu, q);
         return;
     }
     hr_ray back = *ray;
@@ -474,12 +531,12 @@ static void walk(query *q)
      * ahead of it, so the walk's end stays put. */
     double back_end = -q->tmin;
     q->phase = -1;
-    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &back_end, leaf_of, q) ==
+    if (accel_bvh4_walk(bvh, &back, q->tmax < 0.0 ? -q->tmax : 0.0, &back_end, leaf_of_cpu, q) ==
         ACCEL_WALK_STOP)
         return;
     if (!(q->tmax >= 0.0)) return;
     q->phase = 1;
-    accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of, q);
+    accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of_cpu, q);
 }
 
 /* Whether a crossing the first-hit search saw forms a near tie with its
@@ -495,11 +552,13 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
     return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t);
 }
 
-hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
+/* mesh_trace past its first question: out of line, so that the rays a
+ * flat mesh turns away never enter its large frame. */
+static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_hit_args *args, int32_t mode)
 {
     /* Field by field: the crossings' array stays unwritten until used. */
     query q;
-    if (!mesh_ray_init(&q.r, &args->ray)) return HR_OK;
+    q.ray_ready = 0;
     q.m = m;
     q.args = args;
     q.status = HR_OK;
@@ -547,7 +606,7 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
     q.start = args->out->count;
     walk(&q);
     if (q.status) return q.status;
-    if (q.needs_first) return mesh_trace(m, args, HR_TRACE_FIRST);
+    if (q.needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q.start;
     int near_tie = q.found && q.seen_overflow;
     for (int k = 0; q.found && !near_tie && k < q.seen_count; k++)
@@ -578,4 +637,16 @@ hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
         args->out->count = kept;
     }
     return HR_OK;
+}
+
+hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)
+{
+    /* A ray that leaves a flat mesh behind (one from the floor that is this
+     * mesh, or its neighbour, which the scene's walk asks too): every walk
+     * would find no leaf, being from args->tmin but for a closed mesh's
+     * all-hits list. */
+    if (m->flat_axis >= 0 && !(mode == HR_TRACE_ALL && m->closed) &&
+        accel_bvh4_root_missed_on(&m->bvh, &args->ray, args->tmin, m->flat_axis, m->flat_lo, m->flat_hi))
+        return HR_OK;
+    return trace_query(m, args, mode);
 }

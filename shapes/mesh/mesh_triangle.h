@@ -37,6 +37,9 @@
 #include <string.h>
 
 #include <hitray/common.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #define MESH_UNIT_ROUNDOFF (DBL_EPSILON * 0.5)
 #define MESH_GAMMA(n) (((n) * MESH_UNIT_ROUNDOFF) / (1.0 - (n) * MESH_UNIT_ROUNDOFF))
@@ -233,6 +236,35 @@ static inline __attribute__((always_inline)) double mesh_t_error(const mesh_ray 
            fabs(det);
 }
 
+/* The test's last steps, once the edge functions U, V, W of the sheared
+ * corners A, B, C (x, y and p[kz], see mesh_shear) agree in sign: depth, t
+ * and its error, the weights. One piece of code for the scalar test and
+ * for the filters' agreeing lanes (mesh_filter_finish). */
+static inline __attribute__((always_inline)) int
+mesh_triangle_finish(const mesh_ray *r, double A[3], double B[3], double C[3], double U, double V, double W,
+                     double tmin, double tmax, mesh_triangle_hit *out)
+{
+    mesh_shear_z(r, A);
+    mesh_shear_z(r, B);
+    mesh_shear_z(r, C);
+    /* Same signs (zeros count as either): the sum is zero only when all
+     * three are, a triangle seen edge on. */
+    const double det = U + V + W;
+    if (det == 0.0) return 0;
+    const double T = U * A[2] + V * B[2] + W * C[2];
+    const double t = T / det;
+    if (!(t > tmin && t < tmax)) return 0;
+    const double t_error = mesh_t_error(r, A, B, C, U, V, W, det);
+    if (t - tmin <= t_error) return 0;
+    out->t = t;
+    out->t_error = t_error;
+    out->b[0] = U / det;
+    out->b[1] = V / det;
+    out->b[2] = W / det;
+    out->entering = det > 0.0;
+    return 1;
+}
+
 /* The watertight test of triangle (A, B, C) against the ray, for hits
  * with tmin < t < tmax, with the ray's axes (r->kx, r->ky, r->kz) given:
  * see MESH_AXES_INLINE. */
@@ -254,26 +286,154 @@ MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a
     if (mesh_sign_of(V, A, C) != su) return 0;
     const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
     if (mesh_sign_of(W, B, A) != su) return 0;
-    mesh_shear_z(r, A);
-    mesh_shear_z(r, B);
-    mesh_shear_z(r, C);
-    /* Same signs (zeros count as either): the sum is zero only when all
-     * three are, a triangle seen edge on. */
-    const double det = U + V + W;
-    if (det == 0.0) return 0;
-    const double T = U * A[2] + V * B[2] + W * C[2];
-    const double t = T / det;
-    if (!(t > tmin && t < tmax)) return 0;
-    const double t_error = mesh_t_error(r, A, B, C, U, V, W, det);
-    if (t - tmin <= t_error) return 0;
-    out->t = t;
-    out->t_error = t_error;
-    out->b[0] = U / det;
-    out->b[1] = V / det;
-    out->b[2] = W / det;
-    out->entering = det > 0.0;
-    return 1;
+    return mesh_triangle_finish(r, A, B, C, U, V, W, tmin, tmax, out);
 }
+
+/* A filter's agreeing lanes (bit 4 + k of its answer), lane k: the
+ * sheared corners A, B, C (x, y, p[kz]) and U, V, W, for mesh_filter_finish. */
+typedef struct mesh_lanes {
+    double x[3][4], y[3][4], z[3][4], e[3][4];
+} mesh_lanes;
+
+/* mesh_triangle_test_axes's answer for agreeing lane k: the rest of the
+ * test on the lane's values, which are the scalar test's. */
+static inline __attribute__((always_inline)) int mesh_filter_finish(const mesh_ray *r, const mesh_lanes *l, int k,
+                                                                    double tmin, double tmax,
+                                                                    mesh_triangle_hit *out)
+{
+    double A[3] = {l->x[0][k], l->y[0][k], l->z[0][k]};
+    double B[3] = {l->x[1][k], l->y[1][k], l->z[1][k]};
+    double C[3] = {l->x[2][k], l->y[2][k], l->z[2][k]};
+    return mesh_triangle_finish(r, A, B, C, l->e[0][k], l->e[1][k], l->e[2][k], tmin, tmax, out);
+}
+
+/* Two or four triangles' first steps at once, as a filter in front of the
+ * test, triangle k having corners c[k][0], c[k][1], c[k][2] into v. In
+ * SSE2 lanes (two triangles) or AVX2 lanes (four, mesh_triangle_quad_fails,
+ * for CPUs that have AVX2, chosen at run time) the test's own operations
+ * in its order (the shear of each corner, and the three edge functions'
+ * products, difference and error bound; no FMA in any), so each lane
+ * holds the scalar path's values bit for bit. A lane whose three
+ * differences all exceed their bounds has them as mesh_edge_function's
+ * results (no tie and no exact evaluation); then
+ * - if their signs do not all agree, the scalar test returns 0 at the
+ *   first edge that disagrees: bit k, certain to fail;
+ * - if they agree, the scalar test goes on to mesh_triangle_finish with
+ *   these values: bit 4 + k, the lane's values in *out (when out is not
+ *   NULL) for mesh_filter_finish.
+ * Any other lane (a bound not passed, a NaN) is the test's from the start.
+ * The edges and corners the scalar test would not reach are worked out
+ * too: a few wasted operations against one corner's loads and shears for
+ * several triangles. Without SSE2: 0, every lane the test's.
+ * test_shape_mesh compares both filters with the test, bit for bit.
+ *
+ * One body for both widths: MESH_FILTER_BODY(P), over the vector type
+ * P##VT and its operations P##SET1, SUB, MUL, ADD, AND, ANDNOT, OR, XOR,
+ * GT, MASK, STORE and ABS_MASK, and P##LOAD(k, field), the field of corner
+ * k of every lane: MESH_SSE2_ and MESH_AVX2_. */
+#define MESH_FILTER_BODY(P)                                                                         \
+    const P##VT o_[3] = {P##SET1(r->o[0]), P##SET1(r->o[1]), P##SET1(r->o[2])};                   \
+    const P##VT sx_ = P##SET1(r->sx), sy_ = P##SET1(r->sy);                                        \
+    /* Corner k of every triangle sheared (mesh_shear), written out corner                         \
+     * by corner so that all stay in registers. */                                                 \
+    P##VT x_[3], y_[3], z_[3];                                                                     \
+    MESH_FILTER_CORNER(P, 0);                                                                      \
+    MESH_FILTER_CORNER(P, 1);                                                                      \
+    MESH_FILTER_CORNER(P, 2);                                                                      \
+    const P##VT abs_ = P##ABS_MASK, gamma3_ = P##SET1(MESH_GAMMA(3)), zero_ = P##SET1(0.0);        \
+    P##VT u_, v_, w_, clean_u, pos_u, clean_v, pos_v, clean_w, pos_w;                              \
+    MESH_FILTER_EDGE(P, x_[2], y_[1], y_[2], x_[1], u_, clean_u, pos_u); /* U = cross(C, B) */     \
+    MESH_FILTER_EDGE(P, x_[0], y_[2], y_[0], x_[2], v_, clean_v, pos_v); /* V = cross(A, C) */     \
+    MESH_FILTER_EDGE(P, x_[1], y_[0], y_[1], x_[0], w_, clean_w, pos_w); /* W = cross(B, A) */     \
+    const P##VT clean_ = P##AND(clean_u, P##AND(clean_v, clean_w));                                \
+    const P##VT differ_ = P##OR(P##XOR(pos_u, pos_v), P##XOR(pos_u, pos_w));                       \
+    const unsigned agrees_ = (unsigned)P##MASK(P##ANDNOT(differ_, clean_));                        \
+    if (agrees_ && out) {                                                                          \
+        for (int k_ = 0; k_ < 3; k_++) {                                                           \
+            P##STORE(out->x[k_], x_[k_]), P##STORE(out->y[k_], y_[k_]), P##STORE(out->z[k_], z_[k_]); \
+        }                                                                                          \
+        P##STORE(out->e[0], u_), P##STORE(out->e[1], v_), P##STORE(out->e[2], w_);                 \
+    }                                                                                              \
+    return (unsigned)P##MASK(P##AND(clean_, differ_)) | agrees_ << 4;
+#define MESH_FILTER_CORNER(P, k)                                                                    \
+    do {                                                                                           \
+        const P##VT p_[3] = {P##SUB(P##LOAD(k, x), o_[0]), P##SUB(P##LOAD(k, y), o_[1]),           \
+                             P##SUB(P##LOAD(k, z), o_[2])};                                        \
+        x_[k] = P##SUB(p_[kx], P##MUL(sx_, p_[kz]));                                               \
+        y_[k] = P##SUB(p_[ky], P##MUL(sy_, p_[kz]));                                               \
+        z_[k] = p_[kz];                                                                            \
+    } while (0)
+/* mesh_edge_function(a, b, c, d): the difference, and whether it passes
+ * its bound; then its sign. */
+#define MESH_FILTER_EDGE(P, a, b, c, d, e_, clean, positive)                                        \
+    do {                                                                                           \
+        const P##VT ab_ = P##MUL(a, b), cd_ = P##MUL(c, d);                                        \
+        e_ = P##SUB(ab_, cd_);                                                                     \
+        const P##VT bound_ = P##MUL(gamma3_, P##ADD(P##AND(ab_, abs_), P##AND(cd_, abs_)));        \
+        clean = P##GT(P##AND(e_, abs_), bound_);                                                   \
+        positive = P##GT(e_, zero_);                                                               \
+    } while (0)
+
+#if defined(__SSE2__)
+#define MESH_SSE2_VT __m128d
+#define MESH_SSE2_SET1 _mm_set1_pd
+#define MESH_SSE2_SUB _mm_sub_pd
+#define MESH_SSE2_MUL _mm_mul_pd
+#define MESH_SSE2_ADD _mm_add_pd
+#define MESH_SSE2_AND _mm_and_pd
+#define MESH_SSE2_ANDNOT _mm_andnot_pd
+#define MESH_SSE2_STORE _mm_storeu_pd
+#define MESH_SSE2_OR _mm_or_pd
+#define MESH_SSE2_XOR _mm_xor_pd
+#define MESH_SSE2_GT _mm_cmpgt_pd
+#define MESH_SSE2_MASK _mm_movemask_pd
+#define MESH_SSE2_ABS_MASK _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX))
+#define MESH_SSE2_LOAD(k, f) _mm_loadh_pd(_mm_load_sd(&v[c[0][k]].f), &v[c[1][k]].f)
+#endif
+
+MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[2],
+                                                   mesh_lanes *out, int kx, int ky, int kz)
+{
+#if defined(__SSE2__)
+    MESH_FILTER_BODY(MESH_SSE2_)
+#else
+    (void)r, (void)v, (void)c, (void)out, (void)kx, (void)ky, (void)kz;
+    return 0;
+#endif
+}
+
+#if defined(__SSE2__) && defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define MESH_FILTER_AVX2 1
+#include <immintrin.h>
+#define MESH_AVX2_VT __m256d
+#define MESH_AVX2_SET1 _mm256_set1_pd
+#define MESH_AVX2_SUB _mm256_sub_pd
+#define MESH_AVX2_MUL _mm256_mul_pd
+#define MESH_AVX2_ADD _mm256_add_pd
+#define MESH_AVX2_AND _mm256_and_pd
+#define MESH_AVX2_ANDNOT _mm256_andnot_pd
+#define MESH_AVX2_STORE _mm256_storeu_pd
+#define MESH_AVX2_OR _mm256_or_pd
+#define MESH_AVX2_XOR _mm256_xor_pd
+#define MESH_AVX2_GT(a, b) _mm256_cmp_pd(a, b, _CMP_GT_OQ) /* false on NaN, as SSE2's cmpgt */
+#define MESH_AVX2_MASK _mm256_movemask_pd
+#define MESH_AVX2_ABS_MASK _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX))
+#define MESH_AVX2_LOAD(k, f)                                                                         \
+    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadh_pd(_mm_load_sd(&v[c[0][k]].f), &v[c[1][k]].f)), \
+                         _mm_loadh_pd(_mm_load_sd(&v[c[2][k]].f), &v[c[3][k]].f), 1)
+/* Four lanes. Always inlined, so callable from AVX2 code only
+ * (__attribute__((target("avx2"))), after mesh_filter_avx2_usable). */
+__attribute__((target("avx2"))) static inline __attribute__((always_inline)) unsigned
+mesh_triangle_quad_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[4], mesh_lanes *out, int kx,
+                         int ky, int kz)
+{
+    MESH_FILTER_BODY(MESH_AVX2_)
+}
+/* Reads the CPU model libgcc filled in at load: a load and a test. */
+static inline int mesh_filter_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
+#else
+#define MESH_FILTER_AVX2 0
+#endif
 
 /* The same with the ray's own axes. */
 static inline int mesh_triangle_test(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,

@@ -13,7 +13,11 @@
  *   have its leaf visited. The exact test is done in __float128: the
  *   inputs are doubles, and (b - o) / d to 113 bits decides every case
  *   whose answer is not a tie within 2^-100, so the rays that touch a box
- *   are built to touch it exactly (t_enter == t_exit in the reference). */
+ *   are built to touch it exactly (t_enter == t_exit in the reference);
+ * - accel_bvh4_root_missed_on: never says a walk meets no root child when
+ *   a walk (either order, either ISA) visits a leaf, on flat trees and
+ *   rays that start beside them, a rounding away or more, and run away,
+ *   along or into them, with directions and origins around its limits. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -393,9 +397,119 @@ static void test_walk(void)
     free(visited);
 }
 
+
+static uint32_t leaves_walked; /* by count_leaf */
+
+static int count_leaf(void *user, uint32_t first, uint32_t count)
+{
+    (void)user, (void)first, (void)count;
+    leaves_walked++;
+    return ACCEL_WALK_GO_ON;
+}
+
+/* Leaves visited by every walk of the ray: nearest first and in slot
+ * order, SSE2 and (where the CPU has it) AVX2. */
+static uint32_t leaves_of_every_walk(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double tmax)
+{
+    leaves_walked = 0;
+    for (int ordered = 0; ordered < 2; ordered++) {
+        double t = tmax;
+        accel_bvh4_walk_core(bvh, ray, tmin, &t, count_leaf, NULL, ordered, 0);
+#if ACCEL_WALK_AVX2
+        t = tmax;
+        if (accel_walk_avx2_usable()) {
+            if (ordered) accel_bvh4_walk_avx2(bvh, ray, tmin, &t, count_leaf, NULL);
+            else accel_bvh4_walk_any_avx2(bvh, ray, tmin, &t, count_leaf, NULL);
+        }
+#endif
+    }
+    return leaves_walked;
+}
+
+static void test_root_missed(void)
+{
+    enum { N = 300 };
+    hr_bounds *boxes = malloc(N * sizeof *boxes);
+    const accel_bvh4_options opt = {.max_leaf = 4, .traversal_cost = 0.5};
+    long rays = 0, said_missed = 0, wrong = 0;
+    /* Planes at 0, at a double that is no float, far out, and near the
+     * ends of the range the walk culls in; trees flat on each axis, and
+     * some with thickness. */
+    const double planes[] = {0.0, 0.1, -3.3, 1e-30, -1e20, 0x1p63};
+    for (int p = 0; p < 6; p++) {
+        for (int axis = 0; axis < 3; axis++) {
+            for (int thick = 0; thick < 2; thick++) {
+                const double c = planes[p], L = fabs(c) > 1 ? fabs(c) : 1.0;
+                for (int i = 0; i < N; i++) {
+                    double lo[3], hi[3];
+                    for (int a = 0; a < 3; a++) {
+                        double m = between(-L, L), r = L * between(0.001, 0.1);
+                        lo[a] = m - r, hi[a] = m + r;
+                    }
+                    lo[axis] = hi[axis] = c;
+                    if (thick) lo[axis] -= L * between(0, 0.01), hi[axis] += L * between(0, 0.01);
+                    boxes[i] = (hr_bounds){{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+                }
+                accel_bvh4 bvh;
+                CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
+                float span_lo, span_hi;
+                accel_bvh4_root_span(&bvh, axis, &span_lo, &span_hi);
+                for (int k = 0; k < 1500; k++) {
+                    /* Start a power of two from 2^-160 to 2 (times L) off
+                     * the span's side, or on it, above or below. */
+                    const int above = k % 2;
+                    const double side = above ? span_hi : span_lo;
+                    const double off = k % 7 == 0 ? 0.0 : L * ldexp(between(1, 2), -(int)between(0, 161));
+                    double o[3] = {between(-1.5 * L, 1.5 * L), between(-1.5 * L, 1.5 * L),
+                                   between(-1.5 * L, 1.5 * L)};
+                    o[axis] = above ? side + off : side - off;
+                    hr_vec3 dv = random_dir();
+                    double d[3] = {dv.x, dv.y, dv.z};
+                    /* Mostly away from the plane; along it, into it, or
+                     * with the component around the helper's 2^-39. */
+                    d[axis] = fabs(d[axis]) * (above ? 1 : -1);
+                    const int kind = (k / 2) % 8;
+                    if (kind == 1) d[axis] = -d[axis];
+                    if (kind == 2) d[axis] = 0.0;
+                    if (kind == 3) d[axis] = (above ? 1 : -1) * ldexp(1.0, -(int)between(36, 43));
+                    if (kind == 4) d[(axis + 1) % 3] = ldexp(1.0, (int)between(37, 41));
+                    if (kind == 5) o[(axis + 2) % 3] = ldexp(1.0, (int)between(62, 66));
+                    const hr_ray ray = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
+                    const double tmin = k % 5 == 0   ? 0.0
+                                        : k % 5 == 1 ? between(0, 1e-3)
+                                        : k % 5 == 2 ? -between(0, 1)
+                                        : k % 5 == 3 ? ldexp(1.0, -(int)between(100, 160))
+                                                     : between(0, 2 * L);
+                    const double tmax = k % 3 ? INFINITY : tmin + between(0, 4 * L);
+                    const int missed = accel_bvh4_root_missed_on(&bvh, &ray, tmin, axis, span_lo, span_hi);
+                    said_missed += missed;
+                    if (missed && leaves_of_every_walk(&bvh, &ray, tmin, tmax) > 0) {
+                        if (wrong++ < 5)
+                            fprintf(stderr, "root_missed_on: wrong for o (%a, %a, %a) d (%a, %a, %a) tmin %a\n",
+                                    o[0], o[1], o[2], d[0], d[1], d[2], tmin);
+                    }
+                    rays++;
+                }
+                accel_bvh4_release(&bvh);
+            }
+        }
+    }
+    /* An empty tree: every ray misses, as the walk visits nothing. */
+    accel_bvh4 empty;
+    CHECK(accel_bvh4_build(&empty, boxes, 0, &opt) == 0);
+    const hr_ray any = {{0, 0, 0}, {0, 0, 1}};
+    CHECK(accel_bvh4_root_missed_on(&empty, &any, 0.0, 2, INFINITY, -INFINITY) == 1);
+    accel_bvh4_release(&empty);
+    fprintf(stderr, "root_missed_on: %ld rays, %ld said missed, %ld of them wrongly\n", rays, said_missed, wrong);
+    CHECK(wrong == 0);
+    CHECK(said_missed > rays / 20);
+    free(boxes);
+}
+
 int main(void)
 {
     test_build();
     test_walk();
+    test_root_missed();
     return hr_test_end();
 }

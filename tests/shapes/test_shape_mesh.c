@@ -7,7 +7,8 @@
  * self-hits from spawned rays); more hits than the host's free space;
  * meshes that defeat the SAH; closed meshes thinner than rounding; the
  * BVH against every triangle on triangle soups from 2^-70 to past float's
- * range, over intervals from -inf. */
+ * range, over intervals from -inf; the two-triangle filter in front of the
+ * triangle test against the test itself on millions of pairs. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -894,6 +895,171 @@ static void test_bvh_matches_brute_force(void)
         soup_matches_brute_force(77 + k, 1000, HR_TEST_SANITIZED ? 3000 : 30000, scales[k]);
 }
 
+
+/* mesh_triangle_pair_fails (the leaf loop's filter) against the test it
+ * stands in front of (lanes it fails, and its agreeing lanes finished by
+ * mesh_filter_finish, bit for bit), and the AVX2 filter (where the CPU has
+ * it) against it lane for lane: a lane it calls certain to fail must fail
+ * mesh_triangle_test_axes over every interval, here the widest ones. Pairs
+ * of random triangles around random rays at scales from 2^-60 to 2^60 and
+ * 1e-300 to 1e300; pairs sharing an edge that the ray runs through (aimed
+ * at a point of it, at a shared vertex exactly, or with axis-parallel rays
+ * and triangles in axis planes, where edge functions are exactly zero);
+ * degenerate triangles (collinear or repeated corners); non-finite
+ * corners. The filter must also reject most random pairs, and the test
+ * must hit some lanes the filter let through. */
+#if MESH_FILTER_AVX2
+/* The four-lane filter has to be called from AVX2 code. */
+__attribute__((target("avx2"))) static unsigned quad_fails(const mesh_ray *r, const hr_vec3 *v,
+                                                           const uint32_t *const c[4], mesh_lanes *out)
+{
+    return mesh_triangle_quad_fails(r, v, c, out, r->kx, r->ky, r->kz);
+}
+
+/* Whether lane a of x and lane b of y hold the same values, bit for bit. */
+static int same_lane(const mesh_lanes *x, int a, const mesh_lanes *y, int b)
+{
+    for (int k = 0; k < 3; k++)
+        if (!same_bits(x->x[k][a], y->x[k][b]) || !same_bits(x->y[k][a], y->y[k][b]) ||
+            !same_bits(x->z[k][a], y->z[k][b]) || !same_bits(x->e[k][a], y->e[k][b]))
+            return 0;
+    return 1;
+}
+#endif
+
+static void test_pair_filter(void)
+{
+    ray_rng rng;
+    rng_seed(&rng, 77);
+    long pairs = 0, filtered = 0, hits = 0, wrong = 0, quads_compared = 0, quads_differing = 0;
+    long agreeing = 0, finished_differing = 0;
+    const double intervals[3][2] = {{-INFINITY, INFINITY}, {-1e300, 1e300}, {0.0, INFINITY}};
+    for (int i = 0; i < 1500000; i++) {
+        const int kind = (int)(rng_next(&rng) % 8);
+        const double scale = kind == 7 ? (rng_chance(&rng, 0.5) ? 1e300 : 1e-300)
+                                       : ldexp(1.0, (int)(rng_next(&rng) % 121) - 60);
+        hr_vec3 o = {rng_uniform(&rng, -2, 2) * scale, rng_uniform(&rng, -2, 2) * scale,
+                     rng_uniform(&rng, -2, 2) * scale};
+        hr_vec3 d = rng_unit_vector(&rng);
+        if (kind == 5) { /* along an axis, or in an axis plane */
+            if (rng_chance(&rng, 0.5)) d.x = 0.0;
+            if (rng_chance(&rng, 0.5)) d.y = rng_chance(&rng, 0.5) ? 0.0 : -0.0;
+            if (d.x == 0 && d.y == 0) d.z = rng_chance(&rng, 0.5) ? 1.0 : -1.0;
+        }
+        /* Six corners: two triangles around the point the ray reaches at
+         * t = 1 (its direction at the scale). */
+        d.x *= scale, d.y *= scale, d.z *= scale;
+        const hr_vec3 at = {o.x + d.x, o.y + d.y, o.z + d.z};
+        hr_vec3 v[6];
+        for (int k = 0; k < 6; k++)
+            v[k] = (hr_vec3){at.x + rng_uniform(&rng, -1, 1) * scale, at.y + rng_uniform(&rng, -1, 1) * scale,
+                             at.z + rng_uniform(&rng, -1, 1) * scale};
+        uint32_t c[6] = {0, 1, 2, 3, 4, 5};
+        if (kind == 1 || kind == 2) { /* a shared edge 1-2, the second wound the other way */
+            c[3] = 2, c[4] = 1;
+            if (kind == 1) { /* aimed at a point of the edge */
+                const double u = rng_uniform(&rng, 0, 1);
+                const hr_vec3 e = {v[1].x + u * (v[2].x - v[1].x), v[1].y + u * (v[2].y - v[1].y),
+                                   v[1].z + u * (v[2].z - v[1].z)};
+                d = (hr_vec3){e.x - o.x, e.y - o.y, e.z - o.z};
+            } else { /* through corner 1 exactly: o = v1 - d with d a small power of two per axis */
+                d = (hr_vec3){ldexp(1.0, (int)(rng_next(&rng) % 5)) * scale,
+                              -ldexp(1.0, (int)(rng_next(&rng) % 5)) * scale, scale};
+                o = (hr_vec3){v[1].x - d.x, v[1].y - d.y, v[1].z - d.z};
+            }
+        }
+        if (kind == 3) { /* degenerate: collinear, and a repeated corner */
+            v[2] = (hr_vec3){2 * v[1].x - v[0].x, 2 * v[1].y - v[0].y, 2 * v[1].z - v[0].z};
+            c[4] = c[3];
+        }
+        if (kind == 4) { /* a non-finite corner */
+            const double bad = rng_chance(&rng, 0.5) ? NAN : rng_chance(&rng, 0.5) ? INFINITY : -INFINITY;
+            if (rng_chance(&rng, 0.5)) v[0].x = bad;
+            else v[4].z = bad;
+        }
+        if (kind == 5) { /* triangles in the axis plane through the point */
+            for (int k = 0; k < 6; k++) v[k].z = at.z;
+        }
+        if (kind == 6) { /* sharing corner 0 with the ray through it */
+            c[3] = 0;
+            o = (hr_vec3){v[0].x - d.x, v[0].y - d.y, v[0].z - d.z};
+        }
+        mesh_ray r;
+        const hr_ray ray = {o, d};
+        if (!mesh_ray_init(&r, &ray)) continue;
+        const uint32_t *const lanes[2] = {c, c + 3};
+        mesh_lanes lanes_at;
+        const unsigned fails = mesh_triangle_pair_fails(&r, v, lanes, &lanes_at, r.kx, r.ky, r.kz);
+        pairs++;
+#if MESH_FILTER_AVX2
+        /* The four-lane filter on the two triangles and again swapped:
+         * the same answer lane by lane. */
+        if (mesh_filter_avx2_usable()) {
+            const uint32_t *const four_lanes[4] = {c, c + 3, c + 3, c};
+            mesh_lanes quad_at;
+            const unsigned four = quad_fails(&r, v, four_lanes, &quad_at);
+            /* Agreeing lanes hold the pair filter's values. */
+            for (int lane = 0; lane < 4; lane++) {
+                const int from = lane == 0 || lane == 3 ? 0 : 1;
+                if (four >> (4 + lane) & 1 && fails >> (4 + from) & 1 && !same_lane(&quad_at, lane, &lanes_at, from))
+                    quads_differing++;
+            }
+            const unsigned want = (fails & 1) | (fails & 2) | (fails >> 1 & 1) << 2 | (fails & 1) << 3 |
+                                  (fails >> 4 & 3) << 4 | (fails >> 5 & 1) << 6 | (fails >> 4 & 1) << 7;
+            quads_compared++;
+            if (four != want && quads_differing++ < 5)
+                fprintf(stderr, "quad filter: kind %d: %x where the pair filter gives %x\n", kind, four, want);
+        }
+#endif
+        for (int lane = 0; lane < 2; lane++) {
+            const uint32_t *t = c + 3 * lane;
+            int hit = 0;
+            for (int k = 0; k < 3; k++) {
+                mesh_triangle_hit th;
+                hit |= mesh_triangle_test(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0], intervals[k][1], &th);
+            }
+            hits += hit;
+            if (fails >> (4 + lane) & 1) {
+                /* An agreeing lane: the rest of the test on the filter's
+                 * values, against the whole test, field by field. */
+                agreeing++;
+                for (int k = 0; k < 3; k++) {
+                    mesh_triangle_hit want_th, got_th;
+                    memset(&want_th, 0, sizeof want_th), memset(&got_th, 0, sizeof got_th);
+                    const int want_hit = mesh_triangle_test(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0],
+                                                            intervals[k][1], &want_th);
+                    const int got_hit = mesh_filter_finish(&r, &lanes_at, lane, intervals[k][0], intervals[k][1], &got_th);
+                    const int same = want_hit == got_hit &&
+                                     (!want_hit || (same_bits(want_th.t, got_th.t) &&
+                                                    same_bits(want_th.t_error, got_th.t_error) &&
+                                                    same_bits(want_th.b[0], got_th.b[0]) &&
+                                                    same_bits(want_th.b[1], got_th.b[1]) &&
+                                                    same_bits(want_th.b[2], got_th.b[2]) &&
+                                                    want_th.entering == got_th.entering));
+                    if (!same && finished_differing++ < 5)
+                        fprintf(stderr, "pair filter: kind %d lane %d: the agreeing lane's finish differs\n", kind,
+                                lane);
+                }
+            }
+            if (fails >> lane & 1) {
+                filtered++;
+                if (hit && wrong++ < 5)
+                    fprintf(stderr, "pair filter: kind %d lane %d filtered, yet the test hits\n", kind, lane);
+            }
+        }
+    }
+    fprintf(stderr, "pair filter: %ld pairs, %ld lanes filtered, %ld lanes hit, %ld wrongly filtered\n", pairs,
+            filtered, hits, wrong);
+    CHECK(wrong == 0);
+    CHECK(filtered > pairs / 2 && hits > pairs / 20);
+    fprintf(stderr, "pair filter: %ld agreeing lanes finished, %ld differing from the test\n", agreeing,
+            finished_differing);
+    CHECK(finished_differing == 0 && agreeing > pairs / 10);
+    fprintf(stderr, "quad filter: %ld compared with the pair filter, %ld differing%s\n", quads_compared,
+            quads_differing, quads_compared ? "" : " (no AVX2 here)");
+    CHECK(quads_differing == 0);
+}
+
 int main(void)
 {
     char path[1024];
@@ -903,6 +1069,7 @@ int main(void)
     test_classes();
     test_exact_signs();
     test_next_up();
+    test_pair_filter();
     test_cube_agrees();
     test_edge_sweeps();
     test_vertices();
