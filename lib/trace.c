@@ -523,7 +523,10 @@ static hr_status host_trace_child(void *call, const void *child, const hr_ray *r
 {
     if (!call || !child || !ray || !out) return HR_ERROR_INVALID_ARGUMENT;
     int32_t start = out->count;
-    hr_status st = hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
+    /* Composites ask for every hit (csg.c does but for its probes): that
+     * mode gets object_trace's copy made for it. */
+    hr_status st = mode == HR_TRACE_ALL ? object_trace(call, child, ray, tmin, tmax, HR_TRACE_ALL, 0, out)
+                                        : hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
     if (st == HR_OK) sort_tail_by_t(out, start);
     return st;
 }
