@@ -286,6 +286,23 @@ static void traverse(first_state *fs)
 static hr_intersection *host_scratch_acquire(void *call);
 static void host_scratch_release(void *call, hr_intersection *list);
 
+/* host_scratch_acquire for the scene queries, which take a list for every
+ * ray: the list at the top of the stack was set up and given its room by
+ * an earlier ray nearly always, and then taking it is a few instructions
+ * inline instead of a call that checks and reserves again. */
+static inline __attribute__((always_inline)) hr_intersection *scratch_acquire(hr_trace_ctx *tc)
+{
+    if (tc->scratch_used < tc->scratch_ready) {
+        hr_intersection *list = &tc->scratch[tc->scratch_used];
+        if (list->capacity >= 4 * HR_MIN_HIT_CAPACITY) {
+            tc->scratch_used++;
+            list->count = 0;
+            return list;
+        }
+    }
+    return host_scratch_acquire(tc);
+}
+
 static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                               hr_hit *out, hr_intersection *tmp)
 {
@@ -296,7 +313,7 @@ static int trace_nearest_into(hr_trace_ctx *tc, const hr_ray *ray, double tmin, 
 
 int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
 {
-    hr_intersection *tmp = host_scratch_acquire(tc);
+    hr_intersection *tmp = scratch_acquire(tc);
     if (!tmp) {
         tc->status = HR_ERROR_OUT_OF_MEMORY;
         return 0;
@@ -329,7 +346,7 @@ int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doub
     const hr_object **slot = &tc->occluder[(uint32_t)light % HR_OCCLUDER_SLOTS];
     hr_intersection *tmp = NULL;
     if (*slot) {
-        if (!(tmp = host_scratch_acquire(tc))) {
+        if (!(tmp = scratch_acquire(tc))) {
             tc->status = HR_ERROR_OUT_OF_MEMORY;
             return 0;
         }
@@ -344,7 +361,7 @@ int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doub
     const int walk = !box_misses(&s->bvh_box, ray, tmin, tmax);
     first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL};
     if (first < s->unbounded_count || walk) {
-        if (!tmp && !(fs.tmp = tmp = host_scratch_acquire(tc))) {
+        if (!tmp && !(fs.tmp = tmp = scratch_acquire(tc))) {
             tc->status = HR_ERROR_OUT_OF_MEMORY;
             return 0;
         }
@@ -506,7 +523,10 @@ static hr_status host_trace_child(void *call, const void *child, const hr_ray *r
 {
     if (!call || !child || !ray || !out) return HR_ERROR_INVALID_ARGUMENT;
     int32_t start = out->count;
-    hr_status st = hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
+    /* Composites ask for every hit (csg.c does but for its probes): that
+     * mode gets object_trace's copy made for it. */
+    hr_status st = mode == HR_TRACE_ALL ? object_trace(call, child, ray, tmin, tmax, HR_TRACE_ALL, 0, out)
+                                        : hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
     if (st == HR_OK) sort_tail_by_t(out, start);
     return st;
 }
