@@ -1,6 +1,7 @@
 /* Tracing a mesh: accel/'s walk of the 4-wide BVH, nearest box first (a
- * conservative float test: it never skips a box the ray meets), with the
- * three modes of the shape ABI:
+ * conservative float test: it never skips a box the ray meets; an any-hit
+ * search takes the boxes in any order), with the three modes of the
+ * shape ABI:
  * - first hit: the best t so far prunes every box beyond it;
  * - any hit: stops at the first triangle hit (shadow rays);
  * - all hits: every triangle hit, sorted by t (CSG).
@@ -272,6 +273,7 @@ typedef struct query {
     int32_t mode;
     int tie_check, whole_line;
     int closed_any;  /* a closed mesh's any-hit search (closed_any_blocks) */
+    int any_order;   /* an any-hit search from tmin >= 0: leaves in any order (walk_any_order) */
     int needs_first; /* it met a hit it cannot decide on: ask the first-hit search */
     double tie_error;
     double tmin, tmax; /* the interval boxes are tested over */
@@ -296,11 +298,14 @@ typedef struct query {
  * answer a closed mesh's any-hit must give, see mesh_trace) reports a hit,
  * and it does when the mesh has round faces, and X lies clearly inside its
  * triangle and further than `reach` past tmin.
- * - The first-hit search finds a hit. Its walk is the any-hit walk's (the
- *   same ray and interval, the same candidates: the triangle test over
- *   (-inf, tmax) and then the caller's tmin with the test's own
- *   expressions) until its first candidate, X, which it takes as its best.
- *   With no near tie, its best is its answer.
+ * - The first-hit search finds a hit. It has the any-hit search's
+ *   candidates (the same ray and interval, the same test: the triangle
+ *   test over (-inf, tmax) and then the caller's tmin with the test's own
+ *   expressions), X among them, whatever order either walk takes the
+ *   leaves in (the any-hit search's: any, walk_any_order). It passes over
+ *   a candidate only past a best it has taken, which lies in the caller's
+ *   interval; so it ends with a best, X or one before X. With no near tie,
+ *   its best is its answer.
  * - With a near tie it answers the first hit of the all-hits list. That
  *   list holds X (its walk of t >= 0 reaches X's leaf, accel's walk being
  *   conservative as every mode assumes, and the test does the same
@@ -501,6 +506,24 @@ __attribute__((target("avx2"))) static int leaf_of_avx2(void *user, uint32_t fir
 #endif
 #undef LEAF_LOOPS
 
+/* An any-hit search from tmin >= 0. An open mesh's any hit is any
+ * triangle hit in the interval, which every order of the leaves finds, and
+ * a closed mesh's (closed_any) is whether the first-hit search finds a
+ * hit, which does not depend on the order either (closed_any_blocks): the
+ * walk that skips sorting children. Measured (callgrind, 200x200, the
+ * mesh's any hits): mount's terrain 38.2 M instructions -> 34.0 M, gears'
+ * closed meshes 459 M -> 437 M. Out of line: inlined in walk, the second
+ * walk cost the other queries' frame some 6 instructions each. */
+static __attribute__((noinline)) void walk_any_order(query *q)
+{
+    int (*leaf_of_cpu)(void *user, uint32_t first, uint32_t count) = leaf_of;
+#if MESH_FILTER_AVX2
+    if (mesh_filter_avx2_usable()) leaf_of_cpu = leaf_of_avx2;
+#endif
+    if (isnan(q->tmax)) return;
+    accel_bvh4_walk_any(&q->m->bvh, &q->args->ray, q->tmin, &q->tmax, leaf_of_cpu, q);
+}
+
 /* Every leaf whose box the ray may meet over the query's interval, which
  * the leaves narrow as they find hits. An interval from 0 or later is one
  * walk. One that starts before 0 (the whole line of a closed mesh's
@@ -513,6 +536,10 @@ __attribute__((target("avx2"))) static int leaf_of_avx2(void *user, uint32_t fir
  * triangle test. */
 static void walk(query *q)
 {
+    if (q->any_order) {
+        walk_any_order(q);
+        return;
+    }
     int (*leaf_of_cpu)(void *user, uint32_t first, uint32_t count) = leaf_of;
 #if MESH_FILTER_AVX2
     if (mesh_filter_avx2_usable()) leaf_of_cpu = leaf_of_avx2;
@@ -582,6 +609,9 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.closed_any = mode == HR_TRACE_ANY && m->round_faces && args->tmin >= 0.0;
     if (mode == HR_TRACE_ANY && m->closed && !q.closed_any) mode = HR_TRACE_FIRST;
     q.mode = mode;
+    /* An any-hit search still (an open mesh's, or closed_any) takes the
+     * leaves in any order (walk_any_order). */
+    q.any_order = mode == HR_TRACE_ANY && args->tmin >= 0.0;
     /* A closed mesh's first hit must be the first of its all-hits list,
      * which alternate_closed may have reordered where an entering and an
      * exiting crossing lie within rounding of each other (a ray through a
