@@ -226,6 +226,9 @@ static int log_leaf(void *user, uint32_t first, uint32_t count)
 }
 
 static long walks_compared, walks_differing;
+/* Walks compared by the octant of their direction (sign bits, a zero's
+ * included): the nearest-first AVX2 walk is one copy per octant. */
+static long walks_by_octant[8];
 
 /* The AVX2 walk must visit the same leaves in the same order as the SSE2
  * one (accel_bvh4_walk_core), both orders, where the CPU has AVX2. */
@@ -247,6 +250,7 @@ static void compare_isas(const accel_bvh4 *bvh, const hr_bounds *boxes, const hr
         for (uint32_t i = 0; same && i < kept; i++) same = a.first[i] == b.first[i] && a.count[i] == b.count[i];
         walks_compared++;
         walks_differing += !same;
+        walks_by_octant[accel_octant(&ray->dir)] += ordered;
     }
 #else
     (void)bvh, (void)boxes, (void)ray, (void)tmin, (void)tmax;
@@ -393,9 +397,62 @@ static void test_walk(void)
     free(visited);
 }
 
+/* Every octant of directions, with each component negative, positive, -0
+ * or +0 (a zero's sign picks its planes as a non-zero's does, and so the
+ * copy of the AVX2 walk): conservative, and the AVX2 walk the SSE2 one's
+ * leaves in the same order. */
+static void test_walk_octants(void)
+{
+    enum { N = 1500 };
+    hr_bounds *boxes = malloc(N * sizeof *boxes);
+    char *visited = malloc(N);
+    const accel_bvh4_options opt = {.max_leaf = 2, .traversal_cost = 0.5};
+    accel_bvh4 bvh;
+    for (int i = 0; i < N; i++) {
+        double cx = between(-1, 1), cy = between(-1, 1), cz = between(-1, 1), r = between(1e-3, 0.1);
+        boxes[i] = (hr_bounds){{cx - r, cy - r, cz - r}, {cx + r, cy + r, cz + r}};
+    }
+    CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
+    long missed = 0, before[8], compared = walks_compared, differing = walks_differing;
+    memcpy(before, walks_by_octant, sizeof before);
+    for (int k = 0; k < 4 * 4 * 4 * 40; k++) {
+        /* Per axis: 0 negative, 1 positive, 2 -0, 3 +0 (never all zero). */
+        const int kind[3] = {k % 4, k / 4 % 4, k / 16 % 4};
+        if (kind[0] >= 2 && kind[1] >= 2 && kind[2] >= 2) continue;
+        const hr_bounds *aim = &boxes[(k * 7919) % N];
+        double o[3] = {between(-1.5, 1.5), between(-1.5, 1.5), between(-1.5, 1.5)}, d[3];
+        const double lo[3] = {aim->lo.x, aim->lo.y, aim->lo.z}, hi[3] = {aim->hi.x, aim->hi.y, aim->hi.z};
+        for (int a = 0; a < 3; a++) {
+            double m = between(0.05, 1);
+            d[a] = kind[a] == 0 ? -m : kind[a] == 1 ? m : kind[a] == 2 ? -0.0 : 0.0;
+            /* A zero component: the origin within the aimed box's slab on
+             * that axis, so the ray still meets boxes. */
+            if (kind[a] >= 2) o[a] = between(lo[a], hi[a]);
+        }
+        hr_ray ray = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
+        double tmin = k % 3 == 0 ? 0.0 : k % 3 == 1 ? between(0, 0.5) : -between(0, 2);
+        double tmax = k % 2 ? INFINITY : between(0.5, 4);
+        missed += missed_boxes(&bvh, boxes, N, &ray, tmin, tmax, visited);
+    }
+    accel_bvh4_release(&bvh);
+    CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
+#if ACCEL_WALK_AVX2
+    if (accel_walk_avx2_usable()) {
+        for (int o = 0; o < 8; o++) {
+            fprintf(stderr, "walk: octant %d: %ld nearest-first walks compared\n", o, walks_by_octant[o] - before[o]);
+            CHECK(walks_by_octant[o] - before[o] >= 250); /* 7 sign patterns, 40 rays each */
+        }
+        CHECK(walks_compared > compared && walks_differing == differing);
+    }
+#endif
+    free(boxes);
+    free(visited);
+}
+
 int main(void)
 {
     test_build();
     test_walk();
+    test_walk_octants();
     return hr_test_end();
 }
