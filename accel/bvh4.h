@@ -536,17 +536,33 @@ static int accel_bvh4_walk_every(const accel_bvh4 *bvh,
     }
 }
 
+typedef int (*accel_walk_fn)(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                             int (*leaf)(void *user, uint32_t first, uint32_t count), void *user);
+
 /* The walk of accel_bvh4_walk (ordered: nearest entry first, the earlier
  * slot on a tie) and of accel_bvh4_walk_any (children in slot order), with
  * the node test flipped or not (accel_bvh4_test_as). */
 ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
                                                double *tmax,
                                                int (*leaf)(void *user, uint32_t first, uint32_t count),
-                                               void *user, int ordered, int flipped, int octant)
+                                               void *user, int ordered, int flipped, int octant,
+                                               accel_walk_fn uncommon)
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
+#if defined(__SSE2__)
+    /* uncommon (a constant): the walk for any ray accel_ray4_init_common_as
+     * does not take, so that this one knows t_offset 0, t_scale 1 and cull
+     * 1 as constants (fewer values live, less to work out per ray). */
+    if (uncommon) {
+        if (!accel_ray4_init_common_as(&r, ray, tmin, flipped)) return uncommon(bvh, ray, tmin, tmax, leaf, user);
+    } else {
+        accel_ray4_init_as(&r, ray, tmin, flipped);
+    }
+#else
+    (void)uncommon;
     accel_ray4_init_as(&r, ray, tmin, flipped);
+#endif
     if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init_as */
     if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
@@ -626,7 +642,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
                                              int (*leaf)(void *user, uint32_t first, uint32_t count),
                                              void *user, int ordered, int flipped)
 {
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, ordered, flipped, -1);
+    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, ordered, flipped, -1, NULL);
 }
 
 /* The same walks compiled for AVX2 CPUs, chosen at run time (the build
@@ -638,19 +654,38 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
  * (accel_bvh4_test_as); test_bvh4 compares the two leaf by leaf. */
 #if defined(__SSE2__) && defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define ACCEL_WALK_AVX2 1
+/* The SSE2 walks out of line as well: choosing between the two is then a
+ * test and a tail call, with no stack frame of its own to set up on every
+ * walk (inlined, the SSE2 walk's frame was built before the test). */
+__attribute__((noinline, unused)) static int
+accel_bvh4_walk_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                     int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 1, 0);
+}
+__attribute__((noinline, unused)) static int
+accel_bvh4_walk_any_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 0);
+}
 /* The nearest-first walk, the first-hit query's, once for each octant of
  * directions, its plane offsets constants: six offsets kept in registers
  * across the walk left too few for the rest, and four were reloaded from
  * the stack on every node. The octant is the
  * direction's sign bits, as accel_ray4_init_as reads them for near_at and
  * far_at: whenever the walk culls, the direction is finite and its scaling
- * is by a positive power of two, which keeps every sign (a zero's too). */
+ * is by a positive power of two, which keeps every sign (a zero's too).
+ * Each copy takes only the common ray (accel_ray4_init_common_as) and
+ * hands any other to the SSE2 walk, which visits the same leaves in the
+ * same order: it is rare, and the copies then keep fewer values live. */
 #define ACCEL_WALK_AVX2_OCTANT(o)                                                                 \
     __attribute__((target("avx2"), noinline, unused)) static int accel_bvh4_walk_avx2_##o(          \
         const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,                       \
         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)                       \
     {                                                                                              \
-        return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 1, o);                  \
+        return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 1, o,                   \
+                                      accel_bvh4_walk_sse2);                                       \
     }
 ACCEL_WALK_AVX2_OCTANT(0)
 ACCEL_WALK_AVX2_OCTANT(1)
@@ -661,11 +696,11 @@ ACCEL_WALK_AVX2_OCTANT(5)
 ACCEL_WALK_AVX2_OCTANT(6)
 ACCEL_WALK_AVX2_OCTANT(7)
 #undef ACCEL_WALK_AVX2_OCTANT
-/* The octant of a direction: bit a set where component a's sign bit is. */
+/* The octant of a direction: bit a set where component a's sign bit is
+ * (two sign-bit reads; the z lane's load leaves its upper lane +0). */
 static inline unsigned accel_octant(const hr_vec3 *d)
 {
-    return (unsigned)(signbit(d->x) != 0) | (unsigned)(signbit(d->y) != 0) << 1 |
-           (unsigned)(signbit(d->z) != 0) << 2;
+    return (unsigned)_mm_movemask_pd(_mm_loadu_pd(&d->x)) | (unsigned)_mm_movemask_pd(_mm_load_sd(&d->z)) << 2;
 }
 static inline int accel_bvh4_walk_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
                                        double *tmax,
@@ -690,21 +725,6 @@ accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
                          int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
 {
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
-}
-/* The SSE2 walks out of line as well: choosing between the two is then a
- * test and a tail call, with no stack frame of its own to set up on every
- * walk (inlined, the SSE2 walk's frame was built before the test). */
-__attribute__((noinline, unused)) static int
-accel_bvh4_walk_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                     int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
-{
-    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 1, 0);
-}
-__attribute__((noinline, unused)) static int
-accel_bvh4_walk_any_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
-{
-    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 0);
 }
 /* Reads the CPU model libgcc filled in at load: a load and a test. */
 static inline int accel_walk_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
