@@ -598,6 +598,46 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
             stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
             stack_entry[top++] = entry[c];
         } else if (mask) {
+#if defined(__SSE2__)
+            /* Three or four: stack all but the nearest, farthest first, in
+             * the order of a stable sort by entry (slot order on a tie), as
+             * the insertion sort below gives it. Each child's place is its
+             * rank: the children met that enter before it, or at the same
+             * entry from an earlier slot (entries of children met are
+             * never NaN, tmin being finite: accel_bvh4_test_at), counted
+             * for the four lanes at once against the entries rotated by
+             * one, two and three slots; a child not met enters at +inf
+             * and so counts for none. Rank r goes to top + hits - 1 - r;
+             * rank 0, the nearest, to the slot above the new top, which
+             * is scratch (the stack has 4 slots beyond the 3 a level). */
+            const uint32_t met = mask | 1u << k, hits = (uint32_t)__builtin_popcount(met);
+            const __m128i slot_bits = _mm_setr_epi32(1, 2, 4, 8);
+            const __m128 is_met = _mm_castsi128_ps(
+                _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)met), slot_bits), slot_bits));
+            const __m128 e = _mm_or_ps(_mm_and_ps(is_met, _mm_loadu_ps(entry)),
+                                       _mm_andnot_ps(is_met, _mm_set1_ps(INFINITY)));
+            /* Lane c of a rotation by s holds slot (c + s) % 4, an earlier
+             * slot exactly in lanes c >= 4 - s. */
+#define ACCEL_BEFORE(rot, earlier)                                                                  \
+    _mm_castps_si128(_mm_or_ps(_mm_cmplt_ps(rot, e),                                                \
+                               _mm_and_ps(_mm_cmpeq_ps(rot, e), _mm_castsi128_ps(earlier))))
+            __m128i rank = ACCEL_BEFORE(_mm_shuffle_ps(e, e, _MM_SHUFFLE(0, 3, 2, 1)), _mm_setr_epi32(0, 0, 0, -1));
+            rank = _mm_add_epi32(rank, ACCEL_BEFORE(_mm_shuffle_ps(e, e, _MM_SHUFFLE(1, 0, 3, 2)),
+                                                    _mm_setr_epi32(0, 0, -1, -1)));
+            rank = _mm_add_epi32(rank, ACCEL_BEFORE(_mm_shuffle_ps(e, e, _MM_SHUFFLE(2, 1, 0, 3)),
+                                                    _mm_setr_epi32(0, -1, -1, -1)));
+#undef ACCEL_BEFORE
+            int32_t minus_rank[4]; /* each lane counted -1 per child before it */
+            _mm_storeu_si128((__m128i *)(void *)minus_rank, rank);
+            const uint32_t last = top + hits - 1;
+            for (unsigned rest = met; rest; rest &= rest - 1) {
+                const uint32_t c = (uint32_t)__builtin_ctz(rest), at = last + (uint32_t)minus_rank[c];
+                stack_ref[at] = n->ref[c], stack_count[at] = n->count[c];
+                stack_entry[at] = entry[c];
+                k = minus_rank[c] ? k : c;
+            }
+            top = last;
+#else
             /* Three or four: stack all but the nearest, farthest first (an
              * insertion sort, by entry, stable: slot order on a tie). */
             uint32_t kid[4], hits = 1;
@@ -614,6 +654,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
                 stack_entry[top++] = at[j];
             }
             k = kid[0];
+#endif
         }
         ref = n->ref[k], count = n->count[k];
         if (count == 0) {
