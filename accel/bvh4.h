@@ -418,9 +418,20 @@ static inline accel_f4 accel_f4_set(float x) { return x; }
  * below erase (-0 - 2^-149 and +0 - 2^-149 are both -2^-149): the same
  * mask and entries, bit for bit. With AVX's three-operand form it reads
  * the box straight from memory, a load and a copy fewer per slab. */
-ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_as(const accel_ray4 *r, const accel_bvh4_node *n,
+/* The byte offset of axis a's near (far: !near) plane in a node for a ray
+ * whose direction's sign bits are `octant` (bit a: component a negative),
+ * as accel_ray4_init_as sets near_at and far_at. */
+#define ACCEL_PLANE_AT(octant, a, near)                                                  \
+    ((((octant) >> (a) & 1) == !(near) ? offsetof(accel_bvh4_node, lo)                   \
+                                       : offsetof(accel_bvh4_node, hi)) +                \
+     (size_t)(a) * 4 * sizeof(float))
+
+/* octant: -1, the planes as r->near_at and r->far_at give them; 0 .. 7 (a
+ * constant, which must be the ray's: accel_bvh4_walk_avx2), the same
+ * offsets as constants, so that a walk keeps none of them in registers. */
+ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_at(const accel_ray4 *r, const accel_bvh4_node *n,
                                                 accel_f4 tmin, accel_f4 tmax, float entry[4],
-                                                int flipped)
+                                                int flipped, int octant)
 {
     const char *base = (const char *)n;
 #if defined(__SSE2__)
@@ -428,10 +439,12 @@ ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_as(const accel_ray4 *r, const accel
     /* Written out axis by axis (a loop kept its counter and reloaded the
      * offsets every node). max(x, acc) is x > acc ? x : acc: a NaN x leaves
      * acc as it was. */
+#define ACCEL_NEAR_AT(a) (octant < 0 ? r->near_at[a] : ACCEL_PLANE_AT(octant, a, 1))
+#define ACCEL_FAR_AT(a) (octant < 0 ? r->far_at[a] : ACCEL_PLANE_AT(octant, a, 0))
 #define ACCEL_SLAB(a)                                                                   \
     do {                                                                                \
-        const __m128 bn_ = _mm_loadu_ps((const float *)(const void *)(base + r->near_at[a])); \
-        const __m128 bf_ = _mm_loadu_ps((const float *)(const void *)(base + r->far_at[a]));  \
+        const __m128 bn_ = _mm_loadu_ps((const float *)(const void *)(base + ACCEL_NEAR_AT(a))); \
+        const __m128 bf_ = _mm_loadu_ps((const float *)(const void *)(base + ACCEL_FAR_AT(a)));  \
         const __m128 dn_ = flipped ? _mm_sub_ps(r->o_near[a], bn_) : _mm_sub_ps(bn_, r->o_near[a]); \
         const __m128 df_ = flipped ? _mm_sub_ps(r->o_far[a], bf_) : _mm_sub_ps(bf_, r->o_far[a]);   \
         lo = _mm_max_ps(_mm_mul_ps(dn_, r->inv_near[a]), lo);                            \
@@ -441,6 +454,8 @@ ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_as(const accel_ray4 *r, const accel
     ACCEL_SLAB(1);
     ACCEL_SLAB(2);
 #undef ACCEL_SLAB
+#undef ACCEL_NEAR_AT
+#undef ACCEL_FAR_AT
     const __m128 tiny = _mm_set1_ps(ACCEL_TINY);
     lo = _mm_sub_ps(lo, tiny);
     hi = _mm_add_ps(hi, tiny);
@@ -463,9 +478,15 @@ ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_as(const accel_ray4 *r, const accel
         entry[k] = lo;
         if (lo <= hi) mask |= 1u << k;
     }
-    (void)flipped; /* the lane-by-lane form has no use for it */
+    (void)flipped, (void)octant; /* the lane-by-lane form has no use for them */
     return mask;
 #endif
+}
+ACCEL_ALWAYS_INLINE unsigned accel_bvh4_test_as(const accel_ray4 *r, const accel_bvh4_node *n,
+                                                accel_f4 tmin, accel_f4 tmax, float entry[4],
+                                                int flipped)
+{
+    return accel_bvh4_test_at(r, n, tmin, tmax, entry, flipped, -1);
 }
 static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_node *n,
                                        accel_f4 tmin, accel_f4 tmax, float entry[4])
@@ -515,17 +536,33 @@ static int accel_bvh4_walk_every(const accel_bvh4 *bvh,
     }
 }
 
+typedef int (*accel_walk_fn)(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                             int (*leaf)(void *user, uint32_t first, uint32_t count), void *user);
+
 /* The walk of accel_bvh4_walk (ordered: nearest entry first, the earlier
  * slot on a tie) and of accel_bvh4_walk_any (children in slot order), with
  * the node test flipped or not (accel_bvh4_test_as). */
-ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
-                                             double *tmax,
-                                             int (*leaf)(void *user, uint32_t first, uint32_t count),
-                                             void *user, int ordered, int flipped)
+ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                               double *tmax,
+                                               int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                               void *user, int ordered, int flipped, int octant,
+                                               accel_walk_fn uncommon)
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
     accel_ray4 r;
+#if defined(__SSE2__)
+    /* uncommon (a constant): the walk for any ray accel_ray4_init_common_as
+     * does not take, so that this one knows t_offset 0, t_scale 1 and cull
+     * 1 as constants (fewer values live, less to work out per ray). */
+    if (uncommon) {
+        if (!accel_ray4_init_common_as(&r, ray, tmin, flipped)) return uncommon(bvh, ray, tmin, tmax, leaf, user);
+    } else {
+        accel_ray4_init_as(&r, ray, tmin, flipped);
+    }
+#else
+    (void)uncommon;
     accel_ray4_init_as(&r, ray, tmin, flipped);
+#endif
     if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init_as */
     if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
@@ -539,7 +576,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
     uint32_t ref, count;
     for (;;) {
         float entry[4];
-        unsigned mask = accel_bvh4_test_as(&r, n, tmin4, tmax4, entry, flipped);
+        unsigned mask = accel_bvh4_test_at(&r, n, tmin4, tmax4, entry, flipped, octant);
         if (!mask) goto next;
         uint32_t k = (uint32_t)__builtin_ctz(mask);
         mask &= mask - 1;
@@ -561,6 +598,46 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
             stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
             stack_entry[top++] = entry[c];
         } else if (mask) {
+#if defined(__SSE2__)
+            /* Three or four: stack all but the nearest, farthest first, in
+             * the order of a stable sort by entry (slot order on a tie), as
+             * the insertion sort below gives it. Each child's place is its
+             * rank: the children met that enter before it, or at the same
+             * entry from an earlier slot (entries of children met are
+             * never NaN, tmin being finite: accel_bvh4_test_at), counted
+             * for the four lanes at once against the entries rotated by
+             * one, two and three slots; a child not met enters at +inf
+             * and so counts for none. Rank r goes to top + hits - 1 - r;
+             * rank 0, the nearest, to the slot above the new top, which
+             * is scratch (the stack has 4 slots beyond the 3 a level). */
+            const uint32_t met = mask | 1u << k, hits = (uint32_t)__builtin_popcount(met);
+            const __m128i slot_bits = _mm_setr_epi32(1, 2, 4, 8);
+            const __m128 is_met = _mm_castsi128_ps(
+                _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32((int)met), slot_bits), slot_bits));
+            const __m128 e = _mm_or_ps(_mm_and_ps(is_met, _mm_loadu_ps(entry)),
+                                       _mm_andnot_ps(is_met, _mm_set1_ps(INFINITY)));
+            /* Lane c of a rotation by s holds slot (c + s) % 4, an earlier
+             * slot exactly in lanes c >= 4 - s. */
+#define ACCEL_BEFORE(rot, earlier)                                                                  \
+    _mm_castps_si128(_mm_or_ps(_mm_cmplt_ps(rot, e),                                                \
+                               _mm_and_ps(_mm_cmpeq_ps(rot, e), _mm_castsi128_ps(earlier))))
+            __m128i rank = ACCEL_BEFORE(_mm_shuffle_ps(e, e, _MM_SHUFFLE(0, 3, 2, 1)), _mm_setr_epi32(0, 0, 0, -1));
+            rank = _mm_add_epi32(rank, ACCEL_BEFORE(_mm_shuffle_ps(e, e, _MM_SHUFFLE(1, 0, 3, 2)),
+                                                    _mm_setr_epi32(0, 0, -1, -1)));
+            rank = _mm_add_epi32(rank, ACCEL_BEFORE(_mm_shuffle_ps(e, e, _MM_SHUFFLE(2, 1, 0, 3)),
+                                                    _mm_setr_epi32(0, -1, -1, -1)));
+#undef ACCEL_BEFORE
+            int32_t minus_rank[4]; /* each lane counted -1 per child before it */
+            _mm_storeu_si128((__m128i *)(void *)minus_rank, rank);
+            const uint32_t last = top + hits - 1;
+            for (unsigned rest = met; rest; rest &= rest - 1) {
+                const uint32_t c = (uint32_t)__builtin_ctz(rest), at = last + (uint32_t)minus_rank[c];
+                stack_ref[at] = n->ref[c], stack_count[at] = n->count[c];
+                stack_entry[at] = entry[c];
+                k = minus_rank[c] ? k : c;
+            }
+            top = last;
+#else
             /* Three or four: stack all but the nearest, farthest first (an
              * insertion sort, by entry, stable: slot order on a tie). */
             uint32_t kid[4], hits = 1;
@@ -577,6 +654,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
                 stack_entry[top++] = at[j];
             }
             k = kid[0];
+#endif
         }
         ref = n->ref[k], count = n->count[k];
         if (count == 0) {
@@ -600,6 +678,14 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
     }
 }
 
+ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                             double *tmax,
+                                             int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                             void *user, int ordered, int flipped)
+{
+    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, ordered, flipped, -1, NULL);
+}
+
 /* The same walks compiled for AVX2 CPUs, chosen at run time (the build
  * stays baseline x86-64): the node test flipped, so that each slab reads
  * its box as a memory operand of a three-operand subtract. No FMA: a fused
@@ -609,18 +695,6 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
  * (accel_bvh4_test_as); test_bvh4 compares the two leaf by leaf. */
 #if defined(__SSE2__) && defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define ACCEL_WALK_AVX2 1
-__attribute__((target("avx2"))) static inline int
-accel_bvh4_walk_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                     int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
-{
-    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 1, 1);
-}
-__attribute__((target("avx2"))) static inline int
-accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
-{
-    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
-}
 /* The SSE2 walks out of line as well: choosing between the two is then a
  * test and a tail call, with no stack frame of its own to set up on every
  * walk (inlined, the SSE2 walk's frame was built before the test). */
@@ -635,6 +709,63 @@ accel_bvh4_walk_any_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
                          int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
 {
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 0);
+}
+/* The nearest-first walk, the first-hit query's, once for each octant of
+ * directions, its plane offsets constants: six offsets kept in registers
+ * across the walk left too few for the rest, and four were reloaded from
+ * the stack on every node. The octant is the
+ * direction's sign bits, as accel_ray4_init_as reads them for near_at and
+ * far_at: whenever the walk culls, the direction is finite and its scaling
+ * is by a positive power of two, which keeps every sign (a zero's too).
+ * Each copy takes only the common ray (accel_ray4_init_common_as) and
+ * hands any other to the SSE2 walk, which visits the same leaves in the
+ * same order: it is rare, and the copies then keep fewer values live. */
+#define ACCEL_WALK_AVX2_OCTANT(o)                                                                 \
+    __attribute__((target("avx2"), noinline, unused)) static int accel_bvh4_walk_avx2_##o(          \
+        const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,                       \
+        int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)                       \
+    {                                                                                              \
+        return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 1, o,                   \
+                                      accel_bvh4_walk_sse2);                                       \
+    }
+ACCEL_WALK_AVX2_OCTANT(0)
+ACCEL_WALK_AVX2_OCTANT(1)
+ACCEL_WALK_AVX2_OCTANT(2)
+ACCEL_WALK_AVX2_OCTANT(3)
+ACCEL_WALK_AVX2_OCTANT(4)
+ACCEL_WALK_AVX2_OCTANT(5)
+ACCEL_WALK_AVX2_OCTANT(6)
+ACCEL_WALK_AVX2_OCTANT(7)
+#undef ACCEL_WALK_AVX2_OCTANT
+/* The octant of a direction: bit a set where component a's sign bit is
+ * (two sign-bit reads; the z lane's load leaves its upper lane +0). */
+static inline unsigned accel_octant(const hr_vec3 *d)
+{
+    return (unsigned)_mm_movemask_pd(_mm_loadu_pd(&d->x)) | (unsigned)_mm_movemask_pd(_mm_load_sd(&d->z)) << 2;
+}
+static inline int accel_bvh4_walk_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin,
+                                       double *tmax,
+                                       int (*leaf)(void *user, uint32_t first, uint32_t count),
+                                       void *user)
+{
+    /* Direct calls, not a table: each copy is then specialised to its one
+     * caller's callback (inlined into it), as the single walk was. */
+    switch (accel_octant(&ray->dir)) {
+    case 0: return accel_bvh4_walk_avx2_0(bvh, ray, tmin, tmax, leaf, user);
+    case 1: return accel_bvh4_walk_avx2_1(bvh, ray, tmin, tmax, leaf, user);
+    case 2: return accel_bvh4_walk_avx2_2(bvh, ray, tmin, tmax, leaf, user);
+    case 3: return accel_bvh4_walk_avx2_3(bvh, ray, tmin, tmax, leaf, user);
+    case 4: return accel_bvh4_walk_avx2_4(bvh, ray, tmin, tmax, leaf, user);
+    case 5: return accel_bvh4_walk_avx2_5(bvh, ray, tmin, tmax, leaf, user);
+    case 6: return accel_bvh4_walk_avx2_6(bvh, ray, tmin, tmax, leaf, user);
+    default: return accel_bvh4_walk_avx2_7(bvh, ray, tmin, tmax, leaf, user);
+    }
+}
+__attribute__((target("avx2"))) static inline int
+accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
 }
 /* Reads the CPU model libgcc filled in at load: a load and a test. */
 static inline int accel_walk_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }

@@ -229,7 +229,89 @@ static int log_leaf(void *user, uint32_t first, uint32_t count)
     return ACCEL_WALK_GO_ON;
 }
 
+/* The nearest-first order, written plainly: the node test, the children
+ * met sorted by entry with an insertion sort (stable: slot order on a
+ * tie), stacked farthest first so the nearest is visited next; *tmax read
+ * back after every leaf. The walk must visit the same leaves in the same
+ * order (it ranks three or four children in lanes instead). Rays the walk
+ * does not cull take its own every-leaf walk. */
+static void reference_walk(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
+                           leaf_log *log)
+{
+    accel_ray4 r;
+    accel_ray4_init_as(&r, ray, tmin, 0);
+    if (!bvh->nodes || !r.cull || !(bvh->extent <= ACCEL_CULL_RANGE)) {
+        accel_bvh4_walk_core(bvh, ray, tmin, tmax, log_leaf, log, 1, 0);
+        return;
+    }
+    const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
+    float tmax_f = accel_ray4_tmax(&r, *tmax);
+    static uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
+    static float stack_entry[ACCEL_BVH4_STACK];
+    uint32_t top = 1;
+    stack_ref[0] = 0, stack_count[0] = 0, stack_entry[0] = -INFINITY; /* the root */
+    while (top > 0) {
+        --top;
+        if (stack_entry[top] > tmax_f) continue;
+        const uint32_t ref = stack_ref[top], count = stack_count[top];
+        if (count > 0) {
+            log_leaf(log, ref, count);
+            tmax_f = accel_ray4_tmax(&r, *tmax);
+            continue;
+        }
+        const accel_bvh4_node *n = &bvh->nodes[ref];
+        float entry[4];
+        unsigned mask = accel_bvh4_test(&r, n, tmin4, accel_f4_set(tmax_f), entry);
+        uint32_t kid[4], hits = 0;
+        for (uint32_t c = 0; c < 4; c++) {
+            if (!(mask >> c & 1)) continue;
+            uint32_t j = hits++;
+            while (j > 0 && entry[kid[j - 1]] > entry[c]) kid[j] = kid[j - 1], j--;
+            kid[j] = c;
+        }
+        for (uint32_t j = hits; j-- > 0;) {
+            stack_ref[top] = n->ref[kid[j]], stack_count[top] = n->count[kid[j]];
+            stack_entry[top++] = entry[kid[j]];
+        }
+    }
+}
+
+static long walks_ordered, walks_out_of_order;
+
+/* The nearest-first walks (SSE2, and AVX2 where the CPU has it) against
+ * reference_walk, leaf by leaf. */
+static void compare_order(const accel_bvh4 *bvh, const hr_bounds *boxes, const hr_ray *ray, double tmin,
+                          double tmax)
+{
+    static leaf_log want, got;
+    for (int isa = 0; isa < 2; isa++) {
+        double tw = tmax, tg = tmax;
+        want = (leaf_log){boxes, bvh, ray, tmin, &tw, {0}, {0}, 0};
+        got = (leaf_log){boxes, bvh, ray, tmin, &tg, {0}, {0}, 0};
+        reference_walk(bvh, ray, tmin, &tw, &want);
+        if (isa == 0) {
+            accel_bvh4_walk_core(bvh, ray, tmin, &tg, log_leaf, &got, 1, 0);
+        } else {
+#if ACCEL_WALK_AVX2
+            if (!accel_walk_avx2_usable()) return;
+            accel_bvh4_walk_avx2(bvh, ray, tmin, &tg, log_leaf, &got);
+#else
+            return;
+#endif
+        }
+        int same = want.n == got.n && memcmp(&tw, &tg, sizeof tw) == 0;
+        uint32_t kept = want.n < 4096 ? want.n : 4096;
+        for (uint32_t i = 0; same && i < kept; i++)
+            same = want.first[i] == got.first[i] && want.count[i] == got.count[i];
+        walks_ordered++;
+        walks_out_of_order += !same;
+    }
+}
+
 static long walks_compared, walks_differing;
+/* Walks compared by the octant of their direction (sign bits, a zero's
+ * included): the nearest-first AVX2 walk is one copy per octant. */
+static long walks_by_octant[8];
 
 /* The AVX2 walk must visit the same leaves in the same order as the SSE2
  * one (accel_bvh4_walk_core), both orders, where the CPU has AVX2. */
@@ -251,6 +333,7 @@ static void compare_isas(const accel_bvh4 *bvh, const hr_bounds *boxes, const hr
         for (uint32_t i = 0; same && i < kept; i++) same = a.first[i] == b.first[i] && a.count[i] == b.count[i];
         walks_compared++;
         walks_differing += !same;
+        walks_by_octant[accel_octant(&ray->dir)] += ordered;
     }
 #else
     (void)bvh, (void)boxes, (void)ray, (void)tmin, (void)tmax;
@@ -263,6 +346,7 @@ static long missed_boxes(const accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t
                          double tmin, double tmax, char *visited)
 {
     compare_isas(bvh, boxes, ray, tmin, tmax);
+    compare_order(bvh, boxes, ray, tmin, tmax);
     char *meets = malloc(n ? n : 1);
     if (!meets) return 1;
     for (uint32_t i = 0; i < n; i++) met_total += meets[i] = (char)quad_meets(ray, &boxes[i], tmin, tmax);
@@ -382,6 +466,9 @@ static void test_walk(void)
         accel_bvh4_release(&bvh);
     }
     fprintf(stderr, "walk: %ld rays, %ld box meetings, %ld missed\n", rays, met_total, missed);
+    fprintf(stderr, "walk: nearest first against the plain order: %ld walks, %ld with other leaves or order\n",
+            walks_ordered, walks_out_of_order);
+    CHECK(walks_ordered > 20000 && walks_out_of_order == 0);
     CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
     CHECK(met_total > 20000);
 #if ACCEL_WALK_AVX2
@@ -506,10 +593,65 @@ static void test_root_missed(void)
     free(boxes);
 }
 
+/* Every octant of directions, with each component negative, positive, -0
+ * or +0 (a zero's sign picks its planes as a non-zero's does, and so the
+ * copy of the AVX2 walk): conservative, and the AVX2 walk the SSE2 one's
+ * leaves in the same order. */
+static void test_walk_octants(void)
+{
+    enum { N = 1500 };
+    hr_bounds *boxes = malloc(N * sizeof *boxes);
+    char *visited = malloc(N);
+    const accel_bvh4_options opt = {.max_leaf = 2, .traversal_cost = 0.5};
+    accel_bvh4 bvh;
+    for (int i = 0; i < N; i++) {
+        double cx = between(-1, 1), cy = between(-1, 1), cz = between(-1, 1), r = between(1e-3, 0.1);
+        boxes[i] = (hr_bounds){{cx - r, cy - r, cz - r}, {cx + r, cy + r, cz + r}};
+    }
+    CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
+    long missed = 0, before[8], compared = walks_compared, differing = walks_differing;
+    const long ordered = walks_ordered, out_of_order = walks_out_of_order;
+    memcpy(before, walks_by_octant, sizeof before);
+    for (int k = 0; k < 4 * 4 * 4 * 40; k++) {
+        /* Per axis: 0 negative, 1 positive, 2 -0, 3 +0 (never all zero). */
+        const int kind[3] = {k % 4, k / 4 % 4, k / 16 % 4};
+        if (kind[0] >= 2 && kind[1] >= 2 && kind[2] >= 2) continue;
+        const hr_bounds *aim = &boxes[(k * 7919) % N];
+        double o[3] = {between(-1.5, 1.5), between(-1.5, 1.5), between(-1.5, 1.5)}, d[3];
+        const double lo[3] = {aim->lo.x, aim->lo.y, aim->lo.z}, hi[3] = {aim->hi.x, aim->hi.y, aim->hi.z};
+        for (int a = 0; a < 3; a++) {
+            double m = between(0.05, 1);
+            d[a] = kind[a] == 0 ? -m : kind[a] == 1 ? m : kind[a] == 2 ? -0.0 : 0.0;
+            /* A zero component: the origin within the aimed box's slab on
+             * that axis, so the ray still meets boxes. */
+            if (kind[a] >= 2) o[a] = between(lo[a], hi[a]);
+        }
+        hr_ray ray = {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
+        double tmin = k % 3 == 0 ? 0.0 : k % 3 == 1 ? between(0, 0.5) : -between(0, 2);
+        double tmax = k % 2 ? INFINITY : between(0.5, 4);
+        missed += missed_boxes(&bvh, boxes, N, &ray, tmin, tmax, visited);
+    }
+    accel_bvh4_release(&bvh);
+    CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
+    CHECK(walks_ordered > ordered && walks_out_of_order == out_of_order);
+#if ACCEL_WALK_AVX2
+    if (accel_walk_avx2_usable()) {
+        for (int o = 0; o < 8; o++) {
+            fprintf(stderr, "walk: octant %d: %ld nearest-first walks compared\n", o, walks_by_octant[o] - before[o]);
+            CHECK(walks_by_octant[o] - before[o] >= 250); /* 7 sign patterns, 40 rays each */
+        }
+        CHECK(walks_compared > compared && walks_differing == differing);
+    }
+#endif
+    free(boxes);
+    free(visited);
+}
+
 int main(void)
 {
     test_build();
     test_walk();
     test_root_missed();
+    test_walk_octants();
     return hr_test_end();
 }
