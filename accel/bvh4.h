@@ -285,7 +285,9 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *r
         _mm_and_pd(_mm_and_pd(_mm_cmple_pd(adxy, d_most), _mm_cmple_pd(_mm_and_pd(oxy, abs_mask), o_most)),
                    _mm_and_pd(_mm_cmple_pd(adz, d_most), _mm_cmple_pd(_mm_and_pd(oz, abs_mask), o_most)));
     const __m128d large = _mm_or_pd(_mm_cmpge_pd(adxy, d_least), _mm_cmpge_pd(adz, d_least));
-    if (!((tmin >= 0) & (tmin < INFINITY) & (_mm_movemask_pd(within) == 3) & (_mm_movemask_pd(large) != 0)))
+    /* One branch for the four conditions: & on their int values. */
+    if (!((int)(tmin >= 0) & (int)(tmin < INFINITY) & (int)(_mm_movemask_pd(within) == 3) &
+          (int)(_mm_movemask_pd(large) != 0)))
         return 0;
     const __m128d one = _mm_set1_pd(flipped ? -1.0 : 1.0), zero = _mm_setzero_pd();
     const __m128d ixy = _mm_div_pd(one, dxy), iz = _mm_div_sd(one, dz);
