@@ -275,6 +275,12 @@ def raycast_runs(raycast, spheres, threads, runs, engines):
     return res
 
 
+def ratio(a, b):
+    """a / b to two places; '-' where b is not a positive time (a tiny
+    --quick render can report a trace time of 0.00 s)."""
+    return f"{a / b:.2f}" if b == b and b > 0 else "-"
+
+
 def fmt_mem(kb):
     return f"{kb / 1024:.0f} MiB"
 
@@ -499,26 +505,32 @@ def main():
     update_readme(L, cmdline)
 
 
+SCENES_HEADER = ("| scene | threads | hitray time | POV-Ray time | whole | render | hitray memory | "
+                 "POV-Ray memory | mask |")
+SPD_HEADER = "| scene | threads | hitray time | POV-Ray time | whole | render | hitray memory | POV-Ray memory |"
+
+
 def scenes_table(rows, skipped):
     """The bench scenes' table: times, memory, mask agreement."""
     L = ["", f"## Scenes ({ARGS.size}, 1 sample per pixel, median of {ARGS.runs} alternating runs)",
          "",
          "Time is the whole process (parse + render + write a PPM); render-only in brackets "
-         "(hitray: its render statistics; POV-Ray: its Trace Time). Ratio = hitray / POV-Ray "
-         "(target: at most 0.5). Memory is peak resident. Mask = pixels whose object agrees "
-         "in the flat id-colour renders (see bench/previews/).", "",
-         "| scene | threads | hitray time | POV-Ray time | ratio | hitray memory | POV-Ray memory | mask |",
-         "|---|---|---|---|---|---|---|---|"]
+         "(hitray: its render statistics; POV-Ray: its Trace Time). whole = whole-process ratio, "
+         "render = render-only ratio, hitray / POV-Ray (target: at most 0.5 for both). Memory is "
+         "peak resident. Mask = pixels whose object agrees in the flat id-colour renders (see "
+         "bench/previews/).", "",
+         SCENES_HEADER,
+         "|---|---|---|---|---|---|---|---|---|"]
     for name, res, agree in rows:
         for t in ARGS.threads:
             r = res[t]
             hr, pv = median(r["hr"]), median(r["pov"])
-            L.append(f"| {name} | {t} | {hr:.2f} s ({median(r['hr_render']):.2f}) | "
-                     f"{pv:.2f} s ({median(r['pov_render']):.2f}) | {hr / pv:.2f} | "
-                     f"{fmt_mem(max(r['hr_mem']))} | {fmt_mem(max(r['pov_mem'] or [float('nan')]))} | "
-                     f"{agree:.2f}% |")
+            hrr, pvr = median(r["hr_render"]), median(r["pov_render"])
+            L.append(f"| {name} | {t} | {hr:.2f} s ({hrr:.2f}) | {pv:.2f} s ({pvr:.2f}) | {ratio(hr, pv)} | "
+                     f"{ratio(hrr, pvr)} | {fmt_mem(max(r['hr_mem']))} | "
+                     f"{fmt_mem(max(r['pov_mem'] or [float('nan')]))} | {agree:.2f}% |")
     for name, missing in skipped:
-        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | |")
+        L.append(f"| {name} | - | not run: needs {', '.join(missing)} | | | | | | |")
     return L
 
 
@@ -566,7 +578,7 @@ def spd_tables(rows, skipped):
          "The Standard Procedural Databases as their generators wrote them (docs/nff.md). Time "
          "is the whole process, render-only in brackets; whole = whole-process ratio, render = "
          "render-only ratio (hitray / POV-Ray).", "",
-         "| scene | threads | hitray time | POV-Ray time | whole | render | hitray memory | POV-Ray memory |",
+         SPD_HEADER,
          "|---|---|---|---|---|---|---|---|"]
     for name, res, _ in rows:
         for t in ARGS.threads:
@@ -575,7 +587,7 @@ def spd_tables(rows, skipped):
             hrr, pvr = median(r["hr_render"]), median(r["pov_render"])
             pov_mem = fmt_mem(max(r["pov_mem"] or [float("nan")]))
             L.append(f"| {name} | {t} | {hr:.2f} s ({hrr:.2f}) | {pv:.2f} s ({pvr:.2f}) | "
-                     f"{hr / pv:.2f} | {hrr / pvr:.2f} | {fmt_mem(max(r['hr_mem']))} | {pov_mem} |")
+                     f"{ratio(hr, pv)} | {ratio(hrr, pvr)} | {fmt_mem(max(r['hr_mem']))} | {pov_mem} |")
     L += ["", "Rays by kind, as each renderer counts them (the last run; POV-Ray's `Rays` is "
           "every ray it traced, its eye rays among them; '-' where it prints none):", "",
           "| scene | hitray eye | hitray shadow | hitray reflected | hitray refracted | "
@@ -616,11 +628,10 @@ def update_readme(lines, cmdline):
     body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
             "runs, is in [bench/RESULTS.md](bench/RESULTS.md).", ""] + machine + [""] + notes
     # The bench scenes, the raw intersection and the SPD scenes' times.
-    wanted = ("| scene | threads | hitray time | POV-Ray time | ratio", "| threads | hitray rays/s",
-              "| scene | threads | hitray time | POV-Ray time | whole")
+    wanted = (SCENES_HEADER, "| threads | hitray rays/s", SPD_HEADER)
     for head in wanted:
         for table in tables:
-            if table[0].startswith(head):
+            if table[0] == head or (head.startswith("| threads") and table[0].startswith(head)):
                 body += [""] + table
     body += ["", README_END]
     start = text.index(README_BEGIN)
