@@ -52,6 +52,10 @@ static inline hr_vec3 hr_xform_normal(const double inv[16], hr_vec3 n)
     return r;
 }
 
+/* gamma(3) = 3u / (1 - 3u), u the unit roundoff: the bound on three
+ * roundings that every error bound below uses. */
+#define HR_XFORM_GAMMA3 (3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5))
+
 /* What the error bound of M p (hr_xform_error) takes from M alone, per row:
  * the sum of |linear part| and |translation|. An object works them out
  * once, when its transform is set, instead of on every hit. */
@@ -77,7 +81,6 @@ static inline hr_xform_error_terms hr_xform_error_terms_of(const double m[16])
 static inline double hr_xform_error_with(const double m[16], const hr_xform_error_terms *k,
                                          hr_vec3 p, double e)
 {
-    const double gamma3 = 3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5);
     double worst = 0.0;
     /* Three rows: unrolled, the loop's counter and branch are a fifth of
      * its instructions (this runs for every hit of a transformed object). */
@@ -85,7 +88,7 @@ static inline double hr_xform_error_with(const double m[16], const hr_xform_erro
     for (int r = 0; r < 3; r++) {
         const double *row = m + 4 * r;
         double carried = k->row_abs[r] * e;
-        double rounding = gamma3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
+        double rounding = HR_XFORM_GAMMA3 * (fabs(row[0] * p.x) + fabs(row[1] * p.y) + fabs(row[2] * p.z) +
                                     k->shift_abs[r]);
         double total = carried + rounding;
         if (total > worst) worst = total;
@@ -162,13 +165,12 @@ static inline double hr_xform_error_as(const double m[16], const hr_xform_error_
                                        hr_vec3 p, double e)
 {
     if (!diagonal) return hr_xform_error_with(m, k, p, e);
-    const double gamma3 = 3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5);
     const double at[3] = {p.x, p.y, p.z};
     double worst = 0.0;
 #pragma GCC unroll 3
     for (int r = 0; r < 3; r++) {
         double carried = k->row_abs[r] * e;
-        double rounding = gamma3 * (fabs(m[5 * r] * at[r]) + k->shift_abs[r]);
+        double rounding = HR_XFORM_GAMMA3 * (fabs(m[5 * r] * at[r]) + k->shift_abs[r]);
         double total = carried + rounding;
         if (total > worst) worst = total;
     }

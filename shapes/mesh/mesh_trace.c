@@ -506,6 +506,18 @@ __attribute__((target("avx2"))) static int leaf_of_avx2(void *user, uint32_t fir
 #endif
 #undef LEAF_LOOPS
 
+/* accel's leaf callback. */
+typedef int (*leaf_fn)(void *user, uint32_t first, uint32_t count);
+
+/* The leaf callback for this CPU: with the AVX2 filter where it runs. */
+static inline leaf_fn leaf_callback(void)
+{
+#if MESH_FILTER_AVX2
+    if (mesh_filter_avx2_usable()) return leaf_of_avx2;
+#endif
+    return leaf_of;
+}
+
 /* An any-hit search from tmin >= 0. An open mesh's any hit is any
  * triangle hit in the interval, which every order of the leaves finds, and
  * a closed mesh's (closed_any) is whether the first-hit search finds a
@@ -516,10 +528,7 @@ __attribute__((target("avx2"))) static int leaf_of_avx2(void *user, uint32_t fir
  * walk cost the other queries' frame some 6 instructions each. */
 static __attribute__((noinline)) void walk_any_order(query *q)
 {
-    int (*leaf_of_cpu)(void *user, uint32_t first, uint32_t count) = leaf_of;
-#if MESH_FILTER_AVX2
-    if (mesh_filter_avx2_usable()) leaf_of_cpu = leaf_of_avx2;
-#endif
+    leaf_fn leaf_of_cpu = leaf_callback();
     if (isnan(q->tmax)) return;
     accel_bvh4_walk_any(&q->m->bvh, &q->args->ray, q->tmin, &q->tmax, leaf_of_cpu, q);
 }
@@ -540,10 +549,7 @@ static void walk(query *q)
         walk_any_order(q);
         return;
     }
-    int (*leaf_of_cpu)(void *user, uint32_t first, uint32_t count) = leaf_of;
-#if MESH_FILTER_AVX2
-    if (mesh_filter_avx2_usable()) leaf_of_cpu = leaf_of_avx2;
-#endif
+    leaf_fn leaf_of_cpu = leaf_callback();
     const accel_bvh4 *bvh = &q->m->bvh;
     const hr_ray *ray = &q->args->ray;
     if (isnan(q->tmin) || isnan(q->tmax)) return;
