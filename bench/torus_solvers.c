@@ -13,7 +13,7 @@
  *   this under callgrind with --no-reference and divides the instructions
  *   of time_all and time_first by the solves;
  * - |t error| against roots computed in __float128 by Sturm sequences
- *   (tests/shapes/quad_reference.c), over the rays where the solver and the
+ *   (tests/reference/quad_reference.c), over the rays where the solver and the
  *   reference agree on the count: the worst and the 99th percentile, both
  *   relative to |t| and in units of u * condition (u = 2^-53; the condition
  *   is the root's sensitivity to rounding of the inputs, quad_reference.h);

@@ -9,7 +9,7 @@
  *
  * For each shape (sphere; cylinder, wall only) and each distance 10, 1e2,
  * ..., 1e6 it draws N rays from that far aimed at random points of the
- * shape's bounds (tests/shapes/random_rays.c, fixed seed) and prints, per
+ * shape's bounds (tests/reference/random_rays.c, fixed seed) and prints, per
  * form, one JSON line:
  * - ns: nanoseconds per call over the whole set, the best of `repeats`
  *   passes (a busy machine only slows passes down). The module's figure

@@ -12,7 +12,7 @@
  *   renderer casts at 1 spp) hits where the reference misses or misses where
  *   it hits. The reference carries the world ray into object space in
  *   __float128 through the scene's own inverse matrix and solves the quartic
- *   by Sturm sequences (tests/shapes/quad_reference.c), as
+ *   by Sturm sequences (tests/reference/quad_reference.c), as
  *   tests/shapes/test_torus_far.c does; `hitmiss_clear` counts those of them
  *   whose reference margin exceeds 1e-9 object units (the line is not within
  *   rounding of touching the tube), where no solver may disagree;
