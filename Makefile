@@ -34,9 +34,10 @@ NINJA_QUIET :=
 CTEST := scripts/ctest_quiet.py --verbose --
 endif
 
-# $(call configure,DIR,FLAGS): a Ninja build tree in DIR, configured with
-# FLAGS and $(CMAKE_FLAGS).
-configure = mkdir -p $(1) && cmake -S . -B $(1) -G Ninja $(2) $(CMAKE_FLAGS) $(call stdout_to,$(1)/configure.log)
+# $(call configure,DIR,PRESET): a build tree in DIR, configured by PRESET of
+# CMakePresets.json (plain, asan, tsan, fuzz: the four configurations) and
+# $(CMAKE_FLAGS).
+configure = mkdir -p $(1) && cmake --preset $(2) -B $(1) $(CMAKE_FLAGS) $(call stdout_to,$(1)/configure.log)
 
 .PHONY: all deps deps-test deps-wheel build build-all demo test test-c test-asan test-tsan test-fuzz \
         test-python test-python-asan test-memcheck test-wheel wheel install clean bench bench-accuracy \
@@ -58,7 +59,7 @@ deps-wheel:
 # builds only the target hitray_runtime (the library, the shape modules, the
 # command and its man page), build-all the rest.
 $(BUILD)/build.ninja: | deps
-	$(call configure,$(BUILD),-DCMAKE_BUILD_TYPE=RelWithDebInfo -DHITRAY_BUILD_TESTS=ON -DHITRAY_BUILD_BENCH=ON)
+	$(call configure,$(BUILD),plain)
 
 build: deps $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS) --target hitray_runtime $(NINJA_QUIET)
@@ -74,23 +75,36 @@ demo: build
 
 # Every test: the C suite (ctest, with the numerical hard cases of
 # tests/numerics and the fuzz corpora replayed), the same suite under
-# AddressSanitizer and UndefinedBehaviorSanitizer and again under
-# ThreadSanitizer, the fast tests under valgrind's memcheck, each libFuzzer
-# harness for a short bounded time, and the Python tests (the command line,
-# and the package installed into .venv), then the manylinux wheel built and
-# tried in a fresh venv.
+# AddressSanitizer and UndefinedBehaviorSanitizer, the tests that start
+# threads under ThreadSanitizer, the fast tests under valgrind's memcheck,
+# each libFuzzer harness for a short bounded time, and the Python tests (the
+# command line, and the package installed into .venv), then the manylinux
+# wheel built and tried in a fresh venv.
+#
+# Where each C test runs (its ctest labels, tests/CMakeLists.txt):
+#   every test            test-c (plain) and test-asan (ASan+UBSan)
+#   label threads         test-tsan too: ThreadSanitizer finds nothing in a
+#                         test that starts no thread
+#   label memcheck        test-memcheck too (valgrind, the optimised build)
+#   label fuzz-replay     (the corpora, fuzz_replay_*) test-c and test-asan;
+#                         four of them in test-memcheck, fuzz_replay_scene
+#                         (a render on two threads) in test-tsan; test-fuzz
+#                         starts each harness from its corpus (libFuzzer
+#                         runs every seed before it mutates), under clang's
+#                         ASan+UBSan
+#   label install         test-c and test-asan
 test: test-c test-asan test-tsan test-memcheck test-fuzz test-python test-wheel
 
 test-c: build-all
-	$(CTEST) --test-dir $(BUILD) -j $(JOBS)
+	$(CTEST) --preset plain --test-dir $(BUILD) -j $(JOBS)
 
 $(ASAN_BUILD)/build.ninja: | deps-test
-	$(call configure,$(ASAN_BUILD),-DCMAKE_BUILD_TYPE=Debug -DHITRAY_SANITIZE=ON)
+	$(call configure,$(ASAN_BUILD),asan)
 
+# The sanitizers' options are the test presets' (CMakePresets.json).
 test-asan: deps-test $(ASAN_BUILD)/build.ninja
 	cmake --build $(ASAN_BUILD) -j $(JOBS) $(NINJA_QUIET)
-	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	    $(CTEST) --test-dir $(ASAN_BUILD) -j $(JOBS)
+	$(CTEST) --preset asan --test-dir $(ASAN_BUILD) -j $(JOBS)
 
 # The tests labelled memcheck (tests/CMakeLists.txt: the fast ones) under
 # valgrind's memcheck on the plain build: what the sanitizers do not see
@@ -102,18 +116,21 @@ test-memcheck: build-all
 	    --overwrite "MemoryCheckCommandOptions=$(MEMCHECK_OPTIONS)"
 
 $(TSAN_BUILD)/build.ninja: | deps-test
-	$(call configure,$(TSAN_BUILD),-DCMAKE_BUILD_TYPE=Debug -DHITRAY_TSAN=ON)
+	$(call configure,$(TSAN_BUILD),tsan)
 
+# The tests labelled threads alone (the preset's filter).
 test-tsan: deps-test $(TSAN_BUILD)/build.ninja
 	cmake --build $(TSAN_BUILD) -j $(JOBS) $(NINJA_QUIET)
-	TSAN_OPTIONS=halt_on_error=1 $(CTEST) --test-dir $(TSAN_BUILD) -j $(JOBS)
+	$(CTEST) --preset tsan --test-dir $(TSAN_BUILD) -j $(JOBS)
 
 # The libFuzzer harnesses (tests/fuzz), built with clang and ASan+UBSan in
-# $(FUZZ_BUILD). `make fuzz` runs each for FUZZ_SECONDS (FUZZ_TARGETS picks
-# some); `make test-fuzz` replays every corpus file, then runs each harness
-# from the fixed seed FUZZ_TEST_SEED for FUZZ_TEST_RUNS inputs (at most
+# $(FUZZ_BUILD) (the fuzz preset). `make fuzz` runs each for FUZZ_SECONDS
+# (FUZZ_TARGETS picks some); `make test-fuzz` runs each harness from its
+# committed corpus (every corpus file first, as libFuzzer starts) with the
+# fixed seed FUZZ_TEST_SEED for FUZZ_TEST_RUNS inputs (at most
 # FUZZ_TEST_SECONDS), so CI repeats the same inputs rather than exploring
-# anew. See FUZZING.md.
+# anew; the corpus is not replayed apart first, test-asan has replayed it
+# under ASan+UBSan already. See FUZZING.md.
 FUZZ_SECONDS ?= 300
 FUZZ_TEST_SECONDS ?= 30
 FUZZ_TEST_RUNS ?= 50000
@@ -123,7 +140,7 @@ fuzz: deps-test
 	tests/fuzz/run_fuzzers.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 test-fuzz: deps-test
-	tests/fuzz/run_fuzzers.sh $(if $(filter 0,$(V)),--quiet) --build $(FUZZ_BUILD) --seconds $(FUZZ_TEST_SECONDS) --replay \
+	tests/fuzz/run_fuzzers.sh $(if $(filter 0,$(V)),--quiet) --build $(FUZZ_BUILD) --seconds $(FUZZ_TEST_SECONDS) \
 	    --runs $(FUZZ_TEST_RUNS) --seed $(FUZZ_TEST_SEED) $(FUZZ_TARGETS)
 
 # Hours of exploring: every harness for FUZZ_LONG_SECONDS (an hour each by

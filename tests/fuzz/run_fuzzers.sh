@@ -60,8 +60,7 @@ rss_mb=${FUZZ_RSS_MB:-2048}
 if [ ! -f "$build/build.ninja" ]; then
     echo "run_fuzzers: configuring $build with clang"
     mkdir -p "$build"
-    CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-        -DHITRAY_FUZZ=ON -DHITRAY_BUILD_BENCH=OFF >"$build/configure.log" 2>&1 || {
+    (cd "$root" && cmake --preset fuzz -B "$build") >"$build/configure.log" 2>&1 || {
         cat "$build/configure.log" >&2
         exit 1
     }
