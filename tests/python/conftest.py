@@ -8,6 +8,7 @@ CMake build tree, where the test-only shape modules live.
 
 import os
 import pathlib
+import signal
 
 import pytest
 
@@ -23,6 +24,25 @@ push translate -1 1 0  diffuse 0.8 0.2 0.2  sphere pop
 push translate 1.2 1 -0.5  diffuse 0.2 0.8 0.2  specular 0.5 0.5 0.5  specularExponent 20  sphere pop
 push rotate -90 1 0 0  plane pop
 """
+
+
+def sigint_as_at_a_terminal():
+    """preexec_fn of a child the test sends SIGINT (Ctrl-C) to. A shell starts
+    a background job (`make test &`) with SIGINT ignored, the child would
+    inherit that and keep it (as a background job must), and the Ctrl-C
+    would do nothing: the child gets the default action back, as a command
+    started at a terminal has it."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+@pytest.fixture
+def sigint_raises():
+    """SIGINT sent to the test's own process raises KeyboardInterrupt, as at a
+    terminal, even when the tests were started with it ignored (a background
+    job, where Python leaves it ignored)."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
 
 
 def require_classes(*names):

@@ -20,7 +20,7 @@ import time
 
 import pytest
 
-from conftest import BUILD, ROOT
+from conftest import BUILD, ROOT, sigint_as_at_a_terminal
 from conftest import TWO_SPHERES_SDL as SCENE  # two spheres on a floor, one light
 
 HITRAY = BUILD / "bin" / "hitray"
@@ -383,7 +383,7 @@ def test_ctrl_c_cancels_cleanly(tmp_path):
     master, slave = pty.openpty()
     proc = subprocess.Popen([str(HITRAY), "render", str(ROOT / "scenes" / "demo.sdl"), "-o", str(out),
                              "--size", "1024x1024", "--spp", "256", "--threads", "2"],
-                            stdout=subprocess.PIPE, stderr=slave)
+                            stdout=subprocess.PIPE, stderr=slave, preexec_fn=sigint_as_at_a_terminal)
     os.close(slave)
     seen = b""
     try:
@@ -751,7 +751,8 @@ def signal_while_writing(tmp_path, signo):
     out = tmp_path / "big.png"
     master, slave = pty.openpty()
     proc = subprocess.Popen([str(HITRAY), "render", str(scene), "-o", str(out), "--size", "4096x4096",
-                             "--block", "2048", "--png16"], stdout=subprocess.PIPE, stderr=slave)
+                             "--block", "2048", "--png16"], stdout=subprocess.PIPE, stderr=slave,
+                            preexec_fn=sigint_as_at_a_terminal)
     os.close(slave)
     seen = b""
     try:

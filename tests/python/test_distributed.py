@@ -19,7 +19,7 @@ import pytest
 
 import hitray
 
-from conftest import BUILD, ROOT, TWO_SPHERES_SDL, require_classes
+from conftest import BUILD, ROOT, TWO_SPHERES_SDL, require_classes, sigint_as_at_a_terminal
 
 distributed = pytest.importorskip("distributed", reason="dask[distributed] is not installed")
 dask = pytest.importorskip("dask")
@@ -441,7 +441,8 @@ def test_distributed_cli_ctrl_c_cancels(client, tmp_path):
     out = tmp_path / "never.png"
     proc = subprocess.Popen([sys.executable, "-m", "hitray.distributed", "render", str(scene_file), "-o", str(out),
                              "--scheduler", client.scheduler.address, "--size", "160x120", "--spp", "64",
-                             "--tile", "4", "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                             "--tile", "4", "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=sigint_as_at_a_terminal)
     try:
         for _ in range(1200):  # until its tiles are scheduled (or it ended early)
             if tile_tasks(client) or proc.poll() is not None:

@@ -10,7 +10,7 @@ import time
 import numpy as np
 
 import hitray
-from conftest import TWO_SPHERES_SDL
+from conftest import TWO_SPHERES_SDL, sigint_as_at_a_terminal
 
 
 def test_two_renders_from_two_threads_run_at_the_same_time():
@@ -93,7 +93,7 @@ print(json.dumps({"outcome": outcome, "last": seen[-1] if seen else None,
 
 def run_interrupt(mode):
     result = subprocess.run([sys.executable, "-c", INTERRUPT, mode], input=TWO_SPHERES_SDL,
-                            capture_output=True, text=True, timeout=300)
+                            capture_output=True, text=True, timeout=300, preexec_fn=sigint_as_at_a_terminal)
     assert result.returncode == 0, result.stderr[-3000:]
     return json.loads(result.stdout.strip().splitlines()[-1])
 

@@ -35,6 +35,9 @@ class Slow:
 
 abi.register_shape("slow_interrupt", Slow)
 
+# The interrupts are SIGINT sent to this process (interrupt_soon).
+pytestmark = pytest.mark.usefixtures("sigint_raises")
+
 
 def slow_scene():
     scene = hitray.Scene()
