@@ -24,9 +24,7 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
-#include "../common/shape_math.h"
+#include <hitray/shape_kit.h>
 #include "../common/shape_uv.h"
 
 /* Face ids: 2 axis for the +1 face of an axis, 2 axis + 1 for the -1 face. */

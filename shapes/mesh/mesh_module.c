@@ -29,6 +29,8 @@
 #include <float.h>
 #include <math.h>
 
+#include <hitray/shape_kit_hits.h>
+
 #include "mesh.h"
 #include "mesh_arrays.h"
 #include "mesh_bezier.h"
@@ -45,23 +47,14 @@ static int ray_is_finite(const hr_ray *r)
            isfinite(r->dir.x) && isfinite(r->dir.y) && isfinite(r->dir.z);
 }
 
-static hr_status mesh_hit(const hr_hit_args *args)
+/* A ray that is not finite meets nothing (and is not traced). */
+static hr_status mesh_trace_finite(const hr_hit_args *args, int32_t mode)
 {
     if (!ray_is_finite(&args->ray)) return HR_OK;
-    return mesh_trace(args->shape, args, HR_TRACE_ALL);
+    return mesh_trace(args->shape, args, mode);
 }
 
-static hr_status mesh_first_hit(const hr_hit_args *args)
-{
-    if (!ray_is_finite(&args->ray)) return HR_OK;
-    return mesh_trace(args->shape, args, HR_TRACE_FIRST);
-}
-
-static hr_status mesh_any_hit(const hr_hit_args *args)
-{
-    if (!ray_is_finite(&args->ray)) return HR_OK;
-    return mesh_trace(args->shape, args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(mesh, mesh_trace_finite)
 
 static void mesh_bounds(const void *shape, hr_bounds *out)
 {

@@ -8,9 +8,9 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
+#include <hitray/shape_kit.h>
 #include "../common/shape_uv.h"
+#include "../common/shape_z0.h"
 
 static void plane_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {

@@ -31,9 +31,7 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
-#include "../common/shape_math.h"
+#include <hitray/shape_kit.h>
 #include "../common/shape_uv.h"
 #include "sphere_coefficients.h"
 
