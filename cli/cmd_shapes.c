@@ -65,6 +65,13 @@ static void print_module(const hr_module_entry *m)
     printf("  module %s", m->name ? m->name : "?");
     if (m->description && *m->description) printf(": %s", m->description);
     putchar('\n');
+    /* The module's metadata (hr_module_info.version, author, url), the
+     * parts it gives. */
+    const int has_version = m->version && *m->version, has_author = m->author && *m->author;
+    if (has_version) printf("  version %s", m->version);
+    if (has_author) printf("%s%s", has_version ? ", by " : "  by ", m->author);
+    if (has_version || has_author) putchar('\n');
+    if (m->url && *m->url) printf("  %s\n", m->url);
     for (int32_t i = 0; i < m->class_count && m->classes; i++)
         if (m->classes[i]) print_class(m->classes[i]);
 }

@@ -197,7 +197,18 @@ typedef struct hr_module_info {
     const char *description;
     const hr_shape_class *const *classes;
     int32_t class_count;
+    /* --- Added within ABI 1; the host reads them only when struct_size
+     * covers them (HR_MODULE_HAS), so a module built against an older
+     * header is shown without them. Each may be NULL. --- */
+    const char *version; /* the module's own version, e.g. "1.2.0" */
+    const char *author;  /* who made it */
+    const char *url;     /* where it comes from (home page, repository) */
 } hr_module_info;
+
+/* Whether the module info `info` has `field` (it may come from a module
+ * built before the field was added). */
+#define HR_MODULE_HAS(info, field)                                             \
+    ((info)->struct_size >= offsetof(hr_module_info, field) + sizeof((info)->field))
 
 typedef const hr_module_info *(*hr_shape_module_fn)(uint32_t host_abi_version,
                                                      const hr_host *host);

@@ -57,6 +57,7 @@
 #include <hitray/shape_kit.h>
 #include <hitray/shape_module.h>
 
+#include "../common/shape_builtin.h"
 #include "csg_combine.h"
 
 typedef struct csg_shape {
@@ -318,6 +319,7 @@ static const hr_module_info csg_module = {
     .description = "CSG booleans of two solids: union, intersection, difference",
     .classes = csg_classes,
     .class_count = 3,
+    SHAPE_BUILTIN_METADATA,
 };
 
 HR_DEFINE_SHAPE_MODULE(host_version, host)

@@ -25,6 +25,7 @@
 #include <hitray/shape_module.h>
 
 #include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 
 /* Face ids: 2 axis for the +1 face of an axis, 2 axis + 1 for the -1 face. */
@@ -124,6 +125,7 @@ static const hr_module_info cube_module = {
     .description = "Hill's generic cube: corners (+-1, +-1, +-1)",
     .classes = cube_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -70,6 +70,7 @@
 #include <hitray/shape_module.h>
 
 #include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 
 #define SURFACE_WALL 0
@@ -441,6 +442,7 @@ static const hr_module_info tapered_module = {
     .description = "Hill's tapered cylinder, cylinder and cone, and the open tapered wall",
     .classes = tapered_classes,
     .class_count = (int32_t)(sizeof tapered_classes / sizeof tapered_classes[0]),
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

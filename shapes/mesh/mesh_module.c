@@ -31,6 +31,7 @@
 
 #include <hitray/shape_kit_hits.h>
 
+#include "../common/shape_builtin.h"
 #include "mesh.h"
 #include "mesh_arrays.h"
 #include "mesh_bezier.h"
@@ -228,6 +229,7 @@ static const hr_module_info mesh_module = {
                    "solids, the buckyball and Newell's teapot",
     .classes = mesh_classes,
     .class_count = (int32_t)(sizeof mesh_classes / sizeof mesh_classes[0]),
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -9,6 +9,7 @@
 #include <hitray/shape_module.h>
 
 #include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 #include "../common/shape_z0.h"
 
@@ -70,6 +71,7 @@ static const hr_module_info plane_module = {
     .description = "Hill's generic plane: z = 0",
     .classes = plane_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

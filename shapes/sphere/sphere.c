@@ -32,6 +32,7 @@
 #include <hitray/shape_module.h>
 
 #include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 #include "sphere_coefficients.h"
 
@@ -179,6 +180,7 @@ static const hr_module_info sphere_module = {
     .description = "Hill's generic sphere: radius 1 at the origin",
     .classes = sphere_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch, so the module always

@@ -10,6 +10,7 @@
 #include <hitray/shape_module.h>
 
 #include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 #include "../common/shape_z0.h"
 
@@ -78,6 +79,7 @@ static const hr_module_info square_module = {
     .description = "Hill's generic square: z = 0, |x|, |y| <= 1",
     .classes = square_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

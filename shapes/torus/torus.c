@@ -36,6 +36,7 @@
 #include <hitray/shape_module.h>
 
 #include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 #include "torus_quartic.h"
 
@@ -239,6 +240,7 @@ static const hr_module_info torus_module = {
     .description = "Hill's generic torus: ring radius 1 about z, tube radius a parameter",
     .classes = torus_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

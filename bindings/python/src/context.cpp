@@ -119,6 +119,9 @@ py::list modules()
         d["name"] = text(e.name);
         d["description"] = text(e.description);
         d["error"] = text(e.error);
+        d["version"] = text(e.version);
+        d["author"] = text(e.author);
+        d["url"] = text(e.url);
         py::list classes;
         for (int32_t j = 0; j < e.class_count; j++) classes.append(text(e.classes[j]->name));
         d["classes"] = classes;

@@ -48,12 +48,16 @@ class ModuleInfo:
     description: str
     error: str
     classes: Tuple[str, ...]
+    version: str = ""  # the module's metadata; "" where it gives none
+    author: str = ""
+    url: str = ""
 
 
 def modules() -> List[ModuleInfo]:
     """Every module on the search path (scanned now), loaded or refused."""
     return [ModuleInfo(m["path"], m["loaded"], m["name"], m["description"], m["error"],
-                       tuple(m["classes"])) for m in _core.modules()]
+                       tuple(m["classes"]), m["version"], m["author"], m["url"])
+            for m in _core.modules()]
 
 
 def shape_classes() -> Dict[str, ShapeClass]:
