@@ -139,6 +139,9 @@ static hr_status disk_trace(const hr_hit_args *args, int32_t mode)
 
 SHAPE_DEFINE_HIT_MODES(disk, disk_trace)
 
+/* hr_hit.surface 0, named for `hitray shapes` and the bindings. */
+static const char *const disk_surface_names[1] = {"disk"};
+
 static const hr_shape_class disk_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0, /* not HR_SHAPE_CLOSED: a flat disk bounds no volume */
@@ -153,6 +156,7 @@ static const hr_shape_class disk_class = {
     .hit = disk_hit,
     .first_hit = disk_first_hit,
     .any_hit = disk_any_hit,
+    .surface_names = disk_surface_names,
 };
 
 static const hr_shape_class *const disk_classes[] = {&disk_class};

@@ -99,6 +99,9 @@ static int32_t cube_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+/* Surface i is the face of its axis and sign (cube_fill's order). */
+static const char *const cube_surface_names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+
 static const hr_shape_class cube_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -107,6 +110,7 @@ static const hr_shape_class cube_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 6,
+    .surface_names = cube_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = cube_bounds,

@@ -170,12 +170,15 @@ static const hr_param_spec teapot_params[] = {
      "(9,120 at the default 12), some 60 bytes each"},
 };
 
+/* Every triangle of a mesh is one surface. */
+static const char *const mesh_surface_names[1] = {"mesh"};
+
 #define MESH_CLASS_FIELDS(name_, flags_, help_, params_, count_, create_)      \
     .struct_size = sizeof(hr_shape_class), .flags = flags_, .name = name_,     \
     .help = help_, .params = params_, .param_count = count_,                   \
     .surface_count = 1, .create = create_, .destroy = mesh_destroy_shape,      \
     .bounds = mesh_bounds, .hit = mesh_hit, .first_hit = mesh_first_hit,       \
-    .any_hit = mesh_any_hit
+    .any_hit = mesh_any_hit, .surface_names = mesh_surface_names
 #define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
     {MESH_CLASS_FIELDS(name_, flags_, help_, params_, count_, create_)}
 

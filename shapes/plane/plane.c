@@ -45,6 +45,8 @@ static int32_t plane_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const plane_surface_names[1] = {"plane"};
+
 static const hr_shape_class plane_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0,
@@ -53,6 +55,7 @@ static const hr_shape_class plane_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 1,
+    .surface_names = plane_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = plane_bounds,

@@ -153,6 +153,8 @@ static int32_t sphere_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const sphere_surface_names[1] = {"sphere"};
+
 static const hr_shape_class sphere_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -161,6 +163,7 @@ static const hr_shape_class sphere_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 1,
+    .surface_names = sphere_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = sphere_bounds,

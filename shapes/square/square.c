@@ -53,6 +53,8 @@ static int32_t square_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const square_surface_names[1] = {"square"};
+
 static const hr_shape_class square_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0,
@@ -61,6 +63,7 @@ static const hr_shape_class square_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 1,
+    .surface_names = square_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = square_bounds,

@@ -36,6 +36,7 @@ class ShapeClass:
     composite: bool
     surface_count: int
     params: Tuple[ShapeParam, ...]
+    surface_names: Tuple[str, ...] = ()  # hr_hit.surface's names; () where none
 
 
 @dataclass(frozen=True)
@@ -70,7 +71,8 @@ def shape_classes() -> Dict[str, ShapeClass]:
     for name in sorted(names):
         c = _core.find_shape_class(name)
         out[name] = ShapeClass(c["name"], c["help"], c["module"], c["closed"], c["composite"],
-                               c["surface_count"], tuple(ShapeParam(**p) for p in c["params"]))
+                               c["surface_count"], tuple(ShapeParam(**p) for p in c["params"]),
+                               tuple(c["surface_names"]))
     return out
 
 
