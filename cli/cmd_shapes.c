@@ -49,6 +49,13 @@ static void print_class(const hr_shape_class *cls)
     putchar('\n');
     if (cls->param_count == 0) printf("      (no parameters)\n");
     for (int32_t i = 0; i < cls->param_count && cls->params; i++) print_param(&cls->params[i]);
+    /* What hr_hit.surface (the "surface" of `hitray hits`) numbers. */
+    if (HR_CLASS_HAS(cls, surface_names) && cls->surface_names && cls->surface_count > 0) {
+        printf("      surfaces:");
+        for (int32_t i = 0; i < cls->surface_count; i++)
+            printf(" %d %s", (int)i, cls->surface_names[i] ? cls->surface_names[i] : "?");
+        putchar('\n');
+    }
     /* Which classes an image texture can go on (hr_shape_class.surface_uv). */
     if (cls->flags & HR_SHAPE_COMPOSITE) printf("      (u, v): its leaves'\n");
     else if (HR_CLASS_HAS(cls, surface_uv) && cls->surface_uv) printf("      (u, v): yes, for image textures\n");
@@ -65,6 +72,13 @@ static void print_module(const hr_module_entry *m)
     printf("  module %s", m->name ? m->name : "?");
     if (m->description && *m->description) printf(": %s", m->description);
     putchar('\n');
+    /* The module's metadata (hr_module_info.version, author, url), the
+     * parts it gives. */
+    const int has_version = m->version && *m->version, has_author = m->author && *m->author;
+    if (has_version) printf("  version %s", m->version);
+    if (has_author) printf("%s%s", has_version ? ", by " : "  by ", m->author);
+    if (has_version || has_author) putchar('\n');
+    if (m->url && *m->url) printf("  %s\n", m->url);
     for (int32_t i = 0; i < m->class_count && m->classes; i++)
         if (m->classes[i]) print_class(m->classes[i]);
 }

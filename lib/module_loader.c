@@ -462,6 +462,11 @@ HR_API int32_t hr_context_module_count(hr_context *ctx)
     return n;
 }
 
+static const char *or_empty(const char *text)
+{
+    return text ? text : "";
+}
+
 HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_entry *out)
 {
     if (!ctx || !out || out->struct_size < sizeof(uint32_t))
@@ -477,11 +482,16 @@ HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_ent
     e.struct_size = out->struct_size < sizeof e ? out->struct_size : (uint32_t)sizeof e;
     e.loaded = m->error == NULL;
     e.path = m->path;
-    e.name = m->info && m->info->name ? m->info->name : "";
-    e.description = m->info && m->info->description ? m->info->description : "";
+    e.name = m->info ? or_empty(m->info->name) : "";
+    e.description = m->info ? or_empty(m->info->description) : "";
     e.error = m->error ? m->error : "";
     e.classes = m->class_ptrs;
     e.class_count = m->class_count;
+    /* A module built before the metadata was added has none (HR_MODULE_HAS). */
+    const hr_module_info *info = m->info;
+    e.version = info && HR_MODULE_HAS(info, version) ? or_empty(info->version) : "";
+    e.author = info && HR_MODULE_HAS(info, author) ? or_empty(info->author) : "";
+    e.url = info && HR_MODULE_HAS(info, url) ? or_empty(info->url) : "";
     memcpy(out, &e, e.struct_size);
     pthread_mutex_unlock(&ctx->lock);
     return HR_OK;

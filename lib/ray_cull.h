@@ -12,6 +12,8 @@
 #include <emmintrin.h>
 #endif
 
+#include <hitray/shape_kit_box.h>
+
 #include "scene_internal.h"
 #include "transform_inline.h"
 #include "vec.h"
@@ -31,40 +33,12 @@ static inline void unbounded_cull_prepare(hr_object *o)
     o->cull_dir_limit = gain > 0.0 ? 0x1p190 / gain : 0.0; /* NaN or 0: never culled */
 }
 
-/* Relative and absolute widening of a slab's entry and exit: as the BVH's
- * (accel/bvh4.h), far more than the two roundings of each distance, and
- * enough to cover a shape's own rounding of t as the BVH's slack does. */
-#define CULL_SLACK 0x1p-20
-#define CULL_TINY 0x1p-1022
-
-/* The slab lo <= o + t d <= hi along one axis: its entry and exit,
- * (lo - o) / d and (hi - o) / d, the smaller first, each with two roundings
- * (an infinite end gives an infinite distance), intersected with
- * [*t_near, *t_far]. For d == +-0 the distances are infinities of the right
- * signs (the parallel ray is in the slab everywhere or nowhere), or NaN
- * where o is on a face: each compare is written so that a NaN drops out (the
- * entry and exit go NaN together, and the max and min keep what they had),
- * which is also what the SSE2 lanes of box_slabs_missed do. */
-static inline void cull_slab(double o, double d, double lo, double hi, double *t_near, double *t_far)
-{
-    const double a = (lo - o) / d, b = (hi - o) / d;
-    const double t0 = b < a ? b : a, t1 = b > a ? b : a;
-    *t_near = t0 > *t_near ? t0 : *t_near;
-    *t_far = t1 < *t_far ? t1 : *t_far;
-}
-
-/* Whether no t in the open (tmin, tmax) lies in [t_near, t_far] moved
- * outward by CULL_SLACK relative (one more rounding, far below it) and
- * CULL_TINY absolute. Moving a t outward is monotone, so moving the largest
- * entry and the smallest exit is moving every slab's own; it is a product
- * rather than t - CULL_SLACK |t|, so that an infinite end stays infinite
- * (inf - inf would be NaN, and cull nothing). */
-static inline int cull_window_missed(double t_near, double t_far, double tmin, double tmax)
-{
-    t_near = t_near * (1.0 - copysign(CULL_SLACK, t_near)) - CULL_TINY;
-    t_far = t_far * (1.0 + copysign(CULL_SLACK, t_far)) + CULL_TINY;
-    return t_far <= tmin || t_near >= tmax || t_near > t_far;
-}
+/* The widening of a slab's entry and exit is the shape kit's
+ * (SHAPE_SLAB_SLACK, SHAPE_SLAB_TINY): as the BVH's (accel/bvh4.h), far more
+ * than the two roundings of each distance, and enough to cover a shape's own
+ * rounding of t as the BVH's slack does. */
+#define CULL_SLACK SHAPE_SLAB_SLACK
+#define CULL_TINY SHAPE_SLAB_TINY
 
 /* Whether the unbounded object `o` (a plane) certainly has no hit in the
  * open (tmin, tmax), from the finite ends of its object-space bounds (the
@@ -88,7 +62,7 @@ static inline int cull_window_missed(double t_near, double t_far, double tmin, d
  * hits lie where lo <= x_k <= hi: for d_k != 0 between (lo - o_k) / d_k and
  * (hi - o_k) / d_k (t is the same in object and world space). Each is
  * computed with two roundings (an infinite end gives an infinite distance,
- * no NaN) and moved outward (cull_slab; the plane's t is -o_z / d_z,
+ * no NaN) and moved outward (shape_slab_window; the plane's t is -o_z / d_z,
  * exactly the distance computed here). A ray parallel to the slab (d_k == 0, which the shape sees too)
  * stays at o_k: culled only when o_k is outside [lo, hi] by that margin. */
 static inline __attribute__((always_inline)) int unbounded_misses(const hr_object *o, const hr_ray *ray,
@@ -109,9 +83,9 @@ static inline __attribute__((always_inline)) int unbounded_misses(const hr_objec
             if (ok + margin < lo[k] || ok - margin > hi[k]) return 1;
             continue;
         }
-        cull_slab(ok, dk, lo[k], hi[k], &t_near, &t_far);
+        shape_slab_window(ok, dk, lo[k], hi[k], &t_near, &t_far);
     } while (axes &= axes - 1);
-    return cull_window_missed(t_near, t_far, tmin, tmax);
+    return shape_window_missed(t_near, t_far, tmin, tmax);
 }
 
 /* The box the BVH walk of a scene may meet (at commit): the union of its
@@ -130,7 +104,7 @@ static inline hr_bounds cull_box_widened(hr_bounds b)
 }
 
 /* Whether the ray certainly meets nothing inside the finite box `b` in the
- * open (tmin, tmax): the slab test of cull_slab on each axis (a ray
+ * open (tmin, tmax): the kit's slab test (shape_box_misses) (a ray
  * parallel to a slab stays in it or out of it). A shadow ray from the floor
  * away from every object, or a camera ray into the floor beside them, then
  * skips the walk's setup (about 230 instructions) and its node tests. Rays
@@ -138,11 +112,7 @@ static inline hr_bounds cull_box_widened(hr_bounds b)
  * reference; box_slabs_missed is the same test in SSE2 where there is SSE2. */
 static inline int box_misses_scalar(const hr_bounds *b, const hr_ray *ray, double tmin, double tmax)
 {
-    double t_near = -INFINITY, t_far = INFINITY;
-    cull_slab(ray->origin.x, ray->dir.x, b->lo.x, b->hi.x, &t_near, &t_far);
-    cull_slab(ray->origin.y, ray->dir.y, b->lo.y, b->hi.y, &t_near, &t_far);
-    cull_slab(ray->origin.z, ray->dir.z, b->lo.z, b->hi.z, &t_near, &t_far);
-    return cull_window_missed(t_near, t_far, tmin, tmax);
+    return shape_box_misses(b, ray, tmin, tmax);
 }
 
 /* box_misses_scalar, in SSE2 where there is SSE2: about half the
@@ -153,13 +123,13 @@ static inline __attribute__((always_inline)) int box_slabs_missed(const hr_bound
 #if defined(__SSE2__)
     /* x and y in one vector, z in another whose upper lane is a slab
      * everywhere (-inf to inf, o 0, d 1), so it gives -inf and inf. Each
-     * lane does cull_slab's operations in its order: the subtractions and
+     * lane does shape_slab_window's operations in its order: the subtractions and
      * divisions, then _mm_min_pd(b, a) and _mm_max_pd(b, a), which are
      * "b < a ? b : a" and "b > a ? b : a", then the running max and min
      * with the new value first, so a NaN drops out as it does there. The
      * lanes are folded last; max and min of the same values do not depend
      * on the order but for the sign of a zero, which the widening erases
-     * (cull_window_missed turns either zero into the same -CULL_TINY or
+     * (shape_window_missed turns either zero into the same -CULL_TINY or
      * CULL_TINY). So both give the same answer (test_ray_cull). */
     const __m128d inf = _mm_set1_pd(INFINITY), neg_inf = _mm_set1_pd(-INFINITY);
     const __m128d o_xy = _mm_loadu_pd(&ray->origin.x), d_xy = _mm_loadu_pd(&ray->dir.x);
@@ -177,7 +147,7 @@ static inline __attribute__((always_inline)) int box_slabs_missed(const hr_bound
     t_far = _mm_min_pd(_mm_max_pd(b_z, a_z), t_far);
     t_near = _mm_max_sd(t_near, _mm_unpackhi_pd(t_near, t_near));
     t_far = _mm_min_sd(t_far, _mm_unpackhi_pd(t_far, t_far));
-    return cull_window_missed(_mm_cvtsd_f64(t_near), _mm_cvtsd_f64(t_far), tmin, tmax);
+    return shape_window_missed(_mm_cvtsd_f64(t_near), _mm_cvtsd_f64(t_far), tmin, tmax);
 #else
     return box_misses_scalar(b, ray, tmin, tmax);
 #endif

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include <hitray/common.h>
+#include <hitray/shape_kit_math.h>
 
 static inline hr_vec3 v3(double x, double y, double z)
 {
@@ -81,40 +82,29 @@ static inline double v3_max_abs(hr_vec3 a)
 /* The power of two e such that a * 2^-e is near unit length, for a vector
  * whose squared length would under- or overflow (a component beyond
  * 2^+-200); 0 for every other vector, zero, inf and NaN included. Scaling
- * by 2^-e is exact. */
+ * by 2^-e is exact. The exponent is the shape kit's (frexp's, read off the
+ * bits). */
 static inline int v3_rescale_exponent(hr_vec3 a)
 {
     double big = v3_max_abs(a);
-    if (!(big < 0x1p-200 || big > 0x1p200) || !(big > 0.0) || !isfinite(big)) return 0;
+    if (!(big < 0x1p-200 || big > 0x1p200)) return 0;
     int e;
-    frexp(big, &e);
-    return e;
+    return shape_vec3_scale_exponent(a, &e) ? e : 0;
 }
+/* a 2^e, as ldexp gives it per component (shape_ldexp). */
 static inline hr_vec3 v3_ldexp(hr_vec3 a, int e)
 {
-    return e ? v3(ldexp(a.x, e), ldexp(a.y, e), ldexp(a.z, e)) : a;
+    return e ? shape_vec3_ldexp(a, e) : a;
 }
 /* a scaled by a power of two so its largest |component| is in [1, 2):
  * exact, for normals of any length before and after a transform, so neither
  * M^-T nor normalising can overflow or underflow. The factor is built from
- * the exponent bits (no libm call on the hot path); zero, subnormal,
- * infinite and NaN inputs take the slow path or stay as they are. */
+ * the exponent bits (no libm call on the hot path); zero, infinite and NaN
+ * inputs stay as they are. */
 static inline hr_vec3 v3_unit_exponent(hr_vec3 a)
 {
-    double big = v3_max_abs(a);
-    uint64_t bits;
-    memcpy(&bits, &big, sizeof bits);
-    int biased = (int)((bits >> 52) & 0x7ff);
-    if (biased == 0x7ff || !(big > 0.0)) return a;
-    if (biased == 0 || biased >= 2046) {
-        int e;
-        frexp(big, &e);
-        return v3_ldexp(a, 1 - e);
-    }
-    uint64_t factor_bits = (uint64_t)(2046 - biased) << 52; /* 2^(1023 - biased) */
-    double factor;
-    memcpy(&factor, &factor_bits, sizeof factor);
-    return v3_scale(a, factor);
+    int e;
+    return shape_vec3_scale_exponent(a, &e) ? v3_ldexp(a, 1 - e) : a;
 }
 
 static inline hr_color rgb(double r, double g, double b)

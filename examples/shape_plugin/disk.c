@@ -1,16 +1,19 @@
 /* An out-of-tree hitray shape module: the flat disk x^2 + y^2 <= radius^2 in
  * the plane z = 0, normal +z. It is written the way a user writes a plugin:
- * it sees only the installed <hitray/shape_module.h> and links nothing of
- * libhitray, so one disk.so serves every program that loads it.
+ * it sees only the installed headers (<hitray/shape_module.h>, the ABI, and
+ * <hitray/shape_kit.h>, the header-only kit the built-in shapes are made
+ * of) and links nothing of libhitray, so one disk.so serves every program
+ * that loads it.
  *
  * What the ABI asks of a shape, and where this file does it:
  * - one exported entry point, defined with HR_DEFINE_SHAPE_MODULE (bottom);
  * - a class table (disk_class): name, parameters, create/destroy, bounds and
- *   the hit functions;
+ *   the hit functions (SHAPE_DEFINE_HIT_MODES makes hit, first_hit and
+ *   any_hit from the one disk_trace);
  * - reentrant hit functions that allocate nothing and write no globals: the
  *   shape's data is made once by create and only read afterwards;
  * - hits strictly inside (tmin, tmax), sorted, with no NaN or infinity in any
- *   field, and an honest `error` bound (disk_trace).
+ *   field (shape_report), and an honest `error` bound (disk_fill).
  *
  * Like Hill's plane, the disk is not a solid: the side its normal points to
  * counts as outside, so a ray moving against the normal (dir.z < 0) enters.
@@ -20,10 +23,12 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <hitray/shape_kit.h>
 #include <hitray/shape_module.h>
 
 /* What create makes for each disk object. The host pointer is kept so that
- * destroy gives the memory back the way create got it. */
+ * destroy gives the memory back the way create got it (as the kit's
+ * shape_plain does for a class without parameters). */
 typedef struct disk_shape {
     const hr_host *host;
     double radius;
@@ -85,71 +90,57 @@ static void disk_destroy(void *shape)
 static void disk_bounds(const void *shape, hr_bounds *out)
 {
     const double r = ((const disk_shape *)shape)->radius;
-    out->lo = (hr_vec3){-r, -r, 0.0};
-    out->hi = (hr_vec3){r, r, 0.0};
+    shape_set_bounds(out, -r, -r, 0.0, r, r, 0.0);
 }
 
-/* Bound on |theta_n|, the relative error of n chained roundings of
- * correctly rounded operations (Higham, ch. 3; pbrt-v4): n u / (1 - n u). */
-static double gamma_bound(int n)
+/* The point, normal and error of a crossing of z = 0 at hit->t: x and y
+ * from the ray, z exactly 0, so the point lies on the plane of the disk and
+ * is off only along it. t carries one rounding (-o.z / d.z), and
+ * shape_ray_point_error bounds the rounding of o + t d for it (gamma(4) of
+ * |o| + |t d|): the distance to the exact intersection point, which is what
+ * the host needs to offset new rays. */
+static void disk_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
-    const double unit_roundoff = 0.5 * 0x1p-52;
-    return n * unit_roundoff / (1.0 - n * unit_roundoff);
+    (void)shape;
+    hit->point = shape_vec3(ray->origin.x + hit->t * ray->dir.x,
+                            ray->origin.y + hit->t * ray->dir.y, 0.0);
+    hit->normal = shape_vec3(0.0, 0.0, 1.0);
+    hit->error = shape_ray_point_error(ray, hit->t, 1);
 }
 
-/* The disk has at most one hit per ray, so "every hit", "the nearest hit"
- * and "any hit" are the same answer: one function serves as hit, first_hit
- * and any_hit. */
-static hr_status disk_hit(const hr_hit_args *args)
+/* The disk has at most one crossing per ray, so every mode gets the same
+ * answer; shape_report keeps it only inside (tmin, tmax) (which also drops
+ * an infinite t from a tiny d.z) and only when every field is finite. */
+static hr_status disk_trace(const hr_hit_args *args, int32_t mode)
 {
     const disk_shape *disk = args->shape;
-    const hr_vec3 o = args->ray.origin, d = args->ray.dir;
+    const hr_ray *ray = &args->ray;
 
     /* A ray parallel to the plane (d.z is +0 or -0) never crosses it; one
      * lying in the plane sees the disk edge-on, which has no area. Testing
      * before dividing means no infinity or NaN is ever made here. */
-    if (d.z == 0.0) return HR_OK;
-
-    /* o.z + t d.z = 0: one rounding. A tiny d.z can make t infinite; the
-     * strict interval test drops that (and t == tmin) before it is used. */
-    const double t = -o.z / d.z;
-    if (!(t > args->tmin && t < args->tmax)) return HR_OK;
-
-    /* The point: x and y from the ray, z exactly 0, so it lies on the
-     * plane of the disk and is off only along it. */
-    const hr_vec3 point = {o.x + t * d.x, o.y + t * d.y, 0.0};
+    if (ray->dir.z == 0.0) return HR_OK;
+    shape_crossing crossing = {-ray->origin.z / ray->dir.z, 0, ray->dir.z < 0.0};
+    if (!(crossing.t > args->tmin && crossing.t < args->tmax)) return HR_OK;
 
     /* Inside or on the rim (the rim belongs to the disk). The test is made
      * on the very point that is reported, so the decision and the point
      * never disagree. hypot neither overflows nor underflows where
      * x*x + y*y would (radius 1e-200, or a point at 1e200); an infinite
      * coordinate (a far ray whose arithmetic overflowed) fails it. */
-    if (!(hypot(point.x, point.y) <= disk->radius)) return HR_OK;
-
-    /* Error of the point, per coordinate, taking the ray as exact: t carries
-     * one rounding (t~ = t (1 + theta_1)); x~ = fl(o.x + fl(t~ d.x)) is then
-     * within gamma(3) (|o.x| + |t d.x|) of the exact o.x + t d.x, and one
-     * more gamma covers evaluating this bound with the computed t~. z is
-     * exact, so only x and y count. This bounds the distance to the exact
-     * intersection point, which is what the host needs to offset new rays. */
-    const double error =
-        gamma_bound(4) * fmax(fabs(o.x) + fabs(t * d.x), fabs(o.y) + fabs(t * d.y));
-    /* Finite point, but |o| + |t d| can still overflow when the two nearly
-     * cancel at 1e308: such a hit is dropped, never passed on as infinity. */
-    if (!isfinite(error)) return HR_OK;
+    hr_hit probe = {.t = crossing.t};
+    disk_fill(disk, ray, &probe);
+    if (!(hypot(probe.point.x, probe.point.y) <= disk->radius)) return HR_OK;
 
     /* The host guarantees HR_MIN_HIT_CAPACITY (>= 1) free slots on entry, so
-     * one hit needs no host->reserve. */
-    hr_hit *hit = &args->out->hits[args->out->count++];
-    hit->t = t;
-    hit->point = point;
-    hit->normal = (hr_vec3){0.0, 0.0, 1.0};
-    hit->error = error;
-    hit->surface = 0;
-    hit->entering = d.z < 0.0; /* moving against the normal, as for the plane */
-    /* hit->object belongs to the host: it fills it in. */
-    return HR_OK;
+     * one hit needs no host->reserve. hit->object belongs to the host. */
+    return shape_report(args, mode, &crossing, 1, disk_fill);
 }
+
+SHAPE_DEFINE_HIT_MODES(disk, disk_trace)
+
+/* hr_hit.surface 0, named for `hitray shapes` and the bindings. */
+static const char *const disk_surface_names[1] = {"disk"};
 
 static const hr_shape_class disk_class = {
     .struct_size = sizeof(hr_shape_class),
@@ -163,8 +154,9 @@ static const hr_shape_class disk_class = {
     .destroy = disk_destroy,
     .bounds = disk_bounds,
     .hit = disk_hit,
-    .first_hit = disk_hit,
-    .any_hit = disk_hit,
+    .first_hit = disk_first_hit,
+    .any_hit = disk_any_hit,
+    .surface_names = disk_surface_names,
 };
 
 static const hr_shape_class *const disk_classes[] = {&disk_class};
@@ -176,6 +168,10 @@ static const hr_module_info disk_module = {
     .description = "example plugin: a flat disk of a given radius",
     .classes = disk_classes,
     .class_count = 1,
+    /* Metadata that `hitray shapes` shows (each may be NULL). */
+    .version = "1.0.0",
+    .author = "the hitray authors (an example)",
+    .url = NULL,
 };
 
 /* The one exported symbol. The host compares abi_version with its own and

@@ -90,9 +90,9 @@ typedef struct hr_hit {
     double error;      /* bound on the distance of `point` from the true surface
                           point (per coordinate, absolute); the host offsets
                           spawned rays by it instead of a fixed epsilon */
-    int32_t surface;   /* which surface of the shape (cube: 0..5 for
-                          +x,-x,+y,-y,+z,-z; tapered cylinder: 0 wall, 1 base,
-                          2 cap; 0 for single-surface shapes) */
+    int32_t surface;   /* which surface of the shape, 0 .. its class's
+                          surface_count - 1, named by the class's
+                          surface_names (shape_module.h) */
     int32_t entering;  /* 1: the ray enters the solid here; 0: it leaves */
     int64_t object;    /* index of the object in the scene (file order); a CSG
                           hit names the leaf whose surface it is. Shape modules

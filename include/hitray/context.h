@@ -96,6 +96,12 @@ typedef struct hr_module_entry {
     const char *error;     /* "" if loaded */
     const hr_shape_class *const *classes;
     int32_t class_count;
+    /* Added within ABI 1 (read when struct_size covers them): the module's
+     * hr_module_info.version, author and url; "" when it gives none (or
+     * is not loaded). */
+    const char *version;
+    const char *author;
+    const char *url;
 } hr_module_entry;
 HR_API int32_t hr_context_module_count(hr_context *ctx);
 HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_entry *out);

@@ -147,9 +147,9 @@ struct hr_shape_class {
     const char *help;     /* one line */
     const hr_param_spec *params;
     int32_t param_count;
-    int32_t surface_count; /* surfaces ids are 0 .. surface_count-1; a
-                              composite passes on its leaves' ids and
-                              declares 0 */
+    int32_t surface_count; /* surfaces ids are 0 .. surface_count-1 (named
+                              by surface_names); a composite passes on its
+                              leaves' ids and declares 0 */
     hr_status (*create)(const hr_create_args *args, void **out_shape);
     void (*destroy)(void *shape);
     /* Object-space bounds; infinities for an unbounded shape. */
@@ -181,6 +181,11 @@ struct hr_shape_class {
      * hits, never on an untextured scene; reentrant and allocation-free like
      * `hit`. NULL: the class gives no (u, v). */
     int32_t (*surface_uv)(const void *shape, const hr_hit *hit, double uv[2]);
+    /* Optional: the name of each surface, surface_count entries (a cube's
+     * "+x", "-x", ...; a tapered cylinder's "wall", "base", "cap"), so that
+     * hr_hit.surface can be read without knowing the class. NULL: the
+     * surfaces are known by number only. */
+    const char *const *surface_names;
 };
 
 /* Whether a class declared with `struct_size` has `field`. The host's copy
@@ -197,7 +202,18 @@ typedef struct hr_module_info {
     const char *description;
     const hr_shape_class *const *classes;
     int32_t class_count;
+    /* --- Added within ABI 1; the host reads them only when struct_size
+     * covers them (HR_MODULE_HAS), so a module built against an older
+     * header is shown without them. Each may be NULL. --- */
+    const char *version; /* the module's own version, e.g. "1.2.0" */
+    const char *author;  /* who made it */
+    const char *url;     /* where it comes from (home page, repository) */
 } hr_module_info;
+
+/* Whether the module info `info` has `field` (it may come from a module
+ * built before the field was added). */
+#define HR_MODULE_HAS(info, field)                                             \
+    ((info)->struct_size >= offsetof(hr_module_info, field) + sizeof((info)->field))
 
 typedef const hr_module_info *(*hr_shape_module_fn)(uint32_t host_abi_version,
                                                      const hr_host *host);

@@ -1,5 +1,5 @@
 /* hitray built-in shapes: (u, v) on their surfaces (hr_shape_class.surface_uv),
- * the pieces several shapes share. Static inline, as shape_math.h. */
+ * the pieces several shapes share. Static inline, as <hitray/shape_kit.h>. */
 #ifndef HITRAY_SHAPES_SHAPE_UV_H
 #define HITRAY_SHAPES_SHAPE_UV_H
 

@@ -54,8 +54,10 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <hitray/shape_kit.h>
 #include <hitray/shape_module.h>
 
+#include "../common/shape_builtin.h"
 #include "csg_combine.h"
 
 typedef struct csg_shape {
@@ -196,67 +198,21 @@ static hr_status probe_inside(const csg_shape *shape, void *call, const void *ch
     return HR_OK;
 }
 
-/* The ray with its direction's reciprocals, for box tests. */
-typedef struct box_ray {
-    double o[3], d[3], inv_d[3];
-    double tmin;
-} box_ray;
-
-static box_ray box_ray_make(const hr_ray *ray, double tmin)
-{
-    box_ray r = {{ray->origin.x, ray->origin.y, ray->origin.z},
-                 {ray->dir.x, ray->dir.y, ray->dir.z},
-                 {0, 0, 0},
-                 tmin};
-#pragma GCC unroll 3 /* as in ray_misses_box: once for every child trace */
-    for (int k = 0; k < 3; k++) r.inv_d[k] = r.d[k] != 0.0 ? 1.0 / r.d[k] : 0.0;
-    return r;
-}
-
-/* Whether the ray after tmin certainly misses the finite box `b`: the slab
- * test, with the far distance widened by 1 + 2 gamma(3) (as pbrt does; the
- * reciprocal adds one rounding to pbrt's two) so rounding never loses a box
- * the ray touches. A zero direction component keeps the ray in the slab or
- * out of it; nothing here divides by zero. */
-static int ray_misses_box(const box_ray *r, const hr_bounds *b)
-{
-    const double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z};
-    const double eps = DBL_EPSILON * 0.5, widen = 1.0 + 2.0 * (4.0 * eps / (1.0 - 4.0 * eps));
-    double t_near = r->tmin, t_far = INFINITY;
-    /* Unrolled: every child trace asks this first, and the loop's counter
-     * and branch cost about what an axis's test does. */
-#pragma GCC unroll 3
-    for (int k = 0; k < 3; k++) {
-        if (r->d[k] == 0.0) {
-            if (r->o[k] < lo[k] || r->o[k] > hi[k]) return 1;
-            continue;
-        }
-        double t0 = (lo[k] - r->o[k]) * r->inv_d[k], t1 = (hi[k] - r->o[k]) * r->inv_d[k];
-        if (t0 > t1) {
-            const double swap = t0;
-            t0 = t1, t1 = swap;
-        }
-        t1 *= widen;
-        if (t0 > t_near) t_near = t0;
-        if (t1 < t_far) t_far = t1;
-        if (t_near > t_far) return 1;
-    }
-    return 0;
-}
-
 /* Appends every hit of `child` after tmin to `out` and says whether the ray
  * is inside it at tmin. A bounded child whose box the ray misses has no hit
  * and is outside all along: it is not traced (so a tree of booleans prunes
- * itself like a BVH). */
-static hr_status trace_operand(const csg_shape *shape, const hr_hit_args *args, const box_ray *br,
-                               int which_b, int *inside)
+ * itself like a BVH). The box test is the kit's (shape_box_misses), which
+ * never drops a box the ray touches after tmin. */
+static hr_status trace_operand(const csg_shape *shape, const hr_hit_args *args, int which_b,
+                               int *inside)
 {
     hr_intersection *out = args->out;
     const int32_t start = out->count;
     const void *child = which_b ? shape->b : shape->a;
     const int finite = which_b ? shape->b_box_finite : shape->a_box_finite;
     *inside = 0;
-    if (finite && ray_misses_box(br, which_b ? &shape->b_box : &shape->a_box)) return HR_OK;
+    if (finite && shape_box_misses(which_b ? &shape->b_box : &shape->a_box, &args->ray, args->tmin, INFINITY))
+        return HR_OK;
     hr_status st = shape->host->trace_child(args->call, child, &args->ray, args->tmin, INFINITY,
                                             HR_TRACE_ALL, out);
     if (st) return st;
@@ -286,14 +242,13 @@ static hr_status csg_trace(const hr_hit_args *args, int32_t mode)
      * the result, which is finally moved down to `start`. */
     csg_operand a, b;
     int inside;
-    const box_ray br = box_ray_make(&args->ray, args->tmin);
-    if ((st = trace_operand(shape, args, &br, 0, &inside))) goto fail;
+    if ((st = trace_operand(shape, args, 0, &inside))) goto fail;
     a.inside = inside;
     a.count = out->count - start;
     /* An intersection or a difference lies inside a: a ray that never is
      * inside a has no hit, whatever b does. */
     if (shape->op != CSG_UNION && a.count == 0 && !a.inside) return HR_OK;
-    if ((st = trace_operand(shape, args, &br, 1, &inside))) goto fail;
+    if ((st = trace_operand(shape, args, 1, &inside))) goto fail;
     b.inside = inside;
     b.count = out->count - start - a.count;
     const int32_t n = a.count + b.count;
@@ -316,20 +271,7 @@ fail:
     return st;
 }
 
-static hr_status csg_hit(const hr_hit_args *args)
-{
-    return csg_trace(args, HR_TRACE_ALL);
-}
-
-static hr_status csg_first_hit(const hr_hit_args *args)
-{
-    return csg_trace(args, HR_TRACE_FIRST);
-}
-
-static hr_status csg_any_hit(const hr_hit_args *args)
-{
-    return csg_trace(args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(csg, csg_trace)
 
 /* --- The module --------------------------------------------------------------- */
 
@@ -377,6 +319,7 @@ static const hr_module_info csg_module = {
     .description = "CSG booleans of two solids: union, intersection, difference",
     .classes = csg_classes,
     .class_count = 3,
+    SHAPE_BUILTIN_METADATA,
 };
 
 HR_DEFINE_SHAPE_MODULE(host_version, host)

@@ -24,9 +24,8 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
-#include "../common/shape_math.h"
+#include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 
 /* Face ids: 2 axis for the +1 face of an axis, 2 axis + 1 for the -1 face. */
@@ -100,6 +99,9 @@ static int32_t cube_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+/* Surface i is the face of its axis and sign (cube_fill's order). */
+static const char *const cube_surface_names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+
 static const hr_shape_class cube_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -108,6 +110,7 @@ static const hr_shape_class cube_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 6,
+    .surface_names = cube_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = cube_bounds,
@@ -126,6 +129,7 @@ static const hr_module_info cube_module = {
     .description = "Hill's generic cube: corners (+-1, +-1, +-1)",
     .classes = cube_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -69,8 +69,8 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_math.h"
+#include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 
 #define SURFACE_WALL 0
@@ -391,6 +391,9 @@ static int32_t tapered_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+/* By SURFACE_WALL, SURFACE_BASE and SURFACE_CAP. */
+static const char *const tapered_surface_names[3] = {"wall", "base", "cap"};
+
 #define TAPERED_CLASS(class_name, class_help, params_list, params_count, create_fn)          \
     {                                                                                       \
         .struct_size = sizeof(hr_shape_class), .flags = HR_SHAPE_CLOSED, .name = class_name, \
@@ -398,7 +401,7 @@ static int32_t tapered_uv(const void *shape, const hr_hit *hit, double uv[2])
         .surface_count = 3, .create = create_fn, .destroy = tapered_destroy,                \
         .bounds = tapered_bounds, .hit = tapered_hit, .first_hit = tapered_first_hit,       \
         .any_hit = tapered_any_hit, .transformed_bounds = tapered_transformed_bounds,       \
-        .surface_uv = tapered_uv,                                                           \
+        .surface_uv = tapered_uv, .surface_names = tapered_surface_names,                   \
     }
 
 static const hr_shape_class tapered_cylinder_class =
@@ -422,6 +425,7 @@ static const hr_shape_class open_tapered_cylinder_class = {
     .params = tapered_params,
     .param_count = 1,
     .surface_count = 1,
+    .surface_names = tapered_surface_names, /* the wall alone: SURFACE_WALL is 0 */
     .create = tapered_cylinder_create,
     .destroy = tapered_destroy,
     .bounds = tapered_bounds,
@@ -442,6 +446,7 @@ static const hr_module_info tapered_module = {
     .description = "Hill's tapered cylinder, cylinder and cone, and the open tapered wall",
     .classes = tapered_classes,
     .class_count = (int32_t)(sizeof tapered_classes / sizeof tapered_classes[0]),
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

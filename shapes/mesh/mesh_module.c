@@ -29,6 +29,9 @@
 #include <float.h>
 #include <math.h>
 
+#include <hitray/shape_kit_hits.h>
+
+#include "../common/shape_builtin.h"
 #include "mesh.h"
 #include "mesh_arrays.h"
 #include "mesh_bezier.h"
@@ -45,23 +48,14 @@ static int ray_is_finite(const hr_ray *r)
            isfinite(r->dir.x) && isfinite(r->dir.y) && isfinite(r->dir.z);
 }
 
-static hr_status mesh_hit(const hr_hit_args *args)
+/* A ray that is not finite meets nothing (and is not traced). */
+static hr_status mesh_trace_finite(const hr_hit_args *args, int32_t mode)
 {
     if (!ray_is_finite(&args->ray)) return HR_OK;
-    return mesh_trace(args->shape, args, HR_TRACE_ALL);
+    return mesh_trace(args->shape, args, mode);
 }
 
-static hr_status mesh_first_hit(const hr_hit_args *args)
-{
-    if (!ray_is_finite(&args->ray)) return HR_OK;
-    return mesh_trace(args->shape, args, HR_TRACE_FIRST);
-}
-
-static hr_status mesh_any_hit(const hr_hit_args *args)
-{
-    if (!ray_is_finite(&args->ray)) return HR_OK;
-    return mesh_trace(args->shape, args, HR_TRACE_ANY);
-}
+SHAPE_DEFINE_HIT_MODES(mesh, mesh_trace_finite)
 
 static void mesh_bounds(const void *shape, hr_bounds *out)
 {
@@ -176,12 +170,15 @@ static const hr_param_spec teapot_params[] = {
      "(9,120 at the default 12), some 60 bytes each"},
 };
 
+/* Every triangle of a mesh is one surface. */
+static const char *const mesh_surface_names[1] = {"mesh"};
+
 #define MESH_CLASS_FIELDS(name_, flags_, help_, params_, count_, create_)      \
     .struct_size = sizeof(hr_shape_class), .flags = flags_, .name = name_,     \
     .help = help_, .params = params_, .param_count = count_,                   \
     .surface_count = 1, .create = create_, .destroy = mesh_destroy_shape,      \
     .bounds = mesh_bounds, .hit = mesh_hit, .first_hit = mesh_first_hit,       \
-    .any_hit = mesh_any_hit
+    .any_hit = mesh_any_hit, .surface_names = mesh_surface_names
 #define MESH_CLASS(name_, flags_, help_, params_, count_, create_)             \
     {MESH_CLASS_FIELDS(name_, flags_, help_, params_, count_, create_)}
 
@@ -235,6 +232,7 @@ static const hr_module_info mesh_module = {
                    "solids, the buckyball and Newell's teapot",
     .classes = mesh_classes,
     .class_count = (int32_t)(sizeof mesh_classes / sizeof mesh_classes[0]),
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -8,9 +8,10 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
+#include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
+#include "../common/shape_z0.h"
 
 static void plane_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
@@ -44,6 +45,8 @@ static int32_t plane_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const plane_surface_names[1] = {"plane"};
+
 static const hr_shape_class plane_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0,
@@ -52,6 +55,7 @@ static const hr_shape_class plane_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 1,
+    .surface_names = plane_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = plane_bounds,
@@ -70,6 +74,7 @@ static const hr_module_info plane_module = {
     .description = "Hill's generic plane: z = 0",
     .classes = plane_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -31,9 +31,8 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
-#include "../common/shape_math.h"
+#include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 #include "sphere_coefficients.h"
 
@@ -154,6 +153,8 @@ static int32_t sphere_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const sphere_surface_names[1] = {"sphere"};
+
 static const hr_shape_class sphere_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -162,6 +163,7 @@ static const hr_shape_class sphere_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 1,
+    .surface_names = sphere_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = sphere_bounds,
@@ -181,6 +183,7 @@ static const hr_module_info sphere_module = {
     .description = "Hill's generic sphere: radius 1 at the origin",
     .classes = sphere_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch, so the module always

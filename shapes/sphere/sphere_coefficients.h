@@ -10,9 +10,8 @@
 #ifndef HITRAY_SHAPES_SPHERE_COEFFICIENTS_H
 #define HITRAY_SHAPES_SPHERE_COEFFICIENTS_H
 
-#include <hitray/common.h>
+#include <hitray/shape_kit_math.h>
 
-#include "../common/shape_math.h"
 
 typedef struct sphere_coefficients {
     shape_sum a, b, c;

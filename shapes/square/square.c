@@ -9,9 +9,10 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_instance.h"
+#include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
+#include "../common/shape_z0.h"
 
 static void square_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
@@ -52,6 +53,8 @@ static int32_t square_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const square_surface_names[1] = {"square"};
+
 static const hr_shape_class square_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = 0,
@@ -60,6 +63,7 @@ static const hr_shape_class square_class = {
     .params = NULL,
     .param_count = 0,
     .surface_count = 1,
+    .surface_names = square_surface_names,
     .create = shape_plain_create,
     .destroy = shape_plain_destroy,
     .bounds = square_bounds,
@@ -78,6 +82,7 @@ static const hr_module_info square_module = {
     .description = "Hill's generic square: z = 0, |x|, |y| <= 1",
     .classes = square_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

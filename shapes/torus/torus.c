@@ -35,8 +35,8 @@
 
 #include <hitray/shape_module.h>
 
-#include "../common/shape_hits.h"
-#include "../common/shape_math.h"
+#include <hitray/shape_kit.h>
+#include "../common/shape_builtin.h"
 #include "../common/shape_uv.h"
 #include "torus_quartic.h"
 
@@ -214,6 +214,8 @@ static int32_t torus_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
+static const char *const torus_surface_names[1] = {"torus"};
+
 static const hr_shape_class torus_class = {
     .struct_size = sizeof(hr_shape_class),
     .flags = HR_SHAPE_CLOSED,
@@ -222,6 +224,7 @@ static const hr_shape_class torus_class = {
     .params = torus_params,
     .param_count = 2,
     .surface_count = 1,
+    .surface_names = torus_surface_names,
     .create = torus_create,
     .destroy = torus_destroy,
     .bounds = torus_bounds,
@@ -240,6 +243,7 @@ static const hr_module_info torus_module = {
     .description = "Hill's generic torus: ring radius 1 about z, tube radius a parameter",
     .classes = torus_classes,
     .class_count = 1,
+    SHAPE_BUILTIN_METADATA,
 };
 
 /* The host checks abi_version and explains a mismatch. */

@@ -59,7 +59,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "../common/shape_math.h"
+#include <hitray/shape_kit_math.h>
 
 static const char *const solver_names[TORUS_SOLVER_COUNT] = {"ferrari", "ferrari-newton",
                                                              "bracketing"};

@@ -56,7 +56,7 @@ PIN_OFF(hr_hit_args, ray, 8);
 PIN_OFF(hr_hit_args, tmin, 56);
 PIN_OFF(hr_hit_args, out, 72);
 PIN_OFF(hr_hit_args, call, 80);
-PIN_SIZE(hr_shape_class, 104);
+PIN_SIZE(hr_shape_class, 112);
 PIN_OFF(hr_shape_class, name, 8);
 PIN_OFF(hr_shape_class, params, 24);
 PIN_OFF(hr_shape_class, create, 40);
@@ -65,9 +65,14 @@ PIN_OFF(hr_shape_class, first_hit, 72);
 PIN_OFF(hr_shape_class, any_hit, 80);
 PIN_OFF(hr_shape_class, transformed_bounds, 88);
 PIN_OFF(hr_shape_class, surface_uv, 96);
-PIN_SIZE(hr_module_info, 40);
+PIN_OFF(hr_shape_class, surface_names, 104);
+PIN_SIZE(hr_module_info, 64);
 PIN_OFF(hr_module_info, classes, 24);
 PIN_OFF(hr_module_info, class_count, 32);
+/* Appended within ABI 1: a module's metadata. */
+PIN_OFF(hr_module_info, version, 40);
+PIN_OFF(hr_module_info, author, 48);
+PIN_OFF(hr_module_info, url, 56);
 PIN_SIZE(hr_material, 168);
 PIN_OFF(hr_material, ambient, 8);
 PIN_OFF(hr_material, diffuse, 32);
@@ -116,7 +121,12 @@ PIN_OFF(hr_render_stats, samples_saved, 64);
 PIN_OFF(hr_render_stats, rays_cut, 72);
 PIN_SIZE(hr_image_write_options, 24);
 PIN_SIZE(hr_error_info, 32);
-PIN_SIZE(hr_module_entry, 56);
+PIN_SIZE(hr_module_entry, 80);
+PIN_OFF(hr_module_entry, class_count, 48);
+/* Appended within ABI 1: the module's metadata. */
+PIN_OFF(hr_module_entry, version, 56);
+PIN_OFF(hr_module_entry, author, 64);
+PIN_OFF(hr_module_entry, url, 72);
 /* hr_warning (the warning callback's argument, added within ABI 1). */
 PIN_SIZE(hr_warning, 32);
 PIN_OFF(hr_warning, code, 4);

@@ -117,6 +117,24 @@ static void test_refusals(void)
     hr_context_destroy(ctx);
 }
 
+/* The metadata a module gives (hr_module_info.version, author, url) is
+ * listed as given, NULL as ""; an info too short to hold it has none. */
+static void check_metadata(const hr_module_entry *e)
+{
+    if (strcmp(e->name, "probe") == 0) {
+        CHECK(strcmp(e->version, "1.2.3") == 0);
+        CHECK(strcmp(e->author, "the probe's author") == 0);
+        CHECK(strcmp(e->url, "") == 0);
+    } else if (strcmp(e->name, "old_abi_layout") == 0) {
+        CHECK(strcmp(e->version, "") == 0 && strcmp(e->author, "") == 0);
+    } else if (strcmp(e->name, "cube") == 0) {
+        char version[32];
+        snprintf(version, sizeof version, "%d.%d.%d", HR_VERSION_MAJOR, HR_VERSION_MINOR,
+                 HR_VERSION_PATCH);
+        CHECK(strcmp(e->version, version) == 0 && *e->author);
+    }
+}
+
 /* Scanning a directory: good modules usable, refused ones listed with why. */
 static void test_scan(void)
 {
@@ -133,8 +151,10 @@ static void test_scan(void)
         hr_module_entry e = {0};
         e.struct_size = sizeof e;
         CHECK_OK(hr_context_module(ctx, i, &e));
-        if (e.loaded) loaded++;
-        else {
+        if (e.loaded) {
+            loaded++;
+            check_metadata(&e);
+        } else {
             refused++;
             CHECK(strstr(e.error, e.path) != NULL);
         }
@@ -249,7 +269,7 @@ static void test_registered(void)
 {
     static const hr_shape_class cls = {sizeof(hr_shape_class), 0, "memDisc", "in-process test",
                                        NULL, 0, 1, mem_create, mem_destroy, mem_bounds, mem_hit,
-                                       NULL, NULL, NULL, NULL};
+                                       NULL, NULL, NULL, NULL, NULL};
     hr_context *ctx;
     CHECK_OK(hr_context_create(&ctx));
     CHECK_OK(hr_context_register_shape_class(ctx, &cls, "test_modules.c"));

@@ -15,6 +15,7 @@ install_into_moved_prefix()
 # The layout the package promises.
 expect_file("${prefix}/include/hitray/hitray.h")
 expect_file("${prefix}/include/hitray/shape_module.h")
+expect_file("${prefix}/include/hitray/shape_kit.h")
 expect_file("${prefix}/${LIBDIR}/libhitray.so.0")
 expect_file("${prefix}/${LIBDIR}/libhitray.so")
 expect_file("${prefix}/${LIBDIR}/hitray/shapes/sphere.so")

@@ -71,9 +71,10 @@ static hr_status hit(const hr_hit_args *a)
 
 static const hr_shape_class probe_class = {
     sizeof(hr_shape_class), HR_SHAPE_CLOSED, "probeSphere", "test sphere", params, 3, 1,
-    create, destroy, bounds, hit, NULL, NULL, NULL, NULL};
+    create, destroy, bounds, hit, NULL, NULL, NULL, NULL, NULL};
 static const hr_shape_class *const classes[] = {&probe_class};
-static const hr_module_info info = {sizeof info, HR_SHAPE_ABI_VERSION, "probe", "test module", classes, 1};
+static const hr_module_info info = {sizeof info, HR_SHAPE_ABI_VERSION, "probe", "test module",
+                                    classes, 1, "1.2.3", "the probe's author", NULL};
 
 HR_DEFINE_SHAPE_MODULE(host_version, host)
 {

@@ -3,7 +3,7 @@
 #include <hitray/shape_module.h>
 
 static const hr_module_info info = {sizeof info, HR_SHAPE_ABI_VERSION + 98, "wrong_abi",
-                                    "test: wrong ABI", NULL, 0};
+                                    "test: wrong ABI", NULL, 0, NULL, NULL, NULL};
 
 HR_DEFINE_SHAPE_MODULE(host_version, host)
 {

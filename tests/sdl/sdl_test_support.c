@@ -77,7 +77,7 @@ static const hr_param_spec csg_params[] = {
 
 #define STUB_CLASS(name_, flags_, params_, count_, create_)                                 \
     {sizeof(hr_shape_class), flags_, name_, "SDL test stub", params_, count_, 1, create_,     \
-     stub_destroy, stub_bounds, stub_hit, NULL, NULL, NULL, NULL}
+     stub_destroy, stub_bounds, stub_hit, NULL, NULL, NULL, NULL, NULL}
 
 static const hr_shape_class stub_shapes[] = {
     STUB_CLASS("sphere", HR_SHAPE_CLOSED, NULL, 0, stub_box_create),

@@ -48,20 +48,20 @@ static const hr_param_spec probe_params[] = {
 };
 static const hr_shape_class probe_class = {sizeof(hr_shape_class), HR_SHAPE_CLOSED, "userBlock",
                                            "a user's shape", probe_params, 3, 1, probe_create,
-                                           probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL};
+                                           probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
 /* No parameters at all. */
 static const hr_shape_class bare_class = {sizeof(hr_shape_class), HR_SHAPE_CLOSED, "userBare",
                                           "no parameters", NULL, 0, 1, probe_create,
-                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL};
+                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
 /* A composite: object parameters have no SDL form. */
 static const hr_param_spec pair_params[] = {{"a", HR_PARAM_OBJECT, 1, 0, 1, 0, "first"}};
 static const hr_shape_class pair_class = {sizeof(hr_shape_class), HR_SHAPE_COMPOSITE, "userPair",
                                           "a composite", pair_params, 1, 1, probe_create,
-                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL};
+                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
 /* A class named like a command must not take the command's place. */
 static const hr_shape_class light_class = {sizeof(hr_shape_class), 0, "light", "a bad name",
                                            NULL, 0, 1, probe_create, probe_destroy,
-                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL};
+                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
 
 int main(void)
 {

@@ -4,6 +4,7 @@
  * class creates and destroys a shape (LeakSanitizer, in the sanitizer build,
  * sees any leak) and reports the bounds of its generic shape. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "hr_test.h"
@@ -57,7 +58,18 @@ static void test_module_info(const char *stem, int class_count)
         CHECK_MSG(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit,
                   "%s: incomplete vtable", c->name);
         CHECK(c->param_count == 0 || c->params != NULL);
+        /* Every surface named (a composite has none of its own). */
+        CHECK_MSG(c->surface_count == 0 || c->surface_names != NULL, "%s: surface_names", c->name);
+        for (int32_t k = 0; k < c->surface_count && c->surface_names; k++)
+            CHECK_MSG(c->surface_names[k] && c->surface_names[k][0], "%s: surface %d unnamed",
+                      c->name, (int)k);
     }
+    /* The built-ins' version is the project's and they name their author. */
+    char version[32];
+    snprintf(version, sizeof version, "%d.%d.%d", HR_VERSION_MAJOR, HR_VERSION_MINOR,
+             HR_VERSION_PATCH);
+    CHECK_MSG(info->version && strcmp(info->version, version) == 0, "%s: version", stem);
+    CHECK_MSG(info->author && info->author[0], "%s: author", stem);
     /* The same table on a second call: no state behind the entry point. */
     harness_module again;
     if (harness_load(stem, &again)) {
@@ -65,6 +77,20 @@ static void test_module_info(const char *stem, int class_count)
         harness_unload(&again);
     }
     harness_unload(&module);
+}
+
+/* hr_hit.surface of the cube and the tapered cylinder, by name. */
+static void test_surface_names(void)
+{
+    static const char *const cube[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    static const char *const tapered[] = {"wall", "base", "cap"};
+    harness_shape s;
+    if (harness_open(&s, "cube", "cube", NAN))
+        for (int k = 0; k < 6; k++) CHECK(strcmp(s.cls->surface_names[k], cube[k]) == 0);
+    harness_close(&s);
+    if (harness_open(&s, "cylinder", "taperedCylinder", NAN))
+        for (int k = 0; k < 3; k++) CHECK(strcmp(s.cls->surface_names[k], tapered[k]) == 0);
+    harness_close(&s);
 }
 
 static void test_class(const expected_class *e)
@@ -108,6 +134,7 @@ static void test_tapered_parameter(void)
 
 int main(void)
 {
+    test_surface_names();
     test_module_info("sphere", 1);
     test_module_info("plane", 1);
     test_module_info("square", 1);

@@ -98,6 +98,11 @@ py::dict class_dict(const hr_shape_class &cls, const char *module_path)
     d["closed"] = (cls.flags & HR_SHAPE_CLOSED) != 0;
     d["composite"] = (cls.flags & HR_SHAPE_COMPOSITE) != 0;
     d["surface_count"] = cls.surface_count;
+    py::list surface_names; // empty where the class names none
+    if (HR_CLASS_HAS(&cls, surface_names) && cls.surface_names)
+        for (int32_t i = 0; i < cls.surface_count; i++)
+            surface_names.append(text(cls.surface_names[i] ? cls.surface_names[i] : ""));
+    d["surface_names"] = surface_names;
     py::list params;
     for (int32_t i = 0; i < cls.param_count; i++) params.append(param_spec_dict(cls.params[i]));
     d["params"] = params;
@@ -119,6 +124,9 @@ py::list modules()
         d["name"] = text(e.name);
         d["description"] = text(e.description);
         d["error"] = text(e.error);
+        d["version"] = text(e.version);
+        d["author"] = text(e.author);
+        d["url"] = text(e.url);
         py::list classes;
         for (int32_t j = 0; j < e.class_count; j++) classes.append(text(e.classes[j]->name));
         d["classes"] = classes;

@@ -36,6 +36,7 @@ class ShapeClass:
     composite: bool
     surface_count: int
     params: Tuple[ShapeParam, ...]
+    surface_names: Tuple[str, ...] = ()  # hr_hit.surface's names; () where none
 
 
 @dataclass(frozen=True)
@@ -48,12 +49,16 @@ class ModuleInfo:
     description: str
     error: str
     classes: Tuple[str, ...]
+    version: str = ""  # the module's metadata; "" where it gives none
+    author: str = ""
+    url: str = ""
 
 
 def modules() -> List[ModuleInfo]:
     """Every module on the search path (scanned now), loaded or refused."""
     return [ModuleInfo(m["path"], m["loaded"], m["name"], m["description"], m["error"],
-                       tuple(m["classes"])) for m in _core.modules()]
+                       tuple(m["classes"]), m["version"], m["author"], m["url"])
+            for m in _core.modules()]
 
 
 def shape_classes() -> Dict[str, ShapeClass]:
@@ -66,7 +71,8 @@ def shape_classes() -> Dict[str, ShapeClass]:
     for name in sorted(names):
         c = _core.find_shape_class(name)
         out[name] = ShapeClass(c["name"], c["help"], c["module"], c["closed"], c["composite"],
-                               c["surface_count"], tuple(ShapeParam(**p) for p in c["params"]))
+                               c["surface_count"], tuple(ShapeParam(**p) for p in c["params"]),
+                               tuple(c["surface_names"]))
     return out
 
 

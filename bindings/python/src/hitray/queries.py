@@ -24,8 +24,8 @@ class HitInfo:
         point: the hit point.
         normal: the outward unit normal there.
         entering: True where the ray enters the solid, False where it leaves.
-        surface: which surface of the shape (a cube's 0..5 for ±x, ±y, ±z; a
-            tapered cylinder's 0 wall, 1 base, 2 cap; 0 for one-surface shapes).
+        surface: which surface of the shape, 0 .. surface_count - 1; its
+            class's ``surface_names`` (``hitray.shape_classes()``) names it.
         object: index of the object in the scene (``scene.objects[i]``); for a
             boolean, the leaf whose surface it is.
         error: a bound on the distance of `point` from the true surface

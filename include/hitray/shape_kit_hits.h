@@ -1,5 +1,5 @@
-/* hitray built-in shapes: from "where does the ray cross my surfaces" to the
- * hits a module reports.
+/* hitray shape kit: from "where does the ray cross my surfaces" to the hits
+ * a module reports (part of <hitray/shape_kit.h>; see there).
  *
  * Every built-in shape is convex (or a single flat surface), so what a ray
  * does to it is one span of t: it enters at span.t_in and leaves at
@@ -15,14 +15,17 @@
  * region intersected FIRST keeps the end (shape_span_intersect replaces an
  * end only when the new region's time is strictly later on entry or strictly
  * earlier on exit). Each shape says in which order it intersects. */
-#ifndef HITRAY_SHAPE_HITS_H
-#define HITRAY_SHAPE_HITS_H
+#ifndef HITRAY_SHAPE_KIT_HITS_H
+#define HITRAY_SHAPE_KIT_HITS_H
 
 #include <math.h>
 
-#include <hitray/shape_module.h>
+#include "shape_kit_math.h"
+#include "shape_module.h"
 
-#include "shape_math.h"
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* No surface: the end of a span that runs to infinity. */
 #define SHAPE_NO_SURFACE (-1)
@@ -167,31 +170,7 @@ static inline hr_status shape_report(const hr_hit_args *args, int32_t mode,
         return trace(args, HR_TRACE_ANY);                                      \
     }
 
-/* --- The plane z = 0, shared by the plane and the square ----------------- */
-
-/* The crossing of the ray with z = 0: t = -o.z / d.z, one rounding. A ray
- * with d.z == 0 (+0 or -0) is parallel and never crosses: it is refused before
- * dividing, so no infinity or NaN is made. The side the normal +z points to
- * is outside, so moving against the normal (d.z < 0) is entering. */
-static inline int shape_z0_crossing(const hr_ray *ray, shape_crossing *out)
-{
-    if (ray->dir.z == 0.0) return 0;
-    out->t = -ray->origin.z / ray->dir.z;
-    out->surface = 0;
-    out->entering = ray->dir.z < 0.0;
-    return 1;
+#ifdef __cplusplus
 }
-
-/* The point of a z = 0 crossing: x and y from origin + t dir, z exactly 0
- * (the point is projected onto the plane, so it is off the surface only
- * along it). The error bounds x and y against the exact intersection: t has
- * one rounding, see shape_ray_point_error. */
-static inline void shape_z0_fill(const hr_ray *ray, hr_hit *hit)
-{
-    hit->point = shape_vec3(ray->origin.x + hit->t * ray->dir.x,
-                            ray->origin.y + hit->t * ray->dir.y, 0.0);
-    hit->normal = shape_vec3(0.0, 0.0, 1.0);
-    hit->error = shape_ray_point_error(ray, hit->t, 1);
-}
-
+#endif
 #endif

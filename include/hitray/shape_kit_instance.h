@@ -1,12 +1,16 @@
-/* hitray built-in shapes: the instance of a shape class that has no
+/* hitray shape kit: the instance of a shape class that has no
  * parameters (sphere, plane, square, cube). It remembers only the host, so
  * destroy can give the memory back the way create got it. Nothing else is
  * kept per instance: the generic shape is the same for every object, and the
  * host's transform does the rest. */
-#ifndef HITRAY_SHAPE_INSTANCE_H
-#define HITRAY_SHAPE_INSTANCE_H
+#ifndef HITRAY_SHAPE_KIT_INSTANCE_H
+#define HITRAY_SHAPE_KIT_INSTANCE_H
 
-#include <hitray/shape_module.h>
+#include "shape_module.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 typedef struct shape_plain {
     const hr_host *host;
@@ -39,4 +43,7 @@ static inline void shape_set_bounds(hr_bounds *out, double lo_x, double lo_y, do
     out->hi.z = hi_z;
 }
 
+#ifdef __cplusplus
+}
+#endif
 #endif

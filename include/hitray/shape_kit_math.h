@@ -1,4 +1,5 @@
-/* hitray built-in shapes: the small numerical toolkit they share.
+/* hitray shape kit: the small numerical toolkit the built-in shapes use and
+ * a plugin may use too (part of <hitray/shape_kit.h>; see there).
  *
  * Everything is static inline, so each module stays one self-contained
  * loadable file that links nothing of libhitray.
@@ -33,15 +34,19 @@
  * - solve_half_quadratic uses the root pair that never subtracts nearly
  *   equal numbers, and leaves the discriminant to the caller, who knows a
  *   form of it that stays accurate for its geometry. */
-#ifndef HITRAY_SHAPE_MATH_H
-#define HITRAY_SHAPE_MATH_H
+#ifndef HITRAY_SHAPE_KIT_MATH_H
+#define HITRAY_SHAPE_KIT_MATH_H
 
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
 
-#include <hitray/common.h>
+#include "common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* --- Rounding-error bookkeeping ------------------------------------------ */
 
@@ -268,4 +273,7 @@ static inline int shape_solve_half_quadratic(double a, double half_b, double c, 
     return 2;
 }
 
+#ifdef __cplusplus
+}
+#endif
 #endif

@@ -1,0 +1,33 @@
+/* hitray built-in shapes: the plane z = 0, which the plane and the square
+ * share. Private to the built-ins (a plugin has <hitray/shape_kit.h>). */
+#ifndef HITRAY_SHAPES_SHAPE_Z0_H
+#define HITRAY_SHAPES_SHAPE_Z0_H
+
+#include <hitray/shape_kit.h>
+
+/* The crossing of the ray with z = 0: t = -o.z / d.z, one rounding. A ray
+ * with d.z == 0 (+0 or -0) is parallel and never crosses: it is refused before
+ * dividing, so no infinity or NaN is made. The side the normal +z points to
+ * is outside, so moving against the normal (d.z < 0) is entering. */
+static inline int shape_z0_crossing(const hr_ray *ray, shape_crossing *out)
+{
+    if (ray->dir.z == 0.0) return 0;
+    out->t = -ray->origin.z / ray->dir.z;
+    out->surface = 0;
+    out->entering = ray->dir.z < 0.0;
+    return 1;
+}
+
+/* The point of a z = 0 crossing: x and y from origin + t dir, z exactly 0
+ * (the point is projected onto the plane, so it is off the surface only
+ * along it). The error bounds x and y against the exact intersection: t has
+ * one rounding, see shape_ray_point_error. */
+static inline void shape_z0_fill(const hr_ray *ray, hr_hit *hit)
+{
+    hit->point = shape_vec3(ray->origin.x + hit->t * ray->dir.x,
+                            ray->origin.y + hit->t * ray->dir.y, 0.0);
+    hit->normal = shape_vec3(0.0, 0.0, 1.0);
+    hit->error = shape_ray_point_error(ray, hit->t, 1);
+}
+
+#endif
