@@ -1,16 +1,21 @@
-/* SDL's object commands (lib/sdl_reader.h): shapes, CSG booleans, and
- * `diamond`, the one solid of Hill's list whose shape is not known.
+/* SDL's object commands (lib/sdl_reader.h): a shape class's keyword,
+ * then the parameters the class declares (hr_param_spec), in its order: a
+ * number for a number, a word for a string, a whole object for an object
+ * parameter. So Hill's `taperedCylinder s`, `mesh FILE` and `union A B`
+ * (also intersection, difference) are read the same way as a module's class,
+ * and the reader knows no shape's parameters; a class Hill writes alone but
+ * which has optional parameters (`torus`, whose tube radius may follow)
+ * says so with HR_SHAPE_SDL_BARE. `diamond`, the one solid of Hill's list
+ * whose shape is not known, is refused.
  *
  * Each leaf object is added with hr_scene_add_object, passing a copy of the
  * current material and the top of the transform stack with its inverse (the
- * exact one Hill's stack keeps). A shape class is named by its SDL keyword;
- * when no module provides it the scene's message is passed on with the place
- * of the keyword. A boolean `union A B` (also intersection, difference)
- * reads A then B, each a whole object (booleans nest), adds them, then adds
- * the boolean node with object parameters `a` and `b`, the identity
- * transform and the default material: each leaf keeps its own. Booleans are
- * read with a stack of pending nodes, not by recursion, so no nesting depth
- * can exhaust the C stack. */
+ * exact one Hill's stack keeps). When no module provides the class the
+ * scene's message is passed on with the place of the keyword. An object
+ * with operands reads each as a whole object (they nest), adds them, then
+ * adds itself with the identity transform and the default material: each
+ * leaf keeps its own. Operands are read with a stack of pending objects, not
+ * by recursion, so no nesting depth can exhaust the C stack. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,51 +26,25 @@
 #include "sdl_words.h"
 #include "suggest.h"
 
-#define ARGS_NONE 0        /* sphere, cube, ... */
-#define ARGS_TAPER 1       /* taperedCylinder s */
-#define ARGS_FILE 2        /* mesh file */
-#define ARGS_OPERANDS 3    /* union A B */
-#define ARGS_DIAMOND 4     /* refused: see add_leaf */
-#define ARGS_MODULE 5      /* a module's class beyond Hill's list: its parameters */
-#define ARGS_TUBE 6        /* torus [tube]: an optional tube radius */
-#define SDL_MAX_MODULE_PARAMS 64
-
-static const struct {
-    const char *keyword;
-    int args;
-} objects[] = {
-    {"sphere", ARGS_NONE},
-    {"cube", ARGS_NONE},
-    {"square", ARGS_NONE},
-    {"plane", ARGS_NONE},
-    {"taperedCylinder", ARGS_TAPER},
-    {"cylinder", ARGS_NONE},
-    {"cone", ARGS_NONE},
-    {"torus", ARGS_TUBE},
-    {"mesh", ARGS_FILE},
-    {"tetrahedron", ARGS_NONE},
-    {"octahedron", ARGS_NONE},
-    {"dodecahedron", ARGS_NONE},
-    {"icosahedron", ARGS_NONE},
-    {"union", ARGS_OPERANDS},
-    {"intersection", ARGS_OPERANDS},
-    {"difference", ARGS_OPERANDS},
-    {"buckyball", ARGS_NONE},
-    {"teapot", ARGS_NONE},
-    {"diamond", ARGS_DIAMOND},
+/* Hill's object words. What follows each is its class's business: the
+ * parameters it declares (read_params). `diamond` has no class (add_diamond). */
+static const char *const objects[] = {
+    "sphere", "cube", "square", "plane", "taperedCylinder", "cylinder", "cone",
+    "torus", "mesh", "tetrahedron", "octahedron", "dodecahedron", "icosahedron",
+    "union", "intersection", "difference", "buckyball", "teapot", "diamond",
 };
 #define OBJECT_COUNT ((int)(sizeof objects / sizeof objects[0]))
 
 const char *sdl_object_keyword(int index)
 {
-    return index >= 0 && index < OBJECT_COUNT ? objects[index].keyword : NULL;
+    return index >= 0 && index < OBJECT_COUNT ? objects[index] : NULL;
 }
 
-static int object_args(const char *word)
+static int is_hill_object(const char *word)
 {
     for (int i = 0; i < OBJECT_COUNT; i++)
-        if (strcmp(word, objects[i].keyword) == 0) return objects[i].args;
-    return -1;
+        if (strcmp(word, objects[i]) == 0) return 1;
+    return 0;
 }
 
 /* Whether a module provides a class called `word`, asked of the module
@@ -87,7 +66,7 @@ static int module_class_exists(hr_context *ctx, const char *word)
 
 void sdl_offer_object_keywords(sdl_reader *r, hr_suggester *near)
 {
-    for (int i = 0; i < OBJECT_COUNT; i++) hr_suggester_offer(near, objects[i].keyword);
+    for (int i = 0; i < OBJECT_COUNT; i++) hr_suggester_offer(near, objects[i]);
     int32_t n = hr_context_module_count(r->ctx);
     for (int32_t i = 0; i < n; i++) {
         hr_module_entry e;
@@ -122,54 +101,37 @@ int sdl_refused_module(sdl_reader *r, const char *word, char *why, size_t size)
 
 int sdl_is_object_keyword(sdl_reader *r, const char *word)
 {
-    if (object_args(word) >= 0) return 1;
+    if (is_hill_object(word)) return 1;
     /* Hill's commands keep their meaning whatever a module calls its class. */
     return !sdl_is_command_keyword(word) && module_class_exists(r->ctx, word);
 }
 
-/* A class from a module beyond Hill's list, in the form of Hill's own
- * `taperedCylinder s` and `mesh FILE`: its name, then one argument per
- * parameter in the order the class declares them (`hitray shapes` lists
- * them): a number for a number, a word for a string. Object parameters
- * (composites) have no SDL form here. */
-static hr_status read_module_params(sdl_reader *r, sdl_located keyword, hr_param *params,
-                                    int32_t *count)
+
+/* An object whose parameters are still being read: the innermost one is on
+ * top; one waiting for an operand has the operand's frame above it. */
+typedef struct pending {
+    sdl_located keyword;
+    const hr_shape_class *cls; /* NULL: no module provides it */
+    size_t base;               /* its first parameter in the parameter stack */
+    int32_t count;             /* parameters read so far */
+    int composite;             /* takes operands: added without material or transform */
+} pending;
+
+typedef struct object_stacks {
+    pending *frames;
+    size_t frame_count, frame_capacity;
+    hr_param *params;
+    size_t param_count, param_capacity;
+} object_stacks;
+
+static hr_status grow(sdl_reader *r, void **items, size_t *capacity, size_t needed, size_t size)
 {
-    const hr_shape_class *cls;
-    if (hr_context_find_shape_class(r->ctx, keyword.token->text, &cls, NULL) != HR_OK)
-        return sdl_error(r->src, HR_ERROR_MODULE, keyword, "%s", hr_context_last_error(r->ctx));
-    if (cls->param_count > SDL_MAX_MODULE_PARAMS)
-        return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
-                         "shape '%s' has %d parameters; SDL reads at most %d",
-                         keyword.token->text, (int)cls->param_count, SDL_MAX_MODULE_PARAMS);
-    for (int32_t i = 0; i < cls->param_count; i++) {
-        const hr_param_spec *spec = &cls->params[i];
-        hr_param *p = &params[i];
-        memset(p, 0, sizeof *p);
-        p->name = spec->name;
-        p->type = spec->type;
-        if (spec->type == HR_PARAM_NUMBER) {
-            hr_status st = sdl_read_number(r, keyword, &p->number, NULL);
-            if (st) return st;
-        } else if (spec->type == HR_PARAM_STRING) {
-            sdl_located word;
-            hr_status st = sdl_source_next(r->src, &word);
-            if (st) return st;
-            if (word.token->kind != SDL_TOKEN_WORD) {
-                char found[64];
-                return sdl_error(r->src, HR_ERROR_SDL, word, "expected a word for '%s' of '%s', found %s",
-                                 spec->name, keyword.token->text,
-                                 sdl_describe(word.token, found, sizeof found));
-            }
-            p->string = word.token->text;
-        } else {
-            return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
-                             "shape '%s' takes %s parameters ('%s'), which SDL cannot give",
-                             keyword.token->text,
-                             spec->type == HR_PARAM_NUMBERS ? "array" : "object", spec->name);
-        }
-    }
-    *count = cls->param_count;
+    if (needed <= *capacity) return HR_OK;
+    size_t wanted = *capacity ? 2 * *capacity : 8;
+    void *grown = realloc(*items, wanted * size);
+    if (!grown) return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    *items = grown;
+    *capacity = wanted;
     return HR_OK;
 }
 
@@ -192,128 +154,148 @@ static hr_status add(sdl_reader *r, sdl_located keyword, const hr_param *params,
     return HR_OK;
 }
 
-static hr_status add_leaf(sdl_reader *r, sdl_located keyword, int args, int64_t *index)
+static int takes_operands(const hr_shape_class *cls)
 {
-    hr_status noted = sdl_note_material_use(r);
-    if (noted) return noted;
-    hr_param param;
-    memset(&param, 0, sizeof param);
-    int32_t count = 0;
-    if (args == ARGS_MODULE) {
-        hr_param params[SDL_MAX_MODULE_PARAMS];
-        hr_status st = read_module_params(r, keyword, params, &count);
-        if (st) return st;
-        return add(r, keyword, params, count, &r->material, sdl_current_transform(r), index);
-    }
+    for (int32_t i = 0; i < cls->param_count; i++)
+        if (cls->params[i].type == HR_PARAM_OBJECT) return 1;
+    return 0;
+}
+
+/* Start reading the object at `keyword`: a frame for it on the stack. */
+static hr_status begin(sdl_reader *r, object_stacks *s, sdl_located keyword)
+{
     /* Hill's readers made `diamond` a Mesh read from diamond.3vn, a file
      * that was never published with his code (the scenes that came with
      * it name it, and it is absent), so the diamond's shape is unknown. */
-    if (args == ARGS_DIAMOND)
+    if (strcmp(keyword.token->text, "diamond") == 0)
         return sdl_error(r->src, HR_ERROR_UNSUPPORTED, keyword,
                          "'diamond' is not supported: Hill's reader loaded it from the mesh file "
                          "diamond.3vn, which was never published, so its shape is unknown; "
                          "give a mesh of your own with 'mesh FILE'");
-    if (args == ARGS_TAPER) {
-        hr_status st = sdl_read_number(r, keyword, &param.number, NULL);
-        if (st) return st;
-        param.name = "s";
-        param.type = HR_PARAM_NUMBER;
-        count = 1;
-    } else if (args == ARGS_TUBE) {
-        /* Optional: a number cannot start the next command, so one here is
-         * the tube radius; without it the class's default (0.2). */
-        double ignored;
-        sdl_located next = sdl_source_peek(r->src);
-        if (next.token->kind == SDL_TOKEN_WORD &&
-            sdl_parse_number(next.token->text, &ignored) != SDL_NUMBER_NOT_A_NUMBER) {
-            hr_status st = sdl_read_number(r, keyword, &param.number, NULL);
-            if (st) return st;
-            param.name = "tube";
-            param.type = HR_PARAM_NUMBER;
-            count = 1;
-        }
-    } else if (args == ARGS_FILE) {
-        sdl_located file;
-        hr_status st = sdl_source_next(r->src, &file);
-        if (st) return st;
-        if (file.token->kind != SDL_TOKEN_WORD) {
-            char found[64];
-            return sdl_error(r->src, HR_ERROR_SDL, file, "expected a file name after '%s', found %s",
-                             keyword.token->text, sdl_describe(file.token, found, sizeof found));
-        }
-        param.name = "file";
-        param.type = HR_PARAM_STRING;
-        param.string = file.token->text;
-        count = 1;
-    }
-    return add(r, keyword, &param, count, &r->material, sdl_current_transform(r), index);
+    hr_status st = grow(r, (void **)&s->frames, &s->frame_capacity, s->frame_count + 1,
+                        sizeof *s->frames);
+    if (st) return st;
+    pending *p = &s->frames[s->frame_count++];
+    memset(p, 0, sizeof *p);
+    p->keyword = keyword;
+    p->base = s->param_count;
+    /* A class no module provides is left to the scene, whose message names it. */
+    if (hr_context_find_shape_class(r->ctx, keyword.token->text, &p->cls, NULL) != HR_OK)
+        p->cls = NULL;
+    p->composite = p->cls && takes_operands(p->cls);
+    if (!p->composite) return sdl_note_material_use(r);
+    return HR_OK;
 }
 
-/* A boolean whose operands are still being read. */
-typedef struct pending {
-    sdl_located keyword;
-    int64_t a; /* index of operand A, -1 until it is read */
-} pending;
-
+/* Operands are lettered in order, as Hill's `union A B`. */
 static hr_status next_operand(sdl_reader *r, const pending *p, sdl_located *keyword)
 {
+    int letter = 0;
+    for (int32_t i = 0; i < p->count; i++)
+        if (p->cls->params[i].type == HR_PARAM_OBJECT) letter++;
     char wanted[160];
-    snprintf(wanted, sizeof wanted, "an object for operand %s of '%s' at %s:%d:%d",
-             p->a < 0 ? "A" : "B", p->keyword.token->text, r->src->file,
+    snprintf(wanted, sizeof wanted, "an object for operand %c of '%s' at %s:%d:%d",
+             'A' + letter % 26, p->keyword.token->text, r->src->file,
              (int)p->keyword.token->line, (int)p->keyword.token->column);
     return sdl_next_object_keyword(r, wanted, keyword);
 }
 
-static hr_status add_boolean(sdl_reader *r, const pending *p, int64_t b, int64_t *index)
+/* Whether the next token is a number, which cannot start a command. */
+static int number_follows(sdl_reader *r)
 {
-    hr_param params[2];
-    memset(params, 0, sizeof params);
-    params[0].name = "a";
-    params[0].type = HR_PARAM_OBJECT;
-    params[0].object = p->a;
-    params[1].name = "b";
-    params[1].type = HR_PARAM_OBJECT;
-    params[1].object = b;
-    return add(r, p->keyword, params, 2, NULL, NULL, index);
+    double ignored;
+    sdl_located next = sdl_source_peek(r->src);
+    return next.token->kind == SDL_TOKEN_WORD &&
+           sdl_parse_number(next.token->text, &ignored) != SDL_NUMBER_NOT_A_NUMBER;
+}
+
+/* Read the top frame's parameters in the order its class declares them: a
+ * number for a number, a word for a string. At an object parameter the
+ * operand's keyword goes to `operand` (*waits set) and reading stops until
+ * the operand is added. A class declaring HR_SHAPE_SDL_BARE stops at the
+ * first parameter that is not a number directly given. */
+static hr_status read_params(sdl_reader *r, object_stacks *s, int *waits, sdl_located *operand)
+{
+    pending *p = &s->frames[s->frame_count - 1];
+    *waits = 0;
+    const int32_t declared = p->cls ? p->cls->param_count : 0;
+    const int bare = p->cls && (p->cls->flags & HR_SHAPE_SDL_BARE);
+    while (p->count < declared) {
+        const hr_param_spec *spec = &p->cls->params[p->count];
+        if (bare && !(spec->type == HR_PARAM_NUMBER && number_follows(r))) break;
+        hr_status st = grow(r, (void **)&s->params, &s->param_capacity, s->param_count + 1,
+                            sizeof *s->params);
+        if (st) return st;
+        hr_param *param = &s->params[s->param_count];
+        memset(param, 0, sizeof *param);
+        param->name = spec->name;
+        param->type = spec->type;
+        if (spec->type == HR_PARAM_OBJECT) {
+            /* The slot is kept for the operand's index; its own
+             * parameters go above it. */
+            s->param_count++;
+            if ((st = next_operand(r, p, operand))) return st;
+            *waits = 1;
+            return HR_OK;
+        }
+        if (spec->type == HR_PARAM_NUMBER) {
+            if ((st = sdl_read_number(r, p->keyword, &param->number, NULL))) return st;
+        } else if (spec->type == HR_PARAM_STRING) {
+            sdl_located word;
+            if ((st = sdl_source_next(r->src, &word))) return st;
+            if (word.token->kind != SDL_TOKEN_WORD) {
+                char found[64];
+                return sdl_error(r->src, HR_ERROR_SDL, word, "expected a word for '%s' of '%s', found %s",
+                                 spec->name, p->keyword.token->text,
+                                 sdl_describe(word.token, found, sizeof found));
+            }
+            param->string = word.token->text;
+        } else {
+            return sdl_error(r->src, HR_ERROR_UNSUPPORTED, p->keyword,
+                             "shape '%s' takes array parameters ('%s'), which SDL cannot give",
+                             p->keyword.token->text, spec->name);
+        }
+        s->param_count++;
+        p->count++;
+    }
+    return HR_OK;
+}
+
+/* Add the top frame's object and pop it. */
+static hr_status finish(sdl_reader *r, object_stacks *s, int64_t *index)
+{
+    const pending *p = &s->frames[s->frame_count - 1];
+    hr_status st = add(r, p->keyword, s->params + p->base, p->count,
+                       p->composite ? NULL : &r->material,
+                       p->composite ? NULL : sdl_current_transform(r), index);
+    s->param_count = p->base;
+    s->frame_count--;
+    return st;
 }
 
 hr_status sdl_read_object(sdl_reader *r, sdl_located keyword, int64_t *index)
 {
-    pending *stack = NULL;
-    size_t count = 0, capacity = 0;
-    hr_status st = HR_OK;
+    object_stacks s;
+    memset(&s, 0, sizeof s);
     int64_t last = -1;
-    for (;;) {
-        int args = object_args(keyword.token->text);
-        if (args < 0) args = ARGS_MODULE; /* the caller found a module's class */
-        if (args == ARGS_OPERANDS) {
-            if (count == capacity) {
-                capacity = capacity ? 2 * capacity : 8;
-                pending *grown = realloc(stack, capacity * sizeof *grown);
-                if (!grown) {
-                    st = hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-                    break;
-                }
-                stack = grown;
-            }
-            stack[count].keyword = keyword;
-            stack[count].a = -1;
-            count++;
-            if ((st = next_operand(r, &stack[count - 1], &keyword))) break;
+    hr_status st = begin(r, &s, keyword);
+    while (st == HR_OK) {
+        int waits;
+        sdl_located operand;
+        if ((st = read_params(r, &s, &waits, &operand))) break;
+        if (waits) {
+            st = begin(r, &s, operand);
             continue;
         }
-        if ((st = add_leaf(r, keyword, args, &last))) break;
-        /* The object just added completes operand A or B of the innermost
-         * pending boolean; a completed boolean is in turn an operand. */
-        while (count > 0 && stack[count - 1].a >= 0) {
-            if ((st = add_boolean(r, &stack[count - 1], last, &last))) break;
-            count--;
-        }
-        if (st || count == 0) break;
-        stack[count - 1].a = last;
-        if ((st = next_operand(r, &stack[count - 1], &keyword))) break;
+        /* The object just added is the awaited operand of the frame below,
+         * which then reads on. */
+        if ((st = finish(r, &s, &last)) || s.frame_count == 0) break;
+        pending *p = &s.frames[s.frame_count - 1];
+        s.params[p->base + p->count].object = last;
+        p->count++;
     }
-    free(stack);
+    free(s.frames);
+    free(s.params);
     if (st == HR_OK && index) *index = last;
     return st;
 }

@@ -138,6 +138,11 @@ typedef struct hr_param_spec {
 /* Flags of a shape class. */
 #define HR_SHAPE_CLOSED 1    /* a solid: entering/exiting alternate (CSG-able) */
 #define HR_SHAPE_COMPOSITE 2 /* takes HR_PARAM_OBJECT children (CSG) */
+/* SDL writes the class's keyword alone, as Hill's SDL does: its leading
+ * optional number parameters are read only where numbers follow the keyword
+ * (`torus` or `torus 0.1`), and the rest take their defaults. Without this
+ * flag SDL reads every declared parameter after the keyword, in order. */
+#define HR_SHAPE_SDL_BARE 4
 
 /* The vtable of one shape class. */
 struct hr_shape_class {

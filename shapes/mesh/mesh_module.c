@@ -214,7 +214,7 @@ static const hr_shape_class buckyball_class =
                "truncated icosahedron (12 pentagons, 20 hexagons), vertices on the unit sphere",
                NULL, 0, buckyball_create);
 static const hr_shape_class teapot_class =
-    MESH_CLASS("teapot", 0,
+    MESH_CLASS("teapot", HR_SHAPE_SDL_BARE,
                "Newell's teapot from its 32 Bezier patches, smooth normals, glutSolidTeapot(1)'s "
                "size (y up, base at y = -0.75); open, as Newell made it",
                teapot_params, 1, teapot_create);

@@ -218,7 +218,7 @@ static const char *const torus_surface_names[1] = {"torus"};
 
 static const hr_shape_class torus_class = {
     .struct_size = sizeof(hr_shape_class),
-    .flags = HR_SHAPE_CLOSED,
+    .flags = HR_SHAPE_CLOSED | HR_SHAPE_SDL_BARE,
     .name = "torus",
     .help = "ring radius 1 in the xy-plane about z, tube radius `tube` (default 0.2)",
     .params = torus_params,

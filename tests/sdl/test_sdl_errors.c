@@ -133,8 +133,9 @@ static void objects(hr_context *ctx)
     /* A parameter the shape refuses: the scene's message, at the keyword. */
     EXPECT_ERROR(ctx, "sphere\n taperedCylinder -1", HR_ERROR_PARAMETER, 2, 2, "taperedCylinder",
                  "'s'");
-    EXPECT_ERROR(ctx, "mesh", HR_ERROR_SDL, 1, 5, "expected a file name after 'mesh', found end of file");
-    EXPECT_ERROR(ctx, "mesh }", HR_ERROR_SDL, 1, 6, "expected a file name after 'mesh', found '}'");
+    /* The file is the class's string parameter, read as any class's is. */
+    EXPECT_ERROR(ctx, "mesh", HR_ERROR_SDL, 1, 5, "expected a word for 'file' of 'mesh', found end of file");
+    EXPECT_ERROR(ctx, "mesh }", HR_ERROR_SDL, 1, 6, "expected a word for 'file' of 'mesh', found '}'");
     /* Booleans need two operands. */
     EXPECT_ERROR(ctx, "union sphere", HR_ERROR_SDL, 1, 13,
                  "expected an object for operand B of 'union' at t.dat:1:1, found end of file");

@@ -1,7 +1,8 @@
 /* Shapes a user adds: a class some module (here: registered in process, as a
  * plugin's would be found) provides beyond Hill's list is an SDL object
  * keyword, read like Hill's `taperedCylinder s`: its name, then one argument
- * per parameter in the class's order (a number, or a word for a string). */
+ * per parameter in the class's order (a number, a word for a string, a whole
+ * object for an object parameter). */
 #include <stdio.h>
 #include <string.h>
 
@@ -53,11 +54,16 @@ static const hr_shape_class probe_class = {sizeof(hr_shape_class), HR_SHAPE_CLOS
 static const hr_shape_class bare_class = {sizeof(hr_shape_class), HR_SHAPE_CLOSED, "userBare",
                                           "no parameters", NULL, 0, 1, probe_create,
                                           probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
-/* A composite: object parameters have no SDL form. */
+/* A composite: its object parameter is an operand, as `union`'s are. */
 static const hr_param_spec pair_params[] = {{"a", HR_PARAM_OBJECT, 1, 0, 1, 0, "first"}};
 static const hr_shape_class pair_class = {sizeof(hr_shape_class), HR_SHAPE_COMPOSITE, "userPair",
                                           "a composite", pair_params, 1, 1, probe_create,
                                           probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
+/* Array parameters have no SDL form. */
+static const hr_param_spec cloud_params[] = {{"points", HR_PARAM_NUMBERS, 1, 0, 0, 1, "x y z each"}};
+static const hr_shape_class cloud_class = {sizeof(hr_shape_class), 0, "userCloud", "points",
+                                           cloud_params, 1, 1, probe_create, probe_destroy,
+                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
 /* A class named like a command must not take the command's place. */
 static const hr_shape_class light_class = {sizeof(hr_shape_class), 0, "light", "a bad name",
                                            NULL, 0, 1, probe_create, probe_destroy,
@@ -70,6 +76,7 @@ int main(void)
     CHECK_OK(hr_context_register_shape_class(ctx, &bare_class, "test_sdl_plugins.c"));
     CHECK_OK(hr_context_register_shape_class(ctx, &pair_class, "test_sdl_plugins.c"));
     CHECK_OK(hr_context_register_shape_class(ctx, &light_class, "test_sdl_plugins.c"));
+    CHECK_OK(hr_context_register_shape_class(ctx, &cloud_class, "test_sdl_plugins.c"));
 
     /* Parameters in the class's order; material and transform as for any
      * object; the class is usable inside macros and as a CSG operand. */
@@ -102,8 +109,22 @@ int main(void)
     EXPECT_ERROR(ctx, "userBlock 3 4 {\n", HR_ERROR_SDL, 1, 15, "expected a word for 'label' of 'userBlock'");
     EXPECT_ERROR(ctx, "sphere\nuserBlock 300 1 x\n", HR_ERROR_PARAMETER, 2, 1,
                  "parameter 'width' = 300 is outside [0, 100]");
-    EXPECT_ERROR(ctx, "userPair sphere\n", HR_ERROR_UNSUPPORTED, 1, 1,
-                 "takes object parameters ('a'), which SDL cannot give");
+    EXPECT_ERROR(ctx, "userCloud 1 2 3\n", HR_ERROR_UNSUPPORTED, 1, 1,
+                 "takes array parameters ('points'), which SDL cannot give");
+
+    /* An object parameter reads a whole object, state commands before it
+     * run; the composite is added after its operand, untransformed. */
+    s = LOAD_OK(ctx, "userPair translate 0 0 7 sphere\n", &r);
+    if (s) {
+        CHECK(hr_scene_object_count(s) == 2);
+        hr_object_info o = sdl_test_object(s, 0);
+        CHECK(o.shape && strcmp(o.shape, "sphere") == 0 && o.transform[11] == 7);
+        o = sdl_test_object(s, 1);
+        CHECK(o.shape && strcmp(o.shape, "userPair") == 0 && o.transform[11] == 0);
+        hr_scene_destroy(s);
+    }
+    EXPECT_ERROR(ctx, "userPair\n", HR_ERROR_SDL, 2, 1,
+                 "expected an object for operand A of 'userPair' at t.dat:1:1");
     /* A word no module provides is still an unknown keyword, not a module error. */
     EXPECT_ERROR(ctx, "userBlok 1 2 x\n", HR_ERROR_SDL, 1, 1, "unknown keyword 'userBlok'");
     hr_context_destroy(ctx);

@@ -665,7 +665,8 @@ static void test_classes(void)
         CHECK(c->struct_size == sizeof(hr_shape_class) && c->surface_count == 1);
         CHECK(c->create && c->destroy && c->bounds && c->hit && c->first_hit && c->any_hit);
         CHECK(c->help && c->help[0]);
-        CHECK(c->flags == (i == 0 || i == 5 || i == 7 ? 0 : HR_SHAPE_CLOSED));
+        const int32_t flags = i == 0 || i == 5 ? 0 : i == 7 ? HR_SHAPE_SDL_BARE : HR_SHAPE_CLOSED;
+        CHECK(c->flags == flags);
         CHECK(c->param_count == param_counts[i]);
     }
     const hr_shape_class *m = info->classes[0];

@@ -275,7 +275,7 @@ int main(void)
     const hr_shape_class *cls = harness_find_class(&module, "teapot");
     CHECK(cls != NULL);
     if (cls) {
-        CHECK(cls->flags == 0 && cls->param_count == 1);
+        CHECK(cls->flags == HR_SHAPE_SDL_BARE && cls->param_count == 1);
         CHECK(strcmp(cls->params[0].name, "tessellation") == 0 &&
               cls->params[0].default_number == 12 && cls->params[0].type == HR_PARAM_NUMBER);
         const uint32_t levels[] = {2, 3, 5, 6, 7, 12, 40, 128};
