@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "sized_copy.h"
 #include "errors.h"
 #include "module_loader.h"
 #include "strutil.h"
@@ -65,8 +66,7 @@ static int copy_class(hr_module *m, const hr_shape_class *src, hr_shape_class *d
         return 0;
     }
     memset(dst, 0, sizeof *dst);
-    memcpy(dst, src, src->struct_size < sizeof *dst ? src->struct_size : sizeof *dst);
-    dst->struct_size = sizeof *dst;
+    HR_SIZED_COPY_IN(dst, src);
     const char *name = dst->name && *dst->name ? dst->name : "(unnamed)";
     if (!dst->name || !*dst->name || !dst->create || !dst->destroy || !dst->bounds || !dst->hit ||
         dst->param_count < 0 || (dst->param_count > 0 && !dst->params)) {
@@ -474,7 +474,6 @@ HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_ent
     }
     const hr_module *m = ctx->modules[index];
     hr_module_entry e = {0};
-    e.struct_size = out->struct_size < sizeof e ? out->struct_size : (uint32_t)sizeof e;
     e.loaded = m->error == NULL;
     e.path = m->path;
     e.name = m->info && m->info->name ? m->info->name : "";
@@ -482,7 +481,7 @@ HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_ent
     e.error = m->error ? m->error : "";
     e.classes = m->class_ptrs;
     e.class_count = m->class_count;
-    memcpy(out, &e, e.struct_size);
+    HR_SIZED_COPY_OUT(out, &e);
     pthread_mutex_unlock(&ctx->lock);
     return HR_OK;
 }
