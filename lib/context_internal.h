@@ -49,7 +49,8 @@ struct hr_context {
     int32_t last_found_class_count, last_found_module_count;
 };
 
-/* The host services table (lib/host_services.c). */
+/* The host services table (trace.c: trace_child gets the walk's inline copy
+ * of object tracing, and the scratch lists are the queries' own stack). */
 void hr_host_services_init(hr_host *host);
 
 #endif

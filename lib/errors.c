@@ -1,6 +1,7 @@
 /* Per-context, per-thread error messages (lib/errors.h). Each context owns a
  * pthread key; a thread's slot is allocated on its first error and freed when
  * the thread exits or the context is destroyed. */
+#include "sized_copy.h"
 #include "errors.h"
 
 #include <stdarg.h>
@@ -78,14 +79,13 @@ HR_API hr_status hr_context_last_error_info(const hr_context *ctx, hr_error_info
 {
     if (!ctx || !out || out->struct_size < sizeof(uint32_t)) return HR_ERROR_INVALID_ARGUMENT;
     hr_error_info info = {0};
-    info.struct_size = out->struct_size < sizeof info ? out->struct_size : (uint32_t)sizeof info;
     hr_error_slot *slot = slot_of(ctx, 0);
     info.status = slot ? slot->status : HR_OK;
     info.message = slot ? slot->message : "";
     info.file = slot ? slot->file : "";
     info.line = slot ? slot->line : 0;
     info.column = slot ? slot->column : 0;
-    memcpy(out, &info, info.struct_size);
+    HR_SIZED_COPY_OUT(out, &info);
     return HR_OK;
 }
 

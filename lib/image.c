@@ -5,6 +5,7 @@
 #include <string.h>
 #include <sys/mman.h>
 
+#include "sized_copy.h"
 #include "atomic_file.h"
 #include "errors.h"
 #include "image_internal.h"
@@ -128,8 +129,7 @@ static hr_status read_options(const hr_context *ctx, const hr_image_write_option
     if (given) {
         if (given->struct_size < sizeof(uint32_t))
             return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write options: struct_size not set");
-        memcpy(o, given, given->struct_size < sizeof *o ? given->struct_size : sizeof *o);
-        o->struct_size = sizeof *o;
+        HR_SIZED_COPY_IN(o, given);
     }
     if (o->png_bits == 0) o->png_bits = 8;
     if (o->png_bits != 8 && o->png_bits != 16)

@@ -1,4 +1,5 @@
 /* The result struct of the scene file readers (lib/load_result.h). */
+#include "sized_copy.h"
 #include "load_result.h"
 
 #include <stddef.h>
@@ -10,9 +11,7 @@
 
 void hr_load_result_give(hr_sdl_result *out, const hr_sdl_result *full)
 {
-    uint32_t size = out->struct_size;
-    memcpy(out, full, size < sizeof *full ? size : sizeof *full);
-    out->struct_size = size;
+    HR_SIZED_COPY_OUT(out, full);
 }
 
 void hr_load_result_empty(hr_sdl_result *r)

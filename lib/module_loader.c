@@ -11,6 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "sized_copy.h"
 #include "errors.h"
 #include "module_loader.h"
 #include "strutil.h"
@@ -65,8 +66,7 @@ static int copy_class(hr_module *m, const hr_shape_class *src, hr_shape_class *d
         return 0;
     }
     memset(dst, 0, sizeof *dst);
-    memcpy(dst, src, src->struct_size < sizeof *dst ? src->struct_size : sizeof *dst);
-    dst->struct_size = sizeof *dst;
+    HR_SIZED_COPY_IN(dst, src);
     const char *name = dst->name && *dst->name ? dst->name : "(unnamed)";
     if (!dst->name || !*dst->name || !dst->create || !dst->destroy || !dst->bounds || !dst->hit ||
         dst->param_count < 0 || (dst->param_count > 0 && !dst->params)) {
@@ -479,7 +479,6 @@ HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_ent
     }
     const hr_module *m = ctx->modules[index];
     hr_module_entry e = {0};
-    e.struct_size = out->struct_size < sizeof e ? out->struct_size : (uint32_t)sizeof e;
     e.loaded = m->error == NULL;
     e.path = m->path;
     e.name = m->info ? or_empty(m->info->name) : "";
@@ -492,7 +491,7 @@ HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_ent
     e.version = info && HR_MODULE_HAS(info, version) ? or_empty(info->version) : "";
     e.author = info && HR_MODULE_HAS(info, author) ? or_empty(info->author) : "";
     e.url = info && HR_MODULE_HAS(info, url) ? or_empty(info->url) : "";
-    memcpy(out, &e, e.struct_size);
+    HR_SIZED_COPY_OUT(out, &e);
     pthread_mutex_unlock(&ctx->lock);
     return HR_OK;
 }

@@ -22,6 +22,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "sized_copy.h"
 #include "camera_frame.h"
 #include "errors.h"
 #include "image_internal.h"
@@ -461,16 +462,14 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     job->scene = scene;
     job->query_level = query_level;
     hr_camera_default(&job->camera);
-    memcpy(&job->camera, camera,
-           camera->struct_size < sizeof job->camera ? camera->struct_size : sizeof job->camera);
+    HR_SIZED_COPY_IN(&job->camera, camera);
     hr_render_options_default(&job->opt);
     if (options) {
         if (options->struct_size < sizeof(uint32_t)) {
             free(job);
             return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render options: struct_size not set");
         }
-        memcpy(&job->opt, options,
-               options->struct_size < sizeof job->opt ? options->struct_size : sizeof job->opt);
+        HR_SIZED_COPY_IN(&job->opt, options);
     }
     hr_status st = check_options(ctx, &job->opt, &job->camera);
     if (st == HR_OK) {
@@ -540,7 +539,6 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
     if (st == HR_OK && stats && stats->struct_size >= sizeof(uint32_t)) {
         hr_render_stats s = {0};
-        s.struct_size = stats->struct_size < sizeof s ? stats->struct_size : (uint32_t)sizeof s;
         s.threads = started;
         for (int32_t i = 0; i < started; i++) {
             s.primary += workers[i].primary;
@@ -556,7 +554,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         if (adaptive)
             s.samples_saved =
                 (int64_t)job->win_width * job->win_height * job->opt.samples_per_pixel - (int64_t)s.primary;
-        memcpy(stats, &s, s.struct_size);
+        HR_SIZED_COPY_OUT(stats, &s);
     }
     for (int32_t i = 0; workers && i < nthreads; i++) {
         hr_trace_ctx_release(&workers[i].tc);

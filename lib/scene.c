@@ -9,16 +9,11 @@
 #include "errors.h"
 #include "scene_internal.h"
 #include "scene_params.h"
+#include "sized_copy.h"
 #include "specular.h"
 #include "texture.h"
 #include "ray_cull.h"
 #include "vec.h"
-
-/* Copy a caller's struct that starts with struct_size into a defaulted full
- * one: only the bytes the caller declared are read. */
-#define COPY_SIZED(dst, src)                                                   \
-    memcpy((dst), (src),                                                       \
-           (src)->struct_size < sizeof *(dst) ? (src)->struct_size : sizeof *(dst))
 
 HR_API void hr_material_default(hr_material *m)
 {
@@ -169,7 +164,7 @@ HR_API hr_status hr_material_validate(hr_context *ctx, const hr_material *m)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: NULL or struct_size not set");
     hr_material full;
     hr_material_default(&full);
-    COPY_SIZED(&full, m);
+    HR_SIZED_COPY_IN(&full, m);
     return check_material(ctx, &full);
 }
 
@@ -246,8 +241,7 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     if (d->material) {
         if (d->material->struct_size < sizeof(uint32_t))
             return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
-        COPY_SIZED(&o->material, d->material);
-        o->material.struct_size = sizeof o->material;
+        HR_SIZED_COPY_IN(&o->material, d->material);
     }
     hr_status st = check_material(ctx, &o->material);
     if (st) return st;
@@ -311,7 +305,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     if (!d || d->struct_size < offsetof(hr_object_desc, shape) + sizeof(d->shape))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: NULL description or struct_size not set");
     hr_object_desc desc = {0};
-    COPY_SIZED(&desc, d);
+    HR_SIZED_COPY_IN(&desc, d);
     if (s->committed)
         return hr_error(ctx, HR_ERROR_STATE, "cannot add an object to a committed scene");
     if (!desc.shape || !*desc.shape)
@@ -409,8 +403,7 @@ HR_API hr_status hr_scene_add_light(hr_scene *s, const hr_light *light)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: NULL or struct_size not set");
     if (s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "cannot add a light to a committed scene");
     hr_light l = {0};
-    COPY_SIZED(&l, light);
-    l.struct_size = sizeof l;
+    HR_SIZED_COPY_IN(&l, light);
     if (!v3_is_finite(l.position))
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: position must be finite");
     if (!color_in_range(l.color))
@@ -436,8 +429,7 @@ HR_API hr_status hr_scene_set_globals(hr_scene *s, const hr_scene_globals *g)
     if (s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "cannot change a committed scene");
     hr_scene_globals v;
     hr_scene_globals_default(&v);
-    COPY_SIZED(&v, g);
-    v.struct_size = sizeof v;
+    HR_SIZED_COPY_IN(&v, g);
     if (v.max_recursion_depth < 0 || v.max_recursion_depth > HR_MAX_RECURSION_DEPTH)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
                         "globals: maxRecursionDepth must be within 0..%d, not %d",
@@ -456,9 +448,7 @@ HR_API hr_status hr_scene_set_globals(hr_scene *s, const hr_scene_globals *g)
 HR_API hr_status hr_scene_get_globals(const hr_scene *s, hr_scene_globals *out)
 {
     if (!s || !out || out->struct_size < sizeof(uint32_t)) return HR_ERROR_INVALID_ARGUMENT;
-    uint32_t size = out->struct_size;
-    memcpy(out, &s->globals, size < sizeof s->globals ? size : sizeof s->globals);
-    out->struct_size = size;
+    HR_SIZED_COPY_OUT(out, &s->globals);
     return HR_OK;
 }
 
@@ -610,7 +600,6 @@ HR_API hr_status hr_scene_object_info(const hr_scene *s, int64_t index, hr_objec
                         (long long)index, (long long)s->object_count);
     const hr_object *o = s->objects[index];
     hr_object_info info = {0};
-    info.struct_size = out->struct_size < sizeof info ? out->struct_size : (uint32_t)sizeof info;
     info.top_level = o->top_level;
     info.shape = o->cls->name;
     info.module_path = o->module_path;
@@ -618,7 +607,7 @@ HR_API hr_status hr_scene_object_info(const hr_scene *s, int64_t index, hr_objec
     memcpy(info.transform, o->m, sizeof info.transform);
     memcpy(info.inverse, o->inv, sizeof info.inverse);
     info.world_bounds = o->world_bounds;
-    memcpy(out, &info, info.struct_size);
+    HR_SIZED_COPY_OUT(out, &info);
     return HR_OK;
 }
 
@@ -627,9 +616,7 @@ HR_API hr_status hr_scene_light(const hr_scene *s, int32_t index, hr_light *out)
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!out || out->struct_size < sizeof(uint32_t) || index < 0 || index >= s->light_count)
         return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light index %d out of range", (int)index);
-    uint32_t size = out->struct_size;
-    memcpy(out, &s->lights[index], size < sizeof *out ? size : sizeof *out);
-    out->struct_size = size;
+    HR_SIZED_COPY_OUT(out, &s->lights[index]);
     return HR_OK;
 }
 
