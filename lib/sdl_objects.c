@@ -265,7 +265,10 @@ static hr_status read_params(sdl_reader *r, object_stacks *s, int *waits, sdl_lo
 static hr_status finish(sdl_reader *r, object_stacks *s, int64_t *index)
 {
     const pending *p = &s->frames[s->frame_count - 1];
-    hr_status st = add(r, p->keyword, s->params + p->base, p->count,
+    /* A scene of parameterless objects never allocates the parameter
+     * stack, and NULL + 0 is undefined. */
+    const hr_param *params = s->params ? s->params + p->base : NULL;
+    hr_status st = add(r, p->keyword, params, p->count,
                        p->composite ? NULL : &r->material,
                        p->composite ? NULL : sdl_current_transform(r), index);
     s->param_count = p->base;
