@@ -33,13 +33,11 @@ static hr_bounds empty_box(void)
     return b;
 }
 
-/* fmin/fmax without the libm call (most of the build's time otherwise). */
-static inline double lower(double acc, double v) { return v < acc ? v : acc; }
-static inline double higher(double acc, double v) { return v > acc ? v : acc; }
-
-/* b <- b grown by o. SSE2's minpd(v, acc) is exactly lower(acc, v) (v < acc
- * ? v : acc, NaN and signed zeros included) and maxpd(v, acc) higher(acc,
- * v): the six doubles lo.x .. hi.z go as three pairs, the middle one
+/* b <- b grown by o, each bound by fmin/fmax without the libm call (most
+ * of the build's time otherwise): lower(acc, v) = v < acc ? v : acc,
+ * higher(acc, v) = v > acc ? v : acc. SSE2's minpd(v, acc) is exactly
+ * lower(acc, v) (NaN and signed zeros included) and maxpd(v, acc)
+ * higher(acc, v): the six doubles lo.x .. hi.z go as three pairs, the middle one
  * (lo.z, hi.x) taking its low lane from the min and its high from the max. */
 _Static_assert(sizeof(hr_bounds) == 6 * sizeof(double) && offsetof(hr_bounds, hi) == 3 * sizeof(double),
                "hr_bounds is six doubles, lo then hi");
@@ -55,10 +53,14 @@ static inline void grow(hr_bounds *b, const hr_bounds *o)
     _mm_storeu_pd(bd + 2, _mm_move_sd(_mm_max_pd(o23, b23), _mm_min_pd(o23, b23)));
     _mm_storeu_pd(bd + 4, _mm_max_pd(o45, b45));
 #else
+#define lower(acc, v) ((v) < (acc) ? (v) : (acc))
+#define higher(acc, v) ((v) > (acc) ? (v) : (acc))
     b->lo.x = lower(b->lo.x, o->lo.x), b->lo.y = lower(b->lo.y, o->lo.y);
     b->lo.z = lower(b->lo.z, o->lo.z);
     b->hi.x = higher(b->hi.x, o->hi.x), b->hi.y = higher(b->hi.y, o->hi.y);
     b->hi.z = higher(b->hi.z, o->hi.z);
+#undef lower
+#undef higher
 #endif
 }
 
