@@ -4,11 +4,13 @@
 
 #include <hitray/common.h>
 
+#include "errors.h"
+
 typedef struct hr_error_slot {
     hr_status status;
     int32_t line, column;
     char file[512];
-    char message[2048];
+    char message[HR_ERROR_MESSAGE_SIZE];
 } hr_error_slot;
 
 #endif

@@ -1,11 +1,9 @@
-/* Per-context, per-thread error messages (lib/core/errors.h). Each context owns a
- * pthread key; a thread's slot is allocated on its first error and freed when
- * the thread exits or the context is destroyed. */
+/* Per-context, per-thread error messages: hr_context_set_error and what
+ * reads them back (the library raises them through lib/util/errors.h).
+ * Each context owns a pthread key; a thread's slot is allocated on its first
+ * error and freed when the thread exits or the context is destroyed. */
 #include "sized_copy.h"
-#include "errors.h"
 
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,48 +23,31 @@ static hr_error_slot *slot_of(const hr_context *ctx, int create)
     return slot;
 }
 
-static hr_status record(const hr_context *ctx, hr_status status, const char *file,
-                        int32_t line, int32_t column, const char *fmt, va_list ap)
+/* `text` into one of the slot's buffers, cut to fit. It may already lie
+ * there: a caller passing on this thread's last error, or its file. */
+static void keep(char *buffer, size_t size, const char *text)
+{
+    size_t length = strnlen(text, size - 1);
+    memmove(buffer, text, length);
+    buffer[length] = '\0';
+}
+
+HR_API hr_status hr_context_set_error(const hr_context *ctx, hr_status status, const char *file,
+                                      int32_t line, int32_t column, const char *message)
 {
     if (!ctx) return status;
+    if (!message) message = "";
     hr_error_slot *slot = slot_of(ctx, 1);
-    char fallback[256];
-    char *message = slot ? slot->message : fallback;
-    size_t size = slot ? sizeof slot->message : sizeof fallback;
-    vsnprintf(message, size, fmt, ap);
     if (slot) {
+        keep(slot->message, sizeof slot->message, message);
+        keep(slot->file, sizeof slot->file, file ? file : "");
         slot->status = status;
-        snprintf(slot->file, sizeof slot->file, "%s", file ? file : "");
         slot->line = line;
         slot->column = column;
+        message = slot->message;
     }
     if (ctx->error_fn) ctx->error_fn(ctx->error_user, status, message);
     return status;
-}
-
-hr_status hr_error(const hr_context *ctx, hr_status status, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    record(ctx, status, NULL, 0, 0, fmt, ap);
-    va_end(ap);
-    return status;
-}
-
-hr_status hr_error_at(const hr_context *ctx, hr_status status, const char *file,
-                      int32_t line, int32_t column, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    record(ctx, status, file, line, column, fmt, ap);
-    va_end(ap);
-    return status;
-}
-
-void hr_error_clear(const hr_context *ctx)
-{
-    hr_error_slot *slot = ctx ? slot_of(ctx, 0) : NULL;
-    if (slot) memset(slot, 0, sizeof *slot);
 }
 
 HR_API const char *hr_context_last_error(const hr_context *ctx)
@@ -96,16 +77,11 @@ HR_API void hr_context_set_error_callback(hr_context *ctx, hr_error_fn fn, void 
     ctx->error_user = user;
 }
 
-void hr_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line, int32_t column,
-             const char *fmt, ...)
+HR_API void hr_context_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line,
+                            int32_t column, const char *message)
 {
     if (!ctx || !ctx->warning_fn) return;
-    char message[2048]; /* as an error slot holds: a placed SDL message fits */
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(message, sizeof message, fmt, ap);
-    va_end(ap);
-    hr_warning w = {sizeof w, code, message, file ? file : "", line, column};
+    hr_warning w = {sizeof w, code, message ? message : "", file ? file : "", line, column};
     ctx->warning_fn(ctx->warning_user, &w);
 }
 

@@ -2,7 +2,9 @@
  * later object gets a copy of it, until it changes or `defaultMaterials`
  * resets it; push/pop do not save it. `texture` names a solid texture
  * (checked here) or an image texture, whose pixmap and parameters the
- * scene checks at each object that takes it (lib/texture/texture.c). */
+ * scene checks at each object that takes it (lib/texture/texture.c). The
+ * reader is a client of the public API: hr_solid_texture_name says which
+ * solid textures there are. */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -12,7 +14,7 @@
 #include "errors.h"
 #include "sdl_diag.h"
 #include "sdl_reader.h"
-#include "texture.h"
+#include "solid_textures.h"
 
 static const struct {
     const char *keyword;
@@ -91,7 +93,7 @@ hr_status sdl_cmd_texture(sdl_reader *r, sdl_located keyword)
     int64_t texture;
     hr_status st = sdl_read_whole(r, keyword, (double)INT32_MIN, (double)INT32_MAX, &texture);
     if (st) return st;
-    if (texture < 0 && !hr_solid_texture_find((int32_t)texture)) {
+    if (texture < 0 && !hr_solid_texture_name((int32_t)texture)) {
         char known[256];
         hr_solid_texture_list(known, sizeof known);
         return sdl_error(r->src, HR_ERROR_SDL, keyword, "there is no solid texture %lld (there are %s)",

@@ -7,6 +7,7 @@
 
 #include "errors.h"
 #include "scene_internal.h"
+#include "solid_textures.h"
 #include "texture.h"
 #include "transform_inline.h"
 #include "vec.h"

@@ -44,13 +44,13 @@ typedef struct hr_texture_kind {
     hr_color (*solid)(const double *params, hr_vec3 p);
 } hr_texture_kind;
 
-/* The solid texture numbered `id` (< 0), NULL if there is none. */
+/* The solid texture numbered `id` (< 0), NULL if there is none; the
+ * public hr_solid_texture_name gives its name, and lib/util/solid_textures.h
+ * the list for messages. */
 const hr_texture_kind *hr_solid_texture_find(int32_t id);
-/* The solid textures in the table, and as a list for messages
- * ("-1 checkerboard, -2 wood, -3 marble"). */
+/* The solid textures in the table. */
 int32_t hr_solid_texture_count(void);
 const hr_texture_kind *hr_solid_texture_at(int32_t i);
-void hr_solid_texture_list(char *buf, size_t size);
 /* The parameters of an image texture (texture N > 0). */
 extern const hr_texture_kind hr_image_texture_kind;
 #define HR_IMAGE_PARAM_UMIN 0

@@ -9,7 +9,6 @@
  * table, chosen to look right on Hill's generic shapes (a unit sphere, a
  * unit cube, a plane seen from a few units away). */
 #include <math.h>
-#include <stdio.h>
 
 #include "texture.h"
 #include "vec.h"
@@ -92,6 +91,7 @@ static hr_color marble(const double *p, hr_vec3 q)
 }
 
 #define ROW(id, name, params, fn) {id, name, params, (int32_t)(sizeof params / sizeof params[0]), fn}
+/* Numbered from -1 down without gaps: hr_solid_texture_name promises it. */
 static const hr_texture_kind solid_textures[] = {
     ROW(-1, "checkerboard", checker_params, checkerboard),
     ROW(-2, "wood", wood_params, wood),
@@ -113,16 +113,10 @@ const hr_texture_kind *hr_solid_texture_at(int32_t i)
     return i >= 0 && i < SOLID_COUNT ? &solid_textures[i] : NULL;
 }
 
-void hr_solid_texture_list(char *buf, size_t size)
+HR_API const char *hr_solid_texture_name(int32_t texture)
 {
-    size_t used = 0;
-    buf[0] = '\0';
-    for (int32_t i = 0; i < SOLID_COUNT && used < size; i++) {
-        int n = snprintf(buf + used, size - used, "%s%d %s", i ? ", " : "", (int)solid_textures[i].id,
-                         solid_textures[i].name);
-        if (n < 0) break;
-        used += (size_t)n;
-    }
+    const hr_texture_kind *kind = hr_solid_texture_find(texture);
+    return kind ? kind->name : NULL;
 }
 
 /* Image textures: the part of (u, v) the image covers (it repeats beyond

@@ -1,7 +1,10 @@
 /* Internal: raising errors on a context. Every public call that fails goes
- * through hr_error*, which stores the message for the calling thread, calls
- * the context's error callback and returns the status, so a failing call is
- * one line: `return hr_error(ctx, HR_ERROR_IO, "cannot open '%s': %s", ...)`. */
+ * through hr_error*, which formats the message and raises it through the
+ * public hr_context_set_error (stored for the calling thread, passed to the
+ * context's error callback) and returns the status, so a failing call is
+ * one line: `return hr_error(ctx, HR_ERROR_IO, "cannot open '%s': %s", ...)`.
+ * Built on the public API alone, so that the library and the scene file
+ * readers, its clients, raise errors the same way. */
 #ifndef HITRAY_LIB_ERRORS_H
 #define HITRAY_LIB_ERRORS_H
 
@@ -12,6 +15,10 @@
 #else
 #define HR_PRINTF(f, a)
 #endif
+
+/* The bytes of a message, terminator included, that a context keeps (a
+ * placed SDL message fits); a longer one is cut. */
+#define HR_ERROR_MESSAGE_SIZE 2048
 
 /* Record `status` with a printf-style message; returns `status`. A NULL ctx
  * records nothing (used where no context exists yet). */
@@ -27,8 +34,5 @@ hr_status hr_error_at(const hr_context *ctx, hr_status status, const char *file,
  * message should start with "file:line:col: " where there is a place. */
 void hr_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line, int32_t column,
              const char *fmt, ...) HR_PRINTF(6, 7);
-/* Forget the calling thread's last error on ctx (successful calls do not
- * clear it; readers that retry may). */
-void hr_error_clear(const hr_context *ctx);
 
 #endif
