@@ -44,6 +44,18 @@ HR_API hr_status hr_context_last_error_info(const hr_context *ctx, hr_error_info
 typedef void (*hr_error_fn)(void *user, hr_status status, const char *message);
 HR_API void hr_context_set_error_callback(hr_context *ctx, hr_error_fn fn, void *user);
 
+/* Raise an error on the context as the library's own calls do: `message`
+ * becomes the calling thread's last error (`file`, `line` and `column`
+ * those of hr_context_last_error_info: NULL or "" and 0 when it is not in a
+ * file), and goes to the error callback. For code built on hitray whose
+ * errors should reach the program the same way, such as a reader of
+ * another scene format. Returns `status`. The message is cut to 2047 bytes,
+ * the file to 511; either may be the one this thread's last error holds (an
+ * error passed on with more said). A NULL ctx records nothing; a NULL
+ * message is "". */
+HR_API hr_status hr_context_set_error(const hr_context *ctx, hr_status status, const char *file,
+                                      int32_t line, int32_t column, const char *message);
+
 /* Warnings: input the library accepts and acts on, but that probably does
  * not do what its writer meant (a scene with nothing in it, a coefficient
  * too small to be traced). The library never prints; a program that wants
@@ -65,6 +77,11 @@ typedef struct hr_warning {
 } hr_warning;
 typedef void (*hr_warning_fn)(void *user, const hr_warning *warning);
 HR_API void hr_context_set_warning_callback(hr_context *ctx, hr_warning_fn fn, void *user);
+/* Report a warning to the context's warning callback, if one is set, as
+ * the library's own calls do; the parts are those of hr_warning (`file` NULL
+ * or "" when not in a file). */
+HR_API void hr_context_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line,
+                            int32_t column, const char *message);
 
 /* Search `dir` for modules before the default places. */
 HR_API hr_status hr_context_add_shape_dir(hr_context *ctx, const char *dir);

@@ -48,6 +48,11 @@ HR_API void hr_material_default(hr_material *m);
 /* Check a material as hr_scene_add_object will (the bounds above); the
  * message names the field and its value. `ctx` may be NULL (no message). */
 HR_API hr_status hr_material_validate(hr_context *ctx, const hr_material *m);
+/* The name of solid texture `texture` ("checkerboard" for -1, "wood" for
+ * -2, "marble" for -3), NULL if there is none: 0, an image texture (N > 0)
+ * or past the last. They are numbered from -1 down without gaps, so a
+ * program lists them by asking from -1 down to the first NULL. */
+HR_API const char *hr_solid_texture_name(int32_t texture);
 
 /* A point light in world coordinates; one colour for diffuse and specular. */
 typedef struct hr_light {

@@ -1,4 +1,4 @@
-/* The culls of lib/ray_cull.h must never drop a hit.
+/* The culls of lib/trace/ray_cull.h must never drop a hit.
  *
  * The box around a scene's BVH (box_misses on cull_box_widened): on
  * 2,000,000 random rays against random boxes (thin ones, flat ones, far

@@ -1,5 +1,5 @@
 /* The scene queries take a scratch list for every ray, inline when the list
- * on top of the per-thread stack was set up by an earlier ray (lib/trace.c,
+ * on top of the per-thread stack was set up by an earlier ray (lib/trace/trace.c,
  * scratch_acquire), else through the host's scratch_acquire. Either way the
  * list a query holds is its own: a shape that asks the host for a scratch
  * list while the query traces it must get another list, empty, and what it

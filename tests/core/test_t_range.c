@@ -1,5 +1,5 @@
 /* No hit leaves the library with t not finite or outside (tmin, tmax). A
- * direction so short that the host rescales it by a power of two (lib/trace.c)
+ * direction so short that the host rescales it by a power of two (lib/trace/trace.c)
  * gives, in the rescaled space, a t that is fine there but overflows when
  * scaled back: such a hit is beyond double's range along the caller's ray,
  * so there is none to report. Checked through first_hit and all_hits for a

@@ -1,5 +1,5 @@
 /* The one-term forms of the affine products for a diagonal linear part
- * (lib/transform_inline.h: hr_xform_point_as, _vector_as, _normal_as,
+ * (lib/geometry/transform_inline.h: hr_xform_point_as, _vector_as, _normal_as,
  * hr_xform_error_as) against the full products, bit for bit. Tracing takes
  * a translated and scaled object's rays and hits through them, so every
  * image depends on their giving the full products' bits, signed zeros

@@ -1,4 +1,4 @@
-/* Fuzz harness: the NFF reader (lib/nff_*.c), through the public call
+/* Fuzz harness: the NFF reader (lib/nff/nff_*.c), through the public call
  * hr_nff_load_string, with the real shape modules; the twin of fuzz_sdl.c.
  *
  * The input is the scene text (up to its first NUL byte: the call takes a

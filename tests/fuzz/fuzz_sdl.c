@@ -1,4 +1,4 @@
-/* Fuzz harness: the SDL reader (lib/sdl_*.c), through the public call
+/* Fuzz harness: the SDL reader (lib/sdl/sdl_*.c), through the public call
  * hr_sdl_load_string, with the real shape modules.
  *
  * The input is the scene text (up to its first NUL byte: the call takes a

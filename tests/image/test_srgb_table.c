@@ -1,4 +1,4 @@
-/* 8-bit sRGB code values come from a table of steps (lib/image_srgb.c)
+/* 8-bit sRGB code values come from a table of steps (lib/image/image_srgb.c)
  * instead of a pow call per channel; they must be the formula's, for every
  * float. The table is a step function, so the floats that can disagree are
  * those next to a step: checked are the 512 floats around each of the 255

@@ -1,8 +1,9 @@
 /* Solid textures (texture < 0): the checkerboard at known points of a
  * floor seen head-on (both colours, the square size, moving and scaling
  * with its object), wood and marble the same bits with 1, 2 and 3 threads
- * and against a stored reference image, the `texture` effect, and the
- * noise's own properties. */
+ * and against a stored reference image, the `texture` effect, the
+ * noise's own properties, and their names (hr_solid_texture_name). */
+#include <stdint.h>
 #include <string.h>
 
 #include <hitray/hitray.h>
@@ -184,8 +185,23 @@ static void test_wood_marble_colours(hr_context *ctx)
     hr_scene_destroy(s);
 }
 
+/* Numbered from -1 down without gaps, as scene.h promises: the first
+ * NULL ends the list. 0 and the image textures are none. */
+static void test_names(void)
+{
+    CHECK(strcmp(hr_solid_texture_name(-1), "checkerboard") == 0);
+    CHECK(strcmp(hr_solid_texture_name(-2), "wood") == 0);
+    CHECK(strcmp(hr_solid_texture_name(-3), "marble") == 0);
+    CHECK(hr_solid_texture_name(-4) == NULL);
+    CHECK(hr_solid_texture_name(0) == NULL);
+    CHECK(hr_solid_texture_name(1) == NULL);
+    CHECK(hr_solid_texture_name(INT32_MIN) == NULL);
+    CHECK(hr_solid_texture_name(INT32_MAX) == NULL);
+}
+
 int main(void)
 {
+    test_names();
     hr_context *ctx;
     CHECK_OK(hr_context_create(&ctx));
     test_checker_head_on(ctx);

@@ -36,7 +36,7 @@ __all__ = ["ScenePack", "MAX_SHIPPED_BYTES"]
 # by the client, the scheduler's messages and every worker.
 MAX_SHIPPED_BYTES = 1 << 30
 
-# Where SDL's lexer ends a word (lib/sdl_lexer.c): white space, braces and
+# Where SDL's lexer ends a word (lib/sdl/sdl_lexer.c): white space, braces and
 # the comment mark.
 _SDL_BREAKS = frozenset(b" \t\r\n\v\f{}!")
 

@@ -1,0 +1,16 @@
+/* Internal: one thread's last error on one context. */
+#ifndef HITRAY_LIB_ERROR_SLOT_H
+#define HITRAY_LIB_ERROR_SLOT_H
+
+#include <hitray/common.h>
+
+#include "errors.h"
+
+typedef struct hr_error_slot {
+    hr_status status;
+    int32_t line, column;
+    char file[512];
+    char message[HR_ERROR_MESSAGE_SIZE];
+} hr_error_slot;
+
+#endif

@@ -1,0 +1,106 @@
+/* Internal: textures (Hill, chapter 8), which modulate a material's ambient
+ * and diffuse colours at each hit.
+ *
+ * - Solid textures (texture < 0): a colour at a point of the object's own
+ *   space, so the texture moves and scales with the object. Each one is a
+ *   function and a row of the table in texture_solid.c; a fifth is one more
+ *   of each there.
+ * - Image textures (texture N > 0): pixmap N (hr_scene_set_pixmap) laid on
+ *   the surface by the (u, v) its class gives (hr_shape_class.surface_uv).
+ *
+ * An object whose material has a texture gets an hr_texture when it is
+ * added (its parameters checked and filled in with their defaults, its
+ * pixmap found) and its world-to-object map at commit. Nothing else is
+ * kept, so an untextured object costs shading one test of a NULL pointer. */
+#ifndef HITRAY_LIB_TEXTURE_H
+#define HITRAY_LIB_TEXTURE_H
+
+#include <hitray/hitray.h>
+
+/* The most parameters a texture reads; a material giving more is refused. */
+#define HR_TEXTURE_MAX_PARAMS 16
+
+/* What one parameter of a texture may be. */
+#define HR_TEXTURE_PARAM_ANY 0      /* finite, within [min, max] */
+#define HR_TEXTURE_PARAM_POSITIVE 1 /* finite, > 0 and <= max */
+#define HR_TEXTURE_PARAM_WHOLE 2    /* a whole number within [min, max] */
+
+typedef struct hr_texture_param {
+    const char *name;
+    double default_value;
+    int32_t kind; /* HR_TEXTURE_PARAM_* */
+    double min, max;
+} hr_texture_param;
+
+/* One kind of texture: a solid texture (`solid` set), or the image texture
+ * (`solid` NULL), whose parameters say how (u, v) map onto the pixmap. */
+typedef struct hr_texture_kind {
+    int32_t id; /* the material's texture number; 1 stands for every N > 0 */
+    const char *name;
+    const hr_texture_param *params;
+    int32_t param_count;
+    /* The colour at object-space point p, given every parameter (the
+     * material's, then defaults); reentrant, allocation-free, finite. */
+    hr_color (*solid)(const double *params, hr_vec3 p);
+} hr_texture_kind;
+
+/* The solid texture numbered `id` (< 0), NULL if there is none; the
+ * public hr_solid_texture_name gives its name, and lib/util/solid_textures.h
+ * the list for messages. */
+const hr_texture_kind *hr_solid_texture_find(int32_t id);
+/* The solid textures in the table. */
+int32_t hr_solid_texture_count(void);
+const hr_texture_kind *hr_solid_texture_at(int32_t i);
+/* The parameters of an image texture (texture N > 0). */
+extern const hr_texture_kind hr_image_texture_kind;
+#define HR_IMAGE_PARAM_UMIN 0
+#define HR_IMAGE_PARAM_UMAX 1
+#define HR_IMAGE_PARAM_VMIN 2
+#define HR_IMAGE_PARAM_VMAX 3
+#define HR_IMAGE_PARAM_NEAREST 4
+
+/* Hill's lattice noise (texture_noise.c): a value in [0, 1) at p, smooth,
+ * the same on every machine (a fixed integer hash of the lattice points, no
+ * table to set up, no rand()); and his turbulence, `octaves` layers of it at
+ * doubling frequency and halving weight, normalised to [0, 1). */
+double hr_noise(hr_vec3 p);
+double hr_turbulence(hr_vec3 p, int32_t octaves);
+
+/* One of a scene's pixmaps (pixmap.c): linear RGB floats, rows from the top. */
+typedef struct hr_pixmap {
+    int32_t index;
+    int32_t width, height;
+    float *rgb;
+} hr_pixmap;
+/* The pixmap's colour at (s, t) in [0, 1) x [0, 1), s across from the left,
+ * t up from the bottom: bilinear between the four nearest texel centres,
+ * wrapping at the edges (a texture tiles), or the nearest texel. */
+hr_color hr_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest);
+/* Pixmap `index` of the scene, NULL if it is not made. */
+const hr_pixmap *hr_scene_find_pixmap(const hr_scene *s, int32_t index);
+void hr_scene_free_pixmaps(hr_scene *s);
+
+/* What an object's texture needs at a hit. */
+typedef struct hr_texture {
+    const hr_texture_kind *kind;
+    const hr_pixmap *pixmap; /* image textures */
+    double params[HR_TEXTURE_MAX_PARAMS];
+    double to_object[16]; /* world -> the object's own space (through every
+                             composite above it) */
+    double to_world[16];  /* and back, for the normal */
+} hr_texture;
+
+struct hr_object;
+/* At hr_scene_add_object, after the shape is made: checks the material's
+ * texture and parameters and sets o->texture (NULL when untextured);
+ * refuses an image texture on a class that gives no (u, v), or whose
+ * pixmap is not made, naming the class, the module and the number. */
+hr_status hr_texture_bind(hr_scene *s, struct hr_object *o);
+/* At commit, once every composite has taken its children: the object's
+ * world-to-object map, through its parents. */
+void hr_texture_place(struct hr_object *o);
+/* The colour that multiplies the material's ambient and diffuse colours at
+ * `hit` (world space, as shade has it) of the textured object `o`. */
+hr_color hr_texture_color(const struct hr_object *o, const hr_hit *hit);
+
+#endif

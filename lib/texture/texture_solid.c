@@ -1,0 +1,131 @@
+/* Hill's solid textures (chapter 8): each a function of a point in the
+ * object's own space and the material's parameters, and one row of the
+ * table at the end. A new solid texture is a function here and a row
+ * there; the SDL reader, the checks and the docs' list follow the table.
+ *
+ * Each texture blends between two colours, A and B, which multiply the
+ * material's ambient and diffuse colours (so colour 1 1 1 leaves them as
+ * they are). Parameters the material leaves out take the defaults of the
+ * table, chosen to look right on Hill's generic shapes (a unit sphere, a
+ * unit cube, a plane seen from a few units away). */
+#include <math.h>
+
+#include "texture.h"
+#include "vec.h"
+
+#define PI 3.14159265358979323846
+
+#define COLOR_LIMIT 1e6 /* the bound hr_material_validate puts on colours */
+#define COLOR_PARAMS(prefix, r, g, b)                                          \
+    {prefix " red", r, HR_TEXTURE_PARAM_ANY, -COLOR_LIMIT, COLOR_LIMIT},       \
+        {prefix " green", g, HR_TEXTURE_PARAM_ANY, -COLOR_LIMIT, COLOR_LIMIT}, \
+        {prefix " blue", b, HR_TEXTURE_PARAM_ANY, -COLOR_LIMIT, COLOR_LIMIT}
+
+/* Colour A where `t` is 1, colour B where it is 0; the colours are the
+ * parameters from `first` on. */
+static hr_color blend(const double *p, int first, double t)
+{
+    const double *a = p + first, *b = p + first + 3;
+    return rgb(b[0] + t * (a[0] - b[0]), b[1] + t * (a[1] - b[1]), b[2] + t * (a[2] - b[2]));
+}
+
+/* floor(x) mod 2, as 0 or 1, exact for every double (fmod is exact, and a
+ * coordinate beyond 2^53 is a whole number of even or odd parity). */
+static int parity(double x) { return fabs(fmod(floor(x), 2.0)) == 1.0; }
+
+/* -1, Hill's checkerboard ("jump"): A where floor(x/s) + floor(y/s) +
+ * floor(z/s) is even, B where it is odd: cubes of side s, alternating, so
+ * any plane through the object shows squares. */
+static const hr_texture_param checker_params[] = {
+    {"size", 1.0, HR_TEXTURE_PARAM_POSITIVE, 0.0, 1e300},
+    COLOR_PARAMS("colour A", 1.0, 1.0, 1.0),
+    COLOR_PARAMS("colour B", 0.1, 0.1, 0.1),
+};
+static hr_color checkerboard(const double *p, hr_vec3 q)
+{
+    const double s = p[0];
+    int odd = parity(q.x / s) ^ parity(q.y / s) ^ parity(q.z / s);
+    return blend(p, 1, odd ? 0.0 : 1.0);
+}
+
+/* -2, Hill's wood grain: rings about the z axis, r / M apart, whose radius
+ * wobbles k rings with the angle about the axis (N times around) and turns
+ * with the height (B radians per unit of z):
+ *   rings(r / M + k sin(N theta + B z)),
+ * A on the even rings, B on the odd ones. */
+static const hr_texture_param wood_params[] = {
+    {"ring spacing", 0.1, HR_TEXTURE_PARAM_POSITIVE, 0.0, 1e300},
+    {"wobble", 0.4, HR_TEXTURE_PARAM_ANY, -1e6, 1e6},
+    {"wobbles around", 4.0, HR_TEXTURE_PARAM_WHOLE, 0.0, 1e6},
+    {"twist", 2.0, HR_TEXTURE_PARAM_ANY, -1e6, 1e6},
+    COLOR_PARAMS("colour A", 0.85, 0.6, 0.35),
+    COLOR_PARAMS("colour B", 0.45, 0.25, 0.1),
+};
+static hr_color wood(const double *p, hr_vec3 q)
+{
+    const double r = hypot(q.x, q.y);
+    const double theta = atan2(q.y, q.x);
+    const double ring = r / p[0] + p[1] * sin(p[2] * theta + p[3] * q.z);
+    return blend(p, 4, parity(ring) ? 0.0 : 1.0);
+}
+
+/* -3, Hill's marble: veins across z (f of them per unit) bent by his
+ * turbulence of the point scaled by `noise scale`, of `octaves` layers,
+ * with strength A: the undulating sine
+ *   t = sqrt(|sin(pi f z + A turb(scale * p))|)
+ * blends B (t = 0, in the veins, where the sine crosses 0) to A (t = 1);
+ * the square root keeps the veins thin. */
+static const hr_texture_param marble_params[] = {
+    {"veins per unit", 1.5, HR_TEXTURE_PARAM_ANY, -1e6, 1e6},
+    {"noise scale", 2.0, HR_TEXTURE_PARAM_POSITIVE, 0.0, 1e6},
+    {"turbulence", 5.0, HR_TEXTURE_PARAM_ANY, -1e6, 1e6},
+    {"octaves", 5.0, HR_TEXTURE_PARAM_WHOLE, 1.0, 16.0},
+    COLOR_PARAMS("colour A", 0.95, 0.94, 0.9),
+    COLOR_PARAMS("colour B", 0.3, 0.3, 0.38),
+};
+static hr_color marble(const double *p, hr_vec3 q)
+{
+    const double turb = hr_turbulence(v3_scale(q, p[1]), (int32_t)p[3]);
+    const double t = sqrt(fabs(sin(PI * p[0] * q.z + p[2] * turb)));
+    return blend(p, 4, t);
+}
+
+#define ROW(id, name, params, fn) {id, name, params, (int32_t)(sizeof params / sizeof params[0]), fn}
+/* Numbered from -1 down without gaps: hr_solid_texture_name promises it. */
+static const hr_texture_kind solid_textures[] = {
+    ROW(-1, "checkerboard", checker_params, checkerboard),
+    ROW(-2, "wood", wood_params, wood),
+    ROW(-3, "marble", marble_params, marble),
+};
+#define SOLID_COUNT ((int32_t)(sizeof solid_textures / sizeof solid_textures[0]))
+
+const hr_texture_kind *hr_solid_texture_find(int32_t id)
+{
+    for (int32_t i = 0; i < SOLID_COUNT; i++)
+        if (solid_textures[i].id == id) return &solid_textures[i];
+    return NULL;
+}
+
+int32_t hr_solid_texture_count(void) { return SOLID_COUNT; }
+
+const hr_texture_kind *hr_solid_texture_at(int32_t i)
+{
+    return i >= 0 && i < SOLID_COUNT ? &solid_textures[i] : NULL;
+}
+
+HR_API const char *hr_solid_texture_name(int32_t texture)
+{
+    const hr_texture_kind *kind = hr_solid_texture_find(texture);
+    return kind ? kind->name : NULL;
+}
+
+/* Image textures: the part of (u, v) the image covers (it repeats beyond
+ * it, so u from 0 to 0.25 tiles it four times across), and the filter. */
+static const hr_texture_param image_params[] = {
+    {"u min", 0.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
+    {"u max", 1.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
+    {"v min", 0.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
+    {"v max", 1.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
+    {"nearest", 0.0, HR_TEXTURE_PARAM_WHOLE, 0.0, 1.0},
+};
+const hr_texture_kind hr_image_texture_kind = ROW(1, "image", image_params, NULL);

@@ -1,0 +1,33 @@
+/* Cook and Torrance's specular term (lib/trace/cook_torrance.h). */
+#include "cook_torrance.h"
+
+#include <math.h>
+
+#include "vec.h"
+
+#define PI 3.14159265358979323846
+
+double hr_fresnel(double c, double eta)
+{
+    const double g2 = eta * eta + c * c - 1.0;
+    if (!(g2 > 0.0)) return 1.0; /* total internal reflection */
+    const double g = sqrt(g2);
+    const double a = (g - c) / (g + c);
+    const double b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    return 0.5 * a * a * (1.0 + b * b);
+}
+
+double hr_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta)
+{
+    const double nl = v3_dot(n, l), nv = v3_dot(n, v);
+    if (!(nl > 0.0 && nv > 0.0)) return 0.0;
+    const hr_vec3 h = v3_normalize(v3_add(l, v));
+    const double nh = v3_dot(n, h), vh = v3_dot(v, h);
+    if (!(nh > 0.0 && vh > 0.0)) return 0.0;
+    /* Beckmann: exp(-tan^2(a) / m^2) / (pi m^2 cos^4(a)), cos(a) = n.h. */
+    const double c2 = nh * nh, m2 = m * m;
+    const double d = exp(-(1.0 - c2) / (c2 * m2)) / (PI * m2 * c2 * c2);
+    const double g = fmin(1.0, fmin(2.0 * nh * nv / vh, 2.0 * nh * nl / vh));
+    const double r = hr_fresnel(vh, eta) * d * g / (PI * nv);
+    return r < HR_COOK_TORRANCE_MAX ? r : HR_COOK_TORRANCE_MAX;
+}

@@ -1,0 +1,244 @@
+/* Hill's shade(): the colour seen along a ray.
+ *
+ *   colour = emissive + ambient * globalAmbient
+ *          + sum over lights not in shadow of
+ *              light * (diffuse * max(0, s.m) + specular * max(0, h.m)^exponent)
+ *          + reflectivity * shade(reflected ray)     if reflectivity >= minReflectivity
+ *          + transparency * shade(transmitted ray)   if transparency >= minTransparency
+ *
+ * m is the unit normal turned to face the incoming ray, s the unit vector to
+ * the light, h the half-way vector between s and the direction to the eye.
+ * Where the material's specularFraction f is above 0 the specular term is
+ * Cook-Torrance's instead (lib/trace/cook_torrance.h), and the lit part of each
+ * light is light * ((1 - f) diffuse (s.m) + f specular R_s (s.m)), Hill's
+ * mix; a texture multiplies the ambient and diffuse colours first. A
+ * light behind the surface (s.m <= 0) adds nothing, diffuse or specular, and
+ * casts no shadow ray. Shadows are Hill's: any object between the point and
+ * the light blocks it completely. Each term is skipped unless the material
+ * calls for it (flags worked out at commit), so an effect the scene lacks
+ * costs no ray: a purely emissive object runs no light loop, a light that
+ * is behind the surface or whose colour the material cannot reflect casts
+ * no shadow ray.
+ *
+ * The contribution cut-off (hr_render_options.min_weight) weighs each path:
+ * a bounce adds reflectivity (or transparency) times the colour it brings
+ * back, so a ray's weight is the product of those coefficients along its
+ * path, and one below the cut-off is not traced. */
+#include <math.h>
+
+#include "cook_torrance.h"
+#include "scene_internal.h"
+#include "texture.h"
+#include "vec.h"
+
+/* A light adds exactly nothing where, in every channel, its colour or
+ * both of the material's lit coefficients are zero: no multiplication can
+ * make that non-zero, so its shadow ray can be saved. Commit marks the
+ * materials some light is inert for (HR_MAT_INERT_LIGHT); only their light
+ * loops ask. */
+int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
+{
+    hr_color d = flags & HR_MAT_DIFFUSE ? mat->diffuse : rgb(0, 0, 0);
+    hr_color sp = flags & HR_MAT_SPECULAR ? mat->specular : rgb(0, 0, 0);
+    return (L->color.r == 0.0 || (d.r == 0.0 && sp.r == 0.0)) &&
+           (L->color.g == 0.0 || (d.g == 0.0 && sp.g == 0.0)) &&
+           (L->color.b == 0.0 || (d.b == 0.0 && sp.b == 0.0));
+}
+
+/* Cook-Torrance's specular term of one light, weighted by the fraction as
+ * Hill mixes it with the diffuse, (1 - f) R_d + f R_s (the diffuse's share
+ * is taken in shading_material). */
+static hr_color cook_torrance_term(const hr_material *mat, hr_vec3 m, hr_vec3 sdir, hr_vec3 to_eye)
+{
+    double r = hr_cook_torrance(m, sdir, to_eye, mat->surface_roughness, 1.0 / mat->speed_of_light);
+    return rgb_scale(mat->specular, mat->specular_fraction * r);
+}
+
+/* The light loop; `cook` (a constant in each caller below) picks the
+ * specular term, so each caller compiles to a loop of its own and Phong's
+ * is the same code it was before Cook-Torrance. */
+static inline __attribute__((always_inline)) hr_color
+light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const hr_hit *h, hr_vec3 m,
+           hr_vec3 to_eye, uint32_t flags, const int cook)
+{
+    const hr_scene *s = tc->scene;
+    hr_color sum = rgb(0, 0, 0);
+    hr_vec3 origin = hr_hit_spawn_origin(h, m);
+    for (int32_t i = 0; i < s->light_count; i++) {
+        const hr_light *L = &s->lights[i];
+        if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hr_light_adds_nothing(L, mat, flags))
+            continue;
+        hr_vec3 to_light = v3_sub(L->position, origin);
+        hr_vec3 sdir = v3_normalize(to_light);
+        double lambert = v3_dot(sdir, m);
+        if (!(lambert > 0.0) && !tc->force_all_effects) continue;
+        if (s->effects & HR_EFFECT_SHADOWS || tc->force_all_effects) {
+            hr_ray shadow = {origin, to_light};
+            tc->rays_shadow++;
+            tc->effects_ran |= HR_EFFECT_SHADOWS;
+            /* The light sits at t = 1 along this ray. */
+            if (hr_scene_trace_shadow(tc, &shadow, 0.0, 1.0, i)) continue;
+        }
+        if (!(lambert > 0.0)) continue;
+        hr_color c = rgb(0, 0, 0);
+        if (flags & HR_MAT_DIFFUSE) {
+            c = rgb_scale(mat->diffuse, lambert);
+            tc->effects_ran |= HR_EFFECT_DIFFUSE;
+        }
+        if (flags & HR_MAT_SPECULAR) {
+            if (cook) {
+                c = rgb_add(c, cook_torrance_term(mat, m, sdir, to_eye));
+            } else {
+                hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
+                double phong = v3_dot(half, m);
+                /* At or below the cut-off pow would give exactly 0 (specular.h). */
+                if (phong > o->specular_cutoff)
+                    c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
+            }
+            tc->effects_ran |= HR_EFFECT_SPECULAR;
+        }
+        sum = rgb_add(sum, rgb_mul(L->color, c));
+    }
+    return sum;
+}
+
+static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat,
+                             const hr_hit *h, hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+{
+    return light_loop(tc, o, mat, h, m, to_eye, flags, 0);
+}
+
+static __attribute__((noinline)) hr_color direct_light_cook_torrance(hr_trace_ctx *tc, const hr_object *o,
+                                                                     const hr_material *mat, const hr_hit *h,
+                                                                     hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+{
+    return light_loop(tc, o, mat, h, m, to_eye, flags, 1);
+}
+
+/* Whether a bounce whose path weight would be `weight` is traced. A forced
+ * bounce (one only HR_EFFECTS_ALL traces, weight 0 throughout its subtree)
+ * always is: it contributes nothing either way, and it is there to be run. */
+static int worth_tracing(hr_trace_ctx *tc, double weight, int forced)
+{
+    if (forced || weight >= tc->min_weight) return 1;
+    tc->rays_cut++;
+    return 0;
+}
+
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
+                      double weight, int forced);
+
+hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
+{
+    return shade(tc, ray, depth, max_depth, 1.0, 0);
+}
+
+/* The material shading uses at hit h of an object whose material is
+ * textured or Cook-Torrance's (HR_MAT_ADJUSTED): a copy in `buf` whose
+ * ambient and diffuse colours are multiplied by the texture's (where the
+ * texture has a term to modulate) and whose diffuse gives the specular
+ * its fraction, (1 - f). Out of line, so shade's own code is the same for
+ * every other object. */
+static __attribute__((noinline)) const hr_material *
+shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t flags, hr_material *buf)
+{
+    *buf = o->material;
+    if (o->texture && (flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) {
+        hr_color t = hr_texture_color(o, h);
+        buf->ambient = rgb_mul(buf->ambient, t);
+        buf->diffuse = rgb_mul(buf->diffuse, t);
+        tc->effects_ran |= HR_EFFECT_TEXTURE;
+    }
+    if (flags & HR_MAT_COOK_TORRANCE) buf->diffuse = rgb_scale(buf->diffuse, 1.0 - buf->specular_fraction);
+    return buf;
+}
+
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
+                      double weight, int forced)
+{
+    const hr_scene *s = tc->scene;
+    /* A shape failed: the render fails, so the rest of its rays are not
+     * traced (a failing shape may be slow to fail: one that renders). */
+    if (tc->status) return rgb(0, 0, 0);
+    if (tc->cancelled) {
+        if (tc->poll && ++tc->shade_calls % HR_POLL_INTERVAL == 0) tc->poll(tc->poll_user);
+        /* The image is thrown away: unwind as fast as possible. */
+        if (atomic_load_explicit(tc->cancelled, memory_order_relaxed)) return rgb(0, 0, 0);
+        if (tc->cancel_flag && __atomic_load_n(tc->cancel_flag, __ATOMIC_RELAXED)) return rgb(0, 0, 0);
+    }
+    hr_hit h;
+    if (!hr_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;
+    const hr_object *o = s->objects[h.object];
+    const hr_material *mat = &o->material;
+    uint32_t flags = o->mat_flags;
+    if (tc->force_all_effects)
+        flags |= HR_MAT_EMITS | HR_MAT_AMBIENT | HR_MAT_DIFFUSE | HR_MAT_SPECULAR;
+    /* A texture modulates the ambient and diffuse colours (Hill), nothing
+     * else; Cook-Torrance takes its fraction from the diffuse. Any other
+     * object pays this one test. */
+    hr_material adjusted;
+    if (flags & HR_MAT_ADJUSTED) mat = shading_material(tc, o, &h, flags, &adjusted);
+
+    hr_vec3 dir = v3_normalize(ray->dir);
+    hr_vec3 to_eye = v3_neg(dir);
+    /* Hill's m: the normal on the side the ray arrives from. */
+    hr_vec3 m = v3_dot(h.normal, dir) > 0.0 ? v3_neg(h.normal) : h.normal;
+
+    hr_color c = rgb(0, 0, 0);
+    if (flags & HR_MAT_EMITS) {
+        c = rgb_add(c, mat->emissive);
+        tc->effects_ran |= HR_EFFECT_EMISSION;
+    }
+    if (flags & HR_MAT_AMBIENT) {
+        c = rgb_add(c, rgb_mul(mat->ambient, s->globals.global_ambient));
+        tc->effects_ran |= HR_EFFECT_AMBIENT;
+    }
+    if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0)
+        c = rgb_add(c, flags & HR_MAT_COOK_TORRANCE
+                           ? direct_light_cook_torrance(tc, o, mat, &h, m, to_eye, flags)
+                           : direct_light(tc, o, mat, &h, m, to_eye, flags));
+    if (depth >= max_depth) return c;
+
+    /* Under HR_EFFECTS_ALL every bounce is traced, weighted by what the
+     * material calls for: 0 where it calls for none. c starts at +0 and its
+     * terms are finite, so adding 0 * colour leaves every bit of it as it
+     * was: the image is the same, only the work differs. */
+    double reflect_weight = flags & HR_MAT_REFLECTS ? mat->reflectivity : 0.0;
+    double refract_weight = flags & HR_MAT_REFRACTS ? mat->transparency : 0.0;
+    if (tc->force_all_effects) flags |= HR_MAT_REFLECTS | HR_MAT_REFRACTS;
+
+    double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
+    if ((flags & HR_MAT_REFLECTS) &&
+        worth_tracing(tc, weight * reflect_weight, forced || reflect_weight == 0.0)) {
+        hr_ray r = {hr_hit_spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
+        tc->rays_reflected++;
+        tc->effects_ran |= HR_EFFECT_REFLECTION;
+        hr_color seen = shade(tc, &r, depth + 1, max_depth, weight * reflect_weight,
+                              forced || reflect_weight == 0.0);
+        c = rgb_add(c, rgb_scale(seen, reflect_weight));
+    }
+    if ((flags & HR_MAT_REFRACTS) &&
+        worth_tracing(tc, weight * refract_weight, forced || refract_weight == 0.0)) {
+        /* Snell with Hill's speeds: sin(t) = (c2 / c1) sin(i). Entering goes
+         * from the surrounding space (speed 1) into the material. */
+        double c1 = h.entering ? 1.0 : mat->speed_of_light;
+        double c2 = h.entering ? mat->speed_of_light : 1.0;
+        double ratio = c2 / c1;
+        double cos_t2 = 1.0 - ratio * ratio * (1.0 - cos_i * cos_i);
+        hr_ray t;
+        if (cos_t2 < 0.0) { /* total internal reflection */
+            t.origin = hr_hit_spawn_origin(&h, m);
+            t.dir = v3_madd(dir, m, 2.0 * cos_i);
+            tc->rays_reflected++;
+        } else {
+            t.origin = hr_hit_spawn_origin(&h, v3_neg(m));
+            t.dir = v3_add(v3_scale(dir, ratio), v3_scale(m, ratio * cos_i - sqrt(cos_t2)));
+            tc->rays_refracted++;
+        }
+        tc->effects_ran |= HR_EFFECT_REFRACTION;
+        hr_color seen = shade(tc, &t, depth + 1, max_depth, weight * refract_weight,
+                              forced || refract_weight == 0.0);
+        c = rgb_add(c, rgb_scale(seen, refract_weight));
+    }
+    return c;
+}
