@@ -37,8 +37,6 @@ struct hr_context {
     int32_t module_count;
     hr_class_entry *classes;  /* explicit loads/registrations first */
     int32_t class_count;
-    hr_class_entry *registered; /* in-process classes (origin strings owned) */
-    int32_t registered_count;
     hr_host host;             /* the services table given to every module */
     /* The last class hr_context_find_shape_class found, and the counts of
      * classes and modules it was found among: both only grow until

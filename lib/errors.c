@@ -63,12 +63,6 @@ hr_status hr_error_at(const hr_context *ctx, hr_status status, const char *file,
     return status;
 }
 
-void hr_error_clear(const hr_context *ctx)
-{
-    hr_error_slot *slot = ctx ? slot_of(ctx, 0) : NULL;
-    if (slot) memset(slot, 0, sizeof *slot);
-}
-
 HR_API const char *hr_context_last_error(const hr_context *ctx)
 {
     hr_error_slot *slot = ctx ? slot_of(ctx, 0) : NULL;

@@ -27,8 +27,5 @@ hr_status hr_error_at(const hr_context *ctx, hr_status status, const char *file,
  * message should start with "file:line:col: " where there is a place. */
 void hr_warn(const hr_context *ctx, int32_t code, const char *file, int32_t line, int32_t column,
              const char *fmt, ...) HR_PRINTF(6, 7);
-/* Forget the calling thread's last error on ctx (successful calls do not
- * clear it; readers that retry may). */
-void hr_error_clear(const hr_context *ctx);
 
 #endif
