@@ -47,8 +47,9 @@ struct hr_context {
     int32_t last_found_class_count, last_found_module_count;
 };
 
-/* The host services table (trace.c: trace_child gets the walk's inline copy
- * of object tracing, and the scratch lists are the queries' own stack). */
+/* The host services table (host_services.c: trace_child inlines object
+ * tracing from object_trace.h, as the scene walk does, and the scratch
+ * lists are the walk's own stack, trace.c). */
 void hr_host_services_init(hr_host *host);
 
 #endif

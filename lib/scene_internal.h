@@ -3,6 +3,9 @@
 #define HITRAY_LIB_SCENE_INTERNAL_H
 
 #include <stdatomic.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include <hitray/hitray.h>
 
@@ -126,7 +129,14 @@ typedef struct hr_trace_ctx {
 
 #define HR_POLL_INTERVAL 65536u
 
-void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene);
+/* Everything but the scratch lists is zeroed; a list is set up when it is
+ * first acquired (scratch_ready), so a query neither clears nor frees 64
+ * lists it never touches. */
+static inline void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
+{
+    memset(tc, 0, offsetof(hr_trace_ctx, scratch));
+    tc->scene = scene;
+}
 /* hr_trace_ctx_init's tracing part alone, for a query that never shades
  * (first hit, all hits): the shading fields are left unset, and nothing
  * such a query runs reads them. */
@@ -138,9 +148,26 @@ static inline void hr_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *s
     tc->scratch_used = 0;
     tc->scratch_ready = 0;
 }
-void hr_trace_ctx_release(hr_trace_ctx *tc);
+/* Inline, as the query that ends with it mostly has nothing to free. */
+static inline void hr_trace_ctx_release(hr_trace_ctx *tc)
+{
+    for (int32_t i = 0; i < tc->scratch_ready; i++) {
+        free(tc->scratch[i].hits);
+        memset(&tc->scratch[i], 0, sizeof tc->scratch[i]);
+    }
+    tc->scratch_ready = 0;
+    tc->scratch_used = 0;
+}
 
-/* Grow a list to hold at least `capacity` hits. */
+/* The context's scratch lists, a stack (trace.c): acquire gives the next
+ * one, empty, with room for 4 * HR_MIN_HIT_CAPACITY hits (NULL when all
+ * HR_SCRATCH_MAX are taken or out of memory); release gives back `list`
+ * and every list acquired after it. `call` is the hr_trace_ctx, as the
+ * host services (hr_host) take it. */
+hr_intersection *hr_trace_scratch_acquire(void *call);
+void hr_trace_scratch_release(void *call, hr_intersection *list);
+
+/* Grow a list to hold at least `capacity` hits (intersection.c). */
 hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity);
 
 /* Trace one object with a ray in its parent's space: hits come back in the
@@ -153,6 +180,10 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
 /* Hill's getFirstHit over the scene; returns 1 on a hit. */
 int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                          hr_hit *out);
+/* The same with the caller's list `tmp` for the candidate hits (a public
+ * query's, on its stack) instead of a scratch list. */
+int hr_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
+                           hr_intersection *tmp);
 /* Any hit in (tmin, tmax) of a shadow ray towards light number `light`
  * (>= 0); returns 1 on a hit. Asks first the object that blocked the last
  * shadow ray towards that light. */
