@@ -2,6 +2,7 @@
 #ifndef HITRAY_LIB_SCENE_INTERNAL_H
 #define HITRAY_LIB_SCENE_INTERNAL_H
 
+#include <math.h>
 #include <stdatomic.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -31,9 +32,9 @@
 typedef struct hr_object {
     /* What tracing reads first, together: a ray that misses the object
      * reads cls, shape, the flags and the top three rows of inv, which sit
-     * in the first two of the object's cache lines (lib/scene.c allocates
-     * it on a line of its own, HR_OBJECT_ALIGN); a hit reads index, m's
-     * rows and m_error, the lines after. */
+     * in the first two of the object's cache lines (lib/scene_objects.c
+     * allocates it on a line of its own, HR_OBJECT_ALIGN); a hit reads
+     * index, m's rows and m_error, the lines after. */
     int64_t index;
     const hr_shape_class *cls;
     void *shape;              /* what the class's create returned */
@@ -82,6 +83,35 @@ struct hr_scene {
     struct hr_pixmap **pixmaps; /* Hill's makePixmap (lib/pixmap.c) */
     int32_t pixmap_count, pixmap_cap;
 };
+
+/* Input bounds that keep every pixel finite. With |colour| <= HR_MAX_COLOR,
+ * weights in [0, 1] and an exponent >= 0 (so (h.m)^e <= 1), each ray traced
+ * adds at most (2 + lights) * 1e12 to its pixel, weighted by products of
+ * coefficients <= 1. A pixel is a sum over the rays it traced, so it stays
+ * far below float's 3.4e38 for any render that can finish (it would take
+ * ~1e20 rays per pixel to get there). A texture's colour is bounded the same
+ * way (its parameters and pixmap pixels), and Cook-Torrance's term by
+ * HR_COOK_TORRANCE_MAX: each multiplies a ray's share by at most 1e6 more,
+ * which still takes ~1e14 rays per pixel to overflow. */
+#define HR_MAX_COLOR 1e6
+#define HR_MAX_EXPONENT 1e6
+
+/* A colour of a material, light or the globals within those bounds. */
+static inline int hr_color_in_range(hr_color c)
+{
+    return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && fabs(c.r) <= HR_MAX_COLOR &&
+           fabs(c.g) <= HR_MAX_COLOR && fabs(c.b) <= HR_MAX_COLOR;
+}
+
+/* The checks on a full-size material (scene_materials.c);
+ * hr_material_validate is the public door, which first reads only the bytes
+ * the caller declared. */
+hr_status hr_material_check(hr_context *ctx, const hr_material *m);
+/* Destroys the object's shape and frees what it owns (scene_objects.c). */
+void hr_object_free(hr_object *o);
+/* The material flags of every object and the scene's effects, at commit
+ * (scene_effects.c). */
+void hr_scene_work_out_effects(hr_scene *s);
 
 /* Per-thread state of tracing: what hr_hit_args.call points to. Scratch
  * lists are reused across rays, so tracing allocates only while they grow. */
