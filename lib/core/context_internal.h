@@ -39,8 +39,6 @@ struct hr_context {
     int32_t module_count;
     hr_class_entry *classes;  /* explicit loads/registrations first */
     int32_t class_count;
-    hr_class_entry *registered; /* in-process classes (origin strings owned) */
-    int32_t registered_count;
     hr_host host;             /* the services table given to every module */
     /* The last class hr_context_find_shape_class found, and the counts of
      * classes and modules it was found among: both only grow until
@@ -51,8 +49,9 @@ struct hr_context {
     int32_t last_found_class_count, last_found_module_count;
 };
 
-/* The host services table (trace.c: trace_child gets the walk's inline copy
- * of object tracing, and the scratch lists are the queries' own stack). */
+/* The host services table (host_services.c: trace_child inlines object
+ * tracing from object_trace.h, as the scene walk does, and the scratch
+ * lists are the walk's own stack, trace.c). */
 void hr_host_services_init(hr_host *host);
 
 #endif

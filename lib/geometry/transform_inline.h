@@ -1,7 +1,7 @@
 /* Internal: the affine products of include/hitray/transform.h as inline
- * functions, so the tracing loop (lib/trace/trace.c) does not pay a call per ray
- * and object; lib/geometry/transform.c's exported functions are these same bodies,
- * so both give the same bits. m is row-major object -> world (or its
+ * functions, so the tracing loop (lib/trace/object_trace.h) does not pay a call
+ * per ray and object; lib/geometry/transform.c's exported functions are these same
+ * bodies, so both give the same bits. m is row-major object -> world (or its
  * inverse), as in hr_object. */
 #ifndef HITRAY_LIB_TRANSFORM_INLINE_H
 #define HITRAY_LIB_TRANSFORM_INLINE_H

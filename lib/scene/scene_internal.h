@@ -2,7 +2,11 @@
 #ifndef HITRAY_LIB_SCENE_INTERNAL_H
 #define HITRAY_LIB_SCENE_INTERNAL_H
 
+#include <math.h>
 #include <stdatomic.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include <hitray/hitray.h>
 
@@ -28,9 +32,9 @@
 typedef struct hr_object {
     /* What tracing reads first, together: a ray that misses the object
      * reads cls, shape, the flags and the top three rows of inv, which sit
-     * in the first two of the object's cache lines (lib/scene/scene.c allocates
-     * it on a line of its own, HR_OBJECT_ALIGN); a hit reads index, m's
-     * rows and m_error, the lines after. */
+     * in the first two of the object's cache lines (lib/scene/scene_objects.c
+     * allocates it on a line of its own, HR_OBJECT_ALIGN); a hit reads
+     * index, m's rows and m_error, the lines after. */
     int64_t index;
     const hr_shape_class *cls;
     void *shape;              /* what the class's create returned */
@@ -80,6 +84,35 @@ struct hr_scene {
     int32_t pixmap_count, pixmap_cap;
 };
 
+/* Input bounds that keep every pixel finite. With |colour| <= HR_MAX_COLOR,
+ * weights in [0, 1] and an exponent >= 0 (so (h.m)^e <= 1), each ray traced
+ * adds at most (2 + lights) * 1e12 to its pixel, weighted by products of
+ * coefficients <= 1. A pixel is a sum over the rays it traced, so it stays
+ * far below float's 3.4e38 for any render that can finish (it would take
+ * ~1e20 rays per pixel to get there). A texture's colour is bounded the same
+ * way (its parameters and pixmap pixels), and Cook-Torrance's term by
+ * HR_COOK_TORRANCE_MAX: each multiplies a ray's share by at most 1e6 more,
+ * which still takes ~1e14 rays per pixel to overflow. */
+#define HR_MAX_COLOR 1e6
+#define HR_MAX_EXPONENT 1e6
+
+/* A colour of a material, light or the globals within those bounds. */
+static inline int hr_color_in_range(hr_color c)
+{
+    return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && fabs(c.r) <= HR_MAX_COLOR &&
+           fabs(c.g) <= HR_MAX_COLOR && fabs(c.b) <= HR_MAX_COLOR;
+}
+
+/* The checks on a full-size material (scene_materials.c);
+ * hr_material_validate is the public door, which first reads only the bytes
+ * the caller declared. */
+hr_status hr_material_check(hr_context *ctx, const hr_material *m);
+/* Destroys the object's shape and frees what it owns (scene_objects.c). */
+void hr_object_free(hr_object *o);
+/* The material flags of every object and the scene's effects, at commit
+ * (scene_effects.c). */
+void hr_scene_work_out_effects(hr_scene *s);
+
 /* Per-thread state of tracing: what hr_hit_args.call points to. Scratch
  * lists are reused across rays, so tracing allocates only while they grow. */
 #define HR_SCRATCH_MAX 64
@@ -126,7 +159,14 @@ typedef struct hr_trace_ctx {
 
 #define HR_POLL_INTERVAL 65536u
 
-void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene);
+/* Everything but the scratch lists is zeroed; a list is set up when it is
+ * first acquired (scratch_ready), so a query neither clears nor frees 64
+ * lists it never touches. */
+static inline void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
+{
+    memset(tc, 0, offsetof(hr_trace_ctx, scratch));
+    tc->scene = scene;
+}
 /* hr_trace_ctx_init's tracing part alone, for a query that never shades
  * (first hit, all hits): the shading fields are left unset, and nothing
  * such a query runs reads them. */
@@ -138,9 +178,26 @@ static inline void hr_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *s
     tc->scratch_used = 0;
     tc->scratch_ready = 0;
 }
-void hr_trace_ctx_release(hr_trace_ctx *tc);
+/* Inline, as the query that ends with it mostly has nothing to free. */
+static inline void hr_trace_ctx_release(hr_trace_ctx *tc)
+{
+    for (int32_t i = 0; i < tc->scratch_ready; i++) {
+        free(tc->scratch[i].hits);
+        memset(&tc->scratch[i], 0, sizeof tc->scratch[i]);
+    }
+    tc->scratch_ready = 0;
+    tc->scratch_used = 0;
+}
 
-/* Grow a list to hold at least `capacity` hits. */
+/* The context's scratch lists, a stack (trace.c): acquire gives the next
+ * one, empty, with room for 4 * HR_MIN_HIT_CAPACITY hits (NULL when all
+ * HR_SCRATCH_MAX are taken or out of memory); release gives back `list`
+ * and every list acquired after it. `call` is the hr_trace_ctx, as the
+ * host services (hr_host) take it. */
+hr_intersection *hr_trace_scratch_acquire(void *call);
+void hr_trace_scratch_release(void *call, hr_intersection *list);
+
+/* Grow a list to hold at least `capacity` hits (intersection.c). */
 hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity);
 
 /* Trace one object with a ray in its parent's space: hits come back in the
@@ -153,6 +210,10 @@ hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *
 /* Hill's getFirstHit over the scene; returns 1 on a hit. */
 int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                          hr_hit *out);
+/* The same with the caller's list `tmp` for the candidate hits (a public
+ * query's, on its stack) instead of a scratch list. */
+int hr_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
+                           hr_intersection *tmp);
 /* Any hit in (tmin, tmax) of a shadow ray towards light number `light`
  * (>= 0); returns 1 on a hit. Asks first the object that blocked the last
  * shadow ray towards that light. */

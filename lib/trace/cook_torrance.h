@@ -8,7 +8,8 @@
 
 /* The largest value hr_cook_torrance returns: a grazing view or light
  * makes the term's 1 / (n.v) unbounded, and a colour times this stays
- * within the bound that keeps every pixel finite (scene.c). */
+ * within the bound that keeps every pixel finite (HR_MAX_COLOR,
+ * scene_internal.h). */
 #define HR_COOK_TORRANCE_MAX 1e6
 
 /* R_s (n.l) for unit vectors n (the normal, on the viewer's side), l (to

@@ -16,7 +16,7 @@
  * bound at all (error 0: a shape that claims exactness, such as a Python
  * shape that leaves the field alone) gets a stand-in of a few ulps of the
  * point's magnitude. It is not a floor under every bound: a transformed
- * hit's bound already carries the transform's rounding (trace.c), and
+ * hit's bound already carries the transform's rounding (object_trace.h), and
  * flooring it at 8 ulps made the offset about 5x the bound far from the
  * origin, hiding surfaces closer than that (tests/numerics, P-cases).
  * Each coordinate is then rounded one ulp further away from the surface, so

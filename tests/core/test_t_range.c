@@ -1,10 +1,11 @@
 /* No hit leaves the library with t not finite or outside (tmin, tmax). A
- * direction so short that the host rescales it by a power of two (lib/trace/trace.c)
- * gives, in the rescaled space, a t that is fine there but overflows when
- * scaled back: such a hit is beyond double's range along the caller's ray,
- * so there is none to report. Checked through first_hit and all_hits for a
- * quadric, two polyhedra and a CSG union, and for a window (tmin, tmax) that
- * the hits in the rescaled space fall inside only before scaling back. */
+ * direction so short that the host rescales it by a power of two
+ * (lib/trace/object_trace.h) gives, in the rescaled space, a t that is fine there
+ * but overflows when scaled back: such a hit is beyond double's range along
+ * the caller's ray, so there is none to report. Checked through first_hit
+ * and all_hits for a quadric, two polyhedra and a CSG union, and for a
+ * window (tmin, tmax) that the hits in the rescaled space fall inside only
+ * before scaling back. */
 #include <math.h>
 #include <string.h>
 

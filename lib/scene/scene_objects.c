@@ -1,0 +1,266 @@
+/* Adding an object to a scene: its shape created by its class from the
+ * resolved parameters, its material and transform copied and checked, and
+ * its bounds in its parent's space worked out. */
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "context_internal.h"
+#include "errors.h"
+#include "ray_cull.h"
+#include "scene_internal.h"
+#include "scene_params.h"
+#include "sized_copy.h"
+#include "texture.h"
+#include "transform_inline.h"
+#include "vec.h"
+
+/* A zeroed object on cache lines of its own (HR_OBJECT_ALIGN), so that its
+ * fields tracing reads first share the fewest lines (hr_object); free()
+ * releases it. */
+static hr_object *object_alloc(void)
+{
+    const size_t size = (sizeof(hr_object) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN;
+    hr_object *o = aligned_alloc(HR_OBJECT_ALIGN, size);
+    if (o) memset(o, 0, size);
+    return o;
+}
+
+void hr_object_free(hr_object *o)
+{
+    if (!o) return;
+    if (o->shape) o->cls->destroy(o->shape);
+    free(o->texture);
+    free(o->params_copy);
+    free(o);
+}
+
+static int is_identity(const double m[16])
+{
+    for (int i = 0; i < 16; i++)
+        if (m[i] != ((i % 5 == 0) ? 1.0 : 0.0)) return 0;
+    return 1;
+}
+
+/* Bounds of the 8 corners of a box under an affine map; infinite input
+ * stays unbounded (no inf * 0 = NaN). */
+static int transform_bounds(const double m[16], const hr_bounds *in, hr_bounds *out)
+{
+    if (!v3_is_finite(in->lo) || !v3_is_finite(in->hi)) {
+        out->lo = v3(-INFINITY, -INFINITY, -INFINITY);
+        out->hi = v3(INFINITY, INFINITY, INFINITY);
+        return 0;
+    }
+    out->lo = v3(DBL_MAX, DBL_MAX, DBL_MAX);
+    out->hi = v3(-DBL_MAX, -DBL_MAX, -DBL_MAX);
+    for (int c = 0; c < 8; c++) {
+        hr_vec3 p = v3(c & 1 ? in->hi.x : in->lo.x, c & 2 ? in->hi.y : in->lo.y,
+                       c & 4 ? in->hi.z : in->lo.z);
+        hr_vec3 q = hr_transform_point(m, p);
+        out->lo = v3(fmin(out->lo.x, q.x), fmin(out->lo.y, q.y), fmin(out->lo.z, q.z));
+        out->hi = v3(fmax(out->hi.x, q.x), fmax(out->hi.y, q.y), fmax(out->hi.z, q.z));
+    }
+    /* Widen by the rounding of the corner transform, so a box never clips
+     * its object (a relative 4 ulps of the largest magnitude involved). */
+    double mag = fmax(fmax(fabs(out->lo.x), fabs(out->hi.x)),
+                      fmax(fmax(fabs(out->lo.y), fabs(out->hi.y)), fmax(fabs(out->lo.z), fabs(out->hi.z))));
+    double pad = 4.0 * DBL_EPSILON * mag;
+    out->lo = v3(out->lo.x - pad, out->lo.y - pad, out->lo.z - pad);
+    out->hi = v3(out->hi.x + pad, out->hi.y + pad, out->hi.z + pad);
+    return v3_is_finite(out->lo) && v3_is_finite(out->hi);
+}
+
+/* The class's own box of the mapped shape, where it is tighter than the
+ * mapped corners of its object-space box (both hold the shape, so their
+ * intersection does), padded as transform_bounds pads. A box the class gets
+ * wrong (NaN, inverted, or empty against the corners' box) is ignored. */
+static void tighten_bounds(hr_object *o)
+{
+    hr_bounds t;
+    o->cls->transformed_bounds(o->shape, o->m, &t);
+    if (!v3_is_finite(t.lo) || !v3_is_finite(t.hi)) return;
+    hr_bounds *w = &o->world_bounds;
+    double mag = fmax(fmax(fabs(t.lo.x), fabs(t.hi.x)),
+                      fmax(fmax(fabs(t.lo.y), fabs(t.hi.y)), fmax(fabs(t.lo.z), fabs(t.hi.z))));
+    double pad = 4.0 * DBL_EPSILON * mag;
+    hr_bounds n = {v3(fmax(w->lo.x, t.lo.x - pad), fmax(w->lo.y, t.lo.y - pad), fmax(w->lo.z, t.lo.z - pad)),
+                   v3(fmin(w->hi.x, t.hi.x + pad), fmin(w->hi.y, t.hi.y + pad), fmin(w->hi.z, t.hi.z + pad))};
+    if (!(n.lo.x <= n.hi.x && n.lo.y <= n.hi.y && n.lo.z <= n.hi.z)) return;
+    *w = n;
+}
+
+static hr_status grow_objects(hr_scene *s)
+{
+    if (s->object_count < s->object_cap) return HR_OK;
+    int64_t cap = s->object_cap ? s->object_cap * 2 : 16;
+    hr_object **grown = realloc(s->objects, (size_t)cap * sizeof *grown);
+    if (!grown) return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    s->objects = grown;
+    s->object_cap = cap;
+    return HR_OK;
+}
+
+/* Material and transform of a new object, copied and checked. */
+static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_object_desc *d)
+{
+    hr_context *ctx = s->ctx;
+    hr_material_default(&o->material);
+    if (d->material) {
+        if (d->material->struct_size < sizeof(uint32_t))
+            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
+        HR_SIZED_COPY_IN(&o->material, d->material);
+    }
+    hr_status st = hr_material_check(ctx, &o->material);
+    if (st) return st;
+    if (o->material.parameter_count > 0) {
+        o->params_copy = malloc((size_t)o->material.parameter_count * sizeof(double));
+        if (!o->params_copy) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        memcpy(o->params_copy, o->material.parameters,
+               (size_t)o->material.parameter_count * sizeof(double));
+    }
+    o->material.parameters = o->params_copy;
+
+    hr_transform t;
+    hr_transform_identity(&t);
+    if (d->transform && d->inverse) {
+        memcpy(t.m, d->transform, sizeof t.m);
+        memcpy(t.inv, d->inverse, sizeof t.inv);
+        if (!doubles_are_finite(t.m, 16) || !doubles_are_finite(t.inv, 16))
+            return hr_error(ctx, HR_ERROR_NUMERIC, "object transform has a non-finite entry");
+        if (t.m[12] != 0 || t.m[13] != 0 || t.m[14] != 0 || t.m[15] != 1)
+            return hr_error(ctx, HR_ERROR_NUMERIC, "object transform is not affine (last row must be 0 0 0 1)");
+    } else if (d->transform) {
+        if (hr_transform_from_matrix(&t, d->transform) != HR_OK)
+            return hr_error(ctx, HR_ERROR_NUMERIC,
+                            "object transform is singular, not affine or not finite");
+    } else if (d->inverse) {
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object has an inverse but no transform");
+    }
+    memcpy(o->m, t.m, sizeof o->m);
+    memcpy(o->inv, t.inv, sizeof o->inv);
+    o->identity = is_identity(o->m);
+    o->diagonal = !o->identity && hr_xform_is_diagonal(o->m) && hr_xform_is_diagonal(o->inv);
+    o->m_error = hr_xform_error_terms_of(o->m);
+    return HR_OK;
+}
+
+/* A composite's depth is one more than its deepest child's: tracing it
+ * recurses that deep (see HR_MAX_COMPOSITE_DEPTH). */
+static hr_status set_composite_depth(hr_scene *s, hr_object *o, const void *const *children)
+{
+    const hr_shape_class *cls = o->cls;
+    int32_t deepest = -1;
+    for (int32_t i = 0; i < cls->param_count; i++)
+        if (children[i] && (deepest < 0 || ((const hr_object *)children[i])->composite_depth >
+                                               ((const hr_object *)children[deepest])->composite_depth))
+            deepest = i;
+    if (deepest < 0) return HR_OK;
+    const int32_t depth = ((const hr_object *)children[deepest])->composite_depth + 1;
+    if (depth > HR_MAX_COMPOSITE_DEPTH)
+        return hr_error(s->ctx, HR_ERROR_PARAMETER,
+                        "shape '%s': parameter '%s' would nest composites %d deep, beyond the "
+                        "limit of %d; nest long chains as balanced trees ((a b) (c d))",
+                        cls->name, cls->params[deepest].name, (int)depth, HR_MAX_COMPOSITE_DEPTH);
+    o->composite_depth = depth;
+    return HR_OK;
+}
+
+HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64_t *out_index)
+{
+    if (!s) return HR_ERROR_INVALID_ARGUMENT;
+    hr_context *ctx = s->ctx;
+    if (!d || d->struct_size < offsetof(hr_object_desc, shape) + sizeof(d->shape))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: NULL description or struct_size not set");
+    hr_object_desc desc = {0};
+    HR_SIZED_COPY_IN(&desc, d);
+    if (s->committed)
+        return hr_error(ctx, HR_ERROR_STATE, "cannot add an object to a committed scene");
+    if (!desc.shape || !*desc.shape)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: no shape name");
+    if (desc.param_count < 0 || (desc.param_count > 0 && !desc.params))
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object '%s': bad parameter list", desc.shape);
+    hr_status st = grow_objects(s);
+    if (st) return st;
+
+    const hr_shape_class *cls;
+    const char *module_path = "";
+    if ((st = hr_context_find_shape_class(ctx, desc.shape, &cls, &module_path))) return st;
+
+    hr_object *o = object_alloc();
+    if (!o) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    o->cls = cls;
+    o->module_path = module_path;
+    o->index = s->object_count;
+    o->top_level = 1;
+    if ((st = set_material_and_transform(s, o, &desc))) {
+        hr_object_free(o);
+        return st;
+    }
+
+    /* The resolved parameters live only through create: on the stack for
+     * the usual few, so a scene of many objects pays no allocation for them.
+     * hr_params_resolve sets all n entries of both before anything reads them. */
+    enum { FEW_PARAMS = 16 };
+    hr_param few_params[FEW_PARAMS];
+    const void *few_children[FEW_PARAMS];
+    int32_t n = cls->param_count;
+    hr_param *full = few_params;
+    const void **children = few_children;
+    if (n > FEW_PARAMS) {
+        full = calloc((size_t)n, sizeof *full);
+        children = calloc((size_t)n, sizeof *children);
+        if (!full || !children) {
+            free(full);
+            free(children);
+            hr_object_free(o);
+            return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        }
+    }
+    st = hr_params_resolve(s, cls, module_path, desc.params, desc.param_count, full, children);
+    if (st == HR_OK) st = set_composite_depth(s, o, children);
+    if (st == HR_OK) {
+        char message[512];
+        message[0] = '\0';
+        hr_create_args args = {0};
+        args.struct_size = sizeof args;
+        args.param_count = n;
+        args.params = full;
+        args.objects = children;
+        args.host = &ctx->host;
+        args.error = message;
+        args.error_size = sizeof message;
+        args.base_dir = desc.base_dir ? desc.base_dir : "";
+        st = cls->create(&args, &o->shape);
+        if (st != HR_OK || !o->shape) {
+            o->shape = NULL;
+            if (st == HR_OK) st = HR_ERROR_MODULE;
+            st = hr_error(ctx, st, "shape '%s' (module '%s'): %s", cls->name, module_path,
+                          message[0] ? message : "create failed without a message");
+        }
+    }
+    if (st == HR_OK) st = hr_texture_bind(s, o);
+    if (st == HR_OK) {
+        for (int32_t i = 0; i < n; i++)
+            if (children[i]) {
+                ((hr_object *)children[i])->top_level = 0;
+                ((hr_object *)children[i])->parent = o;
+            }
+    }
+    if (full != few_params) {
+        free(full);
+        free(children);
+    }
+    if (st) {
+        hr_object_free(o);
+        return st;
+    }
+    cls->bounds(o->shape, &o->local_bounds);
+    unbounded_cull_prepare(o);
+    o->bounded = transform_bounds(o->m, &o->local_bounds, &o->world_bounds);
+    if (o->bounded && cls->transformed_bounds) tighten_bounds(o);
+    s->objects[s->object_count++] = o;
+    if (out_index) *out_index = o->index;
+    return HR_OK;
+}

@@ -1,0 +1,145 @@
+/* Internal: tracing one object through its transform (Hill: the ray goes
+ * into object space through M^-1 unnormalised, so t is the same in both
+ * spaces; normals come back through the transpose of M^-1), as an
+ * always-inline body. hr_object_trace (trace.c) is its out-of-line copy; the
+ * scene walk and the host's child trace inline it, so that each gets a copy
+ * specialised to its mode and pays no call per object and ray. */
+#ifndef HITRAY_LIB_OBJECT_TRACE_H
+#define HITRAY_LIB_OBJECT_TRACE_H
+
+#include <math.h>
+
+#include "scene_internal.h"
+#include "transform_inline.h"
+#include "vec.h"
+
+/* hr_intersection_reserve for a list tracing may be handed: the one list
+ * whose storage is borrowed from a caller's stack (tc->borrowed) moves to
+ * the heap when it must grow, every other list is realloc'd (trace.c). */
+hr_status hr_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity);
+
+/* Order by t; equal t by object then surface, so sorting is deterministic. */
+static inline int hit_before(const hr_hit *a, const hr_hit *b)
+{
+    if (a->t != b->t) return a->t < b->t;
+    if (a->object != b->object) return a->object < b->object;
+    return a->surface < b->surface;
+}
+
+/* hr_object_trace's body, inline so that the scene walk (visit_object in
+ * trace.c) and a composite's every-hit child trace (host_trace_child in
+ * host_services.c) get copies specialised to their modes. */
+static inline __attribute__((always_inline)) hr_status
+object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double tmin, double tmax,
+             int32_t mode, int unit_normals, hr_intersection *out)
+{
+    const hr_shape_class *cls = obj->cls;
+    hr_status st;
+    if (out->capacity - out->count < HR_MIN_HIT_CAPACITY &&
+        (st = hr_trace_list_reserve(tc, out, out->count + HR_MIN_HIT_CAPACITY)))
+        return tc->status = st;
+    hr_hit_args args;
+    args.shape = obj->shape;
+    if (obj->identity) {
+        args.ray = *ray;
+    } else {
+        args.ray.origin = hr_xform_point_as(obj->inv, obj->diagonal, ray->origin);
+        args.ray.dir = hr_xform_vector_as(obj->inv, obj->diagonal, ray->dir);
+    }
+    /* A direction whose squared length would under- or overflow (a sphere
+     * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
+     * unit length by a power of two, 2^-e, and t scaled by 2^e: exact both
+     * ways, so every shape sees a well-scaled ray and no shape needs its own
+     * guard. Normal rays skip this with one comparison. */
+    int t_exp = v3_rescale_exponent(args.ray.dir);
+    const double ray_tmin = tmin, ray_tmax = tmax; /* the caller's window */
+    if (t_exp) {
+        args.ray.dir = v3_ldexp(args.ray.dir, -t_exp);
+        tmin = ldexp(tmin, t_exp);
+        tmax = ldexp(tmax, t_exp);
+    }
+    args.tmin = tmin;
+    args.tmax = tmax;
+    args.out = out;
+    args.call = tc;
+    hr_hit_fn fn = cls->hit;
+    if (mode == HR_TRACE_FIRST && cls->first_hit) fn = cls->first_hit;
+    if (mode == HR_TRACE_ANY) fn = cls->any_hit ? cls->any_hit : cls->first_hit ? cls->first_hit : cls->hit;
+    int32_t start = out->count;
+    if ((st = fn(&args))) {
+        out->count = start;
+        return tc->status = st;
+    }
+    /* A count below where it started, or beyond the room the list has, means
+     * the class wrote where it had no room or dropped hits that were not its
+     * own: nothing it returned can be trusted, and reading on would leave
+     * the list. */
+    if (out->count < start || out->count > out->capacity) {
+        out->count = start;
+        return tc->status = HR_ERROR_MODULE;
+    }
+    int composite = (cls->flags & HR_SHAPE_COMPOSITE) != 0;
+    int32_t kept = start;
+    for (int32_t i = start; i < out->count; i++) {
+        hr_hit h = out->hits[i];
+        /* The host enforces the contract instead of trusting it: a hit outside
+         * (tmin, tmax) or with a non-finite field is dropped, before a first
+         * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
+         * answers carry only t. */
+        if (!(h.t > tmin && h.t < tmax)) continue;
+        /* Scaling back may overflow to infinity or round onto an end of the
+         * window (the scaled window's ends were rounded too): the hit must be
+         * inside the caller's window, checked on the t it will be given. */
+        if (t_exp) {
+            h.t = ldexp(h.t, -t_exp);
+            if (!(h.t > ray_tmin && h.t < ray_tmax && isfinite(h.t))) continue;
+        }
+        if (mode == HR_TRACE_ANY) {
+            out->hits[start] = h;
+            out->count = start + 1;
+            return HR_OK;
+        }
+        /* A non-finite point or normal stays non-finite through the
+         * transform (each row has a term in every coordinate, and inf * 0 is
+         * NaN) and through v3_unit_exponent, so a transformed object's hit
+         * is dropped for it by the test after the transform; only a
+         * non-finite error could vanish there (a NaN row loses the max), so
+         * that is the one value tested first. An untransformed object's hit
+         * is tested whole, here. */
+        if (obj->identity ? !v3_pair_is_finite(h.point, h.normal, h.error) : !(h.error - h.error == 0.0))
+            continue;
+        /* A composite's hit names its leaf; one naming no object of the scene
+         * is taken as the composite's own, so shading never indexes past the
+         * object list. Any other shape leaves `object` unset: it is not read
+         * (not even by a branch the compiler may merge, which memcheck flags). */
+        if (!composite) h.object = obj->index;
+        else if (h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
+        /* Normals may have any non-zero length: bring them to a safe scale
+         * (exactly, by a power of two) before and after the transform, so
+         * neither M^-T nor normalising overflows or underflows. */
+        h.normal = v3_unit_exponent(h.normal);
+        if (!obj->identity) {
+            /* hr_xform_error_as gives the full bound's bits for a finite
+             * point; a hit whose point is not finite is dropped below. */
+            h.error = hr_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h.point, h.error);
+            h.point = hr_xform_point_as(obj->m, obj->diagonal, h.point);
+            h.normal = hr_xform_normal_as(obj->inv, obj->diagonal, h.normal);
+            h.normal = v3_unit_exponent(h.normal);
+            if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
+        }
+        if (unit_normals) h.normal = v3_normalize(h.normal);
+        out->hits[kept++] = h;
+    }
+    out->count = kept;
+    if (mode == HR_TRACE_FIRST && kept > start + 1) {
+        /* The nearest, whatever order the class listed its hits in. */
+        int32_t best = start;
+        for (int32_t i = start + 1; i < kept; i++)
+            if (hit_before(&out->hits[i], &out->hits[best])) best = i;
+        out->hits[start] = out->hits[best];
+        out->count = start + 1;
+    }
+    return HR_OK;
+}
+
+#endif
