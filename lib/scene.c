@@ -7,6 +7,7 @@
 
 #include "context_internal.h"
 #include "errors.h"
+#include "field_table.h"
 #include "scene_internal.h"
 #include "scene_params.h"
 #include "sized_copy.h"
@@ -20,11 +21,7 @@ HR_API void hr_material_default(hr_material *m)
     if (!m) return;
     memset(m, 0, sizeof *m);
     m->struct_size = sizeof *m;
-    m->ambient = rgb(0.1, 0.1, 0.1);
-    m->diffuse = rgb(0.8, 0.8, 0.8);
-    m->specular_exponent = 1.0;
-    m->speed_of_light = 1.0;
-    m->surface_roughness = 1.0;
+    hr_fields_default(&hr_material_field_table, m);
 }
 
 HR_API void hr_scene_globals_default(hr_scene_globals *g)
@@ -32,11 +29,7 @@ HR_API void hr_scene_globals_default(hr_scene_globals *g)
     if (!g) return;
     memset(g, 0, sizeof *g);
     g->struct_size = sizeof *g;
-    g->max_recursion_depth = 3;
-    g->background = rgb(0, 0, 0.6);
-    g->global_ambient = rgb(0.1, 0.1, 0.1);
-    g->min_reflectivity = 0.5;
-    g->min_transparency = 0.5;
+    hr_fields_default(&hr_globals_field_table, g);
 }
 
 HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
@@ -111,19 +104,15 @@ static int color_in_range(hr_color c)
  * door, which first reads only the bytes the caller declared. */
 static hr_status check_material(hr_context *ctx, const hr_material *m)
 {
-    static const struct {
-        const char *name;
-        size_t offset;
-    } colors[] = {{"ambient", offsetof(hr_material, ambient)},
-                  {"diffuse", offsetof(hr_material, diffuse)},
-                  {"specular", offsetof(hr_material, specular)},
-                  {"emissive", offsetof(hr_material, emissive)}};
-    for (size_t i = 0; i < sizeof colors / sizeof colors[0]; i++) {
-        const hr_color *c = (const hr_color *)((const char *)m + colors[i].offset);
-        if (!color_in_range(*c))
+    const hr_field_table *t = &hr_material_field_table;
+    for (size_t i = 0; i < t->count; i++) {
+        if (t->fields[i].kind != HR_FIELD_COLOR) continue;
+        hr_color c;
+        memcpy(&c, (const char *)m + t->fields[i].offset, sizeof c);
+        if (!color_in_range(c))
             return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                             "material: %s (%g %g %g) must be finite, each within +-%g",
-                            colors[i].name, c->r, c->g, c->b, HR_MAX_COLOR);
+                            t->fields[i].word, c.r, c.g, c.b, HR_MAX_COLOR);
     }
     if (!(m->specular_exponent >= 0 && m->specular_exponent <= HR_MAX_EXPONENT))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
