@@ -29,7 +29,7 @@ class Paraboloid:
     """capped paraboloid x^2 + y^2 < z < height about the z axis"""
 
     closed = True        # a solid: entering and leaving alternate (usable in CSG)
-    surface_count = 2    # 0: the wall, 1: the cap
+    surface_names = ("wall", "cap")  # surface ids 0 and 1 (so surface_count is 2)
     hit_relative_error = 1e-12  # the roots below are stable to a few ulps
     params = {"height": 1.0}
 

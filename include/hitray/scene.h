@@ -10,13 +10,15 @@
 
 #include "camera.h"
 #include "common.h"
+#include "scene_fields.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* A material as Hill's SDL describes it; every field is per object.
- * hr_material_default gives SDL's defaults. hr_scene_add_object refuses
+ * hr_material_default gives SDL's defaults (HR_MATERIAL_FIELDS in
+ * scene_fields.h names each field's SDL keyword and default). hr_scene_add_object refuses
  * values that could make a pixel infinite: a colour component beyond +-1e6,
  * a reflectivity or transparency outside [0, 1], a specular exponent outside
  * [0, 1e6], a speed of light <= 0. Light colours obey the same +-1e6. */
@@ -88,7 +90,8 @@ typedef struct hr_light {
 HR_API int32_t hr_query_nesting(void);
 HR_API void hr_query_set_nesting(int32_t level);
 
-/* Scene-wide settings, with SDL's defaults from hr_scene_globals_default. */
+/* Scene-wide settings, with SDL's defaults from hr_scene_globals_default
+ * (HR_SCENE_GLOBALS_FIELDS in scene_fields.h). */
 typedef struct hr_scene_globals {
     uint32_t struct_size;
     int32_t max_recursion_depth; /* default 3: primary rays are depth 0;

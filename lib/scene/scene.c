@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "errors.h"
+#include "field_table.h"
 #include "ray_cull.h"
 #include "scene_internal.h"
 #include "sized_copy.h"
@@ -19,11 +20,7 @@ HR_API void hr_scene_globals_default(hr_scene_globals *g)
     if (!g) return;
     memset(g, 0, sizeof *g);
     g->struct_size = sizeof *g;
-    g->max_recursion_depth = 3;
-    g->background = rgb(0, 0, 0.6);
-    g->global_ambient = rgb(0.1, 0.1, 0.1);
-    g->min_reflectivity = 0.5;
-    g->min_transparency = 0.5;
+    hr_fields_default(&hr_globals_field_table, g);
 }
 
 HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)

@@ -5,37 +5,29 @@
 #include <string.h>
 
 #include "errors.h"
+#include "field_table.h"
 #include "scene_internal.h"
 #include "sized_copy.h"
-#include "vec.h"
 
 HR_API void hr_material_default(hr_material *m)
 {
     if (!m) return;
     memset(m, 0, sizeof *m);
     m->struct_size = sizeof *m;
-    m->ambient = rgb(0.1, 0.1, 0.1);
-    m->diffuse = rgb(0.8, 0.8, 0.8);
-    m->specular_exponent = 1.0;
-    m->speed_of_light = 1.0;
-    m->surface_roughness = 1.0;
+    hr_fields_default(&hr_material_field_table, m);
 }
 
 hr_status hr_material_check(hr_context *ctx, const hr_material *m)
 {
-    static const struct {
-        const char *name;
-        size_t offset;
-    } colors[] = {{"ambient", offsetof(hr_material, ambient)},
-                  {"diffuse", offsetof(hr_material, diffuse)},
-                  {"specular", offsetof(hr_material, specular)},
-                  {"emissive", offsetof(hr_material, emissive)}};
-    for (size_t i = 0; i < sizeof colors / sizeof colors[0]; i++) {
-        const hr_color *c = (const hr_color *)((const char *)m + colors[i].offset);
-        if (!hr_color_in_range(*c))
+    const hr_field_table *t = &hr_material_field_table;
+    for (size_t i = 0; i < t->count; i++) {
+        if (t->fields[i].kind != HR_FIELD_COLOR) continue;
+        hr_color c;
+        memcpy(&c, (const char *)m + t->fields[i].offset, sizeof c);
+        if (!hr_color_in_range(c))
             return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                             "material: %s (%g %g %g) must be finite, each within +-%g",
-                            colors[i].name, c->r, c->g, c->b, HR_MAX_COLOR);
+                            t->fields[i].word, c.r, c.g, c.b, HR_MAX_COLOR);
     }
     if (!(m->specular_exponent >= 0 && m->specular_exponent <= HR_MAX_EXPONENT))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,

@@ -9,34 +9,11 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "errors.h"
 #include "sdl_diag.h"
 #include "sdl_reader.h"
 #include "solid_textures.h"
-
-static const struct {
-    const char *keyword;
-    size_t offset;
-} color_fields[] = {
-    {"ambient", offsetof(hr_material, ambient)},
-    {"diffuse", offsetof(hr_material, diffuse)},
-    {"specular", offsetof(hr_material, specular)},
-    {"emissive", offsetof(hr_material, emissive)},
-};
-
-static const struct {
-    const char *keyword;
-    size_t offset;
-} number_fields[] = {
-    {"specularExponent", offsetof(hr_material, specular_exponent)},
-    {"reflectivity", offsetof(hr_material, reflectivity)},
-    {"transparency", offsetof(hr_material, transparency)},
-    {"speedOfLight", offsetof(hr_material, speed_of_light)},
-    {"specularFraction", offsetof(hr_material, specular_fraction)},
-    {"surfaceRoughness", offsetof(hr_material, surface_roughness)},
-};
 
 void sdl_material_reset(sdl_reader *r)
 {
@@ -60,32 +37,17 @@ static hr_status check_value(sdl_reader *r, sdl_located at)
 
 hr_status sdl_cmd_material_color(sdl_reader *r, sdl_located keyword)
 {
-    for (size_t i = 0; i < sizeof color_fields / sizeof color_fields[0]; i++)
-        if (strcmp(keyword.token->text, color_fields[i].keyword) == 0) {
-            hr_color c;
-            hr_status st = sdl_read_color(r, keyword, &c);
-            if (st) return st;
-            memcpy((char *)&r->material + color_fields[i].offset, &c, sizeof c);
-            return check_value(r, keyword);
-        }
-    return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a material colour",
-                    keyword.token->text);
+    hr_status st = sdl_read_field(r, keyword, &hr_material_field_table, &r->material, NULL);
+    return st ? st : check_value(r, keyword);
 }
 
 hr_status sdl_cmd_material_number(sdl_reader *r, sdl_located keyword)
 {
-    for (size_t i = 0; i < sizeof number_fields / sizeof number_fields[0]; i++)
-        if (strcmp(keyword.token->text, number_fields[i].keyword) == 0) {
-            double v;
-            sdl_located at;
-            hr_status st = sdl_read_number(r, keyword, &v, &at);
-            if (st) return st;
-            memcpy((char *)&r->material + number_fields[i].offset, &v, sizeof v);
-            sdl_note_coefficient(r, keyword);
-            return check_value(r, at);
-        }
-    return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a material number",
-                    keyword.token->text);
+    sdl_located at;
+    hr_status st = sdl_read_field(r, keyword, &hr_material_field_table, &r->material, &at);
+    if (st) return st;
+    sdl_note_coefficient(r, keyword);
+    return check_value(r, at);
 }
 
 hr_status sdl_cmd_texture(sdl_reader *r, sdl_located keyword)

@@ -20,6 +20,18 @@ static hr_status cmd_use(sdl_reader *r, sdl_located keyword)
     return sdl_macro_use(r->src, keyword);
 }
 
+/* The command of each material and global field (include/hitray/scene_fields.h)
+ * by its member's type: texture is the one integer of a material, its
+ * parameters the one list, maxRecursionDepth the one integer of the globals. */
+#define MATERIAL_COMMAND(field, word, ...)                                     \
+    {word, _Generic(((hr_material *)0)->field, hr_color: sdl_cmd_material_color, \
+                    double: sdl_cmd_material_number, int32_t: sdl_cmd_texture,   \
+                    const double *: sdl_cmd_parameters)},
+#define GLOBALS_COMMAND(field, word, ...)                                      \
+    {word, _Generic(((hr_scene_globals *)0)->field, hr_color: sdl_cmd_global_color, \
+                    double: sdl_cmd_global_threshold,                            \
+                    int32_t: sdl_cmd_max_recursion_depth)},
+
 /* Every state command of SDL.md; objects are in sdl_objects.c. */
 static const struct {
     const char *keyword;
@@ -31,25 +43,10 @@ static const struct {
     {"push", sdl_cmd_push},
     {"pop", sdl_cmd_pop},
     {"identityAffine", sdl_cmd_identity_affine},
-    {"ambient", sdl_cmd_material_color},
-    {"diffuse", sdl_cmd_material_color},
-    {"specular", sdl_cmd_material_color},
-    {"emissive", sdl_cmd_material_color},
-    {"specularExponent", sdl_cmd_material_number},
-    {"reflectivity", sdl_cmd_material_number},
-    {"transparency", sdl_cmd_material_number},
-    {"speedOfLight", sdl_cmd_material_number},
-    {"specularFraction", sdl_cmd_material_number},
-    {"surfaceRoughness", sdl_cmd_material_number},
-    {"texture", sdl_cmd_texture},
-    {"parameters", sdl_cmd_parameters},
+    HR_MATERIAL_FIELDS(MATERIAL_COMMAND)
     {"defaultMaterials", sdl_cmd_default_materials},
     {"makePixmap", sdl_cmd_make_pixmap},
-    {"background", sdl_cmd_global_color},
-    {"globalAmbient", sdl_cmd_global_color},
-    {"minReflectivity", sdl_cmd_global_threshold},
-    {"minTransparency", sdl_cmd_global_threshold},
-    {"maxRecursionDepth", sdl_cmd_max_recursion_depth},
+    HR_SCENE_GLOBALS_FIELDS(GLOBALS_COMMAND)
     {"light", sdl_cmd_light},
     {"camera", sdl_cmd_camera},
     {"def", cmd_def},
@@ -141,6 +138,28 @@ hr_status sdl_read_whole(sdl_reader *r, sdl_located keyword, double min, double 
                          keyword.token->text, min, max, at.token->text);
     *out = (int64_t)v;
     return HR_OK;
+}
+
+hr_status sdl_read_field(sdl_reader *r, sdl_located keyword, const hr_field_table *table,
+                         void *record, sdl_located *at)
+{
+    const hr_field *f = hr_field_find(table, keyword.token->text);
+    hr_status st;
+    if (f && f->kind == HR_FIELD_COLOR) {
+        hr_color c;
+        if ((st = sdl_read_color(r, keyword, &c))) return st;
+        memcpy(hr_field_in(record, f), &c, sizeof c);
+        if (at) *at = keyword;
+        return HR_OK;
+    }
+    if (f && f->kind == HR_FIELD_NUMBER) {
+        double v;
+        if ((st = sdl_read_number(r, keyword, &v, at))) return st;
+        memcpy(hr_field_in(record, f), &v, sizeof v);
+        return HR_OK;
+    }
+    return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a colour or number field",
+                    keyword.token->text);
 }
 
 static int equal_ignoring_case(const char *a, const char *b)

@@ -11,6 +11,7 @@
 
 #include <hitray/hitray.h>
 
+#include "field_table.h"
 #include "sdl_source.h"
 
 /* Unbalanced `push` is harmless, but not without limit: each entry is two
@@ -69,6 +70,11 @@ hr_status sdl_read_color(sdl_reader *r, sdl_located keyword, hr_color *out);
 /* A number that must be whole and within [min, max]. */
 hr_status sdl_read_whole(sdl_reader *r, sdl_located keyword, double min, double max,
                          int64_t *out);
+/* The colour or number of the field that `keyword` names in `table`, stored
+ * into `record` (a struct of the table's); `at` (may be NULL) receives the
+ * number's token, or the keyword's for a colour. */
+hr_status sdl_read_field(sdl_reader *r, sdl_located keyword, const hr_field_table *table,
+                         void *record, sdl_located *at);
 
 /* Coefficients below their thresholds (sdl_thresholds.c): note the place of
  * a reflectivity or transparency command, note that an object is made with

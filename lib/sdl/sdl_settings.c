@@ -17,13 +17,8 @@
 
 hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
 {
-    hr_color c;
-    hr_status st = sdl_read_color(r, keyword, &c);
+    hr_status st = sdl_read_field(r, keyword, &hr_globals_field_table, &r->globals, NULL);
     if (st) return st;
-    if (strcmp(keyword.token->text, "background") == 0)
-        r->globals.background = c;
-    else
-        r->globals.global_ambient = c;
     /* Hand them over now, so that a colour the scene refuses is reported
      * here rather than at the end of the file. */
     if ((st = hr_scene_set_globals(r->scene, &r->globals)))
@@ -33,14 +28,7 @@ hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
 
 hr_status sdl_cmd_global_threshold(sdl_reader *r, sdl_located keyword)
 {
-    double v;
-    hr_status st = sdl_read_number(r, keyword, &v, NULL);
-    if (st) return st;
-    if (strcmp(keyword.token->text, "minReflectivity") == 0)
-        r->globals.min_reflectivity = v;
-    else
-        r->globals.min_transparency = v;
-    return HR_OK;
+    return sdl_read_field(r, keyword, &hr_globals_field_table, &r->globals, NULL);
 }
 
 hr_status sdl_cmd_max_recursion_depth(sdl_reader *r, sdl_located keyword)

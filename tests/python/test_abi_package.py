@@ -51,6 +51,16 @@ def test_a_registered_class_is_listed_and_usable_by_name(hitray):
     assert hit.normal == pytest.approx((0, 0, 1))
 
 
+def test_surface_names_are_listed_with_the_class(hitray):
+    class NamedBall(Ball):
+        surface_names = ["skin"]
+
+    abi.register_shape("pynamedball", NamedBall)
+    listed = hitray.shape_classes()["pynamedball"]
+    assert listed.surface_count == 1 and listed.surface_names == ("skin",)
+    assert hitray.shape_classes()["pyball"].surface_names == ()
+
+
 def test_sdl_and_a_two_thread_render(hitray):
     scene, camera = hitray.parse_sdl(
         "camera 0 0 6  0 0 0  0 1 0  40\nlight 3 3 5  1 1 1\n"

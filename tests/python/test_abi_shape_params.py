@@ -127,6 +127,22 @@ def test_init_signature_declares_the_params(ctx):
     destroy(scene)
 
 
+def test_surface_names_name_each_surface_id(ctx):
+    class Named(Recorder):
+        surface_names = ("wall", "cap")
+
+    abi.register_shape("named", Named, context=ctx)
+    c, _ = spec_of(ctx, "named")
+    assert c.surface_count == 2  # from the names
+    assert [ffi.string(c.surface_names[i]) for i in range(2)] == [b"wall", b"cap"]
+    abi.register_shape("unnamed", Recorder, context=ctx)
+    assert spec_of(ctx, "unnamed")[0].surface_names == ffi.NULL
+    for names, count in ((["a", "b"], 3), (["a", ""], 2), ("ab", 2), (["a", 1], 2)):
+        bad = type("B", (Recorder,), {"surface_names": names, "surface_count": count})
+        with pytest.raises(ValueError, match="surface_names"):
+            abi.register_shape("bad", bad, context=ctx)
+
+
 def test_a_class_without_params(ctx):
     class Bare:
         def bounds(self):

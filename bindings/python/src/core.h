@@ -62,6 +62,7 @@ py::tuple camera_tuple(const hr_camera &cam);
 void bind_context(py::module_ &m);
 void bind_transform(py::module_ &m);
 void bind_camera(py::module_ &m);
+void bind_fields(py::module_ &m);
 void bind_scene(py::module_ &m);
 void bind_trace(py::module_ &m);
 void bind_render(py::module_ &m);

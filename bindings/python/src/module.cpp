@@ -10,6 +10,7 @@ PYBIND11_MODULE(_core, m)
     hitray_py::bind_context(m);
     hitray_py::bind_transform(m);
     hitray_py::bind_camera(m);
+    hitray_py::bind_fields(m);
     hitray_py::bind_scene(m);
     hitray_py::bind_trace(m);
     hitray_py::bind_render(m);

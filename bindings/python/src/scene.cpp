@@ -1,6 +1,7 @@
 // hitray._core.Scene: building an hr_scene (objects, lights, globals),
 // committing it, and Hill's single-ray queries on it: getFirstHit, the
 // Intersection of every hit, shade. The vectorised trace is in trace.cpp.
+#include "fields.h"
 #include "image_handle.h"
 #include "scene_handle.h"
 
@@ -26,54 +27,6 @@ ScenePtr new_scene()
     hr_scene *s = nullptr;
     check(hr_scene_create(context(), &s));
     return std::make_shared<SceneHandle>(s);
-}
-
-// A material from a dict whose keys are the snake_case names of hr_material
-// (the Python layer has already turned SDL's names into these).
-hr_material material_from(const py::dict &d, std::vector<double> &parameters)
-{
-    hr_material m;
-    hr_material_default(&m);
-    for (auto item : d) {
-        std::string key = item.first.cast<std::string>();
-        py::handle v = item.second;
-        if (key == "ambient") m.ambient = to_color(v.cast<vec3>());
-        else if (key == "diffuse") m.diffuse = to_color(v.cast<vec3>());
-        else if (key == "specular") m.specular = to_color(v.cast<vec3>());
-        else if (key == "emissive") m.emissive = to_color(v.cast<vec3>());
-        else if (key == "specular_exponent") m.specular_exponent = v.cast<double>();
-        else if (key == "reflectivity") m.reflectivity = v.cast<double>();
-        else if (key == "transparency") m.transparency = v.cast<double>();
-        else if (key == "speed_of_light") m.speed_of_light = v.cast<double>();
-        else if (key == "specular_fraction") m.specular_fraction = v.cast<double>();
-        else if (key == "surface_roughness") m.surface_roughness = v.cast<double>();
-        else if (key == "texture") m.texture = v.cast<int32_t>();
-        else if (key == "parameters") parameters = v.cast<std::vector<double>>();
-        else throw py::type_error("material: unknown field '" + key + "'");
-    }
-    m.parameter_count = static_cast<int32_t>(parameters.size());
-    m.parameters = parameters.empty() ? nullptr : parameters.data();
-    return m;
-}
-
-py::dict material_dict(const hr_material &m)
-{
-    py::dict d;
-    d["ambient"] = tuple_of(m.ambient);
-    d["diffuse"] = tuple_of(m.diffuse);
-    d["specular"] = tuple_of(m.specular);
-    d["emissive"] = tuple_of(m.emissive);
-    d["specular_exponent"] = m.specular_exponent;
-    d["reflectivity"] = m.reflectivity;
-    d["transparency"] = m.transparency;
-    d["speed_of_light"] = m.speed_of_light;
-    d["specular_fraction"] = m.specular_fraction;
-    d["surface_roughness"] = m.surface_roughness;
-    d["texture"] = m.texture;
-    py::list params;
-    for (int32_t i = 0; i < m.parameter_count; i++) params.append(m.parameters[i]);
-    d["parameters"] = py::tuple(params);
-    return d;
 }
 
 // One parameter as the Python layer sends it: (name, kind, value), kind
@@ -172,13 +125,7 @@ py::dict get_globals(const ScenePtr &s)
     hr_scene_globals g{};
     g.struct_size = sizeof g;
     check(hr_scene_get_globals(s->scene, &g));
-    py::dict d;
-    d["background"] = tuple_of(g.background);
-    d["global_ambient"] = tuple_of(g.global_ambient);
-    d["min_reflectivity"] = g.min_reflectivity;
-    d["min_transparency"] = g.min_transparency;
-    d["max_recursion_depth"] = g.max_recursion_depth;
-    return d;
+    return globals_dict(g);
 }
 
 void set_globals(const ScenePtr &s, const py::dict &d)
@@ -186,16 +133,7 @@ void set_globals(const ScenePtr &s, const py::dict &d)
     hr_scene_globals g{};
     g.struct_size = sizeof g;
     check(hr_scene_get_globals(s->scene, &g));
-    for (auto item : d) {
-        std::string key = item.first.cast<std::string>();
-        py::handle v = item.second;
-        if (key == "background") g.background = to_color(v.cast<vec3>());
-        else if (key == "global_ambient") g.global_ambient = to_color(v.cast<vec3>());
-        else if (key == "min_reflectivity") g.min_reflectivity = v.cast<double>();
-        else if (key == "min_transparency") g.min_transparency = v.cast<double>();
-        else if (key == "max_recursion_depth") g.max_recursion_depth = v.cast<int32_t>();
-        else throw py::type_error("scene: unknown global '" + key + "'");
-    }
+    globals_update(g, d);
     check(hr_scene_set_globals(s->scene, &g));
 }
 

@@ -16,27 +16,10 @@ from typing import Any, Dict, Mapping
 
 from . import _convert, _core
 
-# snake_case name -> kind; SDL's camelCase names map onto these.
-_FIELDS = {
-    "ambient": "color",
-    "diffuse": "color",
-    "specular": "color",
-    "emissive": "color",
-    "specular_exponent": "number",
-    "reflectivity": "number",
-    "transparency": "number",
-    "speed_of_light": "number",
-    "specular_fraction": "number",
-    "surface_roughness": "number",
-    "texture": "integer",
-    "parameters": "numbers",
-}
-_SDL_NAMES = {
-    "specularExponent": "specular_exponent",
-    "speedOfLight": "speed_of_light",
-    "specularFraction": "specular_fraction",
-    "surfaceRoughness": "surface_roughness",
-}
+# Python name -> kind, and SDL's camelCase names that differ, from the
+# library's table of the fields (include/hitray/scene_fields.h).
+_FIELDS = {name: kind for name, _, kind in _core.material_fields()}
+_SDL_NAMES = {sdl: name for name, sdl, _ in _core.material_fields() if sdl != name}
 
 MATERIAL_NAMES = tuple(sorted(set(_FIELDS) | set(_SDL_NAMES)))
 

@@ -27,14 +27,9 @@ from .shapes import Shape
 
 __all__ = ["Scene", "SceneObject"]
 
-# Scene globals: Python name -> (SDL name, kind).
-_GLOBALS = {
-    "background": ("background", "color"),
-    "global_ambient": ("globalAmbient", "color"),
-    "min_reflectivity": ("minReflectivity", "number"),
-    "min_transparency": ("minTransparency", "number"),
-    "max_recursion_depth": ("maxRecursionDepth", "integer"),
-}
+# Scene globals: Python name -> (SDL name, kind), from the library's table
+# of the fields (include/hitray/scene_fields.h).
+_GLOBALS = {name: (sdl, kind) for name, sdl, kind in _core.global_fields()}
 _GLOBAL_BY_SDL_NAME = {sdl: name for name, (sdl, _) in _GLOBALS.items()}
 
 

@@ -18,7 +18,10 @@ The class:
   outward, any non-zero length; ``entering`` is True where the ray enters
   the solid (a bool, or 0 or 1);
 - optional class attributes: ``closed`` (True for a solid whose entering flags
-  alternate: HR_SHAPE_CLOSED, CSG-able), ``surface_count`` (default 1),
+  alternate: HR_SHAPE_CLOSED, CSG-able), ``surface_count`` (default 1, or
+  the number of ``surface_names``), ``surface_names`` (a name for each
+  surface id, as hitray.shape_classes() and `hitray shapes` show them:
+  hr_shape_class.surface_names; default none, surfaces known by number),
   ``help`` (default: the first line of the docstring) and
   ``hit_relative_error`` (how far the computed t may be from the true one,
   relative: the error bound of each hit point is this times
@@ -90,7 +93,11 @@ class _Registration:
         self.origin = f"python:{getattr(cls, '__module__', '?')}.{cls.__qualname__}"
         self.specs = class_params(cls)
         self.closed = bool(getattr(cls, "closed", False))
-        self.surface_count = _positive_int(cls, "surface_count", 1)
+        self.surface_names = _surface_names(cls)
+        self.surface_count = _positive_int(cls, "surface_count", len(self.surface_names) or 1)
+        if self.surface_names and len(self.surface_names) != self.surface_count:
+            raise ValueError(f"shape class {cls.__qualname__}: {len(self.surface_names)} "
+                             f"surface_names for surface_count {self.surface_count}")
         self.relative_error = _relative_error(cls)
         self.host: Any = None     # the context's hr_host, seen at the first create
         # shape pointer -> _Instance (which owns the pointed-at byte)
@@ -98,6 +105,7 @@ class _Registration:
         self.live_lock = threading.Lock()
         self.c_strings: List[Any] = []
         self.c_params: Any = None
+        self.c_surface_names: Any = None
         self.c_class: Any = None
         self.callbacks: Tuple[Any, ...] = ()
 
@@ -108,6 +116,15 @@ def _positive_int(cls: type, attr: str, default: int) -> int:
         raise ValueError(f"shape class {cls.__qualname__}: {attr} must be a positive integer, "
                          f"not {value!r}")
     return int(value)
+
+
+def _surface_names(cls: type) -> Tuple[str, ...]:
+    names = getattr(cls, "surface_names", ())
+    if isinstance(names, (str, bytes)) or not isinstance(names, (list, tuple)) or \
+            not all(isinstance(n, str) and n and "\0" not in n for n in names):
+        raise ValueError(f"shape class {cls.__qualname__}: surface_names must be a list or "
+                         f"tuple of non-empty strings, not {names!r}")
+    return tuple(names)
 
 
 def _relative_error(cls: type) -> float:
@@ -365,6 +382,9 @@ def _build_class(reg: _Registration, ffi: Any, lib: Any) -> None:
     c.params = reg.c_params if n else ffi.NULL
     c.param_count = n
     c.surface_count = reg.surface_count
+    if reg.surface_names:
+        reg.c_surface_names = ffi.new("const char *[]", [c_string(n) for n in reg.surface_names])
+        c.surface_names = reg.c_surface_names
     c.create, c.destroy, c.bounds, c.hit = create, destroy, bounds, hit
     # first_hit and any_hit stay NULL: the host then calls hit and picks.
     reg.c_class = c
