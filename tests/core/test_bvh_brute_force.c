@@ -23,11 +23,7 @@
 
 #include "hr_test.h"
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define RAYS_PER_SCENE 20000
-#else
-#define RAYS_PER_SCENE 200000
-#endif
+#define RAYS_PER_SCENE (HR_TEST_SANITIZED ? 20000 : 200000)
 
 static uint64_t seed = 0x2545f4914f6cdd1dull;
 static double uniform(void)
