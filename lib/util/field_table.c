@@ -1,4 +1,4 @@
-/* The field tables (lib/field_table.h), generated from the rows of
+/* The field tables (lib/util/field_table.h), generated from the rows of
  * include/hitray/scene_fields.h. */
 #include "field_table.h"
 
