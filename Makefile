@@ -154,11 +154,12 @@ fuzz-long: deps-test
 
 # The package is (re)installed into .venv as a user installs it, from the
 # repository's root (pyproject.toml); its CMake build directory is kept in
-# $(PYTHON_BUILD), so an install with nothing changed compiles nothing.
+# $(PYTHON_BUILD), so an install with nothing changed compiles nothing. The
+# tests run on every core (pytest-xdist): each is independent of the others.
 test-python: build-all
 	.venv/bin/python -m pip install -q --no-build-isolation \
 	    -C build-dir=$(abspath $(PYTHON_BUILD)) .
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs tests/python
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python
 
 # The package built with ASan+UBSan (library, modules and extension) into
 # $(PYTHON_ASAN_BUILD)/site, its tests run by the venv's interpreter with the
