@@ -96,15 +96,21 @@ static inline int shape_vec3_is_finite(hr_vec3 v)
 static inline int shape_vec3_scale_exponent(hr_vec3 v, int *exponent)
 {
     const double big = shape_max3(fabs(v.x), fabs(v.y), fabs(v.z));
-    if (!(big > 0.0) || !isfinite(big)) return 0;
     /* frexp's answer read off the exponent bits (frexp is a libm call, and
-     * this runs for every ray into a cylinder or torus); subnormals, which
-     * have no exponent bits to read, go to frexp. */
+     * this runs for every ray into a cylinder or torus and every normal the
+     * host rescales); the same bits say whether big is infinite or NaN (all
+     * ones: no exponent) or zero or subnormal (all zeros: frexp, which
+     * reads a subnormal's leading digit, or nothing for zero). */
     uint64_t bits;
     memcpy(&bits, &big, sizeof bits);
-    const int biased = (int)(bits >> 52);
-    if (biased == 0) frexp(big, exponent);
-    else *exponent = biased - 1022;
+    const int biased = (int)(bits >> 52); /* big >= 0 or NaN: no sign bit */
+    if (biased == 0x7ff) return 0;
+    if (biased == 0) {
+        if (!(big > 0.0)) return 0;
+        frexp(big, exponent);
+        return 1;
+    }
+    *exponent = biased - 1022;
     return 1;
 }
 
@@ -125,10 +131,16 @@ static inline double shape_ldexp(double x, int e)
     return e >= -1022 && e <= 1022 ? x * shape_pow2(e) : ldexp(x, e);
 }
 
-/* v 2^e, exact barring overflow or underflow. */
+/* v 2^e, exact barring overflow or underflow: shape_ldexp per component,
+ * the power of two built once (this runs for every ray into a transformed
+ * object, through the host's normal rescaling). */
 static inline hr_vec3 shape_vec3_ldexp(hr_vec3 v, int e)
 {
-    return shape_vec3(shape_ldexp(v.x, e), shape_ldexp(v.y, e), shape_ldexp(v.z, e));
+    if (e >= -1022 && e <= 1022) {
+        const double p = shape_pow2(e);
+        return shape_vec3(v.x * p, v.y * p, v.z * p);
+    }
+    return shape_vec3(ldexp(v.x, e), ldexp(v.y, e), ldexp(v.z, e));
 }
 
 /* v scaled by a power of two (exactly) to a largest component in
