@@ -48,9 +48,6 @@ typedef struct hr_texture_kind {
  * public hr_solid_texture_name gives its name, and lib/util/solid_textures.h
  * the list for messages. */
 const hr_texture_kind *hr_solid_texture_find(int32_t id);
-/* The solid textures in the table. */
-int32_t hr_solid_texture_count(void);
-const hr_texture_kind *hr_solid_texture_at(int32_t i);
 /* The parameters of an image texture (texture N > 0). */
 extern const hr_texture_kind hr_image_texture_kind;
 #define HR_IMAGE_PARAM_UMIN 0

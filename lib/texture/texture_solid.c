@@ -106,13 +106,6 @@ const hr_texture_kind *hr_solid_texture_find(int32_t id)
     return NULL;
 }
 
-int32_t hr_solid_texture_count(void) { return SOLID_COUNT; }
-
-const hr_texture_kind *hr_solid_texture_at(int32_t i)
-{
-    return i >= 0 && i < SOLID_COUNT ? &solid_textures[i] : NULL;
-}
-
 HR_API const char *hr_solid_texture_name(int32_t texture)
 {
     const hr_texture_kind *kind = hr_solid_texture_find(texture);
