@@ -69,12 +69,13 @@ void bind_transform(py::module_ &m)
             [](const Transform &self) { return py::make_tuple(as_array(self.t.m), as_array(self.t.inv)); },
             [](const py::tuple &state) {
                 if (state.size() != 2) throw py::value_error("Transform: expected (matrix, inverse)");
-                auto m = state[0].cast<std::array<double, 16>>(), inv = state[1].cast<std::array<double, 16>>();
+                auto matrix = state[0].cast<std::array<double, 16>>(),
+                     inv = state[1].cast<std::array<double, 16>>();
                 Transform out;
                 for (size_t i = 0; i < 16; i++) {
-                    if (!std::isfinite(m[i]) || !std::isfinite(inv[i]))
+                    if (!std::isfinite(matrix[i]) || !std::isfinite(inv[i]))
                         raise_error(HR_ERROR_NUMERIC, "Transform: a pickled matrix is not finite");
-                    out.t.m[i] = m[i], out.t.inv[i] = inv[i];
+                    out.t.m[i] = matrix[i], out.t.inv[i] = inv[i];
                 }
                 return out;
             }))
