@@ -67,6 +67,9 @@ HR_API hr_status hr_context_set_error(const hr_context *ctx, hr_status status, c
 #define HR_WARNING_BELOW_THRESHOLD 2 /* a reflectivity (transparency) above 0 but
                                         below minReflectivity (minTransparency):
                                         it spawns no ray and adds nothing */
+#define HR_WARNING_RAY_BUDGET 3      /* a render's pixels reached the ray budget
+                                        (hr_render_options.ray_budget): their
+                                        faintest paths were not traced */
 typedef struct hr_warning {
     uint32_t struct_size;
     int32_t code;        /* HR_WARNING_* */

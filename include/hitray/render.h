@@ -91,7 +91,8 @@ typedef struct hr_render_options {
                                   of the reflectivities and transparencies
                                   along its path) is below this is not
                                   traced. Within [0, 1]; 0 (the default):
-                                  2^-HR_DEFAULT_MIN_WEIGHT_BITS, unless
+                                  the branching-aware cut-off below
+                                  (HR_DEFAULT_MIN_WEIGHT_BITS), unless
                                   `exact`. */
     /* Added with the default cut-off (issue 16). */
     int32_t exact;             /* 1: trace every contribution, however small
@@ -127,19 +128,43 @@ typedef struct hr_render_options {
      * struct_size ends before tile_done gets no calls. */
     hr_tile_fn tile_done; /* may be NULL; see hr_tile_fn */
     void *tile_user;      /* handed to tile_done */
+    /* Added with the ray budget (issue 29). */
+    int64_t ray_budget; /* The most rays one camera sample may cast: itself,
+                           its shadow rays, and every reflected and
+                           transmitted ray below it with theirs. A hit that
+                           spawns two bounces gives each half of what its
+                           path has left, one bounce all of it; a bounce
+                           whose share is under one ray is not traced, and
+                           the render warns (HR_WARNING_RAY_BUDGET) with
+                           the number of pixels that lost one. 0 (the
+                           default): HR_DEFAULT_RAY_BUDGET, unless `exact`,
+                           which has no budget; > 0: this budget (not with
+                           `exact`). */
 } hr_render_options;
 
-/* The cut-off a render applies by default, 2^-24: POV-Ray's adc_bailout made
- * small enough to be invisible: a ray of weight below 2^-24 brings back at
- * most 2^-24 of its colour, under half a unit in the last place of a float
- * pixel of the same brightness (and 1/16384 of one 8-bit step). Depth
- * bounds the number of rays a pixel can cast to 2^depth; this bounds it by
- * the weights as well, so a scene of depth 1000 with reflectivity and
- * transparency 0.5 everywhere casts at most about 2^24 rays per pixel
- * instead of 2^1000. The shipped and benchmark scenes never come near it:
- * no ray of theirs is cut (docs/limits.md). */
+/* The cut-off a render applies by default, 2^-24 of a camera sample in all:
+ * POV-Ray's adc_bailout made small enough to be invisible, and made to
+ * account for branching. A ray of weight w brings back at most w of its
+ * colour; a cut-off of 2^-24 per ray would let 2^24 cut rays, each under
+ * it, add up to the whole pixel where every hit branches in two. So the
+ * allowance is shared out as the rays are: a camera ray starts with 2^-24,
+ * a hit that spawns two bounces gives each half of its own, and a bounce
+ * whose weight is below its allowance is not traced. The allowances of
+ * everything cut add up to at most 2^-24, so what the cut-off drops from a
+ * sample weighs under 2^-24 in all: under half a unit in the last place of
+ * a float pixel of the same brightness. It bounds the error; the work is
+ * bounded by the ray budget (HR_DEFAULT_RAY_BUDGET). The shipped and
+ * benchmark scenes never come near either: no ray of theirs is cut
+ * (docs/limits.md). An explicit min_weight is a cut-off per ray, not
+ * shared out. */
 #define HR_DEFAULT_MIN_WEIGHT_BITS 24 /* the cut-off is 2^-24 (an integer, so
                                         every binding can read it) */
+/* The rays one camera sample may cast by default (hr_render_options
+ * .ray_budget): far above what a scene of the book needs (depth 5 with two
+ * bounces at every hit and eight lights is under 600), and low enough that
+ * a camera inside nested glass at depth 1000 renders 16x12 pixels in
+ * seconds rather than days. */
+#define HR_DEFAULT_RAY_BUDGET 65536
 HR_API void hr_render_options_default(hr_render_options *o);
 
 typedef struct hr_render_stats {
@@ -163,6 +188,11 @@ typedef struct hr_render_stats {
     uint64_t rays_cut;       /* cut-off: reflected and transmitted rays not
                                 traced (each also saves the rays it would
                                 have spawned) */
+    /* Added with the ray budget (issue 29). */
+    uint64_t rays_over_budget;   /* reflected and transmitted rays not traced
+                                    because their sample's budget was spent */
+    uint64_t pixels_over_budget; /* pixels (Hill's blocks: each block once)
+                                    with a sample that lost a ray so */
 } hr_render_stats;
 
 /* Render into a new image of width x height x 3 linear floats (the

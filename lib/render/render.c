@@ -77,6 +77,7 @@ typedef struct render_job {
 typedef struct corner_sample {
     hr_color linear;
     double shown[3];
+    int over_budget; /* the sample lost a ray to the ray budget */
 } corner_sample;
 
 /* Each worker on cache lines of its own, for the same reason: a worker
@@ -88,7 +89,7 @@ typedef struct worker {
     hr_trace_ctx tc;         /* for every tile this thread renders */
     corner_sample *corners;  /* adaptive: two rows of tile_size + 1 */
     double *columns;         /* centres: the plane's x of each column of a tile */
-    uint64_t primary, pixels_refined;
+    uint64_t primary, pixels_refined, pixels_over_budget;
 } worker;
 
 /* Radical inverse in base 2: the second coordinate of Hammersley points. */
@@ -164,6 +165,7 @@ static int caller_cancelled(const render_job *job)
 static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, float *px)
 {
     int32_t spp = w->job->opt.samples_per_pixel;
+    uint64_t over_before = w->tc.rays_over_budget;
     hr_color sum = rgb(0, 0, 0);
     for (int32_t k = 0; k < spp; k++) {
         if (atomic_load_explicit(&w->job->cancelled, memory_order_relaxed) || caller_cancelled(w->job)) break;
@@ -172,6 +174,7 @@ static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, 
         sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh));
     }
     px[0] = (float)(sum.r / spp), px[1] = (float)(sum.g / spp), px[2] = (float)(sum.b / spp);
+    w->pixels_over_budget += w->tc.rays_over_budget != over_before;
 }
 
 /* One ray through each pixel's centre (one sample a pixel, no blocks), the
@@ -191,7 +194,9 @@ static void render_tile_centres(worker *w, int32_t x0, int32_t y0, int32_t x1, i
         for (int32_t i = 0; i < x1 - x0; i++, px += 3) {
             hr_ray ray;
             hr_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
+            uint64_t over_before = w->tc.rays_over_budget;
             hr_color c = hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
+            w->pixels_over_budget += w->tc.rays_over_budget != over_before;
             px[0] = (float)(0.0 + c.r), px[1] = (float)(0.0 + c.g), px[2] = (float)(0.0 + c.b);
         }
         w->primary += (uint64_t)(x1 - x0);
@@ -229,7 +234,9 @@ static void render_tile_full(worker *w, int32_t x0, int32_t y0, int32_t x1, int3
 static corner_sample sample_corner(worker *w, int32_t x, int32_t y)
 {
     corner_sample c;
+    uint64_t over_before = w->tc.rays_over_budget;
     c.linear = trace_camera_ray(w, x, y);
+    c.over_budget = w->tc.rays_over_budget != over_before;
     c.shown[0] = hr_srgb_encode(c.linear.r);
     c.shown[1] = hr_srgb_encode(c.linear.g);
     c.shown[2] = hr_srgb_encode(c.linear.b);
@@ -271,6 +278,8 @@ static void render_tile_adaptive(worker *w, int32_t x0, int32_t y0, int32_t x1, 
             }
             hr_color sum = rgb_add(rgb_add(above[i].linear, above[i + 1].linear),
                                    rgb_add(below[i].linear, below[i + 1].linear));
+            w->pixels_over_budget += above[i].over_budget || above[i + 1].over_budget ||
+                                     below[i].over_budget || below[i + 1].over_budget;
             px[0] = (float)(sum.r / 4), px[1] = (float)(sum.g / 4), px[2] = (float)(sum.b / 4);
         }
         corner_sample *t = above;
@@ -431,7 +440,31 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: exact (trace every contribution) and a minimum weight %g exclude each other",
                         o->min_weight);
+    if (o->ray_budget < 0)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: ray budget %lld must be positive (0: the default, %d rays per camera sample)",
+                        (long long)o->ray_budget, HR_DEFAULT_RAY_BUDGET);
+    if (o->exact && o->ray_budget > 0)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: exact (trace every contribution) and a ray budget %lld exclude each other",
+                        (long long)o->ray_budget);
     return check_window(ctx, o);
+}
+
+/* The ray budget's warning: how many pixels lost rays to it, so that a
+ * faint error in them is never silent. */
+static void warn_over_budget(const render_job *job, const worker *workers, int32_t started)
+{
+    uint64_t pixels = 0;
+    for (int32_t i = 0; i < started; i++) pixels += workers[i].pixels_over_budget;
+    if (pixels == 0) return;
+    int64_t budget = job->opt.ray_budget > 0 ? job->opt.ray_budget : HR_DEFAULT_RAY_BUDGET;
+    hr_warn(job->scene->ctx, HR_WARNING_RAY_BUDGET, NULL, 0, 0,
+            "render: %llu of %llu pixels reached the ray budget of %lld rays per camera sample, so their "
+            "faintest reflections and refractions were not traced (raise it with a larger ray budget, or "
+            "trace everything with exact)",
+            (unsigned long long)pixels, (unsigned long long)job->win_width * (unsigned long long)job->win_height,
+            (long long)budget);
 }
 
 HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
@@ -508,8 +541,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         w->job = job;
         hr_trace_ctx_init(&w->tc, scene);
         w->tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
-        w->tc.min_weight = job->opt.exact ? 0.0 : job->opt.min_weight > 0.0 ? job->opt.min_weight
-                                                                            : hr_default_min_weight();
+        hr_trace_ctx_set_bounds(&w->tc, job->opt.exact, job->opt.min_weight, job->opt.ray_budget);
         w->tc.cancelled = &job->cancelled;
         w->tc.cancel_flag = job->opt.cancel;
         w->tc.poll = poll_progress;
@@ -537,6 +569,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
                                          hr_status_name(job->failure));
     else if (atomic_load(&job->cancelled) || caller_cancelled(job))
         st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
+    if (st == HR_OK) warn_over_budget(job, workers, started);
     if (st == HR_OK && stats && stats->struct_size >= sizeof(uint32_t)) {
         hr_render_stats s = {0};
         s.threads = started;
@@ -546,6 +579,8 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
             s.reflected += workers[i].tc.rays_reflected;
             s.refracted += workers[i].tc.rays_refracted;
             s.rays_cut += workers[i].tc.rays_cut;
+            s.rays_over_budget += workers[i].tc.rays_over_budget;
+            s.pixels_over_budget += workers[i].pixels_over_budget;
             s.pixels_refined += workers[i].pixels_refined;
             s.effects |= workers[i].tc.effects_ran;
         }

@@ -143,9 +143,17 @@ typedef struct hr_trace_ctx {
     void *poll_user;
     uint32_t shade_calls;
     /* Contribution cut-off (hr_render_options.min_weight): a bounce whose
-     * path weight would fall below this is not traced; 0: none. */
+     * path weight would fall below its allowance is not traced. A camera
+     * ray's allowance is min_weight (0: none); with split_cut_off (the
+     * default cut-off) a hit that spawns two bounces gives each half of its
+     * own, so the allowances of what is cut add up to min_weight at most. */
     double min_weight;
+    int32_t split_cut_off;
     uint64_t rays_cut;
+    /* The ray budget (hr_render_options.ray_budget): the rays one camera
+     * ray may cast, shared out among its bounces (shade.c); 0: none. */
+    double ray_budget;
+    uint64_t rays_over_budget;
     uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
     /* The object that blocked the last shadow ray towards each light (by
      * light index modulo the slots; NULL: it was not blocked), asked first
@@ -227,5 +235,15 @@ hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
 /* 2^-HR_DEFAULT_MIN_WEIGHT_BITS: the cut-off renders and hr_scene_shade
  * apply unless told otherwise (render.h). */
 static inline double hr_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }
+/* The cut-off and the ray budget a shading context applies: `exact` none,
+ * else min_weight as a cut-off per ray, or (0) the default's 2^-24 shared
+ * among the branches; ray_budget rays per camera ray (0: the default). */
+static inline void hr_trace_ctx_set_bounds(hr_trace_ctx *tc, int32_t exact, double min_weight,
+                                           int64_t ray_budget)
+{
+    tc->min_weight = exact ? 0.0 : min_weight > 0.0 ? min_weight : hr_default_min_weight();
+    tc->split_cut_off = !exact && !(min_weight > 0.0);
+    tc->ray_budget = exact && ray_budget <= 0 ? 0.0 : ray_budget > 0 ? (double)ray_budget : HR_DEFAULT_RAY_BUDGET;
+}
 
 #endif

@@ -97,7 +97,7 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
     if ((st = hr_query_enter(s->ctx, "shade", &level))) return st;
     hr_trace_ctx tc;
     hr_trace_ctx_init(&tc, s);
-    tc.min_weight = hr_default_min_weight(); /* as a render's default */
+    hr_trace_ctx_set_bounds(&tc, 0, 0.0, 0); /* as a render's defaults */
     int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
     /* The colour does not depend on the direction's length, but shapes and
      * shade's normalising square it: bring it near 1 (exactly, by a power

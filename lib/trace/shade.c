@@ -23,7 +23,15 @@
  * The contribution cut-off (hr_render_options.min_weight) weighs each path:
  * a bounce adds reflectivity (or transparency) times the colour it brings
  * back, so a ray's weight is the product of those coefficients along its
- * path, and one below the cut-off is not traced. */
+ * path, and one below its allowance is not traced. The ray budget
+ * (hr_render_options.ray_budget) bounds the work of a camera ray: each ray
+ * carries the rays its subtree may cast (itself included), spends one on
+ * itself and one on each shadow ray, and gives the rest to its bounces: the
+ * reflected ray half of it where a transmitted one follows, the transmitted
+ * ray all that the reflected subtree left. A ray is traced only where its
+ * share covers it and a shadow ray to every light, so no sample casts more
+ * than its budget; the shares follow the one order shade traces in, so a
+ * pixel's rays are the same whatever the threads. */
 #include <math.h>
 
 #include "cook_torrance.h"
@@ -115,22 +123,42 @@ static __attribute__((noinline)) hr_color direct_light_cook_torrance(hr_trace_ct
     return light_loop(tc, o, mat, h, m, to_eye, flags, 1);
 }
 
-/* Whether a bounce whose path weight would be `weight` is traced. A forced
- * bounce (one only HR_EFFECTS_ALL traces, weight 0 throughout its subtree)
- * always is: it contributes nothing either way, and it is there to be run. */
-static int worth_tracing(hr_trace_ctx *tc, double weight, int forced)
+/* What a ray carries down its path: its weight, the cut-off's allowance
+ * and the rays its subtree may cast (INFINITY: no budget). */
+typedef struct path {
+    double weight, allowance, rays;
+} path;
+
+/* Every ray a context has cast below its camera rays. */
+static inline uint64_t rays_cast(const hr_trace_ctx *tc)
 {
-    if (forced || weight >= tc->min_weight) return 1;
-    tc->rays_cut++;
-    return 0;
+    return tc->rays_shadow + tc->rays_reflected + tc->rays_refracted;
 }
 
-static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
-                      double weight, int forced);
+/* Whether a bounce of path `p` is traced. A forced bounce (one only
+ * HR_EFFECTS_ALL traces, weight 0 throughout its subtree) passes the
+ * cut-off: it contributes nothing either way, and it is there to be run;
+ * the budget bounds it like any other. */
+static int worth_tracing(hr_trace_ctx *tc, path p, int forced)
+{
+    if (!forced && p.weight < p.allowance) {
+        tc->rays_cut++;
+        return 0;
+    }
+    if (!(p.rays >= 1.0 + (double)tc->scene->light_count)) {
+        tc->rays_over_budget++;
+        return 0;
+    }
+    return 1;
+}
+
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
+                      int forced);
 
 hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
-    return shade(tc, ray, depth, max_depth, 1.0, 0);
+    path p = {1.0, tc->min_weight, tc->ray_budget > 0.0 ? tc->ray_budget : INFINITY};
+    return shade(tc, ray, depth, max_depth, p, 0);
 }
 
 /* The material shading uses at hit h of an object whose material is
@@ -153,10 +181,11 @@ shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t
     return buf;
 }
 
-static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
-                      double weight, int forced)
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
+                      int forced)
 {
     const hr_scene *s = tc->scene;
+    const uint64_t cast_before = rays_cast(tc);
     /* A shape failed: the render fails, so the rest of its rays are not
      * traced (a failing shape may be slow to fail: one that renders). */
     if (tc->status) return rgb(0, 0, 0);
@@ -205,20 +234,28 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
      * was: the image is the same, only the work differs. */
     double reflect_weight = flags & HR_MAT_REFLECTS ? mat->reflectivity : 0.0;
     double refract_weight = flags & HR_MAT_REFRACTS ? mat->transparency : 0.0;
+    /* The allowance is shared among the bounces that carry weight, so
+     * HR_EFFECTS_ALL's forced ones change no cut; the budget among all the
+     * bounces traced, as each costs rays. */
+    int weighted = (reflect_weight > 0.0) + (refract_weight > 0.0);
     if (tc->force_all_effects) flags |= HR_MAT_REFLECTS | HR_MAT_REFRACTS;
+    int bounces = ((flags & HR_MAT_REFLECTS) != 0) + ((flags & HR_MAT_REFRACTS) != 0);
+    if (bounces == 0) return c;
+    double allowance = tc->split_cut_off && weighted == 2 ? 0.5 * p.allowance : p.allowance;
+    double rays = (p.rays - 1.0 - (double)(rays_cast(tc) - cast_before)) / bounces;
 
     double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
-    if ((flags & HR_MAT_REFLECTS) &&
-        worth_tracing(tc, weight * reflect_weight, forced || reflect_weight == 0.0)) {
+    path reflected = {p.weight * reflect_weight, allowance, rays};
+    if ((flags & HR_MAT_REFLECTS) && worth_tracing(tc, reflected, forced || reflect_weight == 0.0)) {
         hr_ray r = {hr_hit_spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
         tc->effects_ran |= HR_EFFECT_REFLECTION;
-        hr_color seen = shade(tc, &r, depth + 1, max_depth, weight * reflect_weight,
-                              forced || reflect_weight == 0.0);
+        hr_color seen = shade(tc, &r, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0);
         c = rgb_add(c, rgb_scale(seen, reflect_weight));
     }
-    if ((flags & HR_MAT_REFRACTS) &&
-        worth_tracing(tc, weight * refract_weight, forced || refract_weight == 0.0)) {
+    /* What the reflected subtree left, all of it. */
+    path refracted = {p.weight * refract_weight, allowance, p.rays - 1.0 - (double)(rays_cast(tc) - cast_before)};
+    if ((flags & HR_MAT_REFRACTS) && worth_tracing(tc, refracted, forced || refract_weight == 0.0)) {
         /* Snell with Hill's speeds: sin(t) = (c2 / c1) sin(i). Entering goes
          * from the surrounding space (speed 1) into the material. */
         double c1 = h.entering ? 1.0 : mat->speed_of_light;
@@ -236,8 +273,7 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
             tc->rays_refracted++;
         }
         tc->effects_ran |= HR_EFFECT_REFRACTION;
-        hr_color seen = shade(tc, &t, depth + 1, max_depth, weight * refract_weight,
-                              forced || refract_weight == 0.0);
+        hr_color seen = shade(tc, &t, depth + 1, max_depth, refracted, forced || refract_weight == 0.0);
         c = rgb_add(c, rgb_scale(seen, refract_weight));
     }
     return c;
