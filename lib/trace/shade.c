@@ -34,10 +34,10 @@
  * pixel's rays are the same whatever the threads. */
 #include <math.h>
 
-#include "cook_torrance.h"
-#include "scene_internal.h"
-#include "texture.h"
-#include "vec.h"
+#include "trace/cook_torrance.h"
+#include "scene/scene_internal.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 /* A light adds exactly nothing where, in every channel, its colour or
  * both of the material's lit coefficients are zero: no multiplication can
