@@ -96,7 +96,7 @@ PIN_SIZE(hr_camera, 96);
 PIN_OFF(hr_camera, eye, 16);
 PIN_OFF(hr_camera, view_angle, 88);
 /* Both grew at their ends (older callers pass a smaller struct_size). */
-PIN_SIZE(hr_render_options, 120);
+PIN_SIZE(hr_render_options, 128);
 PIN_OFF(hr_render_options, progress, 40);
 PIN_OFF(hr_render_options, progress_user, 48);
 PIN_OFF(hr_render_options, adaptive_threshold, 56);
@@ -112,13 +112,18 @@ PIN_OFF(hr_render_options, window_height, 100);
 /* The per-tile callback (issue 18), appended after the window. */
 PIN_OFF(hr_render_options, tile_done, 104);
 PIN_OFF(hr_render_options, tile_user, 112);
-PIN_SIZE(hr_render_stats, 80);
+/* The ray budget (issue 29), appended after the tile callback. */
+PIN_OFF(hr_render_options, ray_budget, 120);
+PIN_SIZE(hr_render_stats, 96);
 PIN_OFF(hr_render_stats, primary, 8);
 PIN_OFF(hr_render_stats, seconds, 40);
 PIN_OFF(hr_render_stats, effects, 48);
 PIN_OFF(hr_render_stats, pixels_refined, 56);
 PIN_OFF(hr_render_stats, samples_saved, 64);
 PIN_OFF(hr_render_stats, rays_cut, 72);
+/* The ray budget's counts (issue 29). */
+PIN_OFF(hr_render_stats, rays_over_budget, 80);
+PIN_OFF(hr_render_stats, pixels_over_budget, 88);
 PIN_SIZE(hr_image_write_options, 24);
 PIN_SIZE(hr_error_info, 32);
 PIN_SIZE(hr_module_entry, 80);
