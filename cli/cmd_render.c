@@ -45,9 +45,10 @@ static const char render_help[] =
     "                        corners differ by more than T (0..1, sRGB-encoded)\n"
     "  --min-weight W        trace no reflected or refracted ray whose weight\n"
     "                        (product of the coefficients on its path) is below W\n"
-    "                        (default 2^-24, which changes no pixel of a normal\n"
-    "                        scene and bounds the rays of a deep one)\n"
-    "  --exact               trace every contribution, however small (no cut-off)\n"
+    "                        (default: what is cut of a sample weighs under 2^-24\n"
+    "                        in all, which changes no pixel of a normal scene)\n"
+    "  --exact               trace every contribution, however small (no cut-off,\n"
+    "                        no ray budget)\n"
     "  --stats               also print rays by kind and the effects that ran\n"
     "  --stats-json FILE     write the statistics as one JSON object\n"
     "  -h, --help            this help\n";
