@@ -22,14 +22,14 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "sized_copy.h"
-#include "camera_frame.h"
-#include "errors.h"
-#include "image_internal.h"
-#include "image_srgb.h"
-#include "query_nesting.h"
-#include "scene_internal.h"
-#include "vec.h"
+#include "util/sized_copy.h"
+#include "geometry/camera_frame.h"
+#include "util/errors.h"
+#include "image/image_internal.h"
+#include "image/image_srgb.h"
+#include "trace/query_nesting.h"
+#include "scene/scene_internal.h"
+#include "geometry/vec.h"
 
 #define DEFAULT_TILE 32
 
