@@ -3,10 +3,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context_internal.h"
-#include "errors.h"
-#include "module_loader.h"
-#include "strutil.h"
+#include "core/context_internal.h"
+#include "util/errors.h"
+#include "core/module_loader.h"
+#include "util/strutil.h"
 
 HR_API hr_status hr_context_create(hr_context **out)
 {

@@ -4,7 +4,7 @@
 
 #include <hitray/common.h>
 
-#include "errors.h"
+#include "util/errors.h"
 
 typedef struct hr_error_slot {
     hr_status status;

@@ -2,13 +2,13 @@
  * reads them back (the library raises them through lib/util/errors.h).
  * Each context owns a pthread key; a thread's slot is allocated on its first
  * error and freed when the thread exits or the context is destroyed. */
-#include "sized_copy.h"
+#include "util/sized_copy.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "context_internal.h"
-#include "error_slot.h"
+#include "core/context_internal.h"
+#include "core/error_slot.h"
 
 static hr_error_slot *slot_of(const hr_context *ctx, int create)
 {

@@ -11,11 +11,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "sized_copy.h"
-#include "errors.h"
-#include "module_loader.h"
-#include "strutil.h"
-#include "suggest.h"
+#include "util/sized_copy.h"
+#include "util/errors.h"
+#include "core/module_loader.h"
+#include "util/strutil.h"
+#include "util/suggest.h"
 
 #define REFUSAL_SIZE 1024
 

@@ -2,7 +2,7 @@
 #ifndef HITRAY_LIB_MODULE_LOADER_H
 #define HITRAY_LIB_MODULE_LOADER_H
 
-#include "context_internal.h"
+#include "core/context_internal.h"
 
 /* dlclose every module and free the tables. */
 void hr_modules_unload_all(hr_context *ctx);

@@ -2,9 +2,9 @@
  * up; a ray through the image plane at distance 1 in front of the eye. */
 #include <math.h>
 
-#include "camera_frame.h"
-#include "errors.h"
-#include "vec.h"
+#include "geometry/camera_frame.h"
+#include "util/errors.h"
+#include "geometry/vec.h"
 
 #define DEG2RAD (3.14159265358979323846 / 180.0)
 

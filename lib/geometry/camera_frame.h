@@ -8,7 +8,7 @@
 
 #include <hitray/camera.h>
 
-#include "vec.h"
+#include "geometry/vec.h"
 
 typedef struct hr_camera_frame {
     hr_vec3 eye, u, v, n;

@@ -7,9 +7,9 @@
 #include <emmintrin.h>
 #endif
 
-#include "errors.h"
-#include "transform_inline.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "geometry/transform_inline.h"
+#include "geometry/vec.h"
 
 static void mat_identity(double m[16])
 {

@@ -1,5 +1,5 @@
 /* Writing a file all or nothing (atomic_file.h). */
-#include "atomic_file.h"
+#include "image/atomic_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -9,8 +9,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "errors.h"
-#include "strutil.h"
+#include "util/errors.h"
+#include "util/strutil.h"
 
 /* The process's umask, read without changing it: umask() can only be read by
  * setting it, which would race with other threads creating files. Linux

@@ -3,9 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic_file.h"
-#include "errors.h"
-#include "image_writers.h"
+#include "image/atomic_file.h"
+#include "util/errors.h"
+#include "image/image_writers.h"
 
 struct hr_file_batch {
     hr_context *ctx;

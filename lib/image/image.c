@@ -5,11 +5,11 @@
 #include <string.h>
 #include <sys/mman.h>
 
-#include "sized_copy.h"
-#include "atomic_file.h"
-#include "errors.h"
-#include "image_internal.h"
-#include "image_writers.h"
+#include "util/sized_copy.h"
+#include "image/atomic_file.h"
+#include "util/errors.h"
+#include "image/image_internal.h"
+#include "image/image_writers.h"
 
 #define IMAGE_ALIGN 64 /* a cache line */
 #define IMAGE_HUGE_PAGE ((size_t)2 << 20)

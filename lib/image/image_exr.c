@@ -12,8 +12,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "errors.h"
-#include "image_writers.h"
+#include "util/errors.h"
+#include "image/image_writers.h"
 
 /* What OpenEXRCore's callbacks share with us (its context's user data). */
 typedef struct exr_sink {

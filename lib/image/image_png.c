@@ -13,9 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "image_srgb.h"
-#include "image_writers.h"
+#include "util/errors.h"
+#include "image/image_srgb.h"
+#include "image/image_writers.h"
 
 typedef struct png_failure {
     char message[256];

@@ -4,9 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "image_srgb.h"
-#include "image_writers.h"
+#include "util/errors.h"
+#include "image/image_srgb.h"
+#include "image/image_writers.h"
 
 static hr_status write_failed(const hr_context *ctx, const hr_atomic_file *out)
 {

@@ -16,8 +16,8 @@
 
 #include <stb_image.h>
 
-#include "errors.h"
-#include "image_srgb.h"
+#include "util/errors.h"
+#include "image/image_srgb.h"
 
 static hr_status check_size(hr_context *ctx, const char *path, long long w, long long h)
 {

@@ -1,5 +1,5 @@
 /* Linear light to code values (image_srgb.h). */
-#include "image_srgb.h"
+#include "image/image_srgb.h"
 
 #include <hitray/image.h>
 

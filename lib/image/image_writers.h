@@ -8,7 +8,7 @@
 
 #include <hitray/hitray.h>
 
-#include "atomic_file.h"
+#include "image/atomic_file.h"
 
 /* A read-only view of an image's pixels (layout as in image.h). */
 typedef struct hr_pixels {

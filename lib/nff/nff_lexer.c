@@ -1,5 +1,5 @@
 /* NFF words (lib/nff/nff_lexer.h). */
-#include "nff_lexer.h"
+#include "nff/nff_lexer.h"
 
 #include <string.h>
 

@@ -8,10 +8,10 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "errors.h"
-#include "load_result.h"
-#include "nff_reader.h"
-#include "text_file.h"
+#include "util/errors.h"
+#include "util/load_result.h"
+#include "nff/nff_reader.h"
+#include "util/text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const char *text, size_t length, const char *name,
                             hr_sdl_result *result)

@@ -33,8 +33,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "nff_reader.h"
+#include "util/errors.h"
+#include "nff/nff_reader.h"
 
 /* Vertex indices of one mesh are 32-bit (the mesh module's limit). */
 #define NFF_MAX_MESH_VERTICES 4294967294.0

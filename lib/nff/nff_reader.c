@@ -1,5 +1,5 @@
 /* The NFF entity loop, numbers and messages (lib/nff/nff_reader.h). */
-#include "nff_reader.h"
+#include "nff/nff_reader.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_words.h"
+#include "util/errors.h"
+#include "sdl/sdl_words.h"
 
 /* The longest word read as a number: far more digits than a double holds. */
 #define NFF_MAX_NUMBER_CHARS 400

@@ -12,7 +12,7 @@
 
 #include <hitray/hitray.h>
 
-#include "nff_lexer.h"
+#include "nff/nff_lexer.h"
 
 /* The polygons of one material waiting to become one mesh: flat ones and,
  * apart, smooth ones (`pp`), whose vertices carry normals. Arrays of

@@ -16,7 +16,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "nff_reader.h"
+#include "nff/nff_reader.h"
 
 /* A transform's 16 doubles, row-major, from its columns x, y, z and the
  * origin. */

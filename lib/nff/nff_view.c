@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "nff_reader.h"
+#include "util/errors.h"
+#include "nff/nff_reader.h"
 
 /* The largest image side `resolution` may give. */
 #define NFF_MAX_RESOLUTION 65536

@@ -7,13 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "field_table.h"
-#include "ray_cull.h"
-#include "scene_internal.h"
-#include "sized_copy.h"
-#include "texture.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "util/field_table.h"
+#include "trace/ray_cull.h"
+#include "scene/scene_internal.h"
+#include "util/sized_copy.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 HR_API void hr_scene_globals_default(hr_scene_globals *g)
 {

@@ -3,10 +3,10 @@
  * tests one bit. */
 #include <stdint.h>
 
-#include "scene_internal.h"
-#include "specular.h"
-#include "texture.h"
-#include "vec.h"
+#include "scene/scene_internal.h"
+#include "trace/specular.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 /* Which effects each material and the whole scene call for. A coefficient
  * below Hill's threshold spawns no ray and contributes nothing (the ray is

@@ -2,9 +2,9 @@
  * objects from far enough that they fill the view. */
 #include <math.h>
 
-#include "errors.h"
-#include "scene_internal.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "scene/scene_internal.h"
+#include "geometry/vec.h"
 
 /* The bounded top-level object whose bounds reach farthest from the origin
  * (or are largest): the one that made framing overflow. */

@@ -11,7 +11,7 @@
 #include <hitray/hitray.h>
 
 #include "bvh4.h"
-#include "transform_inline.h"
+#include "geometry/transform_inline.h"
 
 /* Per-material flags worked out at commit, so shade() tests one bit. */
 #define HR_MAT_EMITS 1u

@@ -3,10 +3,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "errors.h"
-#include "scene_internal.h"
-#include "sized_copy.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "scene/scene_internal.h"
+#include "util/sized_copy.h"
+#include "geometry/vec.h"
 
 HR_API hr_context *hr_scene_context(const hr_scene *scene) { return scene ? scene->ctx : NULL; }
 HR_API int32_t hr_scene_is_committed(const hr_scene *s) { return s ? s->committed : 0; }

@@ -4,10 +4,10 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "errors.h"
-#include "field_table.h"
-#include "scene_internal.h"
-#include "sized_copy.h"
+#include "util/errors.h"
+#include "util/field_table.h"
+#include "scene/scene_internal.h"
+#include "util/sized_copy.h"
 
 HR_API void hr_material_default(hr_material *m)
 {

@@ -7,15 +7,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context_internal.h"
-#include "errors.h"
-#include "ray_cull.h"
-#include "scene_internal.h"
-#include "scene_params.h"
-#include "sized_copy.h"
-#include "texture.h"
-#include "transform_inline.h"
-#include "vec.h"
+#include "core/context_internal.h"
+#include "util/errors.h"
+#include "trace/ray_cull.h"
+#include "scene/scene_internal.h"
+#include "scene/scene_params.h"
+#include "util/sized_copy.h"
+#include "texture/texture.h"
+#include "geometry/transform_inline.h"
+#include "geometry/vec.h"
 
 /* A zeroed object on cache lines of its own (HR_OBJECT_ALIGN), so that its
  * fields tracing reads first share the fewest lines (hr_object); free()

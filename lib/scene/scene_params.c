@@ -1,11 +1,11 @@
-#include "scene_params.h"
+#include "scene/scene_params.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "errors.h"
-#include "suggest.h"
+#include "util/errors.h"
+#include "util/suggest.h"
 
 static const char *type_name(int32_t type)
 {

@@ -2,7 +2,7 @@
 #ifndef HITRAY_LIB_SCENE_PARAMS_H
 #define HITRAY_LIB_SCENE_PARAMS_H
 
-#include "scene_internal.h"
+#include "scene/scene_internal.h"
 
 /* Fill `full` (cls->param_count entries, in the class's order) from the
  * given parameters and the class's defaults, checking names, types, ranges

@@ -1,5 +1,5 @@
 /* Error messages of the SDL reader (lib/sdl/sdl_diag.h). */
-#include "sdl_diag.h"
+#include "sdl/sdl_diag.h"
 
 #include <stdarg.h>
 #include <stdio.h>

@@ -9,8 +9,8 @@
 
 #include <stddef.h>
 
-#include "errors.h"
-#include "sdl_source.h"
+#include "util/errors.h"
+#include "sdl/sdl_source.h"
 
 /* Raise `status` on the source's context for the token `at`; returns it. */
 hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, const char *fmt,

@@ -1,7 +1,7 @@
 /* SDL tokens (lib/sdl/sdl_lexer.h). The lexer only cuts text; what a word means
  * (keyword, number, name) is decided by the reader, so that every message can
  * say what was expected where. */
-#include "sdl_lexer.h"
+#include "sdl/sdl_lexer.h"
 
 #include <stdlib.h>
 #include <string.h>

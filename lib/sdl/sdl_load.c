@@ -6,13 +6,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "load_result.h"
-#include "sdl_diag.h"
-#include "sdl_lexer.h"
-#include "sdl_reader.h"
-#include "sdl_source.h"
-#include "text_file.h"
+#include "util/errors.h"
+#include "util/load_result.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_lexer.h"
+#include "sdl/sdl_reader.h"
+#include "sdl/sdl_source.h"
+#include "util/text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const char *name,
                             const char *base_dir, hr_sdl_result *result)

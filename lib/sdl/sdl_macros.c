@@ -1,14 +1,14 @@
 /* SDL macros (lib/sdl/sdl_macros.h): the table and the `def` / `use` commands. */
-#include "sdl_macros.h"
+#include "sdl/sdl_macros.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_hash.h"
-#include "sdl_source.h"
-#include "sdl_words.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_hash.h"
+#include "sdl/sdl_source.h"
+#include "sdl/sdl_words.h"
 
 void sdl_macros_init(sdl_macro_table *table) { memset(table, 0, sizeof *table); }
 

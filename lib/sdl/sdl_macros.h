@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "sdl_lexer.h"
+#include "sdl/sdl_lexer.h"
 
 /* A stored macro. Its body is a run of the file's own tokens (no copy): the
  * token list lives as long as the whole read, and a body never contains a

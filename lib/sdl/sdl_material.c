@@ -10,10 +10,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_reader.h"
-#include "solid_textures.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_reader.h"
+#include "util/solid_textures.h"
 
 void sdl_material_reset(sdl_reader *r)
 {

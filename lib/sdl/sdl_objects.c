@@ -20,11 +20,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_reader.h"
-#include "sdl_words.h"
-#include "suggest.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_reader.h"
+#include "sdl/sdl_words.h"
+#include "util/suggest.h"
 
 /* Hill's object words. What follows each is its class's business: the
  * parameters it declares (read_params). `diamond` has no class (add_diamond). */

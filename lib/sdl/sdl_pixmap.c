@@ -5,10 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_reader.h"
-#include "strutil.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_reader.h"
+#include "util/strutil.h"
 
 hr_status sdl_cmd_make_pixmap(sdl_reader *r, sdl_located keyword)
 {

@@ -1,14 +1,14 @@
 /* The SDL reader's command loop and argument reading (lib/sdl/sdl_reader.h). */
-#include "sdl_reader.h"
+#include "sdl/sdl_reader.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_words.h"
-#include "suggest.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_words.h"
+#include "util/suggest.h"
 
 static hr_status cmd_def(sdl_reader *r, sdl_located keyword)
 {

@@ -11,8 +11,8 @@
 
 #include <hitray/hitray.h>
 
-#include "field_table.h"
-#include "sdl_source.h"
+#include "util/field_table.h"
+#include "sdl/sdl_source.h"
 
 /* Unbalanced `push` is harmless, but not without limit: each entry is two
  * 4x4 matrices, and a macro used in a loop can push on every pass. */

@@ -10,10 +10,10 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_reader.h"
-#include "sdl_words.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_reader.h"
+#include "sdl/sdl_words.h"
 
 hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
 {

@@ -1,11 +1,11 @@
 /* The token stream with macro expansion (lib/sdl/sdl_source.h). */
-#include "sdl_source.h"
+#include "sdl/sdl_source.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
 
 hr_status sdl_source_init(sdl_source *src, hr_context *ctx, const char *file,
                           const sdl_token_list *tokens)

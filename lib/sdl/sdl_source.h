@@ -12,8 +12,8 @@
 
 #include <hitray/hitray.h>
 
-#include "sdl_lexer.h"
-#include "sdl_macros.h"
+#include "sdl/sdl_lexer.h"
+#include "sdl/sdl_macros.h"
 
 /* Bounds on expansion, so that no file can make the reader hang or exhaust
  * memory. Real scenes nest macros a few levels and expand a few thousand

@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_reader.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_reader.h"
 
 #define SDL_SHOWN_THRESHOLD_WARNINGS 8
 

@@ -5,9 +5,9 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "errors.h"
-#include "sdl_diag.h"
-#include "sdl_reader.h"
+#include "util/errors.h"
+#include "sdl/sdl_diag.h"
+#include "sdl/sdl_reader.h"
 
 hr_status sdl_cmd_translate(sdl_reader *r, sdl_located keyword)
 {

@@ -1,5 +1,5 @@
 /* Numbers and macro names of SDL (lib/sdl/sdl_words.h). */
-#include "sdl_words.h"
+#include "sdl/sdl_words.h"
 
 #include <langinfo.h>
 #include <math.h>

@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "scene_internal.h"
-#include "texture.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "scene/scene_internal.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 #define PIXEL_LIMIT 1e6 /* the bound hr_material_validate puts on colours */
 

@@ -5,12 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "errors.h"
-#include "scene_internal.h"
-#include "solid_textures.h"
-#include "texture.h"
-#include "transform_inline.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "scene/scene_internal.h"
+#include "util/solid_textures.h"
+#include "texture/texture.h"
+#include "geometry/transform_inline.h"
+#include "geometry/vec.h"
 
 /* Every parameter of `kind`: the material's, checked, then the defaults. */
 static hr_status fill_params(hr_context *ctx, const hr_object *o, const hr_texture_kind *kind,

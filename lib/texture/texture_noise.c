@@ -11,8 +11,8 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "texture.h"
-#include "vec.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 /* Lattice coordinates are taken modulo 2^32 (exact in double): past that
  * the noise repeats, and no coordinate overflows the integer conversion. */

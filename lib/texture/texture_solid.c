@@ -10,8 +10,8 @@
  * unit cube, a plane seen from a few units away). */
 #include <math.h>
 
-#include "texture.h"
-#include "vec.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 #define PI 3.14159265358979323846
 

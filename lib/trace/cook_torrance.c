@@ -1,9 +1,9 @@
 /* Cook and Torrance's specular term (lib/trace/cook_torrance.h). */
-#include "cook_torrance.h"
+#include "trace/cook_torrance.h"
 
 #include <math.h>
 
-#include "vec.h"
+#include "geometry/vec.h"
 
 #define PI 3.14159265358979323846
 

@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context_internal.h"
-#include "object_trace.h"
-#include "scene_internal.h"
+#include "core/context_internal.h"
+#include "trace/object_trace.h"
+#include "scene/scene_internal.h"
 
 static void *host_alloc(size_t size) { return calloc(1, size ? size : 1); }
 static void host_free(void *p) { free(p); }

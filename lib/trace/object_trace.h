@@ -9,9 +9,9 @@
 
 #include <math.h>
 
-#include "scene_internal.h"
-#include "transform_inline.h"
-#include "vec.h"
+#include "scene/scene_internal.h"
+#include "geometry/transform_inline.h"
+#include "geometry/vec.h"
 
 /* hr_intersection_reserve for a list tracing may be handed: the one list
  * whose storage is borrowed from a caller's stack (tc->borrowed) moves to

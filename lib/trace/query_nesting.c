@@ -1,7 +1,7 @@
 /* How deeply scene queries nest on the calling thread (query_nesting.h). */
-#include "query_nesting.h"
+#include "trace/query_nesting.h"
 
-#include "errors.h"
+#include "util/errors.h"
 
 static _Thread_local int32_t level;
 

@@ -14,9 +14,9 @@
 
 #include <hitray/shape_kit_box.h>
 
-#include "scene_internal.h"
-#include "transform_inline.h"
-#include "vec.h"
+#include "scene/scene_internal.h"
+#include "geometry/transform_inline.h"
+#include "geometry/vec.h"
 
 /* Sets o->slab_axes, the axes on which its object-space bounds have a finite
  * end (and no NaN), and o->cull_dir_limit, 2^190 over the largest row sum

@@ -6,11 +6,11 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "errors.h"
-#include "object_trace.h"
-#include "query_nesting.h"
-#include "scene_internal.h"
-#include "vec.h"
+#include "util/errors.h"
+#include "trace/object_trace.h"
+#include "trace/query_nesting.h"
+#include "scene/scene_internal.h"
+#include "geometry/vec.h"
 
 static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
 {

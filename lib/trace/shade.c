@@ -26,10 +26,10 @@
  * path, and one below the cut-off is not traced. */
 #include <math.h>
 
-#include "cook_torrance.h"
-#include "scene_internal.h"
-#include "texture.h"
-#include "vec.h"
+#include "trace/cook_torrance.h"
+#include "scene/scene_internal.h"
+#include "texture/texture.h"
+#include "geometry/vec.h"
 
 /* A light adds exactly nothing where, in every channel, its colour or
  * both of the material's lit coefficients are zero: no multiplication can

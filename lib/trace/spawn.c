@@ -6,8 +6,8 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "scene_internal.h"
-#include "vec.h"
+#include "scene/scene_internal.h"
+#include "geometry/vec.h"
 
 /* The distance is the hit's own error bound projected on the side vector
  * (pbrt's offset: the point is within `error` of the true surface in each

@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "object_trace.h"
-#include "ray_cull.h"
-#include "scene_internal.h"
-#include "vec.h"
+#include "trace/object_trace.h"
+#include "trace/ray_cull.h"
+#include "scene/scene_internal.h"
+#include "geometry/vec.h"
 
 hr_status hr_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity)
 {

@@ -1,6 +1,6 @@
 /* The printf-style front ends of hr_context_set_error and hr_context_warn
  * (lib/util/errors.h). */
-#include "errors.h"
+#include "util/errors.h"
 
 #include <stdarg.h>
 #include <stdio.h>

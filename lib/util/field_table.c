@@ -1,6 +1,6 @@
 /* The field tables (lib/util/field_table.h), generated from the rows of
  * include/hitray/scene_fields.h. */
-#include "field_table.h"
+#include "util/field_table.h"
 
 #include <stdint.h>
 #include <string.h>

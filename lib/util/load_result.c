@@ -1,11 +1,11 @@
 /* The result struct of the scene file readers (lib/util/load_result.h). */
-#include "sized_copy.h"
-#include "load_result.h"
+#include "util/sized_copy.h"
+#include "util/load_result.h"
 
 #include <stddef.h>
 #include <string.h>
 
-#include "errors.h"
+#include "util/errors.h"
 
 #define RESULT_MIN_SIZE (offsetof(hr_sdl_result, scene) + sizeof(hr_scene *))
 

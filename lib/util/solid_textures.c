@@ -1,5 +1,5 @@
 /* The solid textures as a list for messages (lib/util/solid_textures.h). */
-#include "solid_textures.h"
+#include "util/solid_textures.h"
 
 #include <stdint.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-#include "strutil.h"
+#include "util/strutil.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -10,7 +10,7 @@
  * one): "--sp" suggests "--spp", while "cube" does not suggest "tube". Words
  * past SUGGEST_MAX_LENGTH get no suggestion: no keyword is that long, and
  * the table stays on the stack. */
-#include "suggest.h"
+#include "util/suggest.h"
 
 #include <string.h>
 

@@ -1,5 +1,5 @@
 /* Reading a scene file whole, with limits (text_file.h). */
-#include "text_file.h"
+#include "util/text_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "errors.h"
+#include "util/errors.h"
 
 hr_status hr_scene_file_limit(const hr_context *ctx, size_t *out)
 {

@@ -31,7 +31,7 @@
 #include <hitray/transform.h>
 
 #include "hr_test.h"
-#include "ray_cull.h"
+#include "trace/ray_cull.h"
 
 static uint64_t state = 0x9e3779b97f4a7c15ull;
 

@@ -9,7 +9,7 @@
 #include <stdio.h>
 
 #include "hr_test.h"
-#include "specular.h"
+#include "trace/specular.h"
 
 int main(void)
 {

@@ -18,7 +18,7 @@
 #include <hitray/hitray.h>
 
 #include "hr_test.h"
-#include "transform_inline.h"
+#include "geometry/transform_inline.h"
 
 static uint64_t rng_state = 0xbb67ae8584caa73bull;
 static uint64_t next(void)

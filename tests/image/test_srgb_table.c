@@ -12,7 +12,7 @@
 #include <hitray/image.h>
 
 #include "hr_test.h"
-#include "image_srgb.h"
+#include "image/image_srgb.h"
 
 static float bits_float(uint32_t b)
 {

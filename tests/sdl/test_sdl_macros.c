@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sdl_hash.h"
+#include "sdl/sdl_hash.h"
 #include "sdl_test_support.h"
 
 static void pasting(hr_context *ctx)
