@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "cook_torrance.h"
+#include "trace/cook_torrance.h"
 #include "hr_test.h"
 
 #define PI_L 3.14159265358979323846264338327950288L
