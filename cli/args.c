@@ -201,8 +201,8 @@ int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t
         cli_error("%s: '%s' is not WIDTHxHEIGHT (for example 640x480)", option, text);
         return 0;
     }
-    if (w < 1 || h < 1 || w > 65536 || h > 65536) {
-        cli_error("%s: %ldx%ld is out of range: each side must be 1..65536", option, w, h);
+    if (w < 1 || h < 1 || w > HR_RENDER_MAX_SIDE || h > HR_RENDER_MAX_SIDE) {
+        cli_error("%s: %ldx%ld is out of range: each side must be 1..%d", option, w, h, HR_RENDER_MAX_SIDE);
         return 0;
     }
     *width = (int32_t)w;

@@ -10,6 +10,7 @@
 #include <strings.h>
 
 #include "cli.h"
+#include "render_flags.h"
 
 static const char render_help[] =
     "usage: hitray render SCENE -o OUT [options]\n"
@@ -58,22 +59,18 @@ typedef struct render_request {
     const char *output;
     const char *exr_output;
     const char *stats_json;
-    int32_t width, height;
-    int32_t spp, threads, depth, block;
-    int has_camera;
-    double camera[10];
-    int png16, linear_png, exr_half, stats, exact;
-    int32_t effects;
-    double adaptive, min_weight;
+    cli_render_flags flags;
+    int png16, linear_png, exr_half, stats;
 } render_request;
 
-static const cli_option render_options[] = {
-    {"--output", "-o", 1}, {"--exr", NULL, 1},        {"--size", NULL, 1},       {"--spp", NULL, 1},
-    {"--threads", NULL, 1}, {"--depth", NULL, 1},     {"--block", NULL, 1},      {"--camera", NULL, 1},
-    {"--png16", NULL, 0},  {"--linear-png", NULL, 0}, {"--exr-half", NULL, 0},   {"--stats", NULL, 0},
-    {"--stats-json", NULL, 1}, {"--effects", NULL, 1}, {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1},
-    {"--exact", NULL, 0},
-    {"--help", "-h", 0},   {NULL, NULL, 0},
+#define RENDER_FLAGS                                                                                          \
+    (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_EFFECTS | \
+     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT)
+
+static const cli_option render_own_options[] = {
+    {"--output", "-o", 1},  {"--exr", NULL, 1},      {"--png16", NULL, 0}, {"--linear-png", NULL, 0},
+    {"--exr-half", NULL, 0}, {"--stats", NULL, 0},   {"--stats-json", NULL, 1},
+    {"--help", "-h", 0},    {NULL, NULL, 0},
 };
 
 /* Two outputs named alike would overwrite each other (by name only: two
@@ -82,14 +79,6 @@ static int check_distinct(const char *option_a, const char *a, const char *optio
 {
     if (a && b && strcmp(a, b) == 0) return cli_error("render: %s and %s both name '%s'", option_a, option_b, a);
     return 0;
-}
-
-static int parse_effects(const char *option, const char *text, int32_t *out)
-{
-    if (!strcmp(text, "auto")) *out = HR_EFFECTS_AUTO;
-    else if (!strcmp(text, "all")) *out = HR_EFFECTS_ALL;
-    else return !cli_error("%s: '%s' is neither 'auto' nor 'all'", option, text);
-    return 1;
 }
 
 /* What parse_request found: go on, stop after an error (reported; the same
@@ -101,10 +90,12 @@ static int parse_effects(const char *option, const char *text, int32_t *out)
 static int parse_request(int argc, char **argv, render_request *r)
 {
     memset(r, 0, sizeof *r);
-    r->width = 0, r->height = 0; /* the scene file's size unless --size */
-    r->spp = 1, r->threads = 0, r->depth = -1, r->block = 1;
+    cli_render_flags_init(&r->flags);
+    cli_option options[32];
+    if (cli_render_flags_table(render_own_options, RENDER_FLAGS, options, 32) < 0)
+        return cli_error("render: the option table is too small");
     cli_parser p;
-    cli_parser_init(&p, argc, argv, render_options);
+    cli_parser_init(&p, argc, argv, options);
     const char *name, *value;
     int kind, positionals = 0;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
@@ -118,32 +109,19 @@ static int parse_request(int argc, char **argv, render_request *r)
             fputs(render_help, stdout);
             return PARSE_HELP;
         }
-        int ok = 1;
-        if (!strcmp(name, "--output")) r->output = value;
+        if (cli_render_flag_bit(name)) {
+            if (!cli_render_flags_parse(&r->flags, name, value)) return PARSE_ERROR;
+        } else if (!strcmp(name, "--output")) r->output = value;
         else if (!strcmp(name, "--exr")) r->exr_output = value;
         else if (!strcmp(name, "--stats-json")) r->stats_json = value;
-        else if (!strcmp(name, "--size")) ok = cli_parse_size(name, value, &r->width, &r->height);
-        else if (!strcmp(name, "--spp")) ok = cli_parse_int(name, value, 1, 65536, &r->spp);
-        else if (!strcmp(name, "--threads")) ok = cli_parse_int(name, value, 0, 4096, &r->threads);
-        else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, HR_MAX_RECURSION_DEPTH, &r->depth);
-        else if (!strcmp(name, "--block")) ok = cli_parse_int(name, value, 1, 4096, &r->block);
-        else if (!strcmp(name, "--camera")) ok = r->has_camera = cli_parse_doubles(name, value, 10, r->camera);
         else if (!strcmp(name, "--png16")) r->png16 = 1;
         else if (!strcmp(name, "--linear-png")) r->linear_png = 1;
         else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
         else if (!strcmp(name, "--stats")) r->stats = 1;
-        else if (!strcmp(name, "--exact")) r->exact = 1;
-        else if (!strcmp(name, "--effects")) ok = parse_effects(name, value, &r->effects);
-        else if (!strcmp(name, "--adaptive")) ok = cli_parse_fraction(name, value, &r->adaptive);
-        else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
-        if (!ok) return PARSE_ERROR;
     }
     if (!r->scene_path) return cli_error("render: no scene file given (see 'hitray render --help')");
     if (!r->output) return cli_error("render: no output file given (use -o OUT.png)");
-    if (r->adaptive > 0 && r->spp < 2)
-        return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
-    if (r->adaptive > 0 && r->block > 1) return cli_error("--adaptive: cannot be combined with --block");
-    if (r->exact && r->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
+    if (cli_render_flags_check(&r->flags)) return PARSE_ERROR;
     if (!cli_has_image_extension(r->output))
         return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          r->output);
@@ -161,12 +139,6 @@ static int parse_request(int argc, char **argv, render_request *r)
         check_distinct("--exr", r->exr_output, "--stats-json", r->stats_json))
         return PARSE_ERROR;
     return PARSE_OK;
-}
-
-static hr_camera choose_camera(const render_request *r, const cli_scene *s)
-{
-    if (!r->has_camera) return cli_scene_camera(s, r->width, r->height);
-    return cli_camera_from_values(s, r->camera, r->width, r->height);
 }
 
 static uint64_t total_rays(const hr_render_stats *s) { return s->primary + s->shadow + s->reflected + s->refracted; }
@@ -194,13 +166,13 @@ static void print_effects(FILE *f, uint32_t effects, int as_json)
     if (first && !as_json) fputs("none", f);
 }
 
-static void print_summary(const render_request *r, const hr_render_stats *s)
+static void print_summary(const render_request *r, const hr_image *image, const hr_render_stats *s)
 {
     uint64_t rays = total_rays(s);
     char rate[32];
     format_rate(rate, sizeof rate, s->seconds > 0 ? (double)rays / s->seconds : 0.0);
     printf("rendered %dx%d (%d spp) in %.3f s on %d thread%s: %" PRIu64 " rays, %srays/s -> %s%s%s\n",
-           (int)r->width, (int)r->height, (int)r->spp, s->seconds, (int)s->threads,
+           (int)hr_image_width(image), (int)hr_image_height(image), (int)r->flags.spp, s->seconds, (int)s->threads,
            s->threads == 1 ? "" : "s", rays, rate, r->output,
            r->exr_output ? ", " : "", r->exr_output ? r->exr_output : "");
     if (r->stats) {
@@ -209,15 +181,16 @@ static void print_summary(const render_request *r, const hr_render_stats *s)
         printf("effects: ");
         print_effects(stdout, s->effects, 0);
         putchar('\n');
-        if (r->adaptive > 0)
+        if (r->flags.adaptive > 0)
             printf("adaptive: %" PRIu64 " of %" PRIu64 " pixels refined, %" PRId64 " camera rays saved\n",
-                   s->pixels_refined, (uint64_t)r->width * (uint64_t)r->height, s->samples_saved);
-        if (r->min_weight > 0 || s->rays_cut > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
+                   s->pixels_refined, (uint64_t)hr_image_width(image) * (uint64_t)hr_image_height(image),
+                   s->samples_saved);
+        if (r->flags.min_weight > 0 || s->rays_cut > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
     }
 }
 
 /* The statistics as JSON, in a malloc'd buffer (NULL if out of memory). */
-static char *stats_json(const render_request *r, const hr_render_stats *s, size_t *size)
+static char *stats_json(const hr_image *image, const hr_render_stats *s, size_t *size)
 {
     char *text = NULL;
     FILE *f = open_memstream(&text, size);
@@ -232,7 +205,8 @@ static char *stats_json(const render_request *r, const hr_render_stats *s, size_
     fprintf(f,
             "], \"pixels_refined\": %" PRIu64 ", \"samples_saved\": %" PRId64 ", \"rays_cut\": %" PRIu64
             ", \"threads\": %d, \"width\": %d, \"height\": %d}\n",
-            s->pixels_refined, s->samples_saved, s->rays_cut, (int)s->threads, (int)r->width, (int)r->height);
+            s->pixels_refined, s->samples_saved, s->rays_cut, (int)s->threads, (int)hr_image_width(image),
+            (int)hr_image_height(image));
     if (ferror(f)) {
         fclose(f);
         free(text);
@@ -263,7 +237,7 @@ static int write_outputs(const render_request *r, hr_context *ctx, const hr_imag
     }
     if (st == HR_OK && r->stats_json) {
         size_t size = 0;
-        char *json = stats_json(r, stats, &size);
+        char *json = stats_json(image, stats, &size);
         if (!json) {
             hr_file_batch_destroy(batch);
             return cli_error("cannot write '%s': out of memory", r->stats_json);
@@ -278,19 +252,11 @@ static int write_outputs(const render_request *r, hr_context *ctx, const hr_imag
 
 static int render_and_write(const render_request *r, cli_scene *s)
 {
-    hr_camera cam = choose_camera(r, s);
+    hr_camera cam = cli_render_flags_camera(&r->flags, s);
     hr_render_options o;
     hr_render_options_default(&o);
-    o.width = r->width;
-    o.height = r->height;
-    o.samples_per_pixel = r->spp;
-    o.threads = r->threads;
-    o.max_depth = r->depth;
-    o.block_size = r->block;
-    o.effects = r->effects;
-    o.adaptive_threshold = r->adaptive;
-    o.min_weight = r->min_weight;
-    o.exact = r->exact;
+    cli_render_flags_apply(&r->flags, &o);
+    o.width = cam.width, o.height = cam.height;
     cli_progress progress;
     o.progress = cli_progress_update;
     o.progress_user = &progress;
@@ -319,10 +285,10 @@ static int render_and_write(const render_request *r, cli_scene *s)
         return cli_library_error(s->ctx, st);
     }
     int rc = write_outputs(r, s->ctx, image, &stats);
-    hr_image_destroy(image);
     cli_release_signals(&held);
+    if (!rc) print_summary(r, image, &stats);
+    hr_image_destroy(image);
     if (rc) return rc;
-    print_summary(r, &stats);
     return fflush(stdout) == 0 ? CLI_EXIT_OK : cli_error("cannot write to standard output");
 }
 
@@ -333,7 +299,6 @@ int cmd_render(int argc, char **argv)
     if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
-    if (r.width == 0) r.width = s.sdl.camera.width, r.height = s.sdl.camera.height;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : render_and_write(&r, &s);
     cli_interrupt_release();
     cli_scene_free(&s);

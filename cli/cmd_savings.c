@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "render_flags.h"
 
 static const char savings_help[] =
     "usage: hitray savings SCENE [options]\n"
@@ -50,7 +51,7 @@ static const char savings_help[] =
 
 typedef struct savings_request {
     const char *scene_path;
-    int32_t width, height, spp, depth, threads;
+    cli_render_flags flags; /* size, spp, depth, threads */
     double adaptive[MAX_VALUES], min_weight[MAX_VALUES];
     int adaptive_count, min_weight_count;
     int json;
@@ -76,21 +77,27 @@ static int parse_values(const char *option, const char *text, double *out, int *
     }
 }
 
-static const cli_option savings_options[] = {
-    {"--size", NULL, 1},     {"--spp", NULL, 1},     {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1},
-    {"--depth", NULL, 1},    {"--threads", NULL, 1}, {"--json", NULL, 0},     {"--help", "-h", 0},
+/* --adaptive and --min-weight are savings' own: each takes a list, a row
+ * per value. */
+static const cli_option savings_own_options[] = {
+    {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1}, {"--json", NULL, 0}, {"--help", "-h", 0},
     {NULL, NULL, 0},
 };
+#define SAVINGS_FLAGS (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_DEPTH | CLI_RF_THREADS)
 
 /* 0: go on; 1: stop with success (help printed); -1: stop with an error. */
 static int parse_request(int argc, char **argv, savings_request *r)
 {
     memset(r, 0, sizeof *r);
-    r->width = 320, r->height = 240, r->spp = 16, r->depth = -1;
+    cli_render_flags_init(&r->flags);
+    r->flags.width = 320, r->flags.height = 240, r->flags.spp = 16;
     r->adaptive[0] = 0.05, r->min_weight[0] = 0.05;
     r->adaptive_count = r->min_weight_count = 1;
+    cli_option options[16];
+    if (cli_render_flags_table(savings_own_options, SAVINGS_FLAGS, options, 16) < 0)
+        return cli_error("savings: the option table is too small"), -1;
     cli_parser p;
-    cli_parser_init(&p, argc, argv, savings_options);
+    cli_parser_init(&p, argc, argv, options);
     const char *name, *value;
     int kind;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
@@ -104,18 +111,21 @@ static int parse_request(int argc, char **argv, savings_request *r)
             fputs(savings_help, stdout);
             return 1;
         }
+        /* Its own options first: --adaptive and --min-weight are also render
+         * flags' names. */
         int ok = 1;
-        if (!strcmp(name, "--size")) ok = cli_parse_size(name, value, &r->width, &r->height);
-        else if (!strcmp(name, "--spp")) ok = cli_parse_int(name, value, 2, 65536, &r->spp);
-        else if (!strcmp(name, "--adaptive")) ok = parse_values(name, value, r->adaptive, &r->adaptive_count);
+        if (!strcmp(name, "--adaptive")) ok = parse_values(name, value, r->adaptive, &r->adaptive_count);
         else if (!strcmp(name, "--min-weight"))
             ok = parse_values(name, value, r->min_weight, &r->min_weight_count);
-        else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, HR_MAX_RECURSION_DEPTH, &r->depth);
-        else if (!strcmp(name, "--threads")) ok = cli_parse_int(name, value, 0, 4096, &r->threads);
         else if (!strcmp(name, "--json")) r->json = 1;
+        else ok = cli_render_flags_parse(&r->flags, name, value);
         if (!ok) return -1;
     }
     if (!r->scene_path) return cli_error("savings: no scene file given (see 'hitray savings --help')"), -1;
+    /* Adaptive supersampling, a row of every report, refines with --spp. */
+    if (r->flags.spp < 2)
+        return cli_error("--spp: savings needs N >= 2 (the samples a refined pixel gets), not %d", (int)r->flags.spp),
+               -1;
     return 0;
 }
 
@@ -182,7 +192,7 @@ static void print_json_row(const row *w, const row *full)
 
 static void print_table(const savings_request *r, const row *rows, int n)
 {
-    printf("%s: %dx%d, %d spp\n", r->scene_path, (int)r->width, (int)r->height, (int)r->spp);
+    printf("%s: %dx%d, %d spp\n", r->scene_path, (int)r->flags.width, (int)r->flags.height, (int)r->flags.spp);
     printf("%-18s %12s %12s %8s %10s %10s %10s\n", "render", "rays", "saved", "saved%", "rmse", "max", "differing");
     uint64_t full = total_rays(&rows[0].stats);
     for (int i = 0; i < n; i++) {
@@ -202,9 +212,7 @@ static int render_row(const savings_request *r, cli_scene *s, const hr_camera *c
 {
     hr_render_options o;
     hr_render_options_default(&o);
-    o.samples_per_pixel = r->spp;
-    o.threads = r->threads;
-    o.max_depth = r->depth;
+    cli_render_flags_apply(&r->flags, &o);
     o.effects = effects;
     o.adaptive_threshold = adaptive;
     o.min_weight = min_weight;
@@ -238,7 +246,7 @@ typedef struct variant {
 
 static int run_savings(const savings_request *r, cli_scene *s)
 {
-    hr_camera cam = cli_scene_camera(s, r->width, r->height);
+    hr_camera cam = cli_render_flags_camera(&r->flags, s);
     variant variants[3 + 2 * MAX_VALUES];
     int nv = 0;
     variants[nv++] = (variant){"effects-all", NAN, HR_EFFECTS_ALL, 0, 0};

@@ -4,25 +4,54 @@
 
 #include "cli.h"
 
-static const char usage[] =
-    "usage: hitray <command> [options]\n"
-    "\n"
-    "A ray tracer after F.S. Hill's Computer Graphics Using OpenGL, chapter 12.\n"
-    "\n"
-    "commands:\n"
-    "  render SCENE -o OUT   render an SDL or NFF scene file to an image (.png .exr .ppm .pfm)\n"
-    "  hits SCENE --origin X,Y,Z --dir X,Y,Z [--all]\n"
-    "                        where a ray meets the scene, as JSON lines\n"
-    "  shapes                list the shape modules found and their parameters\n"
-    "  savings SCENE         rays saved and error caused by each opt-in saving\n"
-    "  view SCENE            render in a window, coarse to fine, and fly Hill's camera\n"
-    "                        (runs hitray-view, built where SDL2 is installed)\n"
-    "\n"
-    "options:\n"
-    "  -h, --help            this help; 'hitray <command> --help' for a command's\n"
-    "  --version             the version of hitray and of the library it runs on\n"
-    "\n"
-    "Exit status: 0 on success, 1 on an error (explained in one line on stderr).\n";
+/* The verbs: one table for the dispatch, the help and the "did you mean". */
+typedef struct cli_verb {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *synopsis; /* what follows the name in the help */
+    const char *summary;  /* lines after the first start with '\n' and are indented */
+} cli_verb;
+
+static const cli_verb verbs[] = {
+    {"render", cmd_render, "SCENE -o OUT", "render an SDL or NFF scene file to an image (.png .exr .ppm .pfm)"},
+    {"hits", cmd_hits, "SCENE --origin X,Y,Z --dir X,Y,Z [--all]", "where a ray meets the scene, as JSON lines"},
+    {"shapes", cmd_shapes, "", "list the shape modules found and their parameters"},
+    {"savings", cmd_savings, "SCENE", "rays saved and error caused by each opt-in saving"},
+    {"view", cmd_view, "SCENE",
+     "render in a window, coarse to fine, and fly Hill's camera\n(runs hitray-view, built where SDL2 is installed)"},
+};
+#define VERB_COUNT (int32_t)(sizeof verbs / sizeof verbs[0])
+
+/* Help columns: the name and synopsis, then the summary from column 25. */
+#define SUMMARY_COLUMN 24
+
+static void print_usage(void)
+{
+    fputs("usage: hitray <command> [options]\n"
+          "\n"
+          "A ray tracer after F.S. Hill's Computer Graphics Using OpenGL, chapter 12.\n"
+          "\n"
+          "commands:\n",
+          stdout);
+    for (int32_t i = 0; i < VERB_COUNT; i++) {
+        const cli_verb *v = &verbs[i];
+        int width = printf("  %s%s%s", v->name, *v->synopsis ? " " : "", v->synopsis);
+        if (width >= SUMMARY_COLUMN - 1) printf("\n%*s", SUMMARY_COLUMN, "");
+        else printf("%*s", SUMMARY_COLUMN - width, "");
+        for (const char *c = v->summary; *c; c++) {
+            putchar(*c);
+            if (*c == '\n') printf("%*s", SUMMARY_COLUMN, "");
+        }
+        putchar('\n');
+    }
+    fputs("\n"
+          "options:\n"
+          "  -h, --help            this help; 'hitray <command> --help' for a command's\n"
+          "  --version             the version of hitray and of the library it runs on\n"
+          "\n"
+          "Exit status: 0 on success, 1 on an error (explained in one line on stderr).\n",
+          stdout);
+}
 
 static int print_version(void)
 {
@@ -46,18 +75,16 @@ int main(int argc, char **argv)
                          "'hitray <command> --help')",
                          verb, argv[2]);
     if (help) {
-        fputs(usage, stdout);
+        print_usage();
         return CLI_EXIT_OK;
     }
     if (version) return print_version();
-    if (!strcmp(verb, "render")) return cmd_render(argc - 1, argv + 1);
-    if (!strcmp(verb, "hits")) return cmd_hits(argc - 1, argv + 1);
-    if (!strcmp(verb, "shapes")) return cmd_shapes(argc - 1, argv + 1);
-    if (!strcmp(verb, "savings")) return cmd_savings(argc - 1, argv + 1);
-    if (!strcmp(verb, "view")) return cmd_view(argc - 1, argv + 1);
+    for (int32_t i = 0; i < VERB_COUNT; i++)
+        if (!strcmp(verb, verbs[i].name)) return verbs[i].run(argc - 1, argv + 1);
     if (verb[0] == '-') return cli_error("unknown option '%s' (see 'hitray --help')", verb);
-    static const char *const verbs[] = {"render", "hits", "shapes", "savings"};
-    const char *near = hr_suggest(verb, verbs, (int32_t)(sizeof verbs / sizeof verbs[0]));
+    const char *names[VERB_COUNT];
+    for (int32_t i = 0; i < VERB_COUNT; i++) names[i] = verbs[i].name;
+    const char *near = hr_suggest(verb, names, VERB_COUNT);
     if (near) return cli_error("unknown command '%s' (did you mean '%s'? see 'hitray --help')", verb, near);
     return cli_error("unknown command '%s' (see 'hitray --help')", verb);
 }

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "render_flags.h"
 #include "view.h"
 #include "view_window.h"
 
@@ -56,18 +57,19 @@ typedef struct view_request {
     const char *output;
     const char *screenshot;
     int exit_when_done;
-    int32_t width, height, spp, threads, depth, block;
-    int has_camera, exact;
-    double camera[10];
-    double min_weight;
+    cli_render_flags flags;
 } view_request;
 
-static const cli_option view_options[] = {
-    {"--size", NULL, 1},   {"--spp", NULL, 1},        {"--threads", NULL, 1},        {"--depth", NULL, 1},
-    {"--block", NULL, 1},  {"--camera", NULL, 1},     {"--output", "-o", 1},         {"--screenshot", NULL, 1},
-    {"--exit-when-done", NULL, 0}, {"--min-weight", NULL, 1}, {"--exact", NULL, 0}, {"--help", "-h", 0},
+static const cli_option view_own_options[] = {
+    {"--output", "-o", 1}, {"--screenshot", NULL, 1}, {"--exit-when-done", NULL, 0}, {"--help", "-h", 0},
     {NULL, NULL, 0},
 };
+/* The viewer's passes set their own block sizes and samples and keep every
+ * effect's analysis on (view_passes.c): --effects and --adaptive are not
+ * the viewer's. */
+#define VIEW_FLAGS \
+    (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_MIN_WEIGHT | \
+     CLI_RF_EXACT)
 
 #define PARSE_OK 0
 #define PARSE_ERROR CLI_EXIT_ERROR
@@ -84,10 +86,13 @@ static int check_image_file(const char *option, const char *path)
 static int parse_request(int argc, char **argv, view_request *r)
 {
     memset(r, 0, sizeof *r);
-    r->spp = 1, r->depth = -1, r->block = 1;
+    cli_render_flags_init(&r->flags);
     r->output = DEFAULT_OUTPUT;
+    cli_option options[32];
+    if (cli_render_flags_table(view_own_options, VIEW_FLAGS, options, 32) < 0)
+        return cli_error("view: the option table is too small");
     cli_parser p;
-    cli_parser_init(&p, argc, argv, view_options);
+    cli_parser_init(&p, argc, argv, options);
     const char *name, *value;
     int kind, positionals = 0, output_given = 0;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
@@ -103,17 +108,10 @@ static int parse_request(int argc, char **argv, view_request *r)
             return PARSE_HELP;
         }
         int ok = 1;
-        if (!strcmp(name, "--size")) ok = cli_parse_size(name, value, &r->width, &r->height);
-        else if (!strcmp(name, "--spp")) ok = cli_parse_int(name, value, 1, 65536, &r->spp);
-        else if (!strcmp(name, "--threads")) ok = cli_parse_int(name, value, 0, 4096, &r->threads);
-        else if (!strcmp(name, "--depth")) ok = cli_parse_int(name, value, 0, HR_MAX_RECURSION_DEPTH, &r->depth);
-        else if (!strcmp(name, "--block")) ok = cli_parse_int(name, value, 1, 4096, &r->block);
-        else if (!strcmp(name, "--camera")) ok = r->has_camera = cli_parse_doubles(name, value, 10, r->camera);
+        if (cli_render_flag_bit(name)) ok = cli_render_flags_parse(&r->flags, name, value);
         else if (!strcmp(name, "--output")) r->output = value, output_given = 1;
         else if (!strcmp(name, "--screenshot")) r->screenshot = value;
         else if (!strcmp(name, "--exit-when-done")) r->exit_when_done = 1;
-        else if (!strcmp(name, "--min-weight")) ok = cli_parse_fraction(name, value, &r->min_weight);
-        else if (!strcmp(name, "--exact")) r->exact = 1;
         if (!ok) return PARSE_ERROR;
     }
     if (!r->scene_path) return cli_error("view: no scene file given (see 'hitray view --help')");
@@ -121,7 +119,7 @@ static int parse_request(int argc, char **argv, view_request *r)
      * read-only directory is still of use. */
     if (output_given && check_image_file("--output", r->output)) return PARSE_ERROR;
     if (r->screenshot && check_image_file("--screenshot", r->screenshot)) return PARSE_ERROR;
-    if (r->exact && r->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
+    if (cli_render_flags_check(&r->flags)) return PARSE_ERROR;
     if (r->exit_when_done && !r->screenshot)
         return cli_error("--exit-when-done: needs --screenshot FILE (else the final pass would be lost)");
     return PARSE_OK;
@@ -352,13 +350,10 @@ static int run(viewer *v)
     const view_request *r = v->req;
     hr_render_options o;
     hr_render_options_default(&o);
+    cli_render_flags_apply(&r->flags, &o); /* the plan sets each pass's block size and samples */
     o.width = v->camera.width;
     o.height = v->camera.height;
-    o.threads = r->threads;
-    o.max_depth = r->depth;
-    o.min_weight = r->min_weight;
-    o.exact = r->exact;
-    v->passes = view_pass_plan(r->block, r->spp, v->plan);
+    v->passes = view_pass_plan(r->flags.block, r->flags.spp, v->plan);
     v->steps = view_steps_for(&v->camera);
     v->wake_event = SDL_RegisterEvents(1);
     if (v->wake_event == (uint32_t)-1) return cli_error("view: SDL has no event type left for the render thread");
@@ -394,11 +389,9 @@ int main(int argc, char **argv)
     memset(&v, 0, sizeof v);
     v.req = &req;
     if (cli_scene_load(&v.scene, req.scene_path)) return CLI_EXIT_ERROR;
-    if (req.width == 0) req.width = v.scene.sdl.camera.width, req.height = v.scene.sdl.camera.height;
     int rc = cli_scene_commit(&v.scene);
     if (!rc) {
-        v.camera = req.has_camera ? cli_camera_from_values(&v.scene, req.camera, req.width, req.height)
-                                  : cli_scene_camera(&v.scene, req.width, req.height);
+        v.camera = cli_render_flags_camera(&req.flags, &v.scene);
         hr_status st = hr_camera_validate(v.scene.ctx, &v.camera);
         if (st != HR_OK) rc = cli_library_error(v.scene.ctx, st);
     }

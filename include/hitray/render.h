@@ -59,6 +59,16 @@ typedef void (*hr_tile_fn)(void *user, int32_t x, int32_t y, int32_t width, int3
                              image, bit for bit, at the cost of the analysis
                              not done. For measuring what it saves. */
 
+/* The bounds hr_render checks its options against, public so that a caller
+ * can refuse a value before any work is done (the command line checks
+ * --threads before it loads the scene) with the same limit the library
+ * applies. */
+#define HR_RENDER_MAX_SIDE 65536    /* width, height */
+#define HR_RENDER_MAX_SAMPLES 65536 /* samples_per_pixel */
+#define HR_RENDER_MAX_THREADS 256   /* threads */
+#define HR_RENDER_MAX_BLOCK 4096    /* block_size */
+#define HR_RENDER_MAX_TILE 4096     /* tile_size */
+
 typedef struct hr_render_options {
     uint32_t struct_size;
     int32_t width;             /* 0: the camera's width */

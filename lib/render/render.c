@@ -28,11 +28,10 @@
 #include "image/image_internal.h"
 #include "image/image_srgb.h"
 #include "trace/query_nesting.h"
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 #include "geometry/vec.h"
 
 #define DEFAULT_TILE 32
-#define MAX_THREADS 256
 
 HR_API void hr_render_options_default(hr_render_options *o)
 {
@@ -368,7 +367,7 @@ static double now_seconds(void)
 static int32_t core_count(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > MAX_THREADS ? MAX_THREADS : (int32_t)n;
+    return n < 1 ? 1 : n > HR_RENDER_MAX_THREADS ? HR_RENDER_MAX_THREADS : (int32_t)n;
 }
 
 /* The window, once the image size is known: a width or height of 0 reaches
@@ -402,21 +401,21 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
     if (o->samples_per_pixel == 0) o->samples_per_pixel = 1;
     if (o->block_size == 0) o->block_size = 1;
     if (o->tile_size == 0) o->tile_size = DEFAULT_TILE;
-    if (o->width <= 0 || o->height <= 0 || o->width > 65536 || o->height > 65536)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "render: image size %dx%d must be within 1..65536", (int)o->width, (int)o->height);
-    if (o->samples_per_pixel < 1 || o->samples_per_pixel > 65536)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: samples per pixel %d must be within 1..65536",
-                        (int)o->samples_per_pixel);
-    if (o->threads < 0 || o->threads > MAX_THREADS)
+    if (o->width <= 0 || o->height <= 0 || o->width > HR_RENDER_MAX_SIDE || o->height > HR_RENDER_MAX_SIDE)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: image size %dx%d must be within 1..%d",
+                        (int)o->width, (int)o->height, HR_RENDER_MAX_SIDE);
+    if (o->samples_per_pixel < 1 || o->samples_per_pixel > HR_RENDER_MAX_SAMPLES)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: samples per pixel %d must be within 1..%d",
+                        (int)o->samples_per_pixel, HR_RENDER_MAX_SAMPLES);
+    if (o->threads < 0 || o->threads > HR_RENDER_MAX_THREADS)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: threads %d must be within 0..%d",
-                        (int)o->threads, MAX_THREADS);
-    if (o->block_size < 1 || o->block_size > 4096)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: block size %d must be within 1..4096",
-                        (int)o->block_size);
-    if (o->tile_size < 1 || o->tile_size > 4096)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: tile size %d must be within 1..4096",
-                        (int)o->tile_size);
+                        (int)o->threads, HR_RENDER_MAX_THREADS);
+    if (o->block_size < 1 || o->block_size > HR_RENDER_MAX_BLOCK)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: block size %d must be within 1..%d",
+                        (int)o->block_size, HR_RENDER_MAX_BLOCK);
+    if (o->tile_size < 1 || o->tile_size > HR_RENDER_MAX_TILE)
+        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: tile size %d must be within 1..%d",
+                        (int)o->tile_size, HR_RENDER_MAX_TILE);
     if (o->max_depth > HR_MAX_RECURSION_DEPTH)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: depth %d must be at most %d",
                         (int)o->max_depth, HR_MAX_RECURSION_DEPTH);

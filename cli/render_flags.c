@@ -1,0 +1,124 @@
+/* The render flags render, view and savings share (render_flags.h). */
+#include <string.h>
+
+#include "render_flags.h"
+
+typedef struct render_flag {
+    cli_option option;
+    unsigned bit;
+} render_flag;
+
+static const render_flag flags[] = {
+    {{"--size", NULL, 1}, CLI_RF_SIZE},
+    {{"--spp", NULL, 1}, CLI_RF_SPP},
+    {{"--threads", NULL, 1}, CLI_RF_THREADS},
+    {{"--depth", NULL, 1}, CLI_RF_DEPTH},
+    {{"--block", NULL, 1}, CLI_RF_BLOCK},
+    {{"--camera", NULL, 1}, CLI_RF_CAMERA},
+    {{"--effects", NULL, 1}, CLI_RF_EFFECTS},
+    {{"--adaptive", NULL, 1}, CLI_RF_ADAPTIVE},
+    {{"--min-weight", NULL, 1}, CLI_RF_MIN_WEIGHT},
+    {{"--exact", NULL, 0}, CLI_RF_EXACT},
+};
+#define FLAG_COUNT (int)(sizeof flags / sizeof flags[0])
+
+void cli_render_flags_init(cli_render_flags *f)
+{
+    hr_render_options o;
+    hr_render_options_default(&o);
+    memset(f, 0, sizeof *f);
+    f->width = o.width, f->height = o.height;
+    f->spp = o.samples_per_pixel, f->threads = o.threads, f->depth = o.max_depth, f->block = o.block_size;
+    f->effects = o.effects;
+    f->adaptive = o.adaptive_threshold, f->min_weight = o.min_weight, f->exact = o.exact;
+}
+
+static int named(const cli_option *table, const char *name)
+{
+    for (const cli_option *o = table; o->name; o++)
+        if (!strcmp(o->name, name)) return 1;
+    return 0;
+}
+
+int cli_render_flags_table(const cli_option *own, unsigned which, cli_option *out, int capacity)
+{
+    int n = 0;
+    for (const cli_option *o = own; o->name; o++) {
+        if (n + 1 >= capacity) return -1;
+        out[n++] = *o;
+    }
+    for (int i = 0; i < FLAG_COUNT; i++) {
+        if (!(which & flags[i].bit) || named(own, flags[i].option.name)) continue;
+        if (n + 1 >= capacity) return -1;
+        out[n++] = flags[i].option;
+    }
+    memset(&out[n], 0, sizeof out[n]);
+    return n;
+}
+
+unsigned cli_render_flag_bit(const char *name)
+{
+    for (int i = 0; i < FLAG_COUNT; i++)
+        if (!strcmp(flags[i].option.name, name)) return flags[i].bit;
+    return 0;
+}
+
+static int parse_effects(const char *option, const char *text, int32_t *out)
+{
+    if (!strcmp(text, "auto")) *out = HR_EFFECTS_AUTO;
+    else if (!strcmp(text, "all")) *out = HR_EFFECTS_ALL;
+    else return !cli_error("%s: '%s' is neither 'auto' nor 'all'", option, text);
+    return 1;
+}
+
+int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *value)
+{
+    unsigned bit = cli_render_flag_bit(name);
+    int ok = 1;
+    switch (bit) {
+    case CLI_RF_SIZE: ok = cli_parse_size(name, value, &f->width, &f->height); break;
+    case CLI_RF_SPP: ok = cli_parse_int(name, value, 1, HR_RENDER_MAX_SAMPLES, &f->spp); break;
+    case CLI_RF_THREADS: ok = cli_parse_int(name, value, 0, HR_RENDER_MAX_THREADS, &f->threads); break;
+    case CLI_RF_DEPTH: ok = cli_parse_int(name, value, 0, HR_MAX_RECURSION_DEPTH, &f->depth); break;
+    case CLI_RF_BLOCK: ok = cli_parse_int(name, value, 1, HR_RENDER_MAX_BLOCK, &f->block); break;
+    case CLI_RF_CAMERA: ok = cli_parse_doubles(name, value, 10, f->camera); break;
+    case CLI_RF_EFFECTS: ok = parse_effects(name, value, &f->effects); break;
+    case CLI_RF_ADAPTIVE: ok = cli_parse_fraction(name, value, &f->adaptive); break;
+    case CLI_RF_MIN_WEIGHT: ok = cli_parse_fraction(name, value, &f->min_weight); break;
+    case CLI_RF_EXACT: f->exact = 1; break;
+    default: return !cli_error("%s: not a render flag", name); /* a verb's mistake, not the user's */
+    }
+    if (ok) f->given |= bit;
+    return ok;
+}
+
+int cli_render_flags_check(const cli_render_flags *f)
+{
+    if (f->adaptive > 0 && f->spp < 2)
+        return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
+    if (f->adaptive > 0 && f->block > 1) return cli_error("--adaptive: cannot be combined with --block");
+    if (f->exact && f->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
+    return 0;
+}
+
+void cli_render_flags_apply(const cli_render_flags *f, hr_render_options *o)
+{
+    o->width = f->width;
+    o->height = f->height;
+    o->samples_per_pixel = f->spp;
+    o->threads = f->threads;
+    o->max_depth = f->depth;
+    o->block_size = f->block;
+    o->effects = f->effects;
+    o->adaptive_threshold = f->adaptive;
+    o->min_weight = f->min_weight;
+    o->exact = f->exact;
+}
+
+hr_camera cli_render_flags_camera(const cli_render_flags *f, const cli_scene *s)
+{
+    int32_t width = f->width ? f->width : s->sdl.camera.width;
+    int32_t height = f->width ? f->height : s->sdl.camera.height;
+    if (f->given & CLI_RF_CAMERA) return cli_camera_from_values(s, f->camera, width, height);
+    return cli_scene_camera(s, width, height);
+}
