@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/color_bounds.h"
 #include "util/errors.h"
 #include "nff/nff_reader.h"
 
@@ -77,9 +78,9 @@ hr_status nff_read_view(nff_reader *r, nff_word v)
 static hr_status check_color(nff_reader *r, nff_word at, const char *what, const double *c)
 {
     for (int i = 0; i < 3; i++)
-        if (!(fabs(c[i]) <= 1e6))
-            return nff_error(r, HR_ERROR_SDL, at, "the %s %g %g %g of '%.*s' is beyond +-1e6",
-                             what, c[0], c[1], c[2], (int)at.length, at.text);
+        if (!(fabs(c[i]) <= HR_MAX_COLOR))
+            return nff_error(r, HR_ERROR_SDL, at, "the %s %g %g %g of '%.*s' is beyond +-%g",
+                             what, c[0], c[1], c[2], (int)at.length, at.text, HR_MAX_COLOR);
     return HR_OK;
 }
 

@@ -28,7 +28,7 @@
 #include "image/image_internal.h"
 #include "image/image_srgb.h"
 #include "trace/query_nesting.h"
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 #include "geometry/vec.h"
 
 #define DEFAULT_TILE 32

@@ -9,7 +9,8 @@
 
 #include "util/errors.h"
 #include "util/field_table.h"
-#include "trace/ray_cull.h"
+#include "scene/cull_prepare.h"
+#include "scene/material_analysis.h"
 #include "scene/scene_internal.h"
 #include "util/sized_copy.h"
 #include "texture/texture.h"
@@ -42,7 +43,7 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     for (int64_t i = scene->object_count - 1; i >= 0; i--) hr_object_free(scene->objects[i]);
     free(scene->objects);
     free(scene->lights);
-    hr_scene_free_pixmaps(scene);
+    hr_pixmap_set_free(&scene->pixmaps);
     free(scene->unbounded);
     accel_bvh4_release(&scene->bvh);
     free(scene->leaf_objects);

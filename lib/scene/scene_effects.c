@@ -2,11 +2,43 @@
  * and each material's flags (HR_MAT_*), worked out at commit so that shade
  * tests one bit. */
 #include <stdint.h>
+#include <string.h>
 
 #include "scene/scene_internal.h"
-#include "trace/specular.h"
+#include "scene/material_analysis.h"
 #include "texture/texture.h"
 #include "geometry/vec.h"
+
+/* a <- a * b, 4x4 row-major. */
+static void multiply(double a[16], const double b[16])
+{
+    double r[16];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            r[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
+                           a[4 * i + 3] * b[12 + j];
+    memcpy(a, r, sizeof r);
+}
+
+/* The textured object's world-to-object map and back, for its texture. A
+ * child's m maps to its parent's space: the world map is the product of
+ * the maps up the chain, the parent's on the left; the inverse the other
+ * way round. */
+static void place_texture(hr_object *o)
+{
+    hr_texture *t = o->texture;
+    if (!t) return;
+    memcpy(t->to_world, o->m, sizeof t->to_world);
+    memcpy(t->to_object, o->inv, sizeof t->to_object);
+    for (const hr_object *p = o->parent; p; p = p->parent) {
+        double m[16];
+        memcpy(m, p->m, sizeof m);
+        multiply(m, t->to_world);
+        memcpy(t->to_world, m, sizeof m);
+        multiply(t->to_object, p->inv);
+    }
+}
+
 
 /* Which effects each material and the whole scene call for. A coefficient
  * below Hill's threshold spawns no ray and contributes nothing (the ray is
@@ -40,7 +72,7 @@ void hr_scene_work_out_effects(hr_scene *s)
             for (int32_t k = 0; k < s->light_count; k++)
                 if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
-        hr_texture_place(o);
+        place_texture(o);
         if (o->texture && (f & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) effects |= HR_EFFECT_TEXTURE;
         o->specular_cutoff = hr_specular_cutoff(m->specular_exponent);
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;

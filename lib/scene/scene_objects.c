@@ -9,7 +9,7 @@
 
 #include "core/context_internal.h"
 #include "util/errors.h"
-#include "trace/ray_cull.h"
+#include "scene/cull_prepare.h"
 #include "scene/scene_internal.h"
 #include "scene/scene_params.h"
 #include "util/sized_copy.h"
@@ -240,7 +240,8 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
                           message[0] ? message : "create failed without a message");
         }
     }
-    if (st == HR_OK) st = hr_texture_bind(s, o);
+    if (st == HR_OK)
+        st = hr_texture_bind(s->ctx, &o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
     if (st == HR_OK) {
         for (int32_t i = 0; i < n; i++)
             if (children[i]) {

@@ -1,39 +1,30 @@
-/* A scene's pixmaps (Hill's makePixmap) and how an image texture reads one.
- *
- * Each pixmap is kept on its own allocation, so the objects that use it
- * hold its address across later additions. */
+/* A scene's pixmaps (Hill's makePixmap; lib/scene/scene_pixmaps.c is the
+ * public door) and how an image texture reads one. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "util/errors.h"
-#include "scene/scene_internal.h"
+#include "util/color_bounds.h"
 #include "texture/texture.h"
 #include "geometry/vec.h"
 
-#define PIXEL_LIMIT 1e6 /* the bound hr_material_validate puts on colours */
-
-const hr_pixmap *hr_scene_find_pixmap(const hr_scene *s, int32_t index)
+const hr_pixmap *hr_pixmap_find(const hr_pixmap_set *set, int32_t index)
 {
-    for (int32_t i = 0; i < s->pixmap_count; i++)
-        if (s->pixmaps[i]->index == index) return s->pixmaps[i];
+    for (int32_t i = 0; i < set->count; i++)
+        if (set->pixmaps[i]->index == index) return set->pixmaps[i];
     return NULL;
 }
 
-void hr_scene_free_pixmaps(hr_scene *s)
+void hr_pixmap_set_free(hr_pixmap_set *set)
 {
-    for (int32_t i = 0; i < s->pixmap_count; i++) {
-        free(s->pixmaps[i]->rgb);
-        free(s->pixmaps[i]);
+    for (int32_t i = 0; i < set->count; i++) {
+        free(set->pixmaps[i]->rgb);
+        free(set->pixmaps[i]);
     }
-    free(s->pixmaps);
-    s->pixmaps = NULL;
-    s->pixmap_count = s->pixmap_cap = 0;
-}
-
-HR_API int32_t hr_scene_has_pixmap(const hr_scene *s, int32_t index)
-{
-    return s && hr_scene_find_pixmap(s, index) != NULL;
+    free(set->pixmaps);
+    set->pixmaps = NULL;
+    set->count = set->cap = 0;
 }
 
 /* The image's pixels as RGB, checked. */
@@ -49,13 +40,13 @@ static hr_status copy_pixels(hr_context *ctx, int32_t index, const hr_image *ima
     for (size_t p = 0; p < (size_t)w * (size_t)h; p++)
         for (int c = 0; c < 3; c++) {
             const float v = src[p * (size_t)ch + (size_t)c];
-            if (!(fabsf(v) <= PIXEL_LIMIT)) {
+            if (!(fabsf(v) <= HR_MAX_COLOR)) {
                 free(rgb);
                 return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                          "pixmap %d: pixel (%d, %d) has %s %g; pixels must be finite, each within "
                          "+-%g",
                          (int)index, (int)(p % (size_t)w), (int)(p / (size_t)w),
-                         c == 0 ? "red" : c == 1 ? "green" : "blue", (double)v, PIXEL_LIMIT);
+                         c == 0 ? "red" : c == 1 ? "green" : "blue", (double)v, HR_MAX_COLOR);
             }
             rgb[p * 3 + (size_t)c] = v;
         }
@@ -63,27 +54,24 @@ static hr_status copy_pixels(hr_context *ctx, int32_t index, const hr_image *ima
     return HR_OK;
 }
 
-HR_API hr_status hr_scene_set_pixmap(hr_scene *s, int32_t index, const hr_image *image)
+hr_status hr_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image)
 {
-    if (!s) return HR_ERROR_INVALID_ARGUMENT;
-    hr_context *ctx = s->ctx;
     if (!image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: NULL image", (int)index);
-    if (s->committed) return hr_error(ctx, HR_ERROR_STATE, "cannot make a pixmap in a committed scene");
     if (index < 1)
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap number %d: pixmaps are numbered from 1",
                         (int)index);
-    if (hr_scene_find_pixmap(s, index))
+    if (hr_pixmap_find(set, index))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d is made already", (int)index);
     const int32_t ch = hr_image_channels(image);
     if (hr_image_width(image) < 1 || hr_image_height(image) < 1 || (ch != 3 && ch != 4))
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: the image must be RGB or RGBA",
                         (int)index);
-    if (s->pixmap_count == s->pixmap_cap) {
-        int32_t cap = s->pixmap_cap ? 2 * s->pixmap_cap : 4;
-        hr_pixmap **grown = realloc(s->pixmaps, (size_t)cap * sizeof *grown);
+    if (set->count == set->cap) {
+        int32_t cap = set->cap ? 2 * set->cap : 4;
+        hr_pixmap **grown = realloc(set->pixmaps, (size_t)cap * sizeof *grown);
         if (!grown) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-        s->pixmaps = grown;
-        s->pixmap_cap = cap;
+        set->pixmaps = grown;
+        set->cap = cap;
     }
     hr_pixmap *pm = calloc(1, sizeof *pm);
     if (!pm) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -95,7 +83,7 @@ HR_API hr_status hr_scene_set_pixmap(hr_scene *s, int32_t index, const hr_image 
     pm->index = index;
     pm->width = hr_image_width(image);
     pm->height = hr_image_height(image);
-    s->pixmaps[s->pixmap_count++] = pm;
+    set->pixmaps[set->count++] = pm;
     return HR_OK;
 }
 

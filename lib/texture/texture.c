@@ -6,21 +6,19 @@
 #include <string.h>
 
 #include "util/errors.h"
-#include "scene/scene_internal.h"
 #include "util/solid_textures.h"
 #include "texture/texture.h"
 #include "geometry/transform_inline.h"
 #include "geometry/vec.h"
 
 /* Every parameter of `kind`: the material's, checked, then the defaults. */
-static hr_status fill_params(hr_context *ctx, const hr_object *o, const hr_texture_kind *kind,
-                             double *out)
+static hr_status fill_params(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
+                             const hr_texture_kind *kind, double *out)
 {
-    const hr_material *m = &o->material;
     if (m->parameter_count > kind->param_count)
         return hr_error(ctx, HR_ERROR_PARAMETER,
                         "shape '%s': texture %d (%s) takes at most %d parameters, not %d",
-                        o->cls->name, (int)m->texture, kind->name, (int)kind->param_count,
+                        cls->name, (int)m->texture, kind->name, (int)kind->param_count,
                         (int)m->parameter_count);
     for (int32_t i = 0; i < kind->param_count; i++) {
         const hr_texture_param *p = &kind->params[i];
@@ -39,7 +37,7 @@ static hr_status fill_params(hr_context *ctx, const hr_object *o, const hr_textu
         if (why)
             return hr_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s': texture %d (%s): parameter %d (%s) is %g and %s%s",
-                            o->cls->name, (int)m->texture, kind->name, (int)i + 1, p->name, v, why,
+                            cls->name, (int)m->texture, kind->name, (int)i + 1, p->name, v, why,
                             range);
         out[i] = v;
     }
@@ -47,40 +45,41 @@ static hr_status fill_params(hr_context *ctx, const hr_object *o, const hr_textu
 }
 
 
-hr_status hr_texture_bind(hr_scene *s, hr_object *o)
+hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
+                          const void *shape, const char *module_path, const hr_pixmap_set *pixmaps,
+                          hr_texture **out)
 {
-    hr_context *ctx = s->ctx;
-    const int32_t id = o->material.texture;
-    o->texture = NULL;
+    const int32_t id = m->texture;
+    *out = NULL;
     /* A composite's hits carry its leaves' materials: its own is unused. */
-    if (id == 0 || (o->cls->flags & HR_SHAPE_COMPOSITE)) return HR_OK;
+    if (id == 0 || (cls->flags & HR_SHAPE_COMPOSITE)) return HR_OK;
     const hr_texture_kind *kind = id < 0 ? hr_solid_texture_find(id) : &hr_image_texture_kind;
     const hr_pixmap *pixmap = NULL;
     if (!kind) {
         char known[256];
         hr_solid_texture_list(known, sizeof known);
         return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': there is no solid texture %d (there are %s)",
-                        o->cls->name, (int)id, known);
+                        cls->name, (int)id, known);
     }
     if (id > 0) {
-        const int has_entry = HR_CLASS_HAS(o->cls, surface_uv) && o->cls->surface_uv;
-        if (!has_entry || o->cls->surface_uv(o->shape, NULL, NULL) != 1)
+        const int has_entry = HR_CLASS_HAS(cls, surface_uv) && cls->surface_uv;
+        if (!has_entry || cls->surface_uv(shape, NULL, NULL) != 1)
             return hr_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s' (module '%s') gives no (u, v) on %s, so it cannot carry "
                             "image texture %d",
-                            o->cls->name, o->module_path,
+                            cls->name, module_path,
                             has_entry ? "this object's surface (its data has none: a mesh file "
                                         "without texture coordinates, say)"
                                       : "its surface",
                             (int)id);
-        if (!(pixmap = hr_scene_find_pixmap(s, id)))
+        if (!(pixmap = hr_pixmap_find(pixmaps, id)))
             return hr_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s': image texture %d needs pixmap %d, which is not made "
                             "(makePixmap %d FILE before the object)",
-                            o->cls->name, (int)id, (int)id, (int)id);
+                            cls->name, (int)id, (int)id, (int)id);
     }
     double params[HR_TEXTURE_MAX_PARAMS];
-    hr_status st = fill_params(ctx, o, kind, params);
+    hr_status st = fill_params(ctx, m, cls, kind, params);
     if (st) return st;
     if (id > 0 && (params[HR_IMAGE_PARAM_UMIN] == params[HR_IMAGE_PARAM_UMAX] ||
                    params[HR_IMAGE_PARAM_VMIN] == params[HR_IMAGE_PARAM_VMAX] ||
@@ -89,48 +88,19 @@ hr_status hr_texture_bind(hr_scene *s, hr_object *o)
         return hr_error(ctx, HR_ERROR_PARAMETER,
                         "shape '%s': image texture %d: the (u, v) range [%g, %g] x [%g, %g] must "
                         "not be empty (u min != u max, v min != v max)",
-                        o->cls->name, (int)id, params[0], params[1], params[2], params[3]);
+                        cls->name, (int)id, params[0], params[1], params[2], params[3]);
     hr_texture *t = calloc(1, sizeof *t);
     if (!t) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     t->kind = kind;
     t->pixmap = pixmap;
     memcpy(t->params, params, (size_t)kind->param_count * sizeof *params);
-    o->texture = t;
+    *out = t;
     return HR_OK;
 }
 
-/* a <- a * b, 4x4 row-major. */
-static void multiply(double a[16], const double b[16])
+hr_color hr_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+                          const hr_hit *hit)
 {
-    double r[16];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++)
-            r[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] +
-                           a[4 * i + 3] * b[12 + j];
-    memcpy(a, r, sizeof r);
-}
-
-/* A child's m maps to its parent's space: the world map is the product of
- * the maps up the chain, the parent's on the left; the inverse the other
- * way round. */
-void hr_texture_place(hr_object *o)
-{
-    hr_texture *t = o->texture;
-    if (!t) return;
-    memcpy(t->to_world, o->m, sizeof t->to_world);
-    memcpy(t->to_object, o->inv, sizeof t->to_object);
-    for (const hr_object *p = o->parent; p; p = p->parent) {
-        double m[16];
-        memcpy(m, p->m, sizeof m);
-        multiply(m, t->to_world);
-        memcpy(t->to_world, m, sizeof m);
-        multiply(t->to_object, p->inv);
-    }
-}
-
-hr_color hr_texture_color(const hr_object *o, const hr_hit *hit)
-{
-    const hr_texture *t = o->texture;
     hr_vec3 p = hr_xform_point(t->to_object, hit->point);
     hr_vec3 n = hr_xform_normal(t->to_world, hit->normal);
     if (t->kind->solid) {
@@ -147,7 +117,7 @@ hr_color hr_texture_color(const hr_object *o, const hr_hit *hit)
     local.point = p;
     local.normal = n;
     double uv[2] = {0.0, 0.0};
-    o->cls->surface_uv(o->shape, &local, uv);
+    cls->surface_uv(shape, &local, uv);
     const double *q = t->params;
     double s = (uv[0] - q[HR_IMAGE_PARAM_UMIN]) / (q[HR_IMAGE_PARAM_UMAX] - q[HR_IMAGE_PARAM_UMIN]);
     double r = (uv[1] - q[HR_IMAGE_PARAM_VMIN]) / (q[HR_IMAGE_PARAM_VMAX] - q[HR_IMAGE_PARAM_VMIN]);

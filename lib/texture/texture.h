@@ -73,9 +73,19 @@ typedef struct hr_pixmap {
  * t up from the bottom: bilinear between the four nearest texel centres,
  * wrapping at the edges (a texture tiles), or the nearest texel. */
 hr_color hr_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest);
-/* Pixmap `index` of the scene, NULL if it is not made. */
-const hr_pixmap *hr_scene_find_pixmap(const hr_scene *s, int32_t index);
-void hr_scene_free_pixmaps(hr_scene *s);
+/* A scene's pixmaps (hr_scene.pixmaps), each on its own allocation, so
+ * the textures that use one hold its address across later additions. */
+typedef struct hr_pixmap_set {
+    hr_pixmap **pixmaps;
+    int32_t count, cap;
+} hr_pixmap_set;
+/* Pixmap `index` of the set, NULL if it is not made. */
+const hr_pixmap *hr_pixmap_find(const hr_pixmap_set *set, int32_t index);
+/* Adds pixmap `index` (>= 1, not made yet) with the pixels of `image`
+ * (RGB or RGBA, each finite and within +-HR_MAX_COLOR), raising the error
+ * on ctx when it cannot. */
+hr_status hr_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image);
+void hr_pixmap_set_free(hr_pixmap_set *set);
 
 /* What an object's texture needs at a hit. */
 typedef struct hr_texture {
@@ -87,17 +97,19 @@ typedef struct hr_texture {
     double to_world[16];  /* and back, for the normal */
 } hr_texture;
 
-struct hr_object;
 /* At hr_scene_add_object, after the shape is made: checks the material's
- * texture and parameters and sets o->texture (NULL when untextured);
- * refuses an image texture on a class that gives no (u, v), or whose
- * pixmap is not made, naming the class, the module and the number. */
-hr_status hr_texture_bind(hr_scene *s, struct hr_object *o);
-/* At commit, once every composite has taken its children: the object's
- * world-to-object map, through its parents. */
-void hr_texture_place(struct hr_object *o);
+ * texture and parameters and sets *out (NULL when untextured or a
+ * composite, whose hits carry its leaves' materials); refuses an image
+ * texture on a class that gives no (u, v), or whose pixmap is not in
+ * `pixmaps`, naming the class, the module and the number. */
+hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
+                          const void *shape, const char *module_path, const hr_pixmap_set *pixmaps,
+                          hr_texture **out);
 /* The colour that multiplies the material's ambient and diffuse colours at
- * `hit` (world space, as shade has it) of the textured object `o`. */
-hr_color hr_texture_color(const struct hr_object *o, const hr_hit *hit);
+ * `hit` (world space, as shade has it) of an object of class `cls` and shape
+ * `shape` textured by `t`; t's maps (to_object, to_world) are set at commit
+ * (lib/scene/scene_effects.c). */
+hr_color hr_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+                          const hr_hit *hit);
 
 #endif

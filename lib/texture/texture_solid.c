@@ -11,15 +11,15 @@
 #include <math.h>
 
 #include "texture/texture.h"
+#include "util/color_bounds.h"
 #include "geometry/vec.h"
 
 #define PI 3.14159265358979323846
 
-#define COLOR_LIMIT 1e6 /* the bound hr_material_validate puts on colours */
 #define COLOR_PARAMS(prefix, r, g, b)                                          \
-    {prefix " red", r, HR_TEXTURE_PARAM_ANY, -COLOR_LIMIT, COLOR_LIMIT},       \
-        {prefix " green", g, HR_TEXTURE_PARAM_ANY, -COLOR_LIMIT, COLOR_LIMIT}, \
-        {prefix " blue", b, HR_TEXTURE_PARAM_ANY, -COLOR_LIMIT, COLOR_LIMIT}
+    {prefix " red", r, HR_TEXTURE_PARAM_ANY, -HR_MAX_COLOR, HR_MAX_COLOR},       \
+        {prefix " green", g, HR_TEXTURE_PARAM_ANY, -HR_MAX_COLOR, HR_MAX_COLOR}, \
+        {prefix " blue", b, HR_TEXTURE_PARAM_ANY, -HR_MAX_COLOR, HR_MAX_COLOR}
 
 /* Colour A where `t` is 1, colour B where it is 0; the colours are the
  * parameters from `first` on. */

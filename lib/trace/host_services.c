@@ -7,7 +7,7 @@
 
 #include "core/context_internal.h"
 #include "trace/object_trace.h"
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 
 static void *host_alloc(size_t size) { return calloc(1, size ? size : 1); }
 static void host_free(void *p) { free(p); }

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 
 hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
 {

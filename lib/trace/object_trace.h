@@ -9,7 +9,7 @@
 
 #include <math.h>
 
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 #include "geometry/transform_inline.h"
 #include "geometry/vec.h"
 

@@ -1,10 +1,10 @@
 /* Internal: cheap tests that let a ray pass what it cannot hit without
  * tracing it (lib/trace/trace.c): an unbounded object (a plane) by its
- * object-space bounds, and the whole BVH by the box around its objects. A
- * header of their own so that tests/core/test_ray_cull.c can check them on
- * many rays. */
-#ifndef HITRAY_LIB_UNBOUNDED_CULL_H
-#define HITRAY_LIB_UNBOUNDED_CULL_H
+ * object-space bounds, and the whole BVH by the box around its objects,
+ * from what commit prepared (lib/scene/cull_prepare.h). A header of their
+ * own so that tests/core/test_ray_cull.c can check them on many rays. */
+#ifndef HITRAY_LIB_RAY_CULL_H
+#define HITRAY_LIB_RAY_CULL_H
 
 #include <float.h>
 #include <math.h>
@@ -14,31 +14,10 @@
 
 #include <hitray/shape_kit_box.h>
 
+#include "scene/cull_prepare.h"
 #include "scene/scene_internal.h"
 #include "geometry/transform_inline.h"
 #include "geometry/vec.h"
-
-/* Sets o->slab_axes, the axes on which its object-space bounds have a finite
- * end (and no NaN), and o->cull_dir_limit, 2^190 over the largest row sum
- * of |inv|'s linear part (unbounded_misses), from local_bounds and inv. */
-static inline void unbounded_cull_prepare(hr_object *o)
-{
-    const double *lo = &o->local_bounds.lo.x, *hi = &o->local_bounds.hi.x;
-    o->slab_axes = 0;
-    for (int k = 0; k < 3; k++)
-        if (!isnan(lo[k]) && !isnan(hi[k]) && lo[k] <= hi[k] && (isfinite(lo[k]) || isfinite(hi[k])))
-            o->slab_axes |= 1u << k;
-    const hr_xform_error_terms terms = hr_xform_error_terms_of(o->inv);
-    const double gain = fmax(terms.row_abs[0], fmax(terms.row_abs[1], terms.row_abs[2]));
-    o->cull_dir_limit = gain > 0.0 ? 0x1p190 / gain : 0.0; /* NaN or 0: never culled */
-}
-
-/* The widening of a slab's entry and exit is the shape kit's
- * (SHAPE_SLAB_SLACK, SHAPE_SLAB_TINY): as the BVH's (accel/bvh4.h), far more
- * than the two roundings of each distance, and enough to cover a shape's own
- * rounding of t as the BVH's slack does. */
-#define CULL_SLACK SHAPE_SLAB_SLACK
-#define CULL_TINY SHAPE_SLAB_TINY
 
 /* Whether the unbounded object `o` (a plane) certainly has no hit in the
  * open (tmin, tmax), from the finite ends of its object-space bounds (the
@@ -86,21 +65,6 @@ static inline __attribute__((always_inline)) int unbounded_misses(const hr_objec
         shape_slab_window(ok, dk, lo[k], hi[k], &t_near, &t_far);
     } while (axes &= axes - 1);
     return shape_window_missed(t_near, t_far, tmin, tmax);
-}
-
-/* The box the BVH walk of a scene may meet (at commit): the union of its
- * objects' world bounds, widened by CULL_SLACK of its largest coordinate
- * (plus CULL_TINY), far more than the float walk's own rounding of boxes
- * outward (2^-24), so that a ray this box culls is one the walk could only
- * take to shapes it misses by more than that. An empty union (no bounded
- * object) stays empty: lo > hi. */
-static inline hr_bounds cull_box_widened(hr_bounds b)
-{
-    if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) return b;
-    const double pad = CULL_SLACK * fmax(v3_max_abs(b.lo), v3_max_abs(b.hi)) + CULL_TINY;
-    b.lo = v3(b.lo.x - pad, b.lo.y - pad, b.lo.z - pad);
-    b.hi = v3(b.hi.x + pad, b.hi.y + pad, b.hi.z + pad);
-    return b;
 }
 
 /* Whether the ray certainly meets nothing inside the finite box `b` in the

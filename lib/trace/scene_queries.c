@@ -9,7 +9,7 @@
 #include "util/errors.h"
 #include "trace/object_trace.h"
 #include "trace/query_nesting.h"
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 #include "geometry/vec.h"
 
 static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)

@@ -27,23 +27,10 @@
 #include <math.h>
 
 #include "trace/cook_torrance.h"
-#include "scene/scene_internal.h"
+#include "scene/material_analysis.h"
+#include "trace/trace_context.h"
 #include "texture/texture.h"
 #include "geometry/vec.h"
-
-/* A light adds exactly nothing where, in every channel, its colour or
- * both of the material's lit coefficients are zero: no multiplication can
- * make that non-zero, so its shadow ray can be saved. Commit marks the
- * materials some light is inert for (HR_MAT_INERT_LIGHT); only their light
- * loops ask. */
-int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
-{
-    hr_color d = flags & HR_MAT_DIFFUSE ? mat->diffuse : rgb(0, 0, 0);
-    hr_color sp = flags & HR_MAT_SPECULAR ? mat->specular : rgb(0, 0, 0);
-    return (L->color.r == 0.0 || (d.r == 0.0 && sp.r == 0.0)) &&
-           (L->color.g == 0.0 || (d.g == 0.0 && sp.g == 0.0)) &&
-           (L->color.b == 0.0 || (d.b == 0.0 && sp.b == 0.0));
-}
 
 /* Cook-Torrance's specular term of one light, weighted by the fraction as
  * Hill mixes it with the diffuse, (1 - f) R_d + f R_s (the diffuse's share
@@ -91,7 +78,7 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
             } else {
                 hr_vec3 half = v3_normalize(v3_add(sdir, to_eye));
                 double phong = v3_dot(half, m);
-                /* At or below the cut-off pow would give exactly 0 (specular.h). */
+                /* At or below the cut-off pow would give exactly 0 (scene/material_analysis.h). */
                 if (phong > o->specular_cutoff)
                     c = rgb_add(c, rgb_scale(mat->specular, pow(phong, mat->specular_exponent)));
             }
@@ -144,7 +131,7 @@ shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t
 {
     *buf = o->material;
     if (o->texture && (flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) {
-        hr_color t = hr_texture_color(o, h);
+        hr_color t = hr_texture_color(o->texture, o->cls, o->shape, h);
         buf->ambient = rgb_mul(buf->ambient, t);
         buf->diffuse = rgb_mul(buf->diffuse, t);
         tc->effects_ran |= HR_EFFECT_TEXTURE;

@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 #include "geometry/vec.h"
 
 /* The distance is the hit's own error bound projected on the side vector

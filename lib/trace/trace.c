@@ -8,7 +8,7 @@
 
 #include "trace/object_trace.h"
 #include "trace/ray_cull.h"
-#include "scene/scene_internal.h"
+#include "trace/trace_context.h"
 #include "geometry/vec.h"
 
 hr_status hr_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity)

@@ -1,5 +1,5 @@
 /* shade skips pow(phong, exponent) at or below hr_specular_cutoff
- * (lib/trace/specular.h), which is only right if pow is exactly 0 there: checked
+ * (lib/scene/material_analysis.h), which is only right if pow is exactly 0 there: checked
  * for the exponents the SPD and Hill's scenes use and the extremes, on
  * 200,000 values each up to the cut-off (the cut-off itself among them),
  * and the cut-off is no more than a few percent below where pow really
@@ -9,7 +9,7 @@
 #include <stdio.h>
 
 #include "hr_test.h"
-#include "trace/specular.h"
+#include "scene/material_analysis.h"
 
 int main(void)
 {

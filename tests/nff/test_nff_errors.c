@@ -60,7 +60,7 @@ static const bad_case cases[] = {
      "1:1: the 'v' block cannot make rays: view angle 180 must be in (0, 180) degrees"},
     /* Colours, lights, materials. */
     {"b 0 0\n", HR_ERROR_SDL, "1:1: expected 3 numbers after 'b' (r g b), found end of file"},
-    {"b 0 2e6 0\n", HR_ERROR_SDL, "1:1: the colour 0 2e+06 0 of 'b' is beyond +-1e6"},
+    {"b 0 2e6 0\n", HR_ERROR_SDL, "1:1: the colour 0 2e+06 0 of 'b' is beyond +-1e+06"},
     {"l 1 2\n", HR_ERROR_SDL,
      "1:1: expected 3 numbers after 'l' (x y z [r g b]), found end of file"},
     {"l 1 2 3 1 1\n", HR_ERROR_SDL,
@@ -69,7 +69,7 @@ static const bad_case cases[] = {
     {"l 1 2 3 1 x 1\n", HR_ERROR_SDL,
      "1:11: expected 3 numbers after 'l' (x y z r g b: the colour on the line of the "
      "position), found 'x'"},
-    {"l 1 2 3 5e6 1 1\n", HR_ERROR_SDL, "1:1: the colour 5e+06 1 1 of 'l' is beyond +-1e6"},
+    {"l 1 2 3 5e6 1 1\n", HR_ERROR_SDL, "1:1: the colour 5e+06 1 1 of 'l' is beyond +-1e+06"},
     {"f 1 1 1 1 0 1 0\n", HR_ERROR_SDL,
      "1:1: expected 8 numbers after 'f' (r g b Kd Ks Shine T ior), found end of file"},
     {"f 1 1 1 -1 0 1 0 0\n", HR_ERROR_SDL, "1:9: 'Kd' = -1 of 'f' must be >= 0"},

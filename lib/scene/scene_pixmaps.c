@@ -1,0 +1,18 @@
+/* The scene's doors to its pixmaps (Hill's makePixmap): the pixmaps
+ * themselves are texture's (lib/texture/pixmap.c). */
+#include "scene/scene_internal.h"
+#include "texture/texture.h"
+#include "util/errors.h"
+
+HR_API int32_t hr_scene_has_pixmap(const hr_scene *s, int32_t index)
+{
+    return s && hr_pixmap_find(&s->pixmaps, index) != NULL;
+}
+
+HR_API hr_status hr_scene_set_pixmap(hr_scene *s, int32_t index, const hr_image *image)
+{
+    if (!s) return HR_ERROR_INVALID_ARGUMENT;
+    if (image && s->committed)
+        return hr_error(s->ctx, HR_ERROR_STATE, "cannot make a pixmap in a committed scene");
+    return hr_pixmap_add(s->ctx, &s->pixmaps, index, image);
+}

@@ -1,0 +1,129 @@
+/* Internal: the per-thread tracing context (what hr_hit_args.call points
+ * to), its scratch lists, and the entry points of tracing and shading that
+ * the renderer and the public queries call. */
+#ifndef HITRAY_LIB_TRACE_CONTEXT_H
+#define HITRAY_LIB_TRACE_CONTEXT_H
+
+#include <stdatomic.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <hitray/hitray.h>
+
+#include "scene/scene_internal.h"
+
+/* Per-thread state of tracing: what hr_hit_args.call points to. Scratch
+ * lists are reused across rays, so tracing allocates only while they grow. */
+#define HR_SCRATCH_MAX 64
+#define HR_OCCLUDER_SLOTS 8
+typedef struct hr_trace_ctx {
+    /* What tracing reads (hr_object_trace and the host services a shape's
+     * hit calls); hr_trace_ctx_init_tracing sets only these. */
+    const hr_scene *scene;
+    const hr_hit *borrowed;     /* storage of a list on a caller's stack (one
+                                   public query's): growing that list copies
+                                   it to the heap instead of realloc'ing */
+    hr_status status;           /* first failure inside a shape, if any */
+    int32_t scratch_used;
+    int32_t scratch_ready;      /* scratch[0 .. scratch_ready) are initialised
+                                   (set up on first use, so a context costs
+                                   nothing for lists a query never needs) */
+    /* What shading reads besides. */
+    uint64_t rays_shadow, rays_reflected, rays_refracted;
+    int32_t force_all_effects;
+    /* Cancelling from inside a pixel: a render can spend forever in one
+     * pixel (glass facing glass at depth 60 is 2^60 rays), and a progress
+     * callback called only between tiles could then never stop it. Every
+     * HR_POLL_INTERVAL shade calls the renderer's `poll` runs (it may call
+     * the progress callback); shade returns at once while `*cancelled`. */
+    const atomic_int *cancelled; /* NULL: nothing can cancel (public queries) */
+    const int32_t *cancel_flag;  /* hr_render_options.cancel (may be NULL) */
+    void (*poll)(void *user);
+    void *poll_user;
+    uint32_t shade_calls;
+    /* Contribution cut-off (hr_render_options.min_weight): a bounce whose
+     * path weight would fall below this is not traced; 0: none. */
+    double min_weight;
+    uint64_t rays_cut;
+    uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
+    /* The object that blocked the last shadow ray towards each light (by
+     * light index modulo the slots; NULL: it was not blocked), asked first
+     * by the next one (hr_scene_trace_shadow). Per thread, so no two
+     * threads share them; they change how fast a shadow ray is answered,
+     * never the answer. */
+    const hr_object *occluder[HR_OCCLUDER_SLOTS];
+    /* Last, so that setting up a context skips them (scratch_ready). */
+    hr_intersection scratch[HR_SCRATCH_MAX];
+} hr_trace_ctx;
+
+#define HR_POLL_INTERVAL 65536u
+
+/* Everything but the scratch lists is zeroed; a list is set up when it is
+ * first acquired (scratch_ready), so a query neither clears nor frees 64
+ * lists it never touches. */
+static inline void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
+{
+    memset(tc, 0, offsetof(hr_trace_ctx, scratch));
+    tc->scene = scene;
+}
+/* hr_trace_ctx_init's tracing part alone, for a query that never shades
+ * (first hit, all hits): the shading fields are left unset, and nothing
+ * such a query runs reads them. */
+static inline void hr_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *scene)
+{
+    tc->scene = scene;
+    tc->borrowed = NULL;
+    tc->status = HR_OK;
+    tc->scratch_used = 0;
+    tc->scratch_ready = 0;
+}
+/* Inline, as the query that ends with it mostly has nothing to free. */
+static inline void hr_trace_ctx_release(hr_trace_ctx *tc)
+{
+    for (int32_t i = 0; i < tc->scratch_ready; i++) {
+        free(tc->scratch[i].hits);
+        memset(&tc->scratch[i], 0, sizeof tc->scratch[i]);
+    }
+    tc->scratch_ready = 0;
+    tc->scratch_used = 0;
+}
+
+/* The context's scratch lists, a stack (trace.c): acquire gives the next
+ * one, empty, with room for 4 * HR_MIN_HIT_CAPACITY hits (NULL when all
+ * HR_SCRATCH_MAX are taken or out of memory); release gives back `list`
+ * and every list acquired after it. `call` is the hr_trace_ctx, as the
+ * host services (hr_host) take it. */
+hr_intersection *hr_trace_scratch_acquire(void *call);
+void hr_trace_scratch_release(void *call, hr_intersection *list);
+
+/* Grow a list to hold at least `capacity` hits (intersection.c). */
+hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity);
+
+/* Trace one object with a ray in its parent's space: hits come back in the
+ * parent's space (unit normals only when `unit_normals`), appended to `out`
+ * in t order, `object` naming the leaf. mode: HR_TRACE_*. */
+hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
+                          double tmin, double tmax, int32_t mode, int unit_normals,
+                          hr_intersection *out);
+
+/* Hill's getFirstHit over the scene; returns 1 on a hit. */
+int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                         hr_hit *out);
+/* The same with the caller's list `tmp` for the candidate hits (a public
+ * query's, on its stack) instead of a scratch list. */
+int hr_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
+                           hr_intersection *tmp);
+/* Any hit in (tmin, tmax) of a shadow ray towards light number `light`
+ * (>= 0); returns 1 on a hit. Asks first the object that blocked the last
+ * shadow ray towards that light. */
+int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+                          int32_t light);
+
+/* Hill's shade (lib/trace/shade.c). */
+hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
+/* 2^-HR_DEFAULT_MIN_WEIGHT_BITS: the cut-off renders and hr_scene_shade
+ * apply unless told otherwise (render.h). */
+static inline double hr_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }
+
+#endif
