@@ -17,17 +17,40 @@ double hr_fresnel(double c, double eta)
     return 0.5 * a * a * (1.0 + b * b);
 }
 
-double hr_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta)
+/* D G / (4 (n.v)) and the half vector's v.h, or 0 where the light, the eye
+ * or the half vector is below the surface. */
+static double microfacet_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double *vh_out)
 {
     const double nl = v3_dot(n, l), nv = v3_dot(n, v);
     if (!(nl > 0.0 && nv > 0.0)) return 0.0;
     const hr_vec3 h = v3_normalize(v3_add(l, v));
     const double nh = v3_dot(n, h), vh = v3_dot(v, h);
     if (!(nh > 0.0 && vh > 0.0)) return 0.0;
-    /* Beckmann: exp(-tan^2(a) / m^2) / (pi m^2 cos^4(a)), cos(a) = n.h. */
+    /* Beckmann, normalised so that its projection on the surface integrates
+     * to 1 over the hemisphere: exp(-tan^2(a) / m^2) / (pi m^2 cos^4(a)),
+     * cos(a) = n.h. With it the denominator is 4 (n.l)(n.v) (the Jacobian
+     * of the half vector, pbrt and Walter et al.), not Cook and Torrance's
+     * pi (n.l)(n.v), which goes with their unnormalised D and would make
+     * the lobe 4 / pi of itself, reflecting more than it receives. */
     const double c2 = nh * nh, m2 = m * m;
     const double d = exp(-(1.0 - c2) / (c2 * m2)) / (PI * m2 * c2 * c2);
     const double g = fmin(1.0, fmin(2.0 * nh * nv / vh, 2.0 * nh * nl / vh));
-    const double r = hr_fresnel(vh, eta) * d * g / (PI * nv);
+    *vh_out = vh;
+    return d * g / (4.0 * nv);
+}
+
+double hr_cook_torrance_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m)
+{
+    double vh;
+    const double r = microfacet_lobe(n, l, v, m, &vh);
+    return r < HR_COOK_TORRANCE_MAX ? r : HR_COOK_TORRANCE_MAX;
+}
+
+double hr_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta)
+{
+    double vh = 0.0;
+    const double lobe = microfacet_lobe(n, l, v, m, &vh);
+    if (!(lobe > 0.0)) return 0.0;
+    const double r = hr_fresnel(vh, eta) * lobe;
     return r < HR_COOK_TORRANCE_MAX ? r : HR_COOK_TORRANCE_MAX;
 }
