@@ -8,13 +8,10 @@
 
 #include "cli.h"
 
-int cli_error(const char *fmt, ...)
+static void report(const char *fmt, va_list ap)
 {
     char message[2048];
-    va_list ap;
-    va_start(ap, fmt);
     vsnprintf(message, sizeof message, fmt, ap);
-    va_end(ap);
     /* One line whatever the library said: scripts read stderr line by line. */
     fputs("hitray: ", stderr);
     for (const char *c = message; *c; c++) {
@@ -25,7 +22,24 @@ int cli_error(const char *fmt, ...)
         }
     }
     fputc('\n', stderr);
+}
+
+int cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report(fmt, ap);
+    va_end(ap);
     return CLI_EXIT_ERROR;
+}
+
+int cli_usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report(fmt, ap);
+    va_end(ap);
+    return CLI_EXIT_USAGE;
 }
 
 int cli_library_error(const hr_context *ctx, hr_status status)
@@ -87,23 +101,23 @@ int cli_next(cli_parser *p, const char **name, const char **value)
     if (!o) {
         const char *near = suggest_option(p, arg, len);
         if (near)
-            cli_error("%s: unknown option '%.*s' (did you mean '%s'? see 'hitray %s --help')", p->verb,
+            cli_usage_error("%s: unknown option '%.*s' (did you mean '%s'? see 'hitray %s --help')", p->verb,
                       (int)len, arg, near, p->verb);
         else
-            cli_error("%s: unknown option '%.*s' (see 'hitray %s --help')", p->verb, (int)len, arg,
+            cli_usage_error("%s: unknown option '%.*s' (see 'hitray %s --help')", p->verb, (int)len, arg,
                       p->verb);
         return CLI_BAD;
     }
     *name = o->name;
     unsigned long bit = 1ul << (o - p->options);
     if (p->seen & bit) {
-        cli_error("%s: option %s given twice", p->verb, o->name);
+        cli_usage_error("%s: option %s given twice", p->verb, o->name);
         return CLI_BAD;
     }
     p->seen |= bit;
     if (!o->takes_value) {
         if (equals) {
-            cli_error("%s: option %s takes no value", p->verb, o->name);
+            cli_usage_error("%s: option %s takes no value", p->verb, o->name);
             return CLI_BAD;
         }
         return CLI_OPTION;
@@ -113,7 +127,7 @@ int cli_next(cli_parser *p, const char **name, const char **value)
     } else if (p->next < p->argc) {
         *value = p->argv[p->next++];
     } else {
-        cli_error("%s: option %s needs a value", p->verb, o->name);
+        cli_usage_error("%s: option %s needs a value", p->verb, o->name);
         return CLI_BAD;
     }
     return CLI_OPTION;
@@ -127,11 +141,11 @@ int cli_parse_int(const char *option, const char *text, long min, long max, int3
     /* strtol would also skip leading blanks; a number starts with a sign or digit. */
     int starts_well = text[0] == '-' || text[0] == '+' || (text[0] >= '0' && text[0] <= '9');
     if (!starts_well || end == text || *end != '\0' || errno == ERANGE) {
-        cli_error("%s: '%s' is not a whole number", option, text);
+        cli_usage_error("%s: '%s' is not a whole number", option, text);
         return 0;
     }
     if (v < min || v > max) {
-        cli_error("%s: %ld is out of range %ld..%ld", option, v, min, max);
+        cli_usage_error("%s: %ld is out of range %ld..%ld", option, v, min, max);
         return 0;
     }
     *out = (int32_t)v;
@@ -160,7 +174,7 @@ int cli_parse_doubles(const char *option, const char *text, int count, double *o
     for (int i = 0; i < count; i++) {
         const char *end = NULL;
         if (!parse_double(p, &end, &out[i]) || (i + 1 < count ? *end != ',' : *end != '\0')) {
-            cli_error("%s: '%s' is not %d comma-separated numbers", option, text, count);
+            cli_usage_error("%s: '%s' is not %d comma-separated numbers", option, text, count);
             return 0;
         }
         p = end + 1;
@@ -173,11 +187,11 @@ int cli_parse_fraction(const char *option, const char *text, double *out)
     const char *end = NULL;
     double v;
     if (!parse_double(text, &end, &v) || *end != '\0') {
-        cli_error("%s: '%s' is not a number", option, text);
+        cli_usage_error("%s: '%s' is not a number", option, text);
         return 0;
     }
     if (!(v >= 0.0 && v <= 1.0)) {
-        cli_error("%s: %s is out of range 0..1", option, text);
+        cli_usage_error("%s: %s is out of range 0..1", option, text);
         return 0;
     }
     *out = v;
@@ -198,11 +212,11 @@ int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t
     }
     ok = ok && text[0] >= '0' && text[0] <= '9';
     if (!ok) {
-        cli_error("%s: '%s' is not WIDTHxHEIGHT (for example 640x480)", option, text);
+        cli_usage_error("%s: '%s' is not WIDTHxHEIGHT (for example 640x480)", option, text);
         return 0;
     }
     if (w < 1 || h < 1 || w > HR_RENDER_MAX_SIDE || h > HR_RENDER_MAX_SIDE) {
-        cli_error("%s: %ldx%ld is out of range: each side must be 1..%d", option, w, h, HR_RENDER_MAX_SIDE);
+        cli_usage_error("%s: %ldx%ld is out of range: each side must be 1..%d", option, w, h, HR_RENDER_MAX_SIDE);
         return 0;
     }
     *width = (int32_t)w;

@@ -1,9 +1,9 @@
 /* The `hitray` command: what its files share.
  *
  * Every verb is a function taking its own arguments (argv[0] is the verb) and
- * returning the process exit status: 0 on success, 1 on any error, after one
- * line "hitray: <message>" on stderr. Nothing here reaches past the public
- * API in include/hitray. */
+ * returning the process exit status (CLI_EXIT_*), any error after one line
+ * "hitray: <message>" on stderr. Nothing here reaches past the public API in
+ * include/hitray. */
 #ifndef HITRAY_CLI_H
 #define HITRAY_CLI_H
 
@@ -13,9 +13,19 @@
 
 #include <hitray/hitray.h>
 
+/* The exit statuses, as --help and the man page list them (CLI_EXIT_HELP). */
 #define CLI_EXIT_OK 0
-#define CLI_EXIT_ERROR 1
+#define CLI_EXIT_ERROR 1         /* a scene or input error: the file, the library, the output */
+#define CLI_EXIT_USAGE 2         /* the command line itself: an option, a value, a missing argument */
 #define CLI_EXIT_INTERRUPTED 130 /* the shell's convention for SIGINT */
+#define CLI_EXIT_HELP                                                                   \
+    "exit status:\n"                                                                   \
+    "  0    success\n"                                                                 \
+    "  1    a scene or input error (a file that cannot be read or written, a scene\n"  \
+    "       the library refuses), explained in one line on stderr\n"                   \
+    "  2    a usage error: an unknown command or option, a value out of range, a\n"   \
+    "       missing argument (nothing was read or written)\n"                          \
+    "  130  interrupted (Ctrl-C); nothing was written\n"
 
 int cmd_render(int argc, char **argv);
 int cmd_hits(int argc, char **argv);
@@ -28,6 +38,8 @@ int cmd_view(int argc, char **argv);
 /* Print "hitray: <message>" as one line on stderr (newlines in the message
  * become "; ") and return CLI_EXIT_ERROR. */
 int cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* The same for a mistake in the command line: returns CLI_EXIT_USAGE. */
+int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* The context's last error, or a fallback naming the status. */
 int cli_library_error(const hr_context *ctx, hr_status status);
 
@@ -62,7 +74,8 @@ void cli_parser_init(cli_parser *p, int argc, char **argv, const cli_option *opt
 int cli_next(cli_parser *p, const char **name, const char **value);
 
 /* Strict number parsing: the whole text must be the number. Each reports its
- * own error naming `option` and returns 0 on failure, 1 on success. */
+ * own error naming `option` (a usage error) and returns 0 on failure, 1 on
+ * success. */
 int cli_parse_int(const char *option, const char *text, long min, long max, int32_t *out);
 int cli_parse_doubles(const char *option, const char *text, int count, double *out);
 int cli_parse_size(const char *option, const char *text, int32_t *width, int32_t *height);
@@ -76,7 +89,8 @@ int cli_parse_fraction(const char *option, const char *text, double *out);
 int cli_has_image_extension(const char *path);
 /* The directory a file would go to must exist and be writable, and the name
  * must be one a file can have there; otherwise the error (naming `option`)
- * is reported and CLI_EXIT_ERROR returned. 0 when it can be written. */
+ * is reported and its exit status returned (CLI_EXIT_USAGE for an empty
+ * name, else CLI_EXIT_ERROR). 0 when it can be written. */
 int cli_check_writable(const char *option, const char *path);
 
 /* --- output helpers --- */

@@ -33,9 +33,9 @@ typedef struct hits_request {
     int has_origin, has_dir, all;
 } hits_request;
 
+/* Go on, stop after the help, or stop with CLI_EXIT_USAGE (reported). */
 #define PARSE_OK 0
-#define PARSE_ERROR CLI_EXIT_ERROR
-#define PARSE_HELP 2
+#define PARSE_HELP (-1)
 
 static int parse_request(int argc, char **argv, hits_request *r)
 {
@@ -45,9 +45,9 @@ static int parse_request(int argc, char **argv, hits_request *r)
     const char *name, *value;
     int kind;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
-        if (kind == CLI_BAD) return PARSE_ERROR;
+        if (kind == CLI_BAD) return CLI_EXIT_USAGE;
         if (kind == CLI_POSITIONAL) {
-            if (r->scene_path) return cli_error("hits: one scene file only ('%s' is extra)", value);
+            if (r->scene_path) return cli_usage_error("hits: one scene file only ('%s' is extra)", value);
             r->scene_path = value;
             continue;
         }
@@ -58,20 +58,20 @@ static int parse_request(int argc, char **argv, hits_request *r)
         } else if (!strcmp(name, "--all")) {
             r->all = 1;
         } else if (!strcmp(name, "--origin")) {
-            if (!cli_parse_doubles(name, value, 3, v)) return PARSE_ERROR;
+            if (!cli_parse_doubles(name, value, 3, v)) return CLI_EXIT_USAGE;
             r->ray.origin = (hr_vec3){v[0], v[1], v[2]};
             r->has_origin = 1;
         } else if (!strcmp(name, "--dir")) {
-            if (!cli_parse_doubles(name, value, 3, v)) return PARSE_ERROR;
+            if (!cli_parse_doubles(name, value, 3, v)) return CLI_EXIT_USAGE;
             r->ray.dir = (hr_vec3){v[0], v[1], v[2]};
             r->has_dir = 1;
         }
     }
-    if (!r->scene_path) return cli_error("hits: no scene file given (see 'hitray hits --help')");
-    if (!r->has_origin) return cli_error("hits: --origin X,Y,Z is required");
-    if (!r->has_dir) return cli_error("hits: --dir X,Y,Z is required");
+    if (!r->scene_path) return cli_usage_error("hits: no scene file given (see 'hitray hits --help')");
+    if (!r->has_origin) return cli_usage_error("hits: --origin X,Y,Z is required");
+    if (!r->has_dir) return cli_usage_error("hits: --dir X,Y,Z is required");
     if (r->ray.dir.x == 0 && r->ray.dir.y == 0 && r->ray.dir.z == 0)
-        return cli_error("hits: --dir must not be the zero vector");
+        return cli_usage_error("hits: --dir must not be the zero vector");
     return PARSE_OK;
 }
 
@@ -117,7 +117,7 @@ int cmd_hits(int argc, char **argv)
 {
     hits_request r;
     int parsed = parse_request(argc, argv, &r);
-    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
+    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : parsed;
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : trace(&r, &s);

@@ -77,15 +77,15 @@ static const cli_option render_own_options[] = {
  * spellings of one path are not caught). */
 static int check_distinct(const char *option_a, const char *a, const char *option_b, const char *b)
 {
-    if (a && b && strcmp(a, b) == 0) return cli_error("render: %s and %s both name '%s'", option_a, option_b, a);
+    if (a && b && strcmp(a, b) == 0) return cli_usage_error("render: %s and %s both name '%s'", option_a, option_b, a);
     return 0;
 }
 
-/* What parse_request found: go on, stop after an error (reported; the same
- * value cli_error returns), or stop after printing the help. */
+/* What parse_request found: go on, stop after printing the help, or stop
+ * with the exit status of the error it reported (CLI_EXIT_USAGE for the
+ * command line, CLI_EXIT_ERROR for an output that cannot be written). */
 #define PARSE_OK 0
-#define PARSE_ERROR CLI_EXIT_ERROR
-#define PARSE_HELP 2
+#define PARSE_HELP (-1)
 
 static int parse_request(int argc, char **argv, render_request *r)
 {
@@ -93,15 +93,15 @@ static int parse_request(int argc, char **argv, render_request *r)
     cli_render_flags_init(&r->flags);
     cli_option options[32];
     if (cli_render_flags_table(render_own_options, RENDER_FLAGS, options, 32) < 0)
-        return cli_error("render: the option table is too small");
+        return cli_usage_error("render: the option table is too small");
     cli_parser p;
     cli_parser_init(&p, argc, argv, options);
     const char *name, *value;
     int kind, positionals = 0;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
-        if (kind == CLI_BAD) return PARSE_ERROR;
+        if (kind == CLI_BAD) return CLI_EXIT_USAGE;
         if (kind == CLI_POSITIONAL) {
-            if (positionals++ > 0) return cli_error("render: one scene file only ('%s' is extra)", value);
+            if (positionals++ > 0) return cli_usage_error("render: one scene file only ('%s' is extra)", value);
             r->scene_path = value;
             continue;
         }
@@ -110,7 +110,7 @@ static int parse_request(int argc, char **argv, render_request *r)
             return PARSE_HELP;
         }
         if (cli_render_flag_bit(name)) {
-            if (!cli_render_flags_parse(&r->flags, name, value)) return PARSE_ERROR;
+            if (!cli_render_flags_parse(&r->flags, name, value)) return CLI_EXIT_USAGE;
         } else if (!strcmp(name, "--output")) r->output = value;
         else if (!strcmp(name, "--exr")) r->exr_output = value;
         else if (!strcmp(name, "--stats-json")) r->stats_json = value;
@@ -119,25 +119,26 @@ static int parse_request(int argc, char **argv, render_request *r)
         else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
         else if (!strcmp(name, "--stats")) r->stats = 1;
     }
-    if (!r->scene_path) return cli_error("render: no scene file given (see 'hitray render --help')");
-    if (!r->output) return cli_error("render: no output file given (use -o OUT.png)");
-    if (cli_render_flags_check(&r->flags)) return PARSE_ERROR;
+    if (!r->scene_path) return cli_usage_error("render: no scene file given (see 'hitray render --help')");
+    if (!r->output) return cli_usage_error("render: no output file given (use -o OUT.png)");
+    if (cli_render_flags_check(&r->flags)) return CLI_EXIT_USAGE;
     if (!cli_has_image_extension(r->output))
-        return cli_error("render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
-                         r->output);
+        return cli_usage_error(
+            "render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)", r->output);
     /* --exr always writes OpenEXR: a file named otherwise would lie about
      * its content. */
     size_t exr_len = r->exr_output ? strlen(r->exr_output) : 0;
     if (r->exr_output && *r->exr_output &&
         (exr_len < 4 || strcasecmp(r->exr_output + exr_len - 4, ".exr") != 0))
-        return cli_error("--exr: '%s' does not end in .exr", r->exr_output);
-    if (cli_check_writable("--output", r->output)) return PARSE_ERROR;
-    if (r->exr_output && cli_check_writable("--exr", r->exr_output)) return PARSE_ERROR;
-    if (r->stats_json && cli_check_writable("--stats-json", r->stats_json)) return PARSE_ERROR;
+        return cli_usage_error("--exr: '%s' does not end in .exr", r->exr_output);
+    int rc = cli_check_writable("--output", r->output);
+    if (!rc && r->exr_output) rc = cli_check_writable("--exr", r->exr_output);
+    if (!rc && r->stats_json) rc = cli_check_writable("--stats-json", r->stats_json);
+    if (rc) return rc;
     if (check_distinct("--output", r->output, "--exr", r->exr_output) ||
         check_distinct("--output", r->output, "--stats-json", r->stats_json) ||
         check_distinct("--exr", r->exr_output, "--stats-json", r->stats_json))
-        return PARSE_ERROR;
+        return CLI_EXIT_USAGE;
     return PARSE_OK;
 }
 
@@ -296,7 +297,7 @@ int cmd_render(int argc, char **argv)
 {
     render_request r;
     int parsed = parse_request(argc, argv, &r);
-    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
+    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : parsed;
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : render_and_write(&r, &s);

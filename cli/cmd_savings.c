@@ -65,8 +65,8 @@ static int parse_values(const char *option, const char *text, double *out, int *
     for (const char *p = text;;) {
         const char *comma = strchr(p, ',');
         size_t n = comma ? (size_t)(comma - p) : strlen(p);
-        if (*count == MAX_VALUES) return !cli_error("%s: at most %d values", option, MAX_VALUES);
-        if (n >= sizeof item) return !cli_error("%s: '%s' is not a list of numbers", option, text);
+        if (*count == MAX_VALUES) return !cli_usage_error("%s: at most %d values", option, MAX_VALUES);
+        if (n >= sizeof item) return !cli_usage_error("%s: '%s' is not a list of numbers", option, text);
         memcpy(item, p, n);
         item[n] = '\0';
         double v;
@@ -85,7 +85,8 @@ static const cli_option savings_own_options[] = {
 };
 #define SAVINGS_FLAGS (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_DEPTH | CLI_RF_THREADS)
 
-/* 0: go on; 1: stop with success (help printed); -1: stop with an error. */
+/* 0: go on; -1: stop with success (help printed); else the exit status of
+ * the error reported (CLI_EXIT_USAGE). */
 static int parse_request(int argc, char **argv, savings_request *r)
 {
     memset(r, 0, sizeof *r);
@@ -95,21 +96,21 @@ static int parse_request(int argc, char **argv, savings_request *r)
     r->adaptive_count = r->min_weight_count = 1;
     cli_option options[16];
     if (cli_render_flags_table(savings_own_options, SAVINGS_FLAGS, options, 16) < 0)
-        return cli_error("savings: the option table is too small"), -1;
+        return cli_error("savings: the option table is too small");
     cli_parser p;
     cli_parser_init(&p, argc, argv, options);
     const char *name, *value;
     int kind;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
-        if (kind == CLI_BAD) return -1;
+        if (kind == CLI_BAD) return CLI_EXIT_USAGE;
         if (kind == CLI_POSITIONAL) {
-            if (r->scene_path) return cli_error("savings: one scene file only ('%s' is extra)", value), -1;
+            if (r->scene_path) return cli_usage_error("savings: one scene file only ('%s' is extra)", value);
             r->scene_path = value;
             continue;
         }
         if (!strcmp(name, "--help")) {
             fputs(savings_help, stdout);
-            return 1;
+            return -1;
         }
         /* Its own options first: --adaptive and --min-weight are also render
          * flags' names. */
@@ -119,13 +120,13 @@ static int parse_request(int argc, char **argv, savings_request *r)
             ok = parse_values(name, value, r->min_weight, &r->min_weight_count);
         else if (!strcmp(name, "--json")) r->json = 1;
         else ok = cli_render_flags_parse(&r->flags, name, value);
-        if (!ok) return -1;
+        if (!ok) return CLI_EXIT_USAGE;
     }
-    if (!r->scene_path) return cli_error("savings: no scene file given (see 'hitray savings --help')"), -1;
+    if (!r->scene_path) return cli_usage_error("savings: no scene file given (see 'hitray savings --help')");
     /* Adaptive supersampling, a row of every report, refines with --spp. */
     if (r->flags.spp < 2)
-        return cli_error("--spp: savings needs N >= 2 (the samples a refined pixel gets), not %d", (int)r->flags.spp),
-               -1;
+        return cli_usage_error("--spp: savings needs N >= 2 (the samples a refined pixel gets), not %d",
+                               (int)r->flags.spp);
     return 0;
 }
 
@@ -288,7 +289,7 @@ int cmd_savings(int argc, char **argv)
 {
     savings_request r;
     int parsed = parse_request(argc, argv, &r);
-    if (parsed) return parsed > 0 ? CLI_EXIT_OK : CLI_EXIT_ERROR;
+    if (parsed) return parsed < 0 ? CLI_EXIT_OK : parsed;
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : run_savings(&r, &s);

@@ -110,8 +110,8 @@ int cmd_shapes(int argc, char **argv)
     const char *name, *value;
     int kind;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
-        if (kind == CLI_BAD) return CLI_EXIT_ERROR;
-        if (kind == CLI_POSITIONAL) return cli_error("shapes: unexpected argument '%s'", value);
+        if (kind == CLI_BAD) return CLI_EXIT_USAGE;
+        if (kind == CLI_POSITIONAL) return cli_usage_error("shapes: unexpected argument '%s'", value);
         if (!strcmp(name, "--help")) {
             fputs(shapes_help, stdout);
             return CLI_EXIT_OK;

@@ -48,8 +48,7 @@ static void print_usage(void)
           "options:\n"
           "  -h, --help            this help; 'hitray <command> --help' for a command's\n"
           "  --version             the version of hitray and of the library it runs on\n"
-          "\n"
-          "Exit status: 0 on success, 1 on an error (explained in one line on stderr).\n",
+          "\n" CLI_EXIT_HELP,
           stdout);
 }
 
@@ -64,14 +63,14 @@ static int print_version(void)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) return cli_error("no command given (see 'hitray --help')");
+    if (argc < 2) return cli_usage_error("no command given (see 'hitray --help')");
     const char *verb = argv[1];
     int help = !strcmp(verb, "-h") || !strcmp(verb, "--help") || !strcmp(verb, "help");
     int version = !strcmp(verb, "--version") || !strcmp(verb, "-V");
     /* `hitray --help render` is a typo for `hitray render --help`: say so
      * rather than print the general help as if nothing were wrong. */
     if ((help || version) && argc > 2)
-        return cli_error("'%s' takes nothing after it, found '%s' (for a command's help: "
+        return cli_usage_error("'%s' takes nothing after it, found '%s' (for a command's help: "
                          "'hitray <command> --help')",
                          verb, argv[2]);
     if (help) {
@@ -81,10 +80,10 @@ int main(int argc, char **argv)
     if (version) return print_version();
     for (int32_t i = 0; i < VERB_COUNT; i++)
         if (!strcmp(verb, verbs[i].name)) return verbs[i].run(argc - 1, argv + 1);
-    if (verb[0] == '-') return cli_error("unknown option '%s' (see 'hitray --help')", verb);
+    if (verb[0] == '-') return cli_usage_error("unknown option '%s' (see 'hitray --help')", verb);
     const char *names[VERB_COUNT];
     for (int32_t i = 0; i < VERB_COUNT; i++) names[i] = verbs[i].name;
     const char *near = hr_suggest(verb, names, VERB_COUNT);
-    if (near) return cli_error("unknown command '%s' (did you mean '%s'? see 'hitray --help')", verb, near);
-    return cli_error("unknown command '%s' (see 'hitray --help')", verb);
+    if (near) return cli_usage_error("unknown command '%s' (did you mean '%s'? see 'hitray --help')", verb, near);
+    return cli_usage_error("unknown command '%s' (see 'hitray --help')", verb);
 }

@@ -18,7 +18,7 @@ int cli_has_image_extension(const char *path)
 
 int cli_check_writable(const char *option, const char *path)
 {
-    if (!*path) return cli_error("%s: the file name is empty", option);
+    if (!*path) return cli_usage_error("%s: the file name is empty", option);
     char dir[4096];
     const char *slash = strrchr(path, '/');
     if (!slash) {

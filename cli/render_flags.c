@@ -67,7 +67,7 @@ static int parse_effects(const char *option, const char *text, int32_t *out)
 {
     if (!strcmp(text, "auto")) *out = HR_EFFECTS_AUTO;
     else if (!strcmp(text, "all")) *out = HR_EFFECTS_ALL;
-    else return !cli_error("%s: '%s' is neither 'auto' nor 'all'", option, text);
+    else return !cli_usage_error("%s: '%s' is neither 'auto' nor 'all'", option, text);
     return 1;
 }
 
@@ -86,7 +86,7 @@ int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *va
     case CLI_RF_ADAPTIVE: ok = cli_parse_fraction(name, value, &f->adaptive); break;
     case CLI_RF_MIN_WEIGHT: ok = cli_parse_fraction(name, value, &f->min_weight); break;
     case CLI_RF_EXACT: f->exact = 1; break;
-    default: return !cli_error("%s: not a render flag", name); /* a verb's mistake, not the user's */
+    default: return !cli_usage_error("%s: not a render flag", name); /* a verb's mistake, not the user's */
     }
     if (ok) f->given |= bit;
     return ok;
@@ -95,9 +95,9 @@ int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *va
 int cli_render_flags_check(const cli_render_flags *f)
 {
     if (f->adaptive > 0 && f->spp < 2)
-        return cli_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
-    if (f->adaptive > 0 && f->block > 1) return cli_error("--adaptive: cannot be combined with --block");
-    if (f->exact && f->min_weight > 0) return cli_error("--exact: cannot be combined with --min-weight");
+        return cli_usage_error("--adaptive: needs --spp N with N >= 2 (the samples a refined pixel gets)");
+    if (f->adaptive > 0 && f->block > 1) return cli_usage_error("--adaptive: cannot be combined with --block");
+    if (f->exact && f->min_weight > 0) return cli_usage_error("--exact: cannot be combined with --min-weight");
     return 0;
 }
 

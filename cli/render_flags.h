@@ -46,13 +46,13 @@ int cli_render_flags_table(const cli_option *own, unsigned which, cli_option *ou
 /* The CLI_RF_* bit of a render flag's name, 0 for any other option. */
 unsigned cli_render_flag_bit(const char *name);
 
-/* Parse one render flag's value: 1 on success, 0 after reporting the error
- * (the name, the text, the library's limit). `name` must be a render flag
+/* Parse one render flag's value: 1 on success, 0 after reporting the usage
+ * error (the name, the text, the library's limit). `name` must be a render flag
  * (cli_render_flag_bit != 0). */
 int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *value);
 
 /* The combinations hr_render refuses, refused before any work with the
- * flags' names: 0, or CLI_EXIT_ERROR after reporting. */
+ * flags' names: 0, or CLI_EXIT_USAGE after reporting. */
 int cli_render_flags_check(const cli_render_flags *f);
 
 /* The flags into `o` (from hr_render_options_default): everything but the

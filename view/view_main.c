@@ -3,8 +3,8 @@
  *
  * Everything that can be refused is refused before a window opens: the
  * options, a missing display, the scene file (its located error), the
- * camera. So a mistake costs one line on stderr and exit status 1, and
- * leaves no window behind. */
+ * camera. So a mistake costs one line on stderr and exit status 2 (a
+ * usage error) or 1 (a file, the display), and leaves no window behind. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,14 +71,15 @@ static const cli_option view_own_options[] = {
     (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_MIN_WEIGHT | \
      CLI_RF_EXACT)
 
+/* Go on, stop after the help, or stop with the exit status of the error
+ * reported. */
 #define PARSE_OK 0
-#define PARSE_ERROR CLI_EXIT_ERROR
-#define PARSE_HELP 2
+#define PARSE_HELP (-1)
 
 static int check_image_file(const char *option, const char *path)
 {
     if (!cli_has_image_extension(path))
-        return cli_error("%s: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
+        return cli_usage_error("%s: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
                          option, path);
     return cli_check_writable(option, path);
 }
@@ -96,9 +97,9 @@ static int parse_request(int argc, char **argv, view_request *r)
     const char *name, *value;
     int kind, positionals = 0, output_given = 0;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
-        if (kind == CLI_BAD) return PARSE_ERROR;
+        if (kind == CLI_BAD) return CLI_EXIT_USAGE;
         if (kind == CLI_POSITIONAL) {
-            if (positionals++ > 0) return cli_error("view: one scene file only ('%s' is extra)", value);
+            if (positionals++ > 0) return cli_usage_error("view: one scene file only ('%s' is extra)", value);
             r->scene_path = value;
             continue;
         }
@@ -112,16 +113,17 @@ static int parse_request(int argc, char **argv, view_request *r)
         else if (!strcmp(name, "--output")) r->output = value, output_given = 1;
         else if (!strcmp(name, "--screenshot")) r->screenshot = value;
         else if (!strcmp(name, "--exit-when-done")) r->exit_when_done = 1;
-        if (!ok) return PARSE_ERROR;
+        if (!ok) return CLI_EXIT_USAGE;
     }
-    if (!r->scene_path) return cli_error("view: no scene file given (see 'hitray view --help')");
+    if (!r->scene_path) return cli_usage_error("view: no scene file given (see 'hitray view --help')");
     /* The default -o is checked when P is pressed: a viewer started in a
      * read-only directory is still of use. */
-    if (output_given && check_image_file("--output", r->output)) return PARSE_ERROR;
-    if (r->screenshot && check_image_file("--screenshot", r->screenshot)) return PARSE_ERROR;
-    if (cli_render_flags_check(&r->flags)) return PARSE_ERROR;
+    int rc = output_given ? check_image_file("--output", r->output) : 0;
+    if (!rc && r->screenshot) rc = check_image_file("--screenshot", r->screenshot);
+    if (rc) return rc;
+    if (cli_render_flags_check(&r->flags)) return CLI_EXIT_USAGE;
     if (r->exit_when_done && !r->screenshot)
-        return cli_error("--exit-when-done: needs --screenshot FILE (else the final pass would be lost)");
+        return cli_usage_error("--exit-when-done: needs --screenshot FILE (else the final pass would be lost)");
     return PARSE_OK;
 }
 
@@ -381,7 +383,7 @@ int main(int argc, char **argv)
     if (argc > 0) argv[0] = verb;
     view_request req;
     int parsed = parse_request(argc, argv, &req);
-    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : CLI_EXIT_ERROR;
+    if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : parsed;
     char drivers[32];
     if (choose_drivers(drivers, sizeof drivers)) return CLI_EXIT_ERROR;
 

@@ -43,7 +43,12 @@ endfunction()
 
 run_checked("hitray --help" "${HITRAY}" --help)
 set(general "${LAST_OUTPUT}")
-expect_lines_in_page("'hitray --help'" "${general}")
+# The help's "exit status:" block is the page's EXIT STATUS section.
+string(REPLACE "\nexit status:\n" "\nEXIT STATUS\n" general_on_page "${general}")
+if(general_on_page STREQUAL general)
+  message(FATAL_ERROR "'hitray --help' lists no exit status:\n${general}")
+endif()
+expect_lines_in_page("'hitray --help'" "${general_on_page}")
 string(REGEX MATCH "\ncommands:\n(.*)" _ "${general}")
 string(REGEX REPLACE "\n\n.*$" "" block "${CMAKE_MATCH_1}")
 string(REGEX MATCHALL "(^|\n)  [a-z][a-z-]* " verbs "${block}")

@@ -564,6 +564,15 @@ def test_top_level_help_and_version():
     assert r.returncode == 0 and r.stdout.startswith("hitray 0.")
 
 
+def test_help_lists_the_exit_statuses():
+    """The statuses the tests around here check, as --help (and so the man
+    page) lists them."""
+    statuses = run("--help").stdout.split("exit status:\n")[1]
+    listed = [line.split()[0] for line in statuses.splitlines() if line[:3].strip().isdigit()]
+    assert listed == ["0", "1", "2", "130"]
+    assert "usage error" in statuses and "interrupted" in statuses
+
+
 # --- user errors: status 1, one line, nothing left behind --------------------
 
 def error_cases(tmp_path, scene):
@@ -636,10 +645,23 @@ def error_cases(tmp_path, scene):
     }
 
 
-def test_user_errors_exit_1_with_one_line(tmp_path, scene):
-    for name, args in error_cases(tmp_path, scene).items():
+# The cases above that are scene or input errors (exit status 1): a file that
+# cannot be read or written, a camera the library refuses. Every other one is
+# a mistake in the command line itself: a usage error, status 2.
+INPUT_ERRORS = {
+    "camera angle", "camera up parallel", "no such scene", "scene syntax error", "missing directory",
+    "exr into missing directory", "stats into missing directory", "output is a directory",
+    "hits no such scene", "exr is a directory", "stats is a directory",
+}
+
+
+def test_user_errors_exit_1_or_2_with_one_line(tmp_path, scene):
+    cases = error_cases(tmp_path, scene)
+    assert INPUT_ERRORS <= set(cases)
+    for name, args in cases.items():
         r = run(*args)
-        assert r.returncode == 1, f"{name}: status {r.returncode}, stderr {r.stderr!r}"
+        status = 1 if name in INPUT_ERRORS else 2
+        assert r.returncode == status, f"{name}: status {r.returncode}, stderr {r.stderr!r}"
         lines = r.stderr.splitlines()
         assert len(lines) == 1, f"{name}: {r.stderr!r}"
         assert lines[0].startswith("hitray: ") and len(lines[0]) > len("hitray: ") + 5, name
@@ -854,7 +876,7 @@ def test_subnormal_numbers_are_numbers_as_in_sdl(tmp_path):
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["t"] == 6.0
     r = run("hits", scene, "--origin", "0,0,7", "--dir", "0,1e400,-1")
-    assert r.returncode == 1 and "--dir" in r.stderr
+    assert r.returncode == 2 and "--dir" in r.stderr
 
 
 def test_framing_a_scene_too_far_names_the_object(tmp_path):

@@ -13,12 +13,12 @@ from test_cli import run, run_on_a_terminal, write_sdl
 def test_a_misspelt_option_or_verb_gets_a_suggestion(tmp_path):
     scene = write_sdl(tmp_path, "s.sdl", TWO_SPHERES_SDL)
     result = run("render", scene, "-o", tmp_path / "x.png", "--sp", "4")
-    assert result.returncode == 1
+    assert result.returncode == 2
     assert "unknown option '--sp' (did you mean '--spp'?" in result.stderr
     result = run("savings", scene, "--min-wieght", "0.1")
     assert "did you mean '--min-weight'?" in result.stderr
     result = run("rendr", scene)
-    assert result.returncode == 1 and "unknown command 'rendr' (did you mean 'render'?" in result.stderr
+    assert result.returncode == 2 and "unknown command 'rendr' (did you mean 'render'?" in result.stderr
     # Nothing near: no guess.
     result = run("render", scene, "-o", tmp_path / "x.png", "--frobnicate")
     assert "unknown option '--frobnicate' (see 'hitray render --help')" in result.stderr

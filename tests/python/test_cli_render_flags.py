@@ -72,7 +72,7 @@ BEYOND = [
 def test_each_verb_refuses_past_the_librarys_limit_alike(tmp_path, scene, flag, value, message):
     for verb, args in verbs(tmp_path, scene).items():
         r = run(*args, flag, value)
-        assert r.returncode == 1, (verb, r.stderr)
+        assert r.returncode == 2, (verb, r.stderr)
         assert r.stderr == f"hitray: {message}\n", verb
     assert not (tmp_path / "o.png").exists()
 
@@ -81,7 +81,7 @@ def test_the_size_limit_is_the_librarys(tmp_path, scene):
     beyond = f"{MAX_SIDE + 1}x1"
     for verb, args in verbs(tmp_path, scene).items():
         r = run(*args[:1], scene, *args[2:4] if verb == "render" else [], "--size", beyond)
-        assert r.returncode == 1, (verb, r.stderr)
+        assert r.returncode == 2, (verb, r.stderr)
         assert r.stderr == (f"hitray: --size: {MAX_SIDE + 1}x1 is out of range: "
                             f"each side must be 1..{MAX_SIDE}\n"), verb
 
@@ -102,7 +102,7 @@ def test_block_limit_in_render_and_view(tmp_path, scene):
     for verb, args in verbs(tmp_path, scene).items():
         r = run(*args, "--block", MAX_BLOCK + 1)
         if verb == "savings":  # savings renders every pixel: no --block
-            assert r.returncode == 1 and "unknown option '--block'" in r.stderr
+            assert r.returncode == 2 and "unknown option '--block'" in r.stderr
         else:
             assert r.stderr == f"hitray: --block: {MAX_BLOCK + 1} is out of range 1..{MAX_BLOCK}\n", verb
 
@@ -124,5 +124,5 @@ def test_every_verb_in_the_help_is_run_and_suggested():
     for verb in listed:
         typo = verb[:1] + verb[2:]  # one letter dropped: "vew", "rnder"
         r = run(typo)
-        assert r.returncode == 1
+        assert r.returncode == 2
         assert f"did you mean '{verb}'?" in r.stderr, (typo, r.stderr)
