@@ -1,6 +1,6 @@
-/* The result struct of the scene file readers (sdl/load_result.h; the NFF reader uses it too). */
+/* The result struct of the scene file readers (lib/util/load_result.h). */
 #include "util/sized_copy.h"
-#include "sdl/load_result.h"
+#include "util/load_result.h"
 
 #include <stddef.h>
 #include <string.h>
