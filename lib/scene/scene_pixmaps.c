@@ -1,7 +1,5 @@
 /* The scene's doors to its pixmaps (Hill's makePixmap): the pixmaps
  * themselves are texture's (lib/texture/pixmap.c). */
-#include <stdio.h>
-
 #include "scene/scene_internal.h"
 #include "texture/texture.h"
 #include "util/errors.h"
@@ -17,11 +15,8 @@ HR_API hr_status hr_scene_set_pixmap(hr_scene *s, int32_t index, const hr_image 
     if (image && s->committed)
         return hr_error(s->ctx, HR_ERROR_STATE, "cannot make a pixmap in a committed scene");
     if (!image) return hr_pixmap_add(s->ctx, &s->pixmaps, index, image);
-    /* Its texels as the pixmap keeps them: RGB floats. */
-    const uint64_t bytes = (uint64_t)hr_image_width(image) * (uint64_t)hr_image_height(image) * 3 * sizeof(float);
     char what[64];
-    snprintf(what, sizeof what, "pixmap %d (%d x %d texels)", (int)index, (int)hr_image_width(image),
-             (int)hr_image_height(image));
+    const uint64_t bytes = hr_pixmap_bytes(image, index, what, sizeof what);
     hr_status st = hr_scene_budget_charge(s->ctx, &s->budget, &s->budget.texels, bytes, what);
     if (st) return st;
     if ((st = hr_pixmap_add(s->ctx, &s->pixmaps, index, image))) s->budget.texels -= bytes;
