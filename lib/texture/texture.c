@@ -110,7 +110,10 @@ hr_color hr_texture_color(const hr_texture *t, const hr_shape_class *cls, const 
          * fall on either side from one pixel to the next. */
         const double inset = 2.0 * hr_xform_error(t->to_object, hit->point, hit->error);
         hr_vec3 inward = v3_normalize(n);
-        if (v3_is_finite(inward)) p = v3_madd(p, inward, -inset);
+        /* Near double's range the error bound is infinite: there the
+         * point is used as it is, never an infinite or NaN one. */
+        hr_vec3 inside = v3_madd(p, inward, -inset);
+        if (v3_is_finite(inside)) p = inside;
         return t->kind->solid(t->params, p);
     }
     hr_hit local = *hit;

@@ -42,6 +42,13 @@ static double lattice(uint32_t i, uint32_t j, uint32_t k)
  * lies in it, in [0, 1). */
 static uint32_t cell(double x, double *frac)
 {
+    /* A coordinate scaled past double's range (the noise scale times a
+     * point near 1e308) has no cell: it takes cell 0's corner, not a NaN
+     * fraction and an undefined conversion. */
+    if (!isfinite(x)) {
+        *frac = 0.0;
+        return 0;
+    }
     double f = floor(x);
     *frac = x - f;
     /* Where x - floor(x) rounds up to 1 (x just below a whole number). */

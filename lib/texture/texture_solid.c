@@ -86,7 +86,10 @@ static const hr_texture_param marble_params[] = {
 static hr_color marble(const double *p, hr_vec3 q)
 {
     const double turb = hr_turbulence(v3_scale(q, p[1]), (int32_t)p[3]);
-    const double t = sqrt(fabs(sin(PI * p[0] * q.z + p[2] * turb)));
+    /* The phase overflows for z near double's range: a vein there (sin of
+     * an infinite phase is NaN, which would reach the pixel). */
+    const double phase = PI * p[0] * q.z + p[2] * turb;
+    const double t = isfinite(phase) ? sqrt(fabs(sin(phase))) : 0.0;
     return blend(p, 4, t);
 }
 
