@@ -487,10 +487,11 @@ static const hr_param_spec tapered_params[] = {
 
 /* Hill's `taperedTube s t`: both given, as his reader reads them. */
 static const hr_param_spec tube_params[] = {
-    {"s", HR_PARAM_NUMBER, 1, 1.0, 0.0, TAPER_MAX, "the outer radius at z = 1 (1 at z = 0)"},
+    {"s", HR_PARAM_NUMBER, 1, 1.0, 0.0, TAPER_MAX, "the outer radius at z = 1 (1 at z = 0)", 0},
     {"t", HR_PARAM_NUMBER, 1, 0.1, 0.0, 1.0,
      "the wall's thickness across the axis: the hole's radius is 1 - t at z = 0, s - t at "
-     "z = 1 (0 < t < 1, t <= s)"},
+     "z = 1 (t <= s)",
+     HR_PARAM_MIN_EXCLUSIVE | HR_PARAM_MAX_EXCLUSIVE},
 };
 
 /* (u, v): on the wall (and the tube's inner wall), u the turn about z from
