@@ -26,7 +26,7 @@ scene, camera = hitray.load_sdl(ROOT / "scenes" / "demo.sdl")
 print(scene, camera)
 print("objects:", [o.shape for o in scene.objects])
 
-# %% Render it; progress shows as a bar, Ctrl-C stops it cleanly.
+# %% Render it; progress shows as a bar at a terminal or in Jupyter, Ctrl-C stops it cleanly.
 image = hitray.render(scene, camera, size=size, spp=args.spp)
 print(image, image.stats)
 

@@ -313,9 +313,9 @@ def test_tqdm_in_a_notebook_without_ipywidgets_is_a_plain_bar(monkeypatch, capsy
     shell = types.SimpleNamespace(config={"IPKernelApp": {}})
     monkeypatch.setitem(sys.modules, "IPython", types.SimpleNamespace(get_ipython=lambda: shell))
     monkeypatch.setitem(sys.modules, "ipywidgets", None)  # as if not installed
-    render_module = sys.modules["hitray.render"]  # hitray.render is the function
+    from hitray import _progress
     from tqdm.std import tqdm as text_tqdm
-    assert render_module._tqdm_class() is text_tqdm
+    assert _progress.tqdm_class() is text_tqdm
     scene = hitray.Scene()
     scene.add(hitray.Sphere())
     with warnings.catch_warnings():

@@ -2,38 +2,16 @@
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from typing import Any, Callable, Optional, Tuple, Union
 
-from . import _convert, _core
+from . import _convert, _core, _progress
 from .camera import Camera
 from .image import RenderedImage
 from .scene import Scene
 
 __all__ = ["render"]
 
-Progress = Union[bool, Callable[[float], Any]]
-
-
-def _in_notebook() -> bool:
-    """Whether this runs in a Jupyter kernel (IPython's kernel app)."""
-    ipython = sys.modules.get("IPython")
-    get = getattr(ipython, "get_ipython", None)
-    shell = get() if callable(get) else None
-    return shell is not None and "IPKernelApp" in getattr(shell, "config", {})
-
-
-def _tqdm_class() -> Any:
-    """tqdm's notebook widget where it can be drawn, its plain text bar
-    everywhere else. tqdm.auto would pick the widget in any notebook and,
-    without ipywidgets, warn (TqdmWarning: IProgress not found) before
-    falling back; this falls back without the warning."""
-    if _in_notebook() and importlib.util.find_spec("ipywidgets") is not None:
-        from tqdm.notebook import tqdm as notebook_tqdm  # type: ignore[import-untyped, unused-ignore]
-        return notebook_tqdm
-    from tqdm.std import tqdm as text_tqdm  # type: ignore[import-untyped, unused-ignore]
-    return text_tqdm
+Progress = Union[None, bool, Callable[[float], Any]]
 
 
 class _Bar:
@@ -41,7 +19,7 @@ class _Bar:
     never reports going backwards), with the time left."""
 
     def __init__(self) -> None:
-        self._bar = _tqdm_class()(
+        self._bar = _progress.tqdm_class()(
             total=100, unit="%", desc="hitray", leave=False,
             bar_format="{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining} left")
         self._shown = 0.0
@@ -73,7 +51,7 @@ def _window(window: Any, width: int, height: int) -> Tuple[int, int, int, int]:
 
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480),
            spp: int = 1, threads: Optional[int] = None, depth: Optional[int] = None,
-           progress: Progress = True, *, block: Optional[int] = None, effects: str = "auto",
+           progress: Progress = None, *, block: Optional[int] = None, effects: str = "auto",
            adaptive: Optional[float] = None, min_weight: Optional[float] = None,
            exact: bool = False, block_size: Optional[int] = None,
            all_effects: bool = False,
@@ -88,8 +66,11 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
         threads: render threads (None: every core). The image is the same
             bit for bit whatever the count.
         depth: bounces (None: the scene's max_recursion_depth).
-        progress: True shows a tqdm bar; a callable is called with the
-            fraction done (0..1) from the calling thread; False shows nothing.
+        progress: None (the default) shows a tqdm bar where someone watches
+            (standard error a terminal, or a Jupyter notebook) and nothing
+            elsewhere, as ``hitray render`` does; True always shows one,
+            False never; a callable is called with the fraction done (0..1)
+            from the calling thread.
         block: Hill's blocksize: one ray per block of block² pixels
             (``hitray render --block``; ``block_size`` is the same, by its
             earlier name).
@@ -144,15 +125,14 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     core_scene = scene._committed()
     bar: Optional[_Bar] = None
     callback: Optional[Callable[[float], Any]]
-    if progress is True:
-        bar = _Bar()
-        callback = bar
-    elif progress is False or progress is None:
-        callback = None
-    elif callable(progress):
+    if callable(progress):
         callback = progress
+    elif progress is None or isinstance(progress, bool):
+        bar = _Bar() if _progress.wanted(progress) else None
+        callback = bar
     else:
-        raise TypeError("render: progress must be True, False or a callable taking the fraction done")
+        raise TypeError("render: progress must be None (auto), True, False or a callable taking the "
+                        "fraction done")
     try:
         core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, blocks,
                                   all_paths, threshold, weight, bool(exact), rect, callback)
