@@ -51,6 +51,7 @@
 #endif
 
 #include <hitray/common.h>
+#include <hitray/shape_kit_box.h>
 
 #include "float_bounds.h"
 
@@ -147,9 +148,10 @@ typedef struct accel_ray4 {
 #define ACCEL_CULL_RANGE 0x1p64
 #define ACCEL_INV_MAX 0x1p40
 
-/* Relative slack on every slab distance, folded into 1/d: far more than
- * the five roundings of 2^-24 it covers (see the top of this file). */
-#define ACCEL_SLACK 0x1p-20
+/* Relative slack on every slab distance, folded into 1/d: the shape kit's
+ * (SHAPE_SLAB_SLACK), far more than the five roundings of 2^-24 it covers
+ * (see the top of this file). */
+#define ACCEL_SLACK SHAPE_SLAB_SLACK
 /* Absolute slack on the entry and exit distances: the error of a subnormal
  * float result. */
 #define ACCEL_TINY 0x1p-149f

@@ -1,8 +1,8 @@
 /* Internal: what a context holds. Only the library's own layers see this:
  * the scene file readers (lib/sdl, lib/nff) are built without lib/core on
  * their include path. */
-#ifndef HITRAY_LIB_CONTEXT_INTERNAL_H
-#define HITRAY_LIB_CONTEXT_INTERNAL_H
+#ifndef HITRAY_LIB_CORE_CONTEXT_INTERNAL_H
+#define HITRAY_LIB_CORE_CONTEXT_INTERNAL_H
 
 #include <pthread.h>
 

@@ -1,6 +1,6 @@
 /* Internal: one thread's last error on one context. */
-#ifndef HITRAY_LIB_ERROR_SLOT_H
-#define HITRAY_LIB_ERROR_SLOT_H
+#ifndef HITRAY_LIB_CORE_ERROR_SLOT_H
+#define HITRAY_LIB_CORE_ERROR_SLOT_H
 
 #include <hitray/common.h>
 

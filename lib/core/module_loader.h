@@ -1,6 +1,6 @@
 /* Internal: finding, loading and checking shape modules. */
-#ifndef HITRAY_LIB_MODULE_LOADER_H
-#define HITRAY_LIB_MODULE_LOADER_H
+#ifndef HITRAY_LIB_CORE_MODULE_LOADER_H
+#define HITRAY_LIB_CORE_MODULE_LOADER_H
 
 #include "core/context_internal.h"
 

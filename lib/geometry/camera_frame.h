@@ -3,8 +3,8 @@
  * asked for; a render makes one for the whole image (the axes take two
  * square roots and the plane a tangent, more than the ray itself costs).
  * Both give a ray the same bits, because they run the same code. */
-#ifndef HITRAY_CAMERA_FRAME_H
-#define HITRAY_CAMERA_FRAME_H
+#ifndef HITRAY_LIB_GEOMETRY_CAMERA_FRAME_H
+#define HITRAY_LIB_GEOMETRY_CAMERA_FRAME_H
 
 #include <hitray/camera.h>
 

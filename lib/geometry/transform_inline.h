@@ -3,8 +3,8 @@
  * per ray and object; lib/geometry/transform.c's exported functions are these same
  * bodies, so both give the same bits. m is row-major object -> world (or its
  * inverse), as in hr_object. */
-#ifndef HITRAY_LIB_TRANSFORM_INLINE_H
-#define HITRAY_LIB_TRANSFORM_INLINE_H
+#ifndef HITRAY_LIB_GEOMETRY_TRANSFORM_INLINE_H
+#define HITRAY_LIB_GEOMETRY_TRANSFORM_INLINE_H
 
 #include <float.h>
 #include <math.h>

@@ -1,6 +1,6 @@
 /* Internal: small vector helpers for lib/ (inline, no state). */
-#ifndef HITRAY_LIB_VEC_H
-#define HITRAY_LIB_VEC_H
+#ifndef HITRAY_LIB_GEOMETRY_VEC_H
+#define HITRAY_LIB_GEOMETRY_VEC_H
 
 #include <math.h>
 #include <stdint.h>

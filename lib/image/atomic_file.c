@@ -220,12 +220,6 @@ hr_status hr_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f)
     return st;
 }
 
-hr_status hr_atomic_file_commit(const hr_context *ctx, hr_atomic_file *f)
-{
-    hr_status st = hr_atomic_file_finish(ctx, f);
-    return st ? st : hr_atomic_file_publish(ctx, f);
-}
-
 void hr_atomic_file_abort(hr_atomic_file *f)
 {
     if (f->fp) fclose(f->fp); /* an unnamed file goes with its last descriptor */

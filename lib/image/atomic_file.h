@@ -15,8 +15,8 @@
  * replacing it would defeat the protection). A symbolic link to a file is
  * written through: the file it points to is replaced and the link stays (a
  * dangling link is replaced itself). */
-#ifndef HITRAY_LIB_ATOMIC_FILE_H
-#define HITRAY_LIB_ATOMIC_FILE_H
+#ifndef HITRAY_LIB_IMAGE_ATOMIC_FILE_H
+#define HITRAY_LIB_IMAGE_ATOMIC_FILE_H
 
 #include <stdio.h>
 
@@ -44,9 +44,6 @@ hr_status hr_atomic_file_finish(const hr_context *ctx, hr_atomic_file *f);
 /* Put a finished file in place (name it, rename it onto the target). Either
  * way `f` is released. */
 hr_status hr_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f);
-
-/* finish, then publish. */
-hr_status hr_atomic_file_commit(const hr_context *ctx, hr_atomic_file *f);
 
 /* Give up: close and remove the temporary file, release `f`. */
 void hr_atomic_file_abort(hr_atomic_file *f);

@@ -2,8 +2,8 @@
  * (lib/trace/ray_cull.h): an unbounded object's slab axes and direction
  * limit, and the widened box around the BVH's objects, with the widening
  * both sides share. */
-#ifndef HITRAY_LIB_CULL_PREPARE_H
-#define HITRAY_LIB_CULL_PREPARE_H
+#ifndef HITRAY_LIB_SCENE_CULL_PREPARE_H
+#define HITRAY_LIB_SCENE_CULL_PREPARE_H
 
 #include <math.h>
 
@@ -29,22 +29,20 @@ static inline void unbounded_cull_prepare(hr_object *o)
 }
 
 /* The widening of a slab's entry and exit is the shape kit's
- * (SHAPE_SLAB_SLACK, SHAPE_SLAB_TINY): as the BVH's (accel/bvh4.h), far more
- * than the two roundings of each distance, and enough to cover a shape's own
- * rounding of t as the BVH's slack does. */
-#define CULL_SLACK SHAPE_SLAB_SLACK
-#define CULL_TINY SHAPE_SLAB_TINY
+ * (SHAPE_SLAB_SLACK, SHAPE_SLAB_TINY), the BVH's too (accel/bvh4.h): far
+ * more than the two roundings of each distance, and enough to cover a
+ * shape's own rounding of t. */
 
 /* The box the BVH walk of a scene may meet (at commit): the union of its
- * objects' world bounds, widened by CULL_SLACK of its largest coordinate
- * (plus CULL_TINY), far more than the float walk's own rounding of boxes
+ * objects' world bounds, widened by SHAPE_SLAB_SLACK of its largest coordinate
+ * (plus SHAPE_SLAB_TINY), far more than the float walk's own rounding of boxes
  * outward (2^-24), so that a ray this box culls is one the walk could only
  * take to shapes it misses by more than that. An empty union (no bounded
  * object) stays empty: lo > hi. */
 static inline hr_bounds cull_box_widened(hr_bounds b)
 {
     if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) return b;
-    const double pad = CULL_SLACK * fmax(v3_max_abs(b.lo), v3_max_abs(b.hi)) + CULL_TINY;
+    const double pad = SHAPE_SLAB_SLACK * fmax(v3_max_abs(b.lo), v3_max_abs(b.hi)) + SHAPE_SLAB_TINY;
     b.lo = v3(b.lo.x - pad, b.lo.y - pad, b.lo.z - pad);
     b.hi = v3(b.hi.x + pad, b.hi.y + pad, b.hi.z + pad);
     return b;

@@ -2,8 +2,8 @@
  * shading tests one bit (scene_effects.c sets it, lib/trace/shade.c reads
  * it): the material flags, whether a light can add anything, and the Phong
  * term's cut-off. */
-#ifndef HITRAY_LIB_MATERIAL_ANALYSIS_H
-#define HITRAY_LIB_MATERIAL_ANALYSIS_H
+#ifndef HITRAY_LIB_SCENE_MATERIAL_ANALYSIS_H
+#define HITRAY_LIB_SCENE_MATERIAL_ANALYSIS_H
 
 #include <math.h>
 #include <stdint.h>

@@ -1,5 +1,5 @@
 /* Materials: the defaults (Hill's) and the checks that keep every pixel
- * finite (HR_MAX_COLOR, scene_internal.h). */
+ * finite (HR_MAX_COLOR, util/color_bounds.h). */
 #include <math.h>
 #include <stddef.h>
 #include <string.h>

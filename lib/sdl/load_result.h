@@ -2,8 +2,8 @@
  * shared by the SDL and NFF readers). The caller's struct may be older,
  * shorter than ours: it must at least reach the scene pointer, and only the
  * bytes it has are written. */
-#ifndef HITRAY_LIB_LOAD_RESULT_H
-#define HITRAY_LIB_LOAD_RESULT_H
+#ifndef HITRAY_LIB_SDL_LOAD_RESULT_H
+#define HITRAY_LIB_SDL_LOAD_RESULT_H
 
 #include <hitray/hitray.h>
 

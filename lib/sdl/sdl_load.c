@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "util/errors.h"
+#include "util/strutil.h"
 #include "sdl/load_result.h"
 #include "sdl/sdl_diag.h"
 #include "sdl/sdl_lexer.h"
@@ -82,21 +83,6 @@ HR_API hr_status hr_sdl_load_string(hr_context *ctx, const char *text, const cha
     return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, out);
 }
 
-/* "a/b/c.dat" -> "a/b"; "c.dat" -> "."; "/c.dat" -> "/". */
-static char *directory_of(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    const char *dir = ".";
-    size_t n = 1;
-    if (slash == path) dir = "/";
-    else if (slash) dir = path, n = (size_t)(slash - path);
-    char *copy = malloc(n + 1);
-    if (!copy) return NULL;
-    memcpy(copy, dir, n);
-    copy[n] = '\0';
-    return copy;
-}
-
 HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)
 {
     hr_status st = hr_load_result_begin(ctx, out, "SDL");
@@ -105,7 +91,7 @@ HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_resu
     char *text;
     size_t length;
     if ((st = hr_scene_file_read(ctx, path, "scene file", &text, &length))) return st;
-    char *base_dir = directory_of(path);
+    char *base_dir = hr_path_dirname(path);
     if (!base_dir)
         st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     else

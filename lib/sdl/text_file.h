@@ -14,8 +14,8 @@
  *
  * Every error names the file and is recorded on the context; `what` names
  * the kind of file in messages ("scene file"). */
-#ifndef HITRAY_LIB_TEXT_FILE_H
-#define HITRAY_LIB_TEXT_FILE_H
+#ifndef HITRAY_LIB_SDL_TEXT_FILE_H
+#define HITRAY_LIB_SDL_TEXT_FILE_H
 
 #include <stddef.h>
 

@@ -1,16 +1,16 @@
 /* Internal: Cook and Torrance's specular term (Hill, chapter 8; Cook and
  * Torrance, "A Reflectance Model for Computer Graphics", 1982), used by
  * shade where a material's specularFraction is above 0. */
-#ifndef HITRAY_LIB_COOK_TORRANCE_H
-#define HITRAY_LIB_COOK_TORRANCE_H
+#ifndef HITRAY_LIB_TRACE_COOK_TORRANCE_H
+#define HITRAY_LIB_TRACE_COOK_TORRANCE_H
 
 #include <hitray/common.h>
 
-/* The largest value hr_cook_torrance returns: a grazing view or light
- * makes the term's 1 / (n.v) unbounded, and a colour times this stays
- * within the bound that keeps every pixel finite (HR_MAX_COLOR,
- * scene_internal.h). */
-#define HR_COOK_TORRANCE_MAX 1e6
+/* The largest value hr_cook_torrance returns is HR_COOK_TORRANCE_MAX: a
+ * grazing view or light makes the term's 1 / (n.v) unbounded, and a colour
+ * times it stays within the bound that keeps every pixel finite
+ * (util/color_bounds.h). */
+#include "util/color_bounds.h"
 
 /* R_s (n.l) for unit vectors n (the normal, on the viewer's side), l (to
  * the light) and v (to the eye), in the normalised microfacet form:

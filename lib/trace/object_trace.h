@@ -4,8 +4,8 @@
  * always-inline body. hr_object_trace (trace.c) is its out-of-line copy; the
  * scene walk and the host's child trace inline it, so that each gets a copy
  * specialised to its mode and pays no call per object and ray. */
-#ifndef HITRAY_LIB_OBJECT_TRACE_H
-#define HITRAY_LIB_OBJECT_TRACE_H
+#ifndef HITRAY_LIB_TRACE_OBJECT_TRACE_H
+#define HITRAY_LIB_TRACE_OBJECT_TRACE_H
 
 #include <math.h>
 

@@ -3,8 +3,8 @@
  * Every public query enters on the way in and leaves on the way out; a
  * render's threads start at the level of the thread that called hr_render
  * (hr_query_nesting, hr_query_set_nesting in scene.h). */
-#ifndef HITRAY_LIB_QUERY_NESTING_H
-#define HITRAY_LIB_QUERY_NESTING_H
+#ifndef HITRAY_LIB_TRACE_QUERY_NESTING_H
+#define HITRAY_LIB_TRACE_QUERY_NESTING_H
 
 #include <hitray/hitray.h>
 

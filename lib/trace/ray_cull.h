@@ -3,8 +3,8 @@
  * object-space bounds, and the whole BVH by the box around its objects,
  * from what commit prepared (lib/scene/cull_prepare.h). A header of their
  * own so that tests/core/test_ray_cull.c can check them on many rays. */
-#ifndef HITRAY_LIB_RAY_CULL_H
-#define HITRAY_LIB_RAY_CULL_H
+#ifndef HITRAY_LIB_TRACE_RAY_CULL_H
+#define HITRAY_LIB_TRACE_RAY_CULL_H
 
 #include <float.h>
 #include <math.h>
@@ -58,7 +58,7 @@ static inline __attribute__((always_inline)) int unbounded_misses(const hr_objec
         if (!(fabs(ok) <= DBL_MAX)) return 0;
         if (!(fabs(dk) >= 0x1p-200)) {
             if (dk != 0.0) return 0; /* too small to say (or NaN) */
-            const double margin = CULL_SLACK * fabs(ok) + CULL_TINY;
+            const double margin = SHAPE_SLAB_SLACK * fabs(ok) + SHAPE_SLAB_TINY;
             if (ok + margin < lo[k] || ok - margin > hi[k]) return 1;
             continue;
         }
@@ -72,16 +72,11 @@ static inline __attribute__((always_inline)) int unbounded_misses(const hr_objec
  * parallel to a slab stays in it or out of it). A shadow ray from the floor
  * away from every object, or a camera ray into the floor beside them, then
  * skips the walk's setup (about 230 instructions) and its node tests. Rays
- * that are not finite are never culled (NaN compares false). This is the
- * reference; box_slabs_missed is the same test in SSE2 where there is SSE2. */
-static inline int box_misses_scalar(const hr_bounds *b, const hr_ray *ray, double tmin, double tmax)
-{
-    return shape_box_misses(b, ray, tmin, tmax);
-}
-
-/* box_misses_scalar, in SSE2 where there is SSE2: about half the
- * instructions, for a test every camera and shadow ray takes. */
-static inline __attribute__((always_inline)) int box_slabs_missed(const hr_bounds *b, const hr_ray *ray,
+ * that are not finite are never culled (NaN compares false).
+ * box_misses_sse2: shape_box_misses, the reference, in SSE2 where there is
+ * SSE2: about half the instructions, for a test every camera and shadow ray
+ * takes. */
+static inline __attribute__((always_inline)) int box_misses_sse2(const hr_bounds *b, const hr_ray *ray,
                                                                    double tmin, double tmax)
 {
 #if defined(__SSE2__)
@@ -93,8 +88,8 @@ static inline __attribute__((always_inline)) int box_slabs_missed(const hr_bound
      * with the new value first, so a NaN drops out as it does there. The
      * lanes are folded last; max and min of the same values do not depend
      * on the order but for the sign of a zero, which the widening erases
-     * (shape_window_missed turns either zero into the same -CULL_TINY or
-     * CULL_TINY). So both give the same answer (test_ray_cull). */
+     * (shape_window_missed turns either zero into the same -SHAPE_SLAB_TINY or
+     * SHAPE_SLAB_TINY). So both give the same answer (test_ray_cull). */
     const __m128d inf = _mm_set1_pd(INFINITY), neg_inf = _mm_set1_pd(-INFINITY);
     const __m128d o_xy = _mm_loadu_pd(&ray->origin.x), d_xy = _mm_loadu_pd(&ray->dir.x);
     const __m128d o_z = _mm_load_sd(&ray->origin.z);
@@ -113,11 +108,11 @@ static inline __attribute__((always_inline)) int box_slabs_missed(const hr_bound
     t_far = _mm_min_sd(t_far, _mm_unpackhi_pd(t_far, t_far));
     return shape_window_missed(_mm_cvtsd_f64(t_near), _mm_cvtsd_f64(t_far), tmin, tmax);
 #else
-    return box_misses_scalar(b, ray, tmin, tmax);
+    return shape_box_misses(b, ray, tmin, tmax);
 #endif
 }
 
-/* box_slabs_missed, after a shortcut for the rays it can never cull. */
+/* box_misses_sse2, after a shortcut for the rays it can never cull. */
 static inline __attribute__((always_inline)) int box_misses(const hr_bounds *b, const hr_ray *ray,
                                                              double tmin, double tmax)
 {
@@ -129,7 +124,7 @@ static inline __attribute__((always_inline)) int box_misses(const hr_bounds *b, 
     if (o.x >= b->lo.x && o.x <= b->hi.x && o.y >= b->lo.y && o.y <= b->hi.y && o.z >= b->lo.z &&
         o.z <= b->hi.z)
         return 0;
-    return box_slabs_missed(b, ray, tmin, tmax);
+    return box_misses_sse2(b, ray, tmin, tmax);
 }
 
 #endif

@@ -1,8 +1,8 @@
 /* Internal: the bounds on input colours and exponents that keep every pixel
  * finite, one definition for the scene's checks of materials, lights and
  * globals, the textures' parameters and pixmaps, and the readers. */
-#ifndef HITRAY_LIB_COLOR_BOUNDS_H
-#define HITRAY_LIB_COLOR_BOUNDS_H
+#ifndef HITRAY_LIB_UTIL_COLOR_BOUNDS_H
+#define HITRAY_LIB_UTIL_COLOR_BOUNDS_H
 
 #include <math.h>
 
@@ -15,10 +15,13 @@
  * far below float's 3.4e38 for any render that can finish (it would take
  * ~1e20 rays per pixel to get there). A texture's colour is bounded the same
  * way (its parameters and pixmap pixels), and Cook-Torrance's term by
- * HR_COOK_TORRANCE_MAX (lib/trace/cook_torrance.h): each multiplies a ray's share by at most 1e6 more,
- * which still takes ~1e14 rays per pixel to overflow. */
-#define HR_MAX_COLOR 1e6
-#define HR_MAX_EXPONENT 1e6
+ * HR_COOK_TORRANCE_MAX (lib/trace/cook_torrance.c clamps to it): each multiplies a ray's share by
+ * at most HR_INPUT_BOUND more, which still takes ~1e14 rays per pixel to overflow. The argument
+ * needs one magnitude, HR_INPUT_BOUND, for all three. */
+#define HR_INPUT_BOUND 1e6
+#define HR_MAX_COLOR HR_INPUT_BOUND
+#define HR_MAX_EXPONENT HR_INPUT_BOUND
+#define HR_COOK_TORRANCE_MAX HR_INPUT_BOUND
 
 /* A colour of a material, light or the globals within those bounds. */
 static inline int hr_color_in_range(hr_color c)

@@ -8,8 +8,8 @@
  * so that each call is one to the public setters from the caller's own
  * layer (a layer raising errors uses core, which keeps them; a reader calls
  * the public API) and util itself calls no layer above it. */
-#ifndef HITRAY_LIB_ERRORS_H
-#define HITRAY_LIB_ERRORS_H
+#ifndef HITRAY_LIB_UTIL_ERRORS_H
+#define HITRAY_LIB_UTIL_ERRORS_H
 
 #include <stdarg.h>
 #include <stdio.h>

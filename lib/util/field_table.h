@@ -1,7 +1,7 @@
 /* Internal: the field tables of include/hitray/scene_fields.h as data, for
  * the code that finds a field by its SDL keyword or walks every field. */
-#ifndef HITRAY_LIB_FIELD_TABLE_H
-#define HITRAY_LIB_FIELD_TABLE_H
+#ifndef HITRAY_LIB_UTIL_FIELD_TABLE_H
+#define HITRAY_LIB_UTIL_FIELD_TABLE_H
 
 #include <stddef.h>
 

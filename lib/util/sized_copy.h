@@ -5,8 +5,8 @@
  * the library's defaults, and the copy then says it is full size. Handing
  * one out, only the bytes both sides know are written, and struct_size tells
  * the caller how many that was. */
-#ifndef HITRAY_SIZED_COPY_H
-#define HITRAY_SIZED_COPY_H
+#ifndef HITRAY_LIB_UTIL_SIZED_COPY_H
+#define HITRAY_LIB_UTIL_SIZED_COPY_H
 
 #include <stdint.h>
 #include <string.h>

@@ -3,8 +3,8 @@
  * scene's check of a material and the SDL reader's say the same. Inline, so
  * that the call to texture/ is made from the caller's layer (texture itself,
  * or a reader through the public API), not from util, which is below it. */
-#ifndef HITRAY_LIB_SOLID_TEXTURES_H
-#define HITRAY_LIB_SOLID_TEXTURES_H
+#ifndef HITRAY_LIB_UTIL_SOLID_TEXTURES_H
+#define HITRAY_LIB_UTIL_SOLID_TEXTURES_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,6 +1,6 @@
 /* Internal: the few string helpers C11 lacks. */
-#ifndef HITRAY_LIB_STRUTIL_H
-#define HITRAY_LIB_STRUTIL_H
+#ifndef HITRAY_LIB_UTIL_STRUTIL_H
+#define HITRAY_LIB_UTIL_STRUTIL_H
 
 #include <stddef.h>
 

@@ -1,8 +1,8 @@
 /* Internal: "did you mean" (lib/util/suggest.c), for keywords, options and shape
  * class names. Candidates are offered one at a time, so a caller can walk
  * its own tables without gathering them into an array first. */
-#ifndef HITRAY_LIB_SUGGEST_H
-#define HITRAY_LIB_SUGGEST_H
+#ifndef HITRAY_LIB_UTIL_SUGGEST_H
+#define HITRAY_LIB_UTIL_SUGGEST_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -138,7 +138,10 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
     hit->normal = ns;
 }
 
-static int hit_before(const hr_hit *a, const hr_hit *b)
+/* A mesh's order of its own hits: by t, an entering hit first at equal t
+ * (the library's hit_before, lib/trace/object_trace.h, orders a scene's
+ * hits by t, object and surface instead). */
+static int mesh_hit_before(const hr_hit *a, const hr_hit *b)
 {
     if (a->t != b->t) return a->t < b->t;
     return a->entering > b->entering; /* a zero-length visit: enter first */
@@ -151,8 +154,8 @@ static void sift(hr_hit *h, size_t root, size_t n)
     for (;;) {
         size_t child = 2 * root + 1;
         if (child >= n) return;
-        if (child + 1 < n && hit_before(&h[child], &h[child + 1])) child++;
-        if (!hit_before(&h[root], &h[child])) return;
+        if (child + 1 < n && mesh_hit_before(&h[child], &h[child + 1])) child++;
+        if (!mesh_hit_before(&h[root], &h[child])) return;
         hr_hit t = h[root];
         h[root] = h[child], h[child] = t;
         root = child;
@@ -165,7 +168,7 @@ static void sort_hits(hr_hit *h, size_t n)
         for (size_t i = 1; i < n; i++) {
             hr_hit x = h[i];
             size_t j = i;
-            while (j > 0 && hit_before(&x, &h[j - 1])) h[j] = h[j - 1], j--;
+            while (j > 0 && mesh_hit_before(&x, &h[j - 1])) h[j] = h[j - 1], j--;
             h[j] = x;
         }
         return;
@@ -435,7 +438,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             return 1;
         }
         /* A tie goes to the entering hit, as in the all-hits order
-         * (hit_before): a ray through a vertex or an edge where it touches
+         * (mesh_hit_before): a ray through a vertex or an edge where it touches
          * the mesh meets an entering and an exiting triangle at one t, and
          * the first hit must be the first of all hits whichever the BVH
          * reaches first. */

@@ -6,8 +6,8 @@
  * decided in long double; rays start inside, outside and on faces (where a
  * parallel ray's distance is 0 / 0), run parallel to faces (+0 and -0) or
  * nearly, and have windows ending on a face's own t. On all of them, and on
- * the box before widening, the SSE2 test (box_slabs_missed) must answer as
- * the scalar one (box_misses_scalar).
+ * the box before widening, the SSE2 test (box_misses_sse2) must answer as
+ * the scalar one (shape_box_misses).
  *
  * A shadow ray passes an unbounded object (a plane) without tracing it when
  * unbounded_misses says, from the object's object-space bounds, that the ray
@@ -184,8 +184,8 @@ static void box_cull_keeps_every_box(void)
             }
             if (!(tmin <= tmax)) continue;
             /* The SSE2 lanes and the scalar reference agree, ray by ray. */
-            differ += box_slabs_missed(&widened, &r, tmin, tmax) != box_misses_scalar(&widened, &r, tmin, tmax);
-            differ += box_slabs_missed(&box, &r, tmin, tmax) != box_misses_scalar(&box, &r, tmin, tmax);
+            differ += box_misses_sse2(&widened, &r, tmin, tmax) != shape_box_misses(&widened, &r, tmin, tmax);
+            differ += box_misses_sse2(&box, &r, tmin, tmax) != shape_box_misses(&box, &r, tmin, tmax);
             if (!box_misses(&widened, &r, tmin, tmax)) continue;
             culled++;
             if (box_met(&box, &r, tmin, tmax)) {
@@ -200,7 +200,7 @@ static void box_cull_keeps_every_box(void)
     fprintf(stderr, "boxes: %ld rays, %ld culled, %ld culled but met, %ld where the SSE2 and scalar tests differ\n",
             rays, culled, wrong, differ);
     CHECK_MSG(wrong == 0, "%ld culled rays met the box", wrong);
-    CHECK_MSG(differ == 0, "%ld answers of box_slabs_missed differ from box_misses_scalar", differ);
+    CHECK_MSG(differ == 0, "%ld answers of box_misses_sse2 differ from shape_box_misses", differ);
     CHECK(culled > rays / 5);
 }
 

@@ -1,8 +1,8 @@
 # The layering check fails, naming the crossing, on each crossing planted in a
-# copy: an upward include and a bare one (in a copy of lib/'s sources), an
-# upward call and a loop of calls (in a copy of the manifest, with the trace
-# layer's shade.c object filed in a lower layer), and a tolerated crossing
-# that no longer occurs.
+# copy: an upward include, a bare one and a stale include guard (in a copy
+# of lib/'s sources), an upward call and a loop of calls (in a copy of the
+# manifest, with the trace layer's shade.c object filed in a lower layer),
+# and a tolerated crossing that no longer occurs.
 # Variables: LIB_DIR MANIFEST NM CHECK WORK_DIR
 cmake_minimum_required(VERSION 3.18)
 
@@ -41,6 +41,11 @@ file(COPY "${LIB_DIR}/util/strutil.c" DESTINATION "${copy}/util")
 file(APPEND "${copy}/geometry/camera.c" "#include \"texture.h\"\n")
 run_check("${copy}" "${MANIFEST}" "lib/geometry/camera\\.c:[0-9]+:10: \"texture\\.h\" is named without its folder: write \"texture/texture\\.h\"")
 file(COPY "${LIB_DIR}/geometry/camera.c" DESTINATION "${copy}/geometry")
+
+# A header moved without its guard renamed.
+file(RENAME "${copy}/util/suggest.h" "${copy}/core/suggest.h")
+run_check("${copy}" "${MANIFEST}" "lib/core/suggest\\.h: its include guard is not HITRAY_LIB_CORE_SUGGEST_H")
+file(RENAME "${copy}/core/suggest.h" "${copy}/util/suggest.h")
 
 include("${MANIFEST}")
 set(shade "")

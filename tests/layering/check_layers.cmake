@@ -6,7 +6,8 @@
 #     CLIENT layer, to a function the library exports (the public API);
 #   - a crossing listed by hitray_layer_crossing is tolerated, and one listed
 #     that no longer occurs is a problem (the list only shrinks);
-#   - neither the USES nor the calls between layers make a loop.
+#   - neither the USES nor the calls between layers make a loop;
+#   - each header's include guard is named for its folder and file.
 # Every problem is reported (file:line:col for includes), then the check fails.
 # Variables: LIB_DIR (the sources' lib/), MANIFEST (written by
 # tests/layering/CMakeLists.txt: HITRAY_LAYERS, HITRAY_LAYER_USES_<layer>,
@@ -27,6 +28,21 @@ foreach(layer IN LISTS HITRAY_LAYERS)
   file(GLOB sources RELATIVE "${LIB_DIR}" "${LIB_DIR}/${layer}/*.c" "${LIB_DIR}/${layer}/*.h")
   foreach(source IN LISTS sources)
     file(READ "${LIB_DIR}/${source}" text)
+    # A header's include guard is named for its place, so that a file moved
+    # or renamed shows a stale one: HITRAY_LIB_<FOLDER>_<NAME>_H, the folder
+    # once where the name starts with it (sdl/sdl_lexer.h: HITRAY_LIB_SDL_LEXER_H).
+    if(source MATCHES "\\.h$")
+      get_filename_component(base "${source}" NAME_WE)
+      string(TOUPPER "${base}" guard)
+      string(TOUPPER "${layer}" upper_layer)
+      if(NOT guard MATCHES "^${upper_layer}(_|$)")
+        set(guard "${upper_layer}_${guard}")
+      endif()
+      set(guard "HITRAY_LIB_${guard}_H")
+      if(NOT text MATCHES "#ifndef ${guard}\n#define ${guard}\n")
+        problem("lib/${source}: its include guard is not ${guard}")
+      endif()
+    endif()
     # One list element per line: characters that CMake's lists treat
     # specially are dropped first (they never matter to an #include).
     string(REGEX REPLACE "[][;\\\\]" "" text "${text}")
