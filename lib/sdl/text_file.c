@@ -1,5 +1,5 @@
 /* Reading a scene file whole, with limits (text_file.h). */
-#include "util/text_file.h"
+#include "sdl/text_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
