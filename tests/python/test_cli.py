@@ -9,6 +9,7 @@ no traceback, no partial output file.
 import json
 import math
 import os
+import re
 import pathlib
 import pty
 import select
@@ -1039,3 +1040,19 @@ def test_exact_renders_the_same_image_as_the_default_cut_off(tmp_path):
     sa, sb = (json.loads((tmp_path / n).read_text()) for n in ("a.json", "b.json"))
     assert sa["rays_cut"] == sb["rays_cut"] == 0
     assert [sa[k] for k in ("primary", "shadow", "reflected")] == [sb[k] for k in ("primary", "shadow", "reflected")]
+
+
+# A number with a unit of time, or a count of instructions or cycles.
+_MEASUREMENT = re.compile(r"\d\s*(ns|us|µs|ms)\b|\binstructions?\b|\bcycles?\b")
+
+
+def test_shape_help_quotes_no_measurement():
+    """`hitray shapes` says what a choice does, not what it measured on some
+    machine: timings and instruction counts go stale, so they live in
+    bench/RESULTS.md and the help points there (the torus's solver)."""
+    r = run("shapes")
+    assert r.returncode == 0, r.stderr
+    bad = [line.strip() for line in r.stdout.splitlines() if _MEASUREMENT.search(line)]
+    assert not bad, f"help that quotes a measurement: {bad}"
+    solver = [line for line in r.stdout.splitlines() if line.strip().startswith("solver ")]
+    assert solver and "bench/RESULTS.md" in solver[0]
