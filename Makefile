@@ -168,7 +168,7 @@ test-python: python-install
 # marked not run with the reason, and docs/effects.md's tables rerun
 # (tests/docs/test_docs.py says how each kind of block is run).
 test-docs: python-install
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -rx -p no:cacheprovider tests/docs
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -rx -n $(JOBS) -p no:cacheprovider tests/docs
 
 # The package built with ASan+UBSan (library, modules and extension) into
 # $(PYTHON_ASAN_BUILD)/site, its tests run by the venv's interpreter with the
