@@ -37,7 +37,8 @@ static void print_param(const hr_param_spec *p)
     if (p->required) printf(" required");
     else if (p->type == HR_PARAM_NUMBER) printf(" default %g", p->default_number);
     if (p->type == HR_PARAM_NUMBER && (isfinite(p->min) || isfinite(p->max)))
-        printf(" range [%g, %g]", p->min, p->max);
+        printf(" range %c%g, %g%c", p->flags & HR_PARAM_MIN_EXCLUSIVE ? '(' : '[', p->min, p->max,
+               p->flags & HR_PARAM_MAX_EXCLUSIVE ? ')' : ']');
     if (p->help && *p->help) printf("  %s", p->help);
     putchar('\n');
 }

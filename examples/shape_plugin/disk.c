@@ -34,11 +34,11 @@ typedef struct disk_shape {
     double radius;
 } disk_shape;
 
-/* The host checks type and the inclusive range [min, max] before create runs,
- * and fills in the default when the caller gives no radius. A range check
- * cannot say "greater than 0", so create refuses 0 itself. The upper limit
- * matches the scene's other sanity limits (materials stop at 1e6 too); a
- * bigger disk is still one scale away, through the object's transform. */
+/* The host checks type and the range (0, 1e6] before create runs (the
+ * excluded minimum refuses 0 and -0), and fills in the default when the
+ * caller gives no radius. The upper limit matches the scene's other sanity
+ * limits (materials stop at 1e6 too); a bigger disk is still one scale away,
+ * through the object's transform. */
 static const hr_param_spec disk_params[] = {
     {
         .name = "radius",
@@ -47,7 +47,8 @@ static const hr_param_spec disk_params[] = {
         .default_number = 1.0,
         .min = 0.0,
         .max = 1e6,
-        .help = "radius of the disk in object units; must be > 0",
+        .flags = HR_PARAM_MIN_EXCLUSIVE,
+        .help = "radius of the disk in object units",
     },
 };
 
@@ -65,13 +66,6 @@ static hr_status disk_create(const hr_create_args *args, void **out_shape)
 {
     const hr_param *radius = find_param(args, "radius");
     const double r = radius ? radius->number : 1.0;
-    /* `!(r > 0)` also catches -0, which passes the host's range check. The
-     * message names the parameter; the host adds the class and module path. */
-    if (!(r > 0.0)) {
-        if (args->error && args->error_size > 0)
-            snprintf(args->error, args->error_size, "parameter 'radius' must be greater than 0, not %g", r);
-        return HR_ERROR_PARAMETER;
-    }
     disk_shape *disk = args->host->alloc(sizeof *disk);
     if (!disk) return HR_ERROR_OUT_OF_MEMORY;
     disk->host = args->host;

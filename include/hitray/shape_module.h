@@ -121,7 +121,16 @@ typedef struct hr_hit_args {
      * HR_MIN_HIT_CAPACITY free slots on entry, host->reserve for more. */
     hr_intersection *out;
     void *call; /* host context for hr_host services */
+    /* --- Added within ABI 1. sizeof(hr_hit_args) of the host that filled
+     * this in: a module reads a field added after it only when struct_size
+     * covers it (HR_HIT_ARGS_HAS), since an older host passes less. --- */
+    uint32_t struct_size;
 } hr_hit_args;
+
+/* Whether the hit arguments `args` have `field` (an older host, built
+ * before the field was added, passes a smaller struct). */
+#define HR_HIT_ARGS_HAS(args, field)                                           \
+    ((args)->struct_size >= offsetof(hr_hit_args, field) + sizeof((args)->field))
 
 typedef hr_status (*hr_hit_fn)(const hr_hit_args *args);
 
@@ -131,9 +140,21 @@ typedef struct hr_param_spec {
     int32_t type;        /* HR_PARAM_* */
     int32_t required;    /* 1: the caller must give it; 0: default applies */
     double default_number;
-    double min, max;     /* inclusive range of a number, checked by the host */
+    double min, max;     /* range of a number (each element of an array),
+                            checked by the host; inclusive unless flags
+                            say otherwise; min > max: no range */
     const char *help;    /* one line: meaning, unit, what choices cost */
+    /* --- Added within ABI 1: the host reads it only from a class whose
+     * param_spec_size covers it (a class built against an older header
+     * declares none and reads as flags 0). --- */
+    int32_t flags;       /* HR_PARAM_* flags below */
 } hr_param_spec;
+
+/* Flags of a parameter (hr_param_spec.flags): the end of its range that is
+ * excluded, so a range can say "> 0" (a radius) rather than ">= a tiny
+ * number". */
+#define HR_PARAM_MIN_EXCLUSIVE 1 /* the number must be > min */
+#define HR_PARAM_MAX_EXCLUSIVE 2 /* the number must be < max */
 
 /* Flags of a shape class. */
 #define HR_SHAPE_CLOSED 1    /* a solid: entering/exiting alternate (CSG-able) */
@@ -191,6 +212,15 @@ struct hr_shape_class {
      * hr_hit.surface can be read without knowing the class. NULL: the
      * surfaces are known by number only. */
     const char *const *surface_names;
+    /* The size of each entry of `params` (its stride), so hr_param_spec
+     * can grow within ABI 1; the host copies each entry into its own
+     * full-size spec, missing fields zero. 0 means the layout of the header
+     * the class was built with: in a class whose struct_size covers this
+     * field, the spec ending at `flags` (56 bytes); in an older class, the
+     * first one, ending at `help` (48 bytes). So a class never sets it by
+     * hand. As everywhere in ABI 1, the promise is that older modules keep
+     * working on newer hosts, not the reverse. */
+    uint32_t param_spec_size;
 };
 
 /* Whether a class declared with `struct_size` has `field`. The host's copy

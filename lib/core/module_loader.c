@@ -19,11 +19,21 @@
 
 #define REFUSAL_SIZE 1024
 
+/* Free the copies of the classes taken so far (class_count of them). */
+static void drop_classes(hr_module *m)
+{
+    for (int32_t i = 0; i < m->class_count; i++) free((void *)m->classes[i].params);
+    free(m->classes);
+    m->classes = NULL;
+    free(m->class_ptrs);
+    m->class_ptrs = NULL;
+    m->class_count = 0;
+}
+
 static void module_free(hr_module *m)
 {
     if (!m) return;
-    free(m->classes);
-    free(m->class_ptrs);
+    drop_classes(m);
     if (m->handle) dlclose(m->handle);
     free(m->path);
     free(m->error);
@@ -67,21 +77,47 @@ static int copy_class(hr_module *m, const hr_shape_class *src, hr_shape_class *d
     }
     memset(dst, 0, sizeof *dst);
     HR_SIZED_COPY_IN(dst, src);
+    /* The module's specs are read through their declared stride into the
+     * host's own full-size copy (dst->params, freed with the class). */
+    const char *given = (const char *)dst->params;
+    dst->params = NULL;
+    const size_t first_layout = offsetof(hr_param_spec, help) + sizeof(const char *);
+    const size_t flags_layout = (offsetof(hr_param_spec, flags) + sizeof(int32_t) + 7) & ~(size_t)7;
+    const size_t stride = dst->param_spec_size       ? dst->param_spec_size
+                          : HR_CLASS_HAS(src, param_spec_size) ? flags_layout
+                                                             : first_layout;
+    dst->param_spec_size = (uint32_t)sizeof(hr_param_spec);
     const char *name = dst->name && *dst->name ? dst->name : "(unnamed)";
     if (!dst->name || !*dst->name || !dst->create || !dst->destroy || !dst->bounds || !dst->hit ||
-        dst->param_count < 0 || (dst->param_count > 0 && !dst->params)) {
+        dst->param_count < 0 || (dst->param_count > 0 && !given)) {
         refuse(m, "shape module '%s': class '%s' lacks a name, create, destroy, bounds or hit",
                m->path, name);
         return 0;
     }
+    if (stride < first_layout) {
+        refuse(m, "shape module '%s': class '%s' declares parameter specs of %zu bytes, fewer "
+                  "than the %zu of the first layout",
+               m->path, name, stride, first_layout);
+        return 0;
+    }
+    hr_param_spec *specs = NULL;
+    if (dst->param_count > 0 && !(specs = calloc((size_t)dst->param_count, sizeof *specs))) {
+        refuse(m, "shape module '%s': out of memory", m->path);
+        return 0;
+    }
+    const int32_t known_flags = HR_PARAM_MIN_EXCLUSIVE | HR_PARAM_MAX_EXCLUSIVE;
     for (int32_t i = 0; i < dst->param_count; i++) {
-        const hr_param_spec *p = &dst->params[i];
-        if (!p->name || !*p->name || p->type < HR_PARAM_NUMBER || p->type > HR_PARAM_NUMBERS) {
+        hr_param_spec *p = &specs[i];
+        memcpy(p, given + (size_t)i * stride, stride < sizeof *p ? stride : sizeof *p);
+        if (!p->name || !*p->name || p->type < HR_PARAM_NUMBER || p->type > HR_PARAM_NUMBERS ||
+            (p->flags & ~known_flags)) {
             refuse(m, "shape module '%s': class '%s' has a malformed parameter %d", m->path,
                    name, (int)i);
+            free(specs);
             return 0;
         }
     }
+    dst->params = specs;
     return 1;
 }
 
@@ -102,8 +138,8 @@ static int adopt_classes(hr_module *m, const hr_module_info *info)
     for (int32_t i = 0; i < n; i++) {
         if (!copy_class(m, info->classes[i], &m->classes[i])) return 0;
         m->class_ptrs[i] = &m->classes[i];
+        m->class_count = i + 1;
     }
-    m->class_count = n;
     m->info = info;
     return 1;
 }
@@ -148,11 +184,7 @@ static hr_module *load_file(hr_context *ctx, const char *path)
     if (m->error) {
         dlclose(m->handle);
         m->handle = NULL;
-        free(m->classes);
-        m->classes = NULL;
-        free(m->class_ptrs);
-        m->class_ptrs = NULL;
-        m->class_count = 0;
+        drop_classes(m);
         m->info = NULL;
     }
     return m;

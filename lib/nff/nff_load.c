@@ -9,7 +9,7 @@
 #include <zlib.h>
 
 #include "util/errors.h"
-#include "util/load_result.h"
+#include "sdl/load_result.h"
 #include "nff/nff_reader.h"
 #include "util/text_file.h"
 

@@ -35,10 +35,36 @@ static void list_params(const hr_shape_class *cls, char *buf, size_t size)
     }
 }
 
-static void format_range(double v, char *buf, size_t size)
+static void format_bound(double v, char *buf, size_t size)
 {
     if (isinf(v)) snprintf(buf, size, "%sinf", v < 0 ? "-" : "");
     else snprintf(buf, size, "%g", v);
+}
+
+/* Whether v lies in the spec's range (none when min > max), each end
+ * inclusive unless its HR_PARAM_*_EXCLUSIVE flag is set. -0 is not > 0. */
+static int in_range(const hr_param_spec *spec, double v)
+{
+    if (!(spec->min <= spec->max)) return 1;
+    int above = spec->flags & HR_PARAM_MIN_EXCLUSIVE ? v > spec->min : v >= spec->min;
+    int below = spec->flags & HR_PARAM_MAX_EXCLUSIVE ? v < spec->max : v <= spec->max;
+    return above && below;
+}
+
+/* "[0, 100]", or with an excluded end "(0, 1e+06]: it must be > 0", for
+ * the messages of out-of-range numbers. */
+static void format_range(const hr_param_spec *spec, char *buf, size_t size)
+{
+    char lo[32], hi[32];
+    format_bound(spec->min, lo, sizeof lo);
+    format_bound(spec->max, hi, sizeof hi);
+    const int open_lo = (spec->flags & HR_PARAM_MIN_EXCLUSIVE) != 0;
+    const int open_hi = (spec->flags & HR_PARAM_MAX_EXCLUSIVE) != 0;
+    int n = snprintf(buf, size, "%c%s, %s%c", open_lo ? '(' : '[', lo, hi, open_hi ? ')' : ']');
+    size_t len = n > 0 && (size_t)n < size ? (size_t)n : 0;
+    if (open_lo && open_hi) snprintf(buf + len, size - len, ": it must be > %s and < %s", lo, hi);
+    else if (open_lo) snprintf(buf + len, size - len, ": it must be > %s", lo);
+    else if (open_hi) snprintf(buf + len, size - len, ": it must be < %s", hi);
 }
 
 /* An array parameter: a sane count, a pointer when there are elements, and
@@ -58,14 +84,13 @@ static hr_status check_numbers(hr_context *ctx, const hr_shape_class *cls, const
                             "shape '%s': element %lld of parameter '%s' must be a finite "
                             "number, not %g",
                             cls->name, (long long)i, p->name, v);
-        if (spec->min <= spec->max && (v < spec->min || v > spec->max)) {
-            char lo[32], hi[32];
-            format_range(spec->min, lo, sizeof lo);
-            format_range(spec->max, hi, sizeof hi);
+        if (!in_range(spec, v)) {
+            char range[128];
+            format_range(spec, range, sizeof range);
             return hr_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s' (module '%s'): element %lld of parameter '%s' = %g is "
-                            "outside [%s, %s]",
-                            cls->name, module_path, (long long)i, p->name, v, lo, hi);
+                            "outside %s",
+                            cls->name, module_path, (long long)i, p->name, v, range);
         }
     }
     return HR_OK;
@@ -129,13 +154,12 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
                 return hr_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s': parameter '%s' must be a finite number, not %g",
                                 cls->name, p->name, p->number);
-            if (spec->min <= spec->max && (p->number < spec->min || p->number > spec->max)) {
-                char lo[32], hi[32];
-                format_range(spec->min, lo, sizeof lo);
-                format_range(spec->max, hi, sizeof hi);
+            if (!in_range(spec, p->number)) {
+                char range[128];
+                format_range(spec, range, sizeof range);
                 return hr_error(ctx, HR_ERROR_PARAMETER,
-                                "shape '%s' (module '%s'): parameter '%s' = %g is outside [%s, %s]",
-                                cls->name, module_path, p->name, p->number, lo, hi);
+                                "shape '%s' (module '%s'): parameter '%s' = %g is outside %s",
+                                cls->name, module_path, p->name, p->number, range);
             }
             full[k].number = p->number;
         } else if (spec->type == HR_PARAM_STRING) {

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "util/errors.h"
-#include "util/load_result.h"
+#include "sdl/load_result.h"
 #include "sdl/sdl_diag.h"
 #include "sdl/sdl_lexer.h"
 #include "sdl/sdl_reader.h"

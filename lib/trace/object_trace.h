@@ -62,6 +62,7 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
     args.tmax = tmax;
     args.out = out;
     args.call = tc;
+    args.struct_size = (uint32_t)sizeof args;
     hr_hit_fn fn = cls->hit;
     if (mode == HR_TRACE_FIRST && cls->first_hit) fn = cls->first_hit;
     if (mode == HR_TRACE_ANY) fn = cls->any_hit ? cls->any_hit : cls->first_hit ? cls->first_hit : cls->hit;

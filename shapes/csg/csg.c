@@ -277,13 +277,13 @@ SHAPE_DEFINE_HIT_MODES(csg, csg_trace)
 
 /* min > max: no range to check (object parameters have none). */
 static const hr_param_spec csg_params[] = {
-    {"a", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the first solid"},
-    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the second solid"},
+    {"a", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the first solid", 0},
+    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the second solid", 0},
 };
 
 static const hr_param_spec difference_params[] = {
-    {"a", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the solid to take from"},
-    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the solid taken away from a"},
+    {"a", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the solid to take from", 0},
+    {"b", HR_PARAM_OBJECT, 1, 0.0, 1.0, 0.0, "the solid taken away from a", 0},
 };
 
 #define CSG_CLASS(var, class_name, param_specs, create_fn, help_text)                        \

@@ -368,7 +368,7 @@ static void tapered_destroy(void *shape)
 
 static const hr_param_spec tapered_params[] = {
     {"s", HR_PARAM_NUMBER, 0, 1.0, 0.0, TAPER_MAX,
-     "radius at z = 1 (the radius at z = 0 is 1): 0 makes a cone, 1 a cylinder"},
+     "radius at z = 1 (the radius at z = 0 is 1): 0 makes a cone, 1 a cylinder", 0},
 };
 
 /* (u, v): on the wall, u the turn about z from +x in [0, 1) and v the

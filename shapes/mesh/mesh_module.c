@@ -152,22 +152,22 @@ static hr_status teapot_create(const hr_create_args *args, void **out_shape)
 static const hr_param_spec mesh_params[] = {
     {"file", HR_PARAM_STRING, 1, 0.0, 0.0, 0.0,
      "mesh file: Wavefront OBJ if the name ends in .obj, else Hill's chapter-6 format (.3vn); "
-     "relative to the scene file"},
+     "relative to the scene file", 0},
 };
 
 static const hr_param_spec triangle_mesh_params[] = {
-    {"points", HR_PARAM_NUMBERS, 1, 0.0, -DBL_MAX, DBL_MAX, "x y z of each vertex"},
+    {"points", HR_PARAM_NUMBERS, 1, 0.0, -DBL_MAX, DBL_MAX, "x y z of each vertex", 0},
     {"triangles", HR_PARAM_NUMBERS, 1, 0.0, 0.0, (double)MESH_MAX_COUNT,
-     "three vertex indices (from 0) per triangle, counter-clockwise seen from outside"},
+     "three vertex indices (from 0) per triangle, counter-clockwise seen from outside", 0},
     {"normals", HR_PARAM_NUMBERS, 0, 0.0, -DBL_MAX, DBL_MAX,
-     "optional: x y z per vertex, shading normals interpolated across each triangle"},
+     "optional: x y z per vertex, shading normals interpolated across each triangle", 0},
 };
 
 static const hr_param_spec teapot_params[] = {
     {"tessellation", HR_PARAM_NUMBER, 0, MESH_TEAPOT_DEFAULT_LEVEL, MESH_TEAPOT_MIN_LEVEL,
      MESH_BEZIER_MAX_LEVEL,
      "steps along each side of each of the 32 patches, a whole number: 64 n^2 - 8 n triangles "
-     "(9,120 at the default 12), some 60 bytes each"},
+     "(9,120 at the default 12), some 60 bytes each", 0},
 };
 
 /* Every triangle of a mesh is one surface. */

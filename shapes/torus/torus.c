@@ -192,13 +192,13 @@ static void torus_destroy(void *shape)
  * reference itself cannot resolve. */
 static const hr_param_spec torus_params[] = {
     {"tube", HR_PARAM_NUMBER, 0, 0.2, TUBE_MIN, TUBE_MAX,
-     "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole"},
+     "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole", 0},
     {"solver", HR_PARAM_STRING, 0, 0.0, 0.0, 0.0,
      "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent, "
      "t within 2.4 u*condition, 530-3450 instructions (70-490 ns) per ray; 'ferrari-newton' "
      "(closed form + Newton) 610-1240 (110-210 ns), as accurate where it finds the roots but "
      "may invent or lose a close pair; 'ferrari' (closed form) 600-1000 (100-170 ns), t errors "
-     "up to 2e-6 relative near tangents"},
+     "up to 2e-6 relative near tangents", 0},
 };
 
 /* (u, v): Hill's two angles as fractions of a turn: u about the z axis

@@ -36,9 +36,11 @@ PIN_OFF(hr_param, object, 32);
  * object, so the struct keeps its first size. */
 PIN_OFF(hr_param, numbers, 24);
 PIN_OFF(hr_param, count, 32);
-PIN_SIZE(hr_param_spec, 48);
+PIN_SIZE(hr_param_spec, 56);
 PIN_OFF(hr_param_spec, default_number, 16);
 PIN_OFF(hr_param_spec, help, 40);
+/* Appended within ABI 1 (hr_shape_class.param_spec_size gives the stride). */
+PIN_OFF(hr_param_spec, flags, 48);
 PIN_SIZE(hr_host, 72);
 PIN_OFF(hr_host, alloc, 8);
 PIN_OFF(hr_host, trace_child, 48);
@@ -51,12 +53,14 @@ PIN_OFF(hr_create_args, objects, 16);
 PIN_OFF(hr_create_args, host, 24);
 PIN_OFF(hr_create_args, error, 32);
 PIN_OFF(hr_create_args, base_dir, 48);
-PIN_SIZE(hr_hit_args, 88);
+PIN_SIZE(hr_hit_args, 96);
 PIN_OFF(hr_hit_args, ray, 8);
 PIN_OFF(hr_hit_args, tmin, 56);
 PIN_OFF(hr_hit_args, out, 72);
 PIN_OFF(hr_hit_args, call, 80);
-PIN_SIZE(hr_shape_class, 112);
+/* Appended within ABI 1: the host's size of the struct. */
+PIN_OFF(hr_hit_args, struct_size, 88);
+PIN_SIZE(hr_shape_class, 120);
 PIN_OFF(hr_shape_class, name, 8);
 PIN_OFF(hr_shape_class, params, 24);
 PIN_OFF(hr_shape_class, create, 40);
@@ -66,6 +70,8 @@ PIN_OFF(hr_shape_class, any_hit, 80);
 PIN_OFF(hr_shape_class, transformed_bounds, 88);
 PIN_OFF(hr_shape_class, surface_uv, 96);
 PIN_OFF(hr_shape_class, surface_names, 104);
+/* Appended within ABI 1: the stride of params. */
+PIN_OFF(hr_shape_class, param_spec_size, 112);
 PIN_SIZE(hr_module_info, 64);
 PIN_OFF(hr_module_info, classes, 24);
 PIN_OFF(hr_module_info, class_count, 32);

@@ -189,7 +189,7 @@ static hr_status many_hit(const hr_hit_args *a)
 
 static const hr_shape_class many_class = {
     sizeof(hr_shape_class), 0, "manyHits", "1000 hits, far to near, after host->reserve",
-    NULL, 0, 1, many_create, many_destroy, many_bounds, many_hit, many_hit, many_hit, NULL, NULL, NULL,
+    NULL, 0, 1, many_create, many_destroy, many_bounds, many_hit, many_hit, many_hit, NULL, NULL, NULL, 0,
 };
 
 static void growing_list_keeps_every_hit(void)

@@ -269,7 +269,7 @@ static void test_registered(void)
 {
     static const hr_shape_class cls = {sizeof(hr_shape_class), 0, "memDisc", "in-process test",
                                        NULL, 0, 1, mem_create, mem_destroy, mem_bounds, mem_hit,
-                                       NULL, NULL, NULL, NULL, NULL};
+                                       NULL, NULL, NULL, NULL, NULL, 0};
     hr_context *ctx;
     CHECK_OK(hr_context_create(&ctx));
     CHECK_OK(hr_context_register_shape_class(ctx, &cls, "test_modules.c"));

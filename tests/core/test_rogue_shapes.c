@@ -38,7 +38,7 @@ typedef struct rogue {
 } rogue;
 
 static const hr_param_spec rogue_params[] = {
-    {"mode", HR_PARAM_NUMBER, 1, 0, 0, 200, "which rule to break"},
+    {"mode", HR_PARAM_NUMBER, 1, 0, 0, 200, "which rule to break", 0},
 };
 
 static hr_status rogue_create(const hr_create_args *a, void **out)
@@ -122,7 +122,7 @@ static hr_status rogue_any(const hr_hit_args *a)
 
 static const hr_shape_class rogue_class = {
     sizeof(hr_shape_class), 0, "rogue", "breaks the shape contract on purpose",
-    rogue_params, 1, 1, rogue_create, rogue_destroy, unbounded, rogue_hit, NULL, rogue_any, NULL, NULL, NULL
+    rogue_params, 1, 1, rogue_create, rogue_destroy, unbounded, rogue_hit, NULL, rogue_any, NULL, NULL, NULL, 0
 };
 
 /* A composite that makes a hit of its own and leaves `object` naming no
@@ -142,7 +142,7 @@ static hr_status composite_hit(const hr_hit_args *a)
 
 static const hr_shape_class composite_class = {
     sizeof(hr_shape_class), HR_SHAPE_COMPOSITE, "rogueComposite", "names a leaf that is not there",
-    NULL, 0, 1, composite_create, rogue_destroy, unbounded, composite_hit, NULL, NULL, NULL, NULL, NULL
+    NULL, 0, 1, composite_create, rogue_destroy, unbounded, composite_hit, NULL, NULL, NULL, NULL, NULL, 0
 };
 
 static hr_scene *rogue_scene(int mode, const hr_transform *t)

@@ -93,7 +93,7 @@ static hr_status ball_hit(const hr_hit_args *a)
 
 static const hr_shape_class ball_class = {
     sizeof(hr_shape_class), HR_SHAPE_CLOSED, "scratchBall", "a unit ball that borrows scratch lists",
-    NULL, 0, 1, ball_create, ball_destroy, ball_bounds, ball_hit, NULL, NULL, NULL, NULL, NULL
+    NULL, 0, 1, ball_create, ball_destroy, ball_bounds, ball_hit, NULL, NULL, NULL, NULL, NULL, 0
 };
 
 int main(void)

@@ -76,7 +76,7 @@ static hr_status hit_any(const hr_hit_args *a)
 
 static const hr_shape_class counting_sphere = {sizeof(hr_shape_class), HR_SHAPE_CLOSED, "countingSphere",
                                                "a unit sphere that counts its calls", NULL, 0, 1, create,
-                                               destroy, bounds, hit_all, hit_first, hit_any, NULL, NULL, NULL};
+                                               destroy, bounds, hit_all, hit_first, hit_any, NULL, NULL, NULL, 0};
 
 static hr_context *ctx;
 

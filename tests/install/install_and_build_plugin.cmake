@@ -61,7 +61,7 @@ endif()
 set(ENV{HITRAY_SHAPE_PATH} "${plugin_build}")
 run_checked("installed hitray shapes" "${hitray}" shapes)
 string(FIND "${LAST_OUTPUT}" "${module}\n  module disk: " at)
-if(at LESS 0 OR NOT LAST_OUTPUT MATCHES "\n  disk - [^\n]*\n +radius +number +default 1 range \\[0, 1e\\+06\\]")
+if(at LESS 0 OR NOT LAST_OUTPUT MATCHES "\n  disk - [^\n]*\n +radius +number +default 1 range \\(0, 1e\\+06\\]")
   message(FATAL_ERROR "hitray shapes does not list the disk plugin (${module}) as expected:\n${LAST_OUTPUT}")
 endif()
 # The module's metadata (hr_module_info.version, author), as disk.c gives it.
@@ -98,12 +98,12 @@ expect_hit(2 -5,0,0 1,0,0 "no hit")
 # The plane is crossed behind the origin (t = -1): not a hit for t > 0.
 expect_hit(2 0,0,1 0,0,1 "no hit")
 
-# Refusals name the parameter: 0 and -0 by the plugin's create (the
-# declared range [0, 1e6] admits them), 2e6 by the host's range check.
-run_refused("radius 0" "shape 'disk' \\(module '[^']*disk\\.so'\\): parameter 'radius' must be greater than 0"
+# Refusals name the parameter, all by the host's range check: (0, 1e6]
+# excludes 0 and -0 and stops at 1e6.
+run_refused("radius 0" "shape 'disk' \\(module '[^']*disk\\.so'\\): parameter 'radius' = 0 is outside \\(0, 1e\\+06\\]: it must be > 0"
   "${demo}" 0 hit 0,0,1 0,0,-1)
-run_refused("radius -0" "parameter 'radius' must be greater than 0" "${demo}" -0 hit 0,0,1 0,0,-1)
-run_refused("radius 2e6" "parameter 'radius' = 2e\\+06 is outside \\[0, 1e\\+06\\]" "${demo}" 2e6 hit 0,0,1 0,0,-1)
+run_refused("radius -0" "parameter 'radius' = -0 is outside \\(0, 1e\\+06\\]: it must be > 0" "${demo}" -0 hit 0,0,1 0,0,-1)
+run_refused("radius 2e6" "parameter 'radius' = 2e\\+06 is outside \\(0, 1e\\+06\\]" "${demo}" 2e6 hit 0,0,1 0,0,-1)
 
 # The example scene renders.
 set(image "${WORK_DIR}/disk.png")

@@ -12,9 +12,9 @@ typedef struct probe {
 } probe;
 
 static const hr_param_spec params[] = {
-    {"radius", HR_PARAM_NUMBER, 0, 1.0, 1e-6, 100.0, "radius of the probe sphere"},
-    {"refuse", HR_PARAM_NUMBER, 0, 0.0, 0.0, 1.0, "1: create refuses"},
-    {"label", HR_PARAM_STRING, 0, 0.0, 1.0, 0.0, "any text"},
+    {"radius", HR_PARAM_NUMBER, 0, 1.0, 1e-6, 100.0, "radius of the probe sphere", 0},
+    {"refuse", HR_PARAM_NUMBER, 0, 0.0, 0.0, 1.0, "1: create refuses", 0},
+    {"label", HR_PARAM_STRING, 0, 0.0, 1.0, 0.0, "any text", 0},
 };
 
 static hr_status create(const hr_create_args *a, void **out)
@@ -71,7 +71,7 @@ static hr_status hit(const hr_hit_args *a)
 
 static const hr_shape_class probe_class = {
     sizeof(hr_shape_class), HR_SHAPE_CLOSED, "probeSphere", "test sphere", params, 3, 1,
-    create, destroy, bounds, hit, NULL, NULL, NULL, NULL, NULL};
+    create, destroy, bounds, hit, NULL, NULL, NULL, NULL, NULL, 0};
 static const hr_shape_class *const classes[] = {&probe_class};
 static const hr_module_info info = {sizeof info, HR_SHAPE_ABI_VERSION, "probe", "test module",
                                     classes, 1, "1.2.3", "the probe's author", NULL};

@@ -65,19 +65,19 @@ static hr_status stub_hit(const hr_hit_args *args)
 }
 
 static const hr_param_spec taper_params[] = {
-    {"s", HR_PARAM_NUMBER, 0, 1.0, 0.0, HUGE_VAL, "top radius"},
+    {"s", HR_PARAM_NUMBER, 0, 1.0, 0.0, HUGE_VAL, "top radius", 0},
 };
 static const hr_param_spec mesh_params[] = {
-    {"file", HR_PARAM_STRING, 1, 0.0, 0.0, 0.0, "mesh file"},
+    {"file", HR_PARAM_STRING, 1, 0.0, 0.0, 0.0, "mesh file", 0},
 };
 static const hr_param_spec csg_params[] = {
-    {"a", HR_PARAM_OBJECT, 1, 0.0, 0.0, 0.0, "operand A"},
-    {"b", HR_PARAM_OBJECT, 1, 0.0, 0.0, 0.0, "operand B"},
+    {"a", HR_PARAM_OBJECT, 1, 0.0, 0.0, 0.0, "operand A", 0},
+    {"b", HR_PARAM_OBJECT, 1, 0.0, 0.0, 0.0, "operand B", 0},
 };
 
 #define STUB_CLASS(name_, flags_, params_, count_, create_)                                 \
     {sizeof(hr_shape_class), flags_, name_, "SDL test stub", params_, count_, 1, create_,     \
-     stub_destroy, stub_bounds, stub_hit, NULL, NULL, NULL, NULL, NULL}
+     stub_destroy, stub_bounds, stub_hit, NULL, NULL, NULL, NULL, NULL, 0}
 
 static const hr_shape_class stub_shapes[] = {
     STUB_CLASS("sphere", HR_SHAPE_CLOSED, NULL, 0, stub_box_create),

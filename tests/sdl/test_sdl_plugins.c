@@ -43,31 +43,31 @@ static hr_status probe_hit(const hr_hit_args *a)
 }
 
 static const hr_param_spec probe_params[] = {
-    {"width", HR_PARAM_NUMBER, 0, 1.0, 0.0, 100.0, "half width"},
-    {"height", HR_PARAM_NUMBER, 0, 2.0, 0.0, 100.0, "height"},
-    {"label", HR_PARAM_STRING, 0, 0.0, 1.0, 0.0, "a word"},
+    {"width", HR_PARAM_NUMBER, 0, 1.0, 0.0, 100.0, "half width", 0},
+    {"height", HR_PARAM_NUMBER, 0, 2.0, 0.0, 100.0, "height", 0},
+    {"label", HR_PARAM_STRING, 0, 0.0, 1.0, 0.0, "a word", 0},
 };
 static const hr_shape_class probe_class = {sizeof(hr_shape_class), HR_SHAPE_CLOSED, "userBlock",
                                            "a user's shape", probe_params, 3, 1, probe_create,
-                                           probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
+                                           probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL, 0};
 /* No parameters at all. */
 static const hr_shape_class bare_class = {sizeof(hr_shape_class), HR_SHAPE_CLOSED, "userBare",
                                           "no parameters", NULL, 0, 1, probe_create,
-                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
+                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL, 0};
 /* A composite: its object parameter is an operand, as `union`'s are. */
-static const hr_param_spec pair_params[] = {{"a", HR_PARAM_OBJECT, 1, 0, 1, 0, "first"}};
+static const hr_param_spec pair_params[] = {{"a", HR_PARAM_OBJECT, 1, 0, 1, 0, "first", 0}};
 static const hr_shape_class pair_class = {sizeof(hr_shape_class), HR_SHAPE_COMPOSITE, "userPair",
                                           "a composite", pair_params, 1, 1, probe_create,
-                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
+                                          probe_destroy, probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL, 0};
 /* Array parameters have no SDL form. */
-static const hr_param_spec cloud_params[] = {{"points", HR_PARAM_NUMBERS, 1, 0, 0, 1, "x y z each"}};
+static const hr_param_spec cloud_params[] = {{"points", HR_PARAM_NUMBERS, 1, 0, 0, 1, "x y z each", 0}};
 static const hr_shape_class cloud_class = {sizeof(hr_shape_class), 0, "userCloud", "points",
                                            cloud_params, 1, 1, probe_create, probe_destroy,
-                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
+                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL, 0};
 /* A class named like a command must not take the command's place. */
 static const hr_shape_class light_class = {sizeof(hr_shape_class), 0, "light", "a bad name",
                                            NULL, 0, 1, probe_create, probe_destroy,
-                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL};
+                                           probe_bounds, probe_hit, NULL, NULL, NULL, NULL, NULL, 0};
 
 int main(void)
 {

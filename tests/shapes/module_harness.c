@@ -79,6 +79,7 @@ static hr_status host_trace_child(void *call, const void *child_ptr, const hr_ra
     if (st) return st;
     hr_hit_args args;
     memset(&args, 0, sizeof args);
+    args.struct_size = (uint32_t)sizeof args;
     args.shape = c->shape->shape;
     args.ray.origin = harness_vec((ray->origin.x - c->offset.x) / c->scale,
                                   (ray->origin.y - c->offset.y) / c->scale,
@@ -210,7 +211,7 @@ static hr_status create_from(const hr_shape_class *cls, const hr_param *params,
 {
     hr_create_args args;
     memset(&args, 0, sizeof args);
-    args.struct_size = sizeof args;
+    args.struct_size = (uint32_t)sizeof args;
     args.param_count = cls->param_count;
     args.params = params;
     args.objects = objects;
@@ -375,6 +376,7 @@ int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tm
 
     hr_hit_args args;
     memset(&args, 0, sizeof args);
+    args.struct_size = (uint32_t)sizeof args;
     args.shape = shape->shape;
     args.ray = ray;
     args.tmin = tmin;

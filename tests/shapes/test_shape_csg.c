@@ -662,7 +662,7 @@ static hr_status half_hit(const hr_hit_args *args)
 }
 static const hr_shape_class half_class = {
     sizeof(hr_shape_class), HR_SHAPE_CLOSED, "halfSpace", "z < 0", NULL, 0, 1, half_create,
-    half_destroy, half_bounds, half_hit, NULL, NULL, NULL, NULL, NULL};
+    half_destroy, half_bounds, half_hit, NULL, NULL, NULL, NULL, NULL, 0};
 
 static void test_unbounded_child(void)
 {

@@ -85,6 +85,8 @@ py::dict param_spec_dict(const hr_param_spec &p)
     d["default"] = p.default_number;
     d["min"] = p.min;
     d["max"] = p.max;
+    d["min_exclusive"] = (p.flags & HR_PARAM_MIN_EXCLUSIVE) != 0;
+    d["max_exclusive"] = (p.flags & HR_PARAM_MAX_EXCLUSIVE) != 0;
     d["help"] = text(p.help ? p.help : "");
     return d;
 }

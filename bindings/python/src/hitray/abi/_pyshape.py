@@ -63,7 +63,9 @@ DEFAULT_HIT_RELATIVE_ERROR = 1e-9
 _HIT = struct.Struct("=8d2iq")
 _HIT_FIELDS = ("t", "point", "normal", "error", "surface", "entering", "object")
 _HIT_OFFSETS = (0, 8, 32, 56, 64, 68, 72)
-# hr_hit_args as read: shape, ray (origin, dir), tmin, tmax, out, call.
+# hr_hit_args as read: shape, ray (origin, dir), tmin, tmax, out, call; the
+# fields appended after call (struct_size) are not read, so the struct may be
+# longer than this.
 _ARGS = struct.Struct("=Q8dQQ")
 _ARGS_FIELDS = ("shape", "ray", "tmin", "tmax", "out", "call")
 _ARGS_OFFSETS = (0, 8, 56, 64, 72, 80)
@@ -147,10 +149,14 @@ def _help_line(cls: type) -> str:
 
 
 def _check_layout(ffi: Any) -> None:
-    for name, fields, offsets, packed in (("hr_hit", _HIT_FIELDS, _HIT_OFFSETS, _HIT),
-                                          ("hr_hit_args", _ARGS_FIELDS, _ARGS_OFFSETS, _ARGS)):
+    # hr_hit is written whole (its size must match); hr_hit_args only read.
+    for name, fields, offsets, packed, exact in (
+            ("hr_hit", _HIT_FIELDS, _HIT_OFFSETS, _HIT, True),
+            ("hr_hit_args", _ARGS_FIELDS, _ARGS_OFFSETS, _ARGS, False)):
         got = tuple(ffi.offsetof(name, f) for f in fields)
-        if got != offsets or ffi.sizeof(name) != packed.size or ffi.sizeof("void *") != 8:
+        size = ffi.sizeof(name)
+        if got != offsets or (size != packed.size if exact else size < packed.size) \
+                or ffi.sizeof("void *") != 8:
             raise RuntimeError(f"hitray.abi: {name}'s layout {got} (size {ffi.sizeof(name)}) "
                                f"is not the one this module reads and writes {offsets}")
 

@@ -1,6 +1,6 @@
-/* The result struct of the scene file readers (lib/util/load_result.h). */
+/* The result struct of the scene file readers (sdl/load_result.h; the NFF reader uses it too). */
 #include "util/sized_copy.h"
-#include "util/load_result.h"
+#include "sdl/load_result.h"
 
 #include <stddef.h>
 #include <string.h>
