@@ -88,7 +88,7 @@ static void run_set(const ray_set *set, int count, int repeats, int only_solver,
     ref_trace *refs = bench_checked(malloc((size_t)count * sizeof *refs));
     bench_errors errors;
     bench_errors_init(&errors, count * 4);
-    const ref_shape ref = ref_shape_of("torus", set->tube);
+    const ref_shape ref = ref_shape_of("torus", set->tube, NAN);
     for (int i = 0; i < count; i++) {
         rays[i] = set->kind == 0   ? random_ray_near(&rng, &b)
                   : set->kind == 1 ? random_ray_far(&rng, &b, 1e4)

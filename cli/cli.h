@@ -84,9 +84,12 @@ int cli_parse_fraction(const char *option, const char *text, double *out);
 
 /* --- output files (output_path.c) --- */
 
-/* 1 if the name ends in an extension hr_image_write knows (.png .exr .ppm
- * .pfm, any case). */
-int cli_has_image_extension(const char *path);
+/* The format an output is written in: the one --format names (format_name;
+ * NULL when not given), else the one the file name's extension names; "-"
+ * (standard output) with no --format is PNG. 0, or CLI_EXIT_USAGE after
+ * reporting an unknown name, an extension that names none, or one that
+ * names another format than --format (the message names `option`). */
+int cli_output_format(const char *option, const char *path, const char *format_name, int32_t *format);
 /* The directory a file would go to must exist and be writable, and the name
  * must be one a file can have there; otherwise the error (naming `option`)
  * is reported and its exit status returned (CLI_EXIT_USAGE for an empty
@@ -113,6 +116,8 @@ typedef struct cli_progress {
     const char *label; /* what is running: "rendering", "savings: full" */
 } cli_progress;
 void cli_progress_begin(cli_progress *p, const char *label);
+/* --quiet: no bar and no status line, even on a terminal. */
+void cli_set_quiet(int on);
 int32_t cli_progress_update(void *user, double fraction);
 void cli_progress_end(cli_progress *p);
 /* A stage with no fraction to show ("loading scene.sdl ..."), on the
@@ -137,7 +142,9 @@ typedef struct cli_scene {
 } cli_scene;
 /* 0 on success; on failure the error is reported and everything freed.
  * A name ending in .nff or .nff.gz (any case) is read as NFF, any other as
- * Hill's SDL. */
+ * Hill's SDL; "-" is SDL read from standard input (named CLI_STDIN_NAME in
+ * messages, its relative file names taken from the current directory). */
+#define CLI_STDIN_NAME "<stdin>"
 int cli_scene_load(cli_scene *s, const char *path);
 int cli_is_nff(const char *path);
 int cli_scene_commit(cli_scene *s);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "render_flags.h"
@@ -16,12 +17,21 @@ static const char render_help[] =
     "usage: hitray render SCENE -o OUT [options]\n"
     "\n"
     "Render the scene file SCENE (Hill's SDL, or NFF if it ends in .nff or\n"
-    ".nff.gz) and write the image to OUT; its extension picks the format:\n"
-    ".png (8-bit sRGB), .exr (float), .ppm, .pfm.\n"
-    "Prints one summary line: size, time, rays cast, rays per second.\n"
+    ".nff.gz; - reads SDL from standard input) and write the image to OUT;\n"
+    "its extension picks the format: .png (8-bit sRGB), .exr (float), .ppm,\n"
+    ".pfm. OUT - writes the image to standard output (PNG unless --format).\n"
+    "Prints one summary line: size, time, rays cast, rays per second (on\n"
+    "stderr when the image goes to standard output).\n"
     "\n"
     "options:\n"
-    "  -o, --output FILE     the image to write (required)\n"
+    "  -o, --output FILE     the image to write (required; - for standard output)\n"
+    "  --format NAME         the image format, whatever OUT's extension: png,\n"
+    "                        exr, ppm or pfm\n"
+    "  --window X,Y,W,H      render only the W x H pixels whose top left is X,Y\n"
+    "                        (from the image's top left); each is bit for bit\n"
+    "                        that pixel of the full render\n"
+    "  -q, --quiet           no summary line, no progress bar (errors and\n"
+    "                        warnings still go to stderr)\n"
     "  --exr FILE            also write the linear image as OpenEXR\n"
     "  --size WxH            image size in pixels (default: an NFF file's\n"
     "                        resolution, else 640x480)\n"
@@ -52,26 +62,32 @@ static const char render_help[] =
     "                        no ray budget)\n"
     "  --stats               also print rays by kind and the effects that ran\n"
     "  --stats-json FILE     write the statistics as one JSON object\n"
-    "  -h, --help            this help\n";
+    "  -h, --help            this help\n"
+    "\n" CLI_EXIT_HELP;
 
 typedef struct render_request {
     const char *scene_path;
     const char *output;
     const char *exr_output;
     const char *stats_json;
+    const char *format_name; /* --format, or NULL */
+    int32_t format;          /* HR_FORMAT_*: --format's, or OUT's extension's */
     cli_render_flags flags;
-    int png16, linear_png, exr_half, stats;
+    int png16, linear_png, exr_half, stats, quiet;
 } render_request;
 
 #define RENDER_FLAGS                                                                                          \
     (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_EFFECTS | \
-     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT)
+     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT | CLI_RF_WINDOW)
 
 static const cli_option render_own_options[] = {
     {"--output", "-o", 1},  {"--exr", NULL, 1},      {"--png16", NULL, 0}, {"--linear-png", NULL, 0},
     {"--exr-half", NULL, 0}, {"--stats", NULL, 0},   {"--stats-json", NULL, 1},
-    {"--help", "-h", 0},    {NULL, NULL, 0},
+    {"--format", NULL, 1},  {"--quiet", "-q", 0},    {"--help", "-h", 0},    {NULL, NULL, 0},
 };
+
+/* `-o -`: the image goes to standard output, and the summary to stderr. */
+static int writes_stdout(const render_request *r) { return r->output && !strcmp(r->output, "-"); }
 
 /* Two outputs named alike would overwrite each other (by name only: two
  * spellings of one path are not caught). */
@@ -118,20 +134,23 @@ static int parse_request(int argc, char **argv, render_request *r)
         else if (!strcmp(name, "--linear-png")) r->linear_png = 1;
         else if (!strcmp(name, "--exr-half")) r->exr_half = 1;
         else if (!strcmp(name, "--stats")) r->stats = 1;
+        else if (!strcmp(name, "--format")) r->format_name = value;
+        else if (!strcmp(name, "--quiet")) r->quiet = 1;
     }
     if (!r->scene_path) return cli_usage_error("render: no scene file given (see 'hitray render --help')");
     if (!r->output) return cli_usage_error("render: no output file given (use -o OUT.png)");
     if (cli_render_flags_check(&r->flags)) return CLI_EXIT_USAGE;
-    if (!cli_has_image_extension(r->output))
-        return cli_usage_error(
-            "render: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)", r->output);
+    if (cli_output_format("--output", r->output, r->format_name, &r->format)) return CLI_EXIT_USAGE;
+    /* An image on a terminal is a screenful of noise, and no one meant it. */
+    if (writes_stdout(r) && isatty(STDOUT_FILENO))
+        return cli_usage_error("render: -o -: standard output is a terminal (redirect it to a file or a pipe)");
     /* --exr always writes OpenEXR: a file named otherwise would lie about
      * its content. */
     size_t exr_len = r->exr_output ? strlen(r->exr_output) : 0;
     if (r->exr_output && *r->exr_output &&
         (exr_len < 4 || strcasecmp(r->exr_output + exr_len - 4, ".exr") != 0))
         return cli_usage_error("--exr: '%s' does not end in .exr", r->exr_output);
-    int rc = cli_check_writable("--output", r->output);
+    int rc = writes_stdout(r) ? 0 : cli_check_writable("--output", r->output);
     if (!rc && r->exr_output) rc = cli_check_writable("--exr", r->exr_output);
     if (!rc && r->stats_json) rc = cli_check_writable("--stats-json", r->stats_json);
     if (rc) return rc;
@@ -167,26 +186,26 @@ static void print_effects(FILE *f, uint32_t effects, int as_json)
     if (first && !as_json) fputs("none", f);
 }
 
-static void print_summary(const render_request *r, const hr_image *image, const hr_render_stats *s)
+static void print_summary(FILE *f, const render_request *r, const hr_image *image, const hr_render_stats *s)
 {
     uint64_t rays = total_rays(s);
     char rate[32];
     format_rate(rate, sizeof rate, s->seconds > 0 ? (double)rays / s->seconds : 0.0);
-    printf("rendered %dx%d (%d spp) in %.3f s on %d thread%s: %" PRIu64 " rays, %srays/s -> %s%s%s\n",
+    fprintf(f, "rendered %dx%d (%d spp) in %.3f s on %d thread%s: %" PRIu64 " rays, %srays/s -> %s%s%s\n",
            (int)hr_image_width(image), (int)hr_image_height(image), (int)r->flags.spp, s->seconds, (int)s->threads,
-           s->threads == 1 ? "" : "s", rays, rate, r->output,
+           s->threads == 1 ? "" : "s", rays, rate, writes_stdout(r) ? "standard output" : r->output,
            r->exr_output ? ", " : "", r->exr_output ? r->exr_output : "");
     if (r->stats) {
-        printf("rays: primary %" PRIu64 ", shadow %" PRIu64 ", reflected %" PRIu64 ", refracted %" PRIu64 "\n",
+        fprintf(f, "rays: primary %" PRIu64 ", shadow %" PRIu64 ", reflected %" PRIu64 ", refracted %" PRIu64 "\n",
                s->primary, s->shadow, s->reflected, s->refracted);
-        printf("effects: ");
-        print_effects(stdout, s->effects, 0);
-        putchar('\n');
+        fputs("effects: ", f);
+        print_effects(f, s->effects, 0);
+        fputc('\n', f);
         if (r->flags.adaptive > 0)
-            printf("adaptive: %" PRIu64 " of %" PRIu64 " pixels refined, %" PRId64 " camera rays saved\n",
+            fprintf(f, "adaptive: %" PRIu64 " of %" PRIu64 " pixels refined, %" PRId64 " camera rays saved\n",
                    s->pixels_refined, (uint64_t)hr_image_width(image) * (uint64_t)hr_image_height(image),
                    s->samples_saved);
-        if (r->flags.min_weight > 0 || s->rays_cut > 0) printf("cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
+        if (r->flags.min_weight > 0 || s->rays_cut > 0) fprintf(f, "cut-off: %" PRIu64 " rays not traced\n", s->rays_cut);
     }
 }
 
@@ -222,16 +241,17 @@ static char *stats_json(const hr_image *image, const hr_render_stats *s, size_t 
  * is put in place, so a full disk while writing the last leaves the old
  * files as they were. */
 static int write_outputs(const render_request *r, hr_context *ctx, const hr_image *image,
-                         const hr_render_stats *stats)
+                         const hr_render_stats *stats, const char *image_path)
 {
     hr_image_write_options o;
     hr_image_write_options_default(&o);
+    o.format = r->format;
     o.png_bits = r->png16 ? 16 : 8;
     o.png_linear = r->linear_png;
     o.exr_half = r->exr_half;
     hr_file_batch *batch = NULL;
     hr_status st = hr_file_batch_create(ctx, &batch);
-    if (st == HR_OK) st = hr_file_batch_add_image(batch, image, r->output, &o);
+    if (st == HR_OK) st = hr_file_batch_add_image(batch, image, image_path, &o);
     if (st == HR_OK && r->exr_output) {
         o.format = HR_FORMAT_EXR;
         st = hr_file_batch_add_image(batch, image, r->exr_output, &o);
@@ -251,9 +271,57 @@ static int write_outputs(const render_request *r, hr_context *ctx, const hr_imag
     return st == HR_OK ? 0 : cli_library_error(ctx, st);
 }
 
+/* `-o -`: the image is written as a file is (all or nothing, with the
+ * other outputs) into a private folder, then copied to standard output.
+ * The folder is made before the render, so a $TMPDIR that cannot take it
+ * costs nothing. */
+typedef struct stdout_image {
+    char dir[4096];
+    char path[4200];
+} stdout_image;
+
+static int stdout_image_begin(stdout_image *t, const render_request *r)
+{
+    const char *tmp = getenv("TMPDIR");
+    if (!tmp || !*tmp) tmp = "/tmp";
+    if (snprintf(t->dir, sizeof t->dir, "%s/hitray-render-XXXXXX", tmp) >= (int)sizeof t->dir)
+        return cli_error("-o -: TMPDIR '%s' is too long", tmp);
+    if (!mkdtemp(t->dir)) return cli_error("-o -: cannot make a folder in '%s': %s", tmp, strerror(errno));
+    snprintf(t->path, sizeof t->path, "%s/image%s", t->dir, hr_image_format_extension(r->format));
+    return 0;
+}
+
+/* The image to standard output, the folder removed first (a closed pipe
+ * that kills the process while copying leaves nothing behind). */
+static int stdout_image_send(const stdout_image *t)
+{
+    FILE *f = fopen(t->path, "rb");
+    int open_errno = errno;
+    remove(t->path);
+    rmdir(t->dir);
+    if (!f) return cli_error("-o -: cannot read back '%s': %s", t->path, strerror(open_errno));
+    char buf[1 << 16];
+    size_t n;
+    int failed = 0;
+    while (!failed && (n = fread(buf, 1, sizeof buf, f)) > 0) failed = fwrite(buf, 1, n, stdout) != n;
+    failed = failed || ferror(f);
+    fclose(f);
+    if (failed || fflush(stdout) != 0) return cli_error("cannot write the image to standard output");
+    return 0;
+}
+
+static void stdout_image_discard(const stdout_image *t)
+{
+    remove(t->path);
+    rmdir(t->dir);
+}
+
 static int render_and_write(const render_request *r, cli_scene *s)
 {
     hr_camera cam = cli_render_flags_camera(&r->flags, s);
+    if (cli_render_flags_check_window(&r->flags, cam.width, cam.height)) return CLI_EXIT_USAGE;
+    stdout_image to_stdout;
+    if (writes_stdout(r) && stdout_image_begin(&to_stdout, r)) return CLI_EXIT_ERROR;
     hr_render_options o;
     hr_render_options_default(&o);
     cli_render_flags_apply(&r->flags, &o);
@@ -276,18 +344,19 @@ static int render_and_write(const render_request *r, cli_scene *s)
     sigset_t held;
     cli_hold_signals(&held);
     cli_progress_end(&progress);
+    int rc = CLI_EXIT_OK;
     if (st == HR_ERROR_CANCELLED && cli_interrupted()) {
-        cli_release_signals(&held);
         cli_error("render interrupted; nothing written");
-        return CLI_EXIT_INTERRUPTED;
+        rc = CLI_EXIT_INTERRUPTED;
+    } else if (st != HR_OK) {
+        rc = cli_library_error(s->ctx, st);
+    } else {
+        rc = write_outputs(r, s->ctx, image, &stats, writes_stdout(r) ? to_stdout.path : r->output);
+        if (!rc && writes_stdout(r)) rc = stdout_image_send(&to_stdout);
     }
-    if (st != HR_OK) {
-        cli_release_signals(&held);
-        return cli_library_error(s->ctx, st);
-    }
-    int rc = write_outputs(r, s->ctx, image, &stats);
+    if (writes_stdout(r)) stdout_image_discard(&to_stdout);
     cli_release_signals(&held);
-    if (!rc) print_summary(r, image, &stats);
+    if (!rc && !r->quiet) print_summary(writes_stdout(r) ? stderr : stdout, r, image, &stats);
     hr_image_destroy(image);
     if (rc) return rc;
     return fflush(stdout) == 0 ? CLI_EXIT_OK : cli_error("cannot write to standard output");
@@ -298,6 +367,7 @@ int cmd_render(int argc, char **argv)
     render_request r;
     int parsed = parse_request(argc, argv, &r);
     if (parsed != PARSE_OK) return parsed == PARSE_HELP ? CLI_EXIT_OK : parsed;
+    cli_set_quiet(r.quiet);
     cli_scene s;
     if (cli_scene_load(&s, r.scene_path)) return CLI_EXIT_ERROR;
     int rc = cli_scene_commit(&s) ? CLI_EXIT_ERROR : render_and_write(&r, &s);

@@ -26,8 +26,9 @@ int cmd_view(int argc, char **argv)
     if (dir_len + sizeof VIEWER_NAME > sizeof path) return cli_error("view: the program's path is too long");
     memcpy(path + dir_len, VIEWER_NAME, sizeof VIEWER_NAME);
     if (access(path, X_OK) != 0)
-        return cli_error("view: the viewer '%s' is not there (it is built only where SDL2 is installed: "
-                         "Debian's libsdl2-dev)",
+        return cli_error("view: the viewer '%s' is not there (it is built only where SDL2 is installed, "
+                         "so pip's wheels leave it out: install Debian's libsdl2-dev and build from source, "
+                         "make build)",
                          path);
     /* The viewer reads argv[0] as its verb, as every cmd_* does. */
     char *viewer_argv[argc + 1];

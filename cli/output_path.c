@@ -1,19 +1,49 @@
 /* Checking an output file's name before any work is done (cli.h): a typo
  * should cost nothing, and a long render should not end in "cannot write". */
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
 
-int cli_has_image_extension(const char *path)
+/* Every --format name, as one phrase for messages ("png, exr, ppm or pfm"). */
+static void format_names(char *buf, size_t size)
 {
-    static const char *const extensions[] = {".png", ".exr", ".ppm", ".pfm"};
-    size_t n = strlen(path);
-    for (size_t i = 0; i < sizeof extensions / sizeof extensions[0]; i++)
-        if (n > 4 && strcasecmp(path + n - 4, extensions[i]) == 0) return 1;
-    return 0;
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int32_t code = HR_FORMAT_PNG; hr_image_format_name(code) && used < size; code++) {
+        const char *sep = code == HR_FORMAT_PNG ? "" : hr_image_format_name(code + 1) ? ", " : " or ";
+        int n = snprintf(buf + used, size - used, "%s%s", sep, hr_image_format_name(code));
+        if (n < 0) return;
+        used += (size_t)n;
+    }
+}
+
+int cli_output_format(const char *option, const char *path, const char *format_name, int32_t *format)
+{
+    char known[256];
+    int32_t by_name = path ? hr_image_format_from_path(path) : HR_FORMAT_AUTO;
+    if (format_name) {
+        *format = hr_image_format_from_name(format_name);
+        if (*format == HR_FORMAT_AUTO) {
+            format_names(known, sizeof known);
+            return cli_usage_error("--format: unknown format '%s' (use %s)", format_name, known);
+        }
+        /* A file named .jpg holding a PNG would lie about its content. */
+        if (by_name != HR_FORMAT_AUTO && by_name != *format)
+            return cli_usage_error("%s: '%s' names a %s file, not %s (--format %s)", option, path,
+                                   hr_image_format_name(by_name), format_name, format_name);
+        return 0;
+    }
+    if (path && !strcmp(path, "-")) {
+        *format = HR_FORMAT_PNG;
+        return 0;
+    }
+    *format = by_name;
+    if (*format != HR_FORMAT_AUTO) return 0;
+    hr_image_format_list(known, sizeof known);
+    return cli_usage_error("%s: cannot tell the format of '%s' from its extension (use %s, or --format)", option,
+                           path, known);
 }
 
 int cli_check_writable(const char *option, const char *path)

@@ -20,6 +20,13 @@
 #define BAR_LINE_WIDTH 96 /* the longest label and time left fit */
 
 static volatile sig_atomic_t interrupted;
+static int quiet;
+
+void cli_set_quiet(int on) { quiet = on; }
+
+/* The bar and the status line are drawn on a terminal only, and not under
+ * --quiet. */
+static int draws(void) { return !quiet && isatty(STDERR_FILENO); }
 static struct sigaction previous_sigint;
 static int handler_installed;
 
@@ -41,7 +48,7 @@ double cli_now(void)
 void cli_progress_begin(cli_progress *p, const char *label)
 {
     memset(p, 0, sizeof *p);
-    p->draw = isatty(STDERR_FILENO);
+    p->draw = draws();
     p->last_shown = -1;
     p->started = cli_now();
     p->label = label;
@@ -112,7 +119,7 @@ static int status_shown;
 
 void cli_status(const char *what, const char *name)
 {
-    if (!isatty(STDERR_FILENO)) return;
+    if (!draws()) return;
     /* Overwritten with blanks, not erased with "\033[K": see above. */
     if (status_shown) fprintf(stderr, "\r%*s\r", status_shown, "");
     status_shown = 0;

@@ -1,4 +1,5 @@
 /* The render flags render, view and savings share (render_flags.h). */
+#include <math.h>
 #include <string.h>
 
 #include "render_flags.h"
@@ -19,6 +20,7 @@ static const render_flag flags[] = {
     {{"--adaptive", NULL, 1}, CLI_RF_ADAPTIVE},
     {{"--min-weight", NULL, 1}, CLI_RF_MIN_WEIGHT},
     {{"--exact", NULL, 0}, CLI_RF_EXACT},
+    {{"--window", NULL, 1}, CLI_RF_WINDOW},
 };
 #define FLAG_COUNT (int)(sizeof flags / sizeof flags[0])
 
@@ -71,6 +73,23 @@ static int parse_effects(const char *option, const char *text, int32_t *out)
     return 1;
 }
 
+/* X,Y,W,H: whole pixels, a corner at or right of and below the top left,
+ * and at least one pixel (the library reads a side of 0 as "to the edge",
+ * which a user writing a size would not mean). */
+static int parse_window(const char *option, const char *text, int32_t window[4])
+{
+    double v[4];
+    if (!cli_parse_doubles(option, text, 4, v)) return 0;
+    for (int i = 0; i < 4; i++) {
+        long min = i < 2 ? 0 : 1;
+        if (v[i] < (double)min || v[i] > HR_RENDER_MAX_SIDE || v[i] != floor(v[i]))
+            return !cli_usage_error("%s: '%s': X and Y must be whole numbers 0..%d, W and H 1..%d (pixels)",
+                                    option, text, HR_RENDER_MAX_SIDE, HR_RENDER_MAX_SIDE);
+        window[i] = (int32_t)v[i];
+    }
+    return 1;
+}
+
 int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *value)
 {
     unsigned bit = cli_render_flag_bit(name);
@@ -86,6 +105,7 @@ int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *va
     case CLI_RF_ADAPTIVE: ok = cli_parse_fraction(name, value, &f->adaptive); break;
     case CLI_RF_MIN_WEIGHT: ok = cli_parse_fraction(name, value, &f->min_weight); break;
     case CLI_RF_EXACT: f->exact = 1; break;
+    case CLI_RF_WINDOW: ok = parse_window(name, value, f->window); break;
     default: return !cli_usage_error("%s: not a render flag", name); /* a verb's mistake, not the user's */
     }
     if (ok) f->given |= bit;
@@ -101,6 +121,16 @@ int cli_render_flags_check(const cli_render_flags *f)
     return 0;
 }
 
+int cli_render_flags_check_window(const cli_render_flags *f, int32_t width, int32_t height)
+{
+    if (!(f->given & CLI_RF_WINDOW)) return 0;
+    const int32_t *w = f->window;
+    if ((int64_t)w[0] + w[2] > width || (int64_t)w[1] + w[3] > height)
+        return cli_usage_error("--window: %d,%d,%d,%d does not lie inside the %dx%d image", (int)w[0], (int)w[1],
+                               (int)w[2], (int)w[3], (int)width, (int)height);
+    return 0;
+}
+
 void cli_render_flags_apply(const cli_render_flags *f, hr_render_options *o)
 {
     o->width = f->width;
@@ -113,6 +143,10 @@ void cli_render_flags_apply(const cli_render_flags *f, hr_render_options *o)
     o->adaptive_threshold = f->adaptive;
     o->min_weight = f->min_weight;
     o->exact = f->exact;
+    o->window_x = f->window[0];
+    o->window_y = f->window[1];
+    o->window_width = f->window[2];
+    o->window_height = f->window[3];
 }
 
 hr_camera cli_render_flags_camera(const cli_render_flags *f, const cli_scene *s)

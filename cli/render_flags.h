@@ -23,6 +23,7 @@
 #define CLI_RF_ADAPTIVE (1u << 7)   /* --adaptive T */
 #define CLI_RF_MIN_WEIGHT (1u << 8) /* --min-weight W */
 #define CLI_RF_EXACT (1u << 9)      /* --exact */
+#define CLI_RF_WINDOW (1u << 10)    /* --window X,Y,W,H */
 
 typedef struct cli_render_flags {
     unsigned given;        /* the CLI_RF_* flags the user gave */
@@ -32,6 +33,7 @@ typedef struct cli_render_flags {
     int32_t effects;       /* HR_EFFECTS_AUTO or HR_EFFECTS_ALL */
     double adaptive, min_weight;
     int32_t exact;
+    int32_t window[4]; /* x, y, width, height; all 0: the whole image */
 } cli_render_flags;
 
 /* The defaults: hr_render_options_default's (the scene's size and depth). */
@@ -54,6 +56,10 @@ int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *va
 /* The combinations hr_render refuses, refused before any work with the
  * flags' names: 0, or CLI_EXIT_USAGE after reporting. */
 int cli_render_flags_check(const cli_render_flags *f);
+
+/* --window against the image's size (known once the scene is loaded): 0,
+ * or CLI_EXIT_USAGE after reporting a window that does not lie inside. */
+int cli_render_flags_check_window(const cli_render_flags *f, int32_t width, int32_t height);
 
 /* The flags into `o` (from hr_render_options_default): everything but the
  * camera, which the caller makes (cli_render_flags_camera). */

@@ -1,5 +1,8 @@
 /* Loading a scene file for the verbs that need one (cli.h). */
+#include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
@@ -21,6 +24,40 @@ static void print_warning(void *user, const hr_warning *w)
     fprintf(stderr, "hitray: warning: %s\n", w->message);
 }
 
+/* Standard input read to its end into a malloc'd, NUL-ended text, or NULL
+ * after reporting why not (a read error, a NUL byte: SDL is text). */
+static char *read_stdin(void)
+{
+    size_t size = 0, capacity = 1 << 16;
+    char *text = malloc(capacity);
+    while (text) {
+        if (size + 1 >= capacity) {
+            char *grown = capacity <= SIZE_MAX / 2 ? realloc(text, capacity * 2) : NULL;
+            if (!grown) break;
+            text = grown;
+            capacity *= 2;
+        }
+        size_t n = fread(text + size, 1, capacity - 1 - size, stdin);
+        size += n;
+        if (n > 0) continue;
+        if (ferror(stdin)) {
+            cli_error("cannot read the scene from standard input: %s", strerror(errno));
+            free(text);
+            return NULL;
+        }
+        text[size] = '\0';
+        if (memchr(text, '\0', size)) {
+            cli_error("%s: the scene holds a NUL byte (SDL is text)", CLI_STDIN_NAME);
+            free(text);
+            return NULL;
+        }
+        return text;
+    }
+    free(text);
+    cli_error("cannot read the scene from standard input: out of memory");
+    return NULL;
+}
+
 int cli_scene_load(cli_scene *s, const char *path)
 {
     memset(s, 0, sizeof *s);
@@ -28,10 +65,18 @@ int cli_scene_load(cli_scene *s, const char *path)
     if (st != HR_OK) return cli_error("cannot start the library: %s", hr_status_name(st));
     hr_context_set_warning_callback(s->ctx, print_warning, NULL);
     s->sdl.struct_size = sizeof s->sdl;
-    s->path = path;
-    cli_status("loading", path);
-    st = cli_is_nff(path) ? hr_nff_load_file(s->ctx, path, &s->sdl)
-                          : hr_sdl_load_file(s->ctx, path, &s->sdl);
+    int from_stdin = !strcmp(path, "-");
+    s->path = from_stdin ? CLI_STDIN_NAME : path;
+    char *text = NULL;
+    if (from_stdin && !(text = read_stdin())) {
+        cli_scene_free(s);
+        return CLI_EXIT_ERROR;
+    }
+    cli_status("loading", s->path);
+    if (from_stdin) st = hr_sdl_load_string(s->ctx, text, CLI_STDIN_NAME, NULL, &s->sdl);
+    else if (cli_is_nff(path)) st = hr_nff_load_file(s->ctx, path, &s->sdl);
+    else st = hr_sdl_load_file(s->ctx, path, &s->sdl);
+    free(text);
     cli_status(NULL, NULL);
     if (st != HR_OK) {
         int rc = cli_library_error(s->ctx, st);

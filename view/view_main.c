@@ -78,10 +78,10 @@ static const cli_option view_own_options[] = {
 
 static int check_image_file(const char *option, const char *path)
 {
-    if (!cli_has_image_extension(path))
-        return cli_usage_error("%s: cannot tell the format of '%s' from its extension (use .png, .exr, .ppm or .pfm)",
-                         option, path);
-    return cli_check_writable(option, path);
+    if (!strcmp(path, "-")) return cli_usage_error("%s: the viewer saves to files, not to standard output", option);
+    int32_t format;
+    int rc = cli_output_format(option, path, NULL, &format);
+    return rc ? rc : cli_check_writable(option, path);
 }
 
 static int parse_request(int argc, char **argv, view_request *r)

@@ -166,7 +166,7 @@ static void run_case(const shape_case *sc, double distance, int count, int repea
     rng_seed(&rng, UINT64_C(0x9ad71c) + (uint64_t)log10(distance));
     hr_ray *rays = bench_checked(malloc((size_t)count * sizeof *rays));
     ref_trace *refs = bench_checked(malloc((size_t)count * sizeof *refs));
-    const ref_shape ref = ref_shape_of(sc->name, 1.0);
+    const ref_shape ref = ref_shape_of(sc->name, 1.0, NAN);
     for (int i = 0; i < count; i++) {
         rays[i] = random_ray_far(&rng, &sc->bounds, distance);
         ref_trace_ray(ref, rays[i], &refs[i]);

@@ -111,7 +111,7 @@ static int reference_hit(const world *w, const hr_ray *wr, double tube, double *
         d[r] = row[0] * (quad)wr->dir.x + row[1] * (quad)wr->dir.y + row[2] * (quad)wr->dir.z;
     }
     ref_trace trace;
-    ref_trace_quad_ray(ref_shape_of("torus", tube), o, d, &trace);
+    ref_trace_quad_ray(ref_shape_of("torus", tube, NAN), o, d, &trace);
     *margin = trace.margin;
     for (int k = 0; k < trace.count; k++)
         if (trace.hits[k].t > 0) {

@@ -88,6 +88,12 @@ HR_API void hr_context_warn(const hr_context *ctx, int32_t code, const char *fil
 
 /* Search `dir` for modules before the default places. */
 HR_API hr_status hr_context_add_shape_dir(hr_context *ctx, const char *dir);
+/* The memory budget of each scene made after this call (objects, shape
+ * data such as a mesh's triangles, pixmaps' texels), in bytes; 0 restores
+ * the default: environment variable HITRAY_MAX_SCENE_MEMORY, else half of
+ * what the process may use (docs/limits.md). A scene refuses the object or
+ * pixmap that would pass it, before allocating it. */
+HR_API hr_status hr_context_set_scene_memory(hr_context *ctx, uint64_t bytes);
 /* Load one module file now; its classes take precedence over modules found
  * by searching. Fails with HR_ERROR_MODULE naming `path` if the file cannot
  * be opened, has no entry point, or reports another ABI version. */

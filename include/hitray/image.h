@@ -50,6 +50,21 @@ HR_API void hr_srgb8_encode(const float *linear, size_t count, uint8_t *codes);
 #define HR_FORMAT_PPM 3
 #define HR_FORMAT_PFM 4
 
+/* The formats by name and extension, from one table (the codes above are
+ * contiguous from HR_FORMAT_PNG: a code whose name is NULL is past the
+ * last). hr_image_format_from_path: the format a file name's extension
+ * names (any case), HR_FORMAT_AUTO for none; hr_image_format_from_name:
+ * the format a short name ("png", as hitray's --format takes it) names,
+ * HR_FORMAT_AUTO for none; hr_image_format_name and _extension: a format's
+ * short name and its usual extension (".png"), NULL for no format;
+ * hr_image_format_list: every usual extension as one phrase for messages
+ * (".png, .exr, .ppm or .pfm"), cut to fit `size` bytes. */
+HR_API int32_t hr_image_format_from_path(const char *path);
+HR_API int32_t hr_image_format_from_name(const char *name);
+HR_API const char *hr_image_format_name(int32_t format);
+HR_API const char *hr_image_format_extension(int32_t format);
+HR_API void hr_image_format_list(char *buf, size_t size);
+
 typedef struct hr_image_write_options {
     uint32_t struct_size;
     int32_t format;     /* HR_FORMAT_*; AUTO picks by extension */

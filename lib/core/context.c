@@ -43,6 +43,13 @@ HR_API void hr_context_destroy(hr_context *ctx)
     free(ctx);
 }
 
+HR_API hr_status hr_context_set_scene_memory(hr_context *ctx, uint64_t bytes)
+{
+    if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
+    ctx->scene_memory = bytes;
+    return HR_OK;
+}
+
 HR_API hr_status hr_context_add_shape_dir(hr_context *ctx, const char *dir)
 {
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;

@@ -47,6 +47,7 @@ struct hr_context {
      * objects class after class, mostly of one class. */
     hr_class_entry last_found;
     int32_t last_found_class_count, last_found_module_count;
+    uint64_t scene_memory; /* hr_context_set_scene_memory; 0: the default */
 };
 
 /* The host services table (host_services.c: trace_child inlines object

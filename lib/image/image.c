@@ -1,6 +1,5 @@
 /* Images of linear float pixels, and hr_image_write: argument checks, the
  * choice of format, and the all-or-nothing file around each writer. */
-#include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -101,25 +100,6 @@ HR_API void hr_image_write_options_default(hr_image_write_options *o)
     o->png_bits = 8;
 }
 
-/* Case-insensitive "ends with", for extensions such as ".PNG". */
-static int has_extension(const char *path, const char *ext)
-{
-    size_t np = strlen(path), ne = strlen(ext);
-    if (np < ne) return 0;
-    for (size_t i = 0; i < ne; i++)
-        if (tolower((unsigned char)path[np - ne + i]) != ext[i]) return 0;
-    return 1;
-}
-
-static int32_t format_from_extension(const char *path)
-{
-    if (has_extension(path, ".png")) return HR_FORMAT_PNG;
-    if (has_extension(path, ".exr")) return HR_FORMAT_EXR;
-    if (has_extension(path, ".ppm")) return HR_FORMAT_PPM;
-    if (has_extension(path, ".pfm")) return HR_FORMAT_PFM;
-    return HR_FORMAT_AUTO;
-}
-
 /* The caller's options over the defaults, reading only the bytes the caller
  * says its struct has (common.h), then checked. */
 static hr_status read_options(const hr_context *ctx, const hr_image_write_options *given,
@@ -136,12 +116,14 @@ static hr_status read_options(const hr_context *ctx, const hr_image_write_option
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': png_bits is %d; only 8 or 16",
                         path, (int)o->png_bits);
     if (o->format == HR_FORMAT_AUTO) {
-        o->format = format_from_extension(path);
-        if (o->format == HR_FORMAT_AUTO)
-            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                            "cannot write '%s': unknown image format (use .png, .exr, .ppm or .pfm)",
-                            path);
-    } else if (o->format < HR_FORMAT_PNG || o->format > HR_FORMAT_PFM) {
+        o->format = hr_image_format_from_path(path);
+        if (o->format == HR_FORMAT_AUTO) {
+            char known[128];
+            hr_image_format_list(known, sizeof known);
+            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown image format (use %s)",
+                            path, known);
+        }
+    } else if (!hr_image_format_name(o->format)) {
         return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown format code %d",
                         path, (int)o->format);
     }

@@ -11,7 +11,7 @@
 #include "util/errors.h"
 #include "sdl/load_result.h"
 #include "nff/nff_reader.h"
-#include "util/text_file.h"
+#include "sdl/text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const char *text, size_t length, const char *name,
                             hr_sdl_result *result)

@@ -31,6 +31,11 @@ HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
     hr_scene *s = calloc(1, sizeof *s);
     if (!s) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     s->ctx = ctx;
+    hr_status st = hr_scene_budget_init(ctx, &s->budget);
+    if (st) {
+        free(s);
+        return st;
+    }
     hr_scene_globals_default(&s->globals);
     *out = s;
     return HR_OK;

@@ -13,6 +13,7 @@
 #include "bvh4.h"
 #include "util/color_bounds.h"
 #include "geometry/transform_inline.h"
+#include "scene/scene_budget.h"
 #include "texture/texture.h"
 
 /* The cache line size objects are aligned to. */
@@ -70,6 +71,7 @@ struct hr_scene {
     const hr_object **unbounded; /* top-level objects outside the BVH */
     int32_t unbounded_count;
     hr_pixmap_set pixmaps;      /* Hill's makePixmap (lib/texture/pixmap.c) */
+    hr_scene_budget budget;     /* what its objects, shape data and texels may take */
 };
 
 /* The checks on a full-size material (scene_materials.c);

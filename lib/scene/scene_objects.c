@@ -4,6 +4,7 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -188,14 +189,24 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     const char *module_path = "";
     if ((st = hr_context_find_shape_class(ctx, desc.shape, &cls, &module_path))) return st;
 
+    /* The object itself, its slot in the scene's lists and its share of the
+     * scene's BVH; its shape data is charged as the shape allocates it. */
+    char what[160];
+    snprintf(what, sizeof what, "object %lld (a '%s')", (long long)s->object_count, cls->name);
+    const uint64_t object_bytes = sizeof(hr_object) + 64;
+    if ((st = hr_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, what))) return st;
     hr_object *o = object_alloc();
-    if (!o) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!o) {
+        s->budget.objects -= object_bytes;
+        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
     o->cls = cls;
     o->module_path = module_path;
     o->index = s->object_count;
     o->top_level = 1;
     if ((st = set_material_and_transform(s, o, &desc))) {
         hr_object_free(o);
+        s->budget.objects -= object_bytes;
         return st;
     }
 
@@ -215,6 +226,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
             free(full);
             free(children);
             hr_object_free(o);
+            s->budget.objects -= object_bytes;
             return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         }
     }
@@ -232,12 +244,18 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         args.error = message;
         args.error_size = sizeof message;
         args.base_dir = desc.base_dir ? desc.base_dir : "";
+        s->budget.refused = 0;
+        hr_scene_budget_begin(&s->budget);
         st = cls->create(&args, &o->shape);
+        hr_scene_budget_end();
         if (st != HR_OK || !o->shape) {
             o->shape = NULL;
             if (st == HR_OK) st = HR_ERROR_MODULE;
-            st = hr_error(ctx, st, "shape '%s' (module '%s'): %s", cls->name, module_path,
-                          message[0] ? message : "create failed without a message");
+            if (s->budget.refused) /* the shape's own message says only "out of memory" */
+                st = hr_scene_budget_refused(ctx, &s->budget, what);
+            else
+                st = hr_error(ctx, st, "shape '%s' (module '%s'): %s", cls->name, module_path,
+                              message[0] ? message : "create failed without a message");
         }
     }
     if (st == HR_OK)
@@ -255,6 +273,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     }
     if (st) {
         hr_object_free(o);
+        s->budget.objects -= object_bytes;
         return st;
     }
     cls->bounds(o->shape, &o->local_bounds);

@@ -12,7 +12,7 @@
 #include "sdl/sdl_lexer.h"
 #include "sdl/sdl_reader.h"
 #include "sdl/sdl_source.h"
-#include "util/text_file.h"
+#include "sdl/text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const char *name,
                             const char *base_dir, hr_sdl_result *result)

@@ -32,6 +32,7 @@ static const char *const objects[] = {
     "sphere", "cube", "square", "plane", "taperedCylinder", "cylinder", "cone",
     "torus", "mesh", "tetrahedron", "octahedron", "dodecahedron", "icosahedron",
     "union", "intersection", "difference", "buckyball", "teapot", "diamond",
+    "taperedTube", /* the ECE661 reader's (the book's chapter-6 ray tracer) */
 };
 #define OBJECT_COUNT ((int)(sizeof objects / sizeof objects[0]))
 

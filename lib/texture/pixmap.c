@@ -1,6 +1,7 @@
 /* A scene's pixmaps (Hill's makePixmap; lib/scene/scene_pixmaps.c is the
  * public door) and how an image texture reads one. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -52,6 +53,13 @@ static hr_status copy_pixels(hr_context *ctx, int32_t index, const hr_image *ima
         }
     *out = rgb;
     return HR_OK;
+}
+
+uint64_t hr_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size)
+{
+    const int32_t w = hr_image_width(image), h = hr_image_height(image);
+    snprintf(what, what_size, "pixmap %d (%d x %d texels)", (int)index, (int)w, (int)h);
+    return (uint64_t)w * (uint64_t)h * 3 * sizeof(float);
 }
 
 hr_status hr_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image)

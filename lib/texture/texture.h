@@ -85,6 +85,9 @@ const hr_pixmap *hr_pixmap_find(const hr_pixmap_set *set, int32_t index);
  * (RGB or RGBA, each finite and within +-HR_MAX_COLOR), raising the error
  * on ctx when it cannot. */
 hr_status hr_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image);
+/* The bytes pixmap `index` of `image` keeps (its texels as RGB floats),
+ * and its name for messages, "pixmap N (W x H texels)", into `what`. */
+uint64_t hr_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size);
 void hr_pixmap_set_free(hr_pixmap_set *set);
 
 /* What an object's texture needs at a hit. */

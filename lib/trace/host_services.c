@@ -6,11 +6,10 @@
 #include <string.h>
 
 #include "core/context_internal.h"
+#include "scene/scene_budget.h"
 #include "trace/object_trace.h"
 #include "trace/trace_context.h"
 
-static void *host_alloc(size_t size) { return calloc(1, size ? size : 1); }
-static void host_free(void *p) { free(p); }
 
 static hr_status host_reserve(void *call, hr_intersection *list, int32_t capacity)
 {
@@ -67,8 +66,9 @@ void hr_host_services_init(hr_host *host)
     memset(host, 0, sizeof *host);
     host->struct_size = sizeof *host;
     host->abi_version = HR_SHAPE_ABI_VERSION;
-    host->alloc = host_alloc;
-    host->free = host_free;
+    /* Shape data counts against the scene budget of the scene being built. */
+    host->alloc = hr_scene_budget_alloc;
+    host->free = hr_scene_budget_free;
     host->reserve = host_reserve;
     host->scratch_acquire = hr_trace_scratch_acquire;
     host->scratch_release = hr_trace_scratch_release;

@@ -5,6 +5,12 @@
  * and the wall alone, open at both ends, as NFF's cones and cylinders are:
  *   openTaperedCylinder s   the same wall, no disks; no solid (see
  *                           open_crossings below)
+ * and the thick-walled tube of Hill's ECE661 reader (the book's chapter-6
+ * ray tracer):
+ *   taperedTube s t     taperedCylinder s with a coaxial hole whose radius
+ *                       is 1 - t at z = 0 and s - t at z = 1 (the inner
+ *                       wall parallel to the outer, t across the axis);
+ *                       the base and cap are annuli (see tube_crossings)
  * A closed solid: the wall x^2 + y^2 = (1 + (s-1) z)^2 for 0 <= z <= 1
  * (surface 0), the base disk z = 0, radius 1 (surface 1), and the cap disk
  * z = 1, radius s (surface 2; absent when s = 0, where it is the apex, a
@@ -76,6 +82,7 @@
 #define SURFACE_WALL 0
 #define SURFACE_BASE 1
 #define SURFACE_CAP 2
+#define SURFACE_INNER 3 /* taperedTube's inner wall */
 
 #define TAPER_MAX 1e6
 
@@ -83,9 +90,12 @@ typedef struct tapered_cylinder {
     const hr_host *host;
     double s;     /* radius at z = 1 */
     double slope; /* k = s - 1: the wall's radius is w(z) = 1 + k z */
+    double inner; /* taperedTube: the inner wall's radius at z = 0, fl(1 - t); else 0 */
 } tapered_cylinder;
 
-/* The span of the ray inside the quadric Q <= 0, in our nappe.
+/* The span of the ray inside the quadric Q <= 0, in our nappe, for the wall
+ * whose radius is w(z) = r0 + k z (r0 = 1: the outer wall; the tube's inner
+ * wall has r0 = 1 - t, the same slope, and w >= 0 in the slab likewise).
  *
  * The coefficients are products of two direction components, which
  * underflow for a direction shorter than about 1e-154: a ray 1e-308 long
@@ -97,14 +107,15 @@ typedef struct tapered_cylinder {
  * back. Both scalings are exact (barring overflow of a root, which then is
  * infinite and never reported), so every other ray gets the same bits as
  * before. */
-SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, const hr_ray *ray)
+SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, double r0,
+                                             const hr_ray *ray)
 {
     const hr_vec3 o = ray->origin;
     int exponent = 0;
     if (shape_vec3_scale_exponent(ray->dir, &exponent)) exponent -= 1; /* to [1, 2) */
     const hr_vec3 d = shape_vec3_ldexp(ray->dir, -exponent);
     const double k = shape->slope;
-    const double w0 = fma(k, o.z, 1.0);
+    const double w0 = fma(k, o.z, r0);
     const double omega = k * d.z;
 
     shape_sum a = shape_sum_start(0.0), b = shape_sum_start(0.0), c = shape_sum_start(0.0);
@@ -157,7 +168,7 @@ static int tapered_crossings(const tapered_cylinder *shape, const hr_ray *ray,
     shape_span span =
         shape_slab_span(ray->origin.z, ray->dir.z, 0.0, SURFACE_BASE, 1.0, SURFACE_CAP);
     if (shape_span_is_empty(span)) return 0;
-    span = shape_span_intersect(span, wall_span(shape, ray));
+    span = shape_span_intersect(span, wall_span(shape, 1.0, ray));
     const int count = shape_span_crossings(span, out);
     if (shape->s == 0.0)
         for (int i = 0; i < count; i++)
@@ -175,7 +186,7 @@ static int tapered_crossings(const tapered_cylinder *shape, const hr_ray *ray,
 static int open_crossings(const tapered_cylinder *shape, const hr_ray *ray,
                           shape_crossing out[2])
 {
-    const shape_span span = wall_span(shape, ray);
+    const shape_span span = wall_span(shape, 1.0, ray);
     if (shape_span_is_empty(span)) return 0;
     const double t[2] = {span.t_in, span.t_out};
     const int32_t surface[2] = {span.surface_in, span.surface_out};
@@ -192,17 +203,20 @@ static int open_crossings(const tapered_cylinder *shape, const hr_ray *ray,
     return count;
 }
 
-SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
+/* The wall of radius r0 + k z (see wall_span); the bound of the header's
+ * analysis with R = r0 + |k| z. */
+SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, double r0, const hr_ray *ray,
+                                       hr_hit *hit)
 {
     const double k = shape->slope;
     const hr_vec3 p = shape_ray_at(ray, hit->t);
     const double z = shape_clamp(p.z, 0.0, 1.0);
-    const double radius = fma(k, z, 1.0);
+    const double radius = fma(k, z, r0);
     /* (x, y) rescaled before rho is taken, as the sphere does: below 1e-154
      * their squares are subnormal and rho loses digits. */
     const hr_vec3 q = shape_vec3_rescaled(shape_vec3(p.x, p.y, 0.0));
     const double rho = sqrt(q.x * q.x + q.y * q.y);
-    const double bound = shape_gamma(8) * (1.0 + fabs(k) * z);
+    const double bound = shape_gamma(8) * (r0 + fabs(k) * z);
     if (rho > 0.0) {
         const double scale = radius / rho;
         hit->point = shape_vec3(q.x * scale, q.y * scale, z);
@@ -214,6 +228,13 @@ SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, const hr_r
     hit->normal = shape_vec3(hit->point.x, hit->point.y, -k * radius);
     if (hit->normal.x == 0.0 && hit->normal.y == 0.0 && hit->normal.z == 0.0)
         hit->normal = shape_vec3(0.0, 0.0, 1.0);
+}
+
+/* The radius of the tube's inner wall at z = 1, where it bounds the cap's
+ * annulus: r0 + k, s - t up to rounding (0 for the solid classes). */
+static double tube_cap_inner(const tapered_cylinder *shape)
+{
+    return shape->inner > 0.0 ? fmax(shape->inner + shape->slope, 0.0) : 0.0;
 }
 
 /* A disk's time is an end of the span of the slab that the wall's span
@@ -250,16 +271,22 @@ static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *
     if (!shape_vec3_scale_exponent(shape_vec3(x, y, 0.0), &exponent)) return;
     const hr_vec3 q = shape_vec3_ldexp(shape_vec3(x, y, 0.0), -exponent);
     const double rho = sqrt(q.x * q.x + q.y * q.y);
-    if (!(rho > shape_ldexp(r, -exponent))) return;
-    const double scale = r / rho;
+    /* The tube's annuli: a point inside the hole is moved out onto the
+     * inner rim the same way (the same bound with the inner radius). */
+    const double r_in = cap ? tube_cap_inner(shape) : shape->inner;
+    double rim;
+    if (rho > shape_ldexp(r, -exponent)) rim = r;
+    else if (rho > 0.0 && rho < shape_ldexp(r_in, -exponent)) rim = r_in;
+    else return;
+    const double scale = rim / rho;
     hit->point.x = q.x * scale;
     hit->point.y = q.y * scale;
-    hit->error = fmax(hit->error, shape_gamma(4) * r + DBL_TRUE_MIN);
+    hit->error = fmax(hit->error, shape_gamma(4) * rim + DBL_TRUE_MIN);
 }
 
 static void tapered_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
-    if (hit->surface == SURFACE_WALL) wall_fill(shape, ray, hit);
+    if (hit->surface == SURFACE_WALL) wall_fill(shape, 1.0, ray, hit);
     else disk_fill(shape, ray, hit);
 }
 
@@ -274,7 +301,7 @@ SHAPE_DEFINE_HIT_MODES(tapered, tapered_trace)
 
 static void open_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
-    wall_fill(shape, ray, hit);
+    wall_fill(shape, 1.0, ray, hit);
 }
 
 static hr_status open_trace(const hr_hit_args *args, int32_t mode)
@@ -285,6 +312,60 @@ static hr_status open_trace(const hr_hit_args *args, int32_t mode)
 }
 
 SHAPE_DEFINE_HIT_MODES(open, open_trace)
+
+/* taperedTube: the frustum with a coaxial hole. The solid is the outer
+ * frustum (slab, then the outer wall, as tapered_crossings) minus the inner
+ * one (the same slab, then the inner wall). The inner frustum lies inside
+ * the outer, touching it only on the slab's faces, and both are convex, so
+ * the ray's visit is the outer span with the inner span cut out of it: up
+ * to two pieces, four crossings. Where the ray enters (or leaves) the hole
+ * through the base or cap, the two spans share that end bit for bit (one
+ * shape_slab_span), the piece between them is empty and is dropped: the
+ * ray passes through the hole without touching the tube. A piece that
+ * rounding turned inside out (a hair-thin wall) is dropped likewise. */
+static int tube_crossings(const tapered_cylinder *shape, const hr_ray *ray, shape_crossing out[4])
+{
+    const shape_span slab =
+        shape_slab_span(ray->origin.z, ray->dir.z, 0.0, SURFACE_BASE, 1.0, SURFACE_CAP);
+    if (shape_span_is_empty(slab)) return 0;
+    const shape_span outer = shape_span_intersect(slab, wall_span(shape, 1.0, ray));
+    if (shape_span_is_empty(outer)) return 0;
+    shape_span hole = shape_span_intersect(slab, wall_span(shape, shape->inner, ray));
+    if (shape_span_is_empty(hole)) return shape_span_crossings(outer, out);
+    if (hole.surface_in == SURFACE_WALL) hole.surface_in = SURFACE_INNER;
+    if (hole.surface_out == SURFACE_WALL) hole.surface_out = SURFACE_INNER;
+    const shape_span pieces[2] = {
+        shape_span_make(outer.t_in, outer.surface_in, hole.t_in, hole.surface_in),
+        shape_span_make(hole.t_out, hole.surface_out, outer.t_out, outer.surface_out)};
+    int count = 0;
+    for (int i = 0; i < 2; i++)
+        if (pieces[i].t_in < pieces[i].t_out) count += shape_span_crossings(pieces[i], out + count);
+    return count;
+}
+
+/* The inner wall bounds the solid from inside: its outward normal points
+ * toward the axis, the inner quadric's gradient reversed. */
+static void tube_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    const tapered_cylinder *c = shape;
+    if (hit->surface == SURFACE_WALL) {
+        wall_fill(c, 1.0, ray, hit);
+    } else if (hit->surface == SURFACE_INNER) {
+        wall_fill(c, c->inner, ray, hit);
+        hit->normal = shape_vec3(-hit->normal.x, -hit->normal.y, -hit->normal.z);
+    } else {
+        disk_fill(c, ray, hit);
+    }
+}
+
+static hr_status tube_trace(const hr_hit_args *args, int32_t mode)
+{
+    shape_crossing crossings[4];
+    const int count = tube_crossings(args->shape, &args->ray, crossings);
+    return shape_report(args, mode, crossings, count, tube_fill);
+}
+
+SHAPE_DEFINE_HIT_MODES(tube, tube_trace)
 
 static void tapered_bounds(const void *shape, hr_bounds *out)
 {
@@ -326,6 +407,7 @@ static hr_status tapered_make(const hr_create_args *args, double s, void **out_s
     shape->host = args->host;
     shape->s = s;
     shape->slope = s - 1.0;
+    shape->inner = 0.0;
     *out_shape = shape;
     return HR_OK;
 }
@@ -345,6 +427,38 @@ static hr_status tapered_cylinder_create(const hr_create_args *args, void **out_
         return HR_ERROR_PARAMETER;
     }
     return tapered_make(args, s, out_shape);
+}
+
+/* taperedTube s t: 0 < t < 1 keeps the hole's base radius 1 - t above 0,
+ * t <= s its cap radius s - t at or above 0 (t = s: the hole narrows to a
+ * point at the cap's centre). The host has checked each range alone. */
+static hr_status tube_create(const hr_create_args *args, void **out_shape)
+{
+    double s = NAN, t = NAN;
+    for (int32_t i = 0; i < args->param_count; i++) {
+        if (!args->params[i].name) continue;
+        if (strcmp(args->params[i].name, "s") == 0) s = args->params[i].number;
+        if (strcmp(args->params[i].name, "t") == 0) t = args->params[i].number;
+    }
+    const char *problem = NULL;
+    if (!(s >= 0.0 && s <= TAPER_MAX)) problem = "s";
+    else if (!(t > 0.0 && t < 1.0 && t <= s)) problem = "t";
+    if (problem) {
+        if (args->error && args->error_size) {
+            if (problem[0] == 's')
+                snprintf(args->error, args->error_size,
+                         "parameter 's' = %g must be a number in [0, %g]", s, TAPER_MAX);
+            else
+                snprintf(args->error, args->error_size,
+                         "parameter 't' = %g must be above 0, below 1 and at most s = %g (the "
+                         "wall's thickness: the hole's radius is 1 - t at z = 0, s - t at z = 1)",
+                         t, s);
+        }
+        return HR_ERROR_PARAMETER;
+    }
+    hr_status st = tapered_make(args, s, out_shape);
+    if (st == HR_OK) ((tapered_cylinder *)*out_shape)->inner = 1.0 - t;
+    return st;
 }
 
 static hr_status cylinder_create(const hr_create_args *args, void **out_shape)
@@ -371,8 +485,18 @@ static const hr_param_spec tapered_params[] = {
      "radius at z = 1 (the radius at z = 0 is 1): 0 makes a cone, 1 a cylinder", 0},
 };
 
-/* (u, v): on the wall, u the turn about z from +x in [0, 1) and v the
- * height z in [0, 1]; on the base and cap disks the same u and v the
+/* Hill's `taperedTube s t`: both given, as his reader reads them. */
+static const hr_param_spec tube_params[] = {
+    {"s", HR_PARAM_NUMBER, 1, 1.0, 0.0, TAPER_MAX, "the outer radius at z = 1 (1 at z = 0)", 0},
+    {"t", HR_PARAM_NUMBER, 1, 0.1, 0.0, 1.0,
+     "the wall's thickness across the axis: the hole's radius is 1 - t at z = 0, s - t at "
+     "z = 1 (t <= s)",
+     HR_PARAM_MIN_EXCLUSIVE | HR_PARAM_MAX_EXCLUSIVE},
+};
+
+/* (u, v): on the wall (and the tube's inner wall), u the turn about z from
+ * +x in [0, 1) and v the height z in [0, 1]; on the base and cap disks (the
+ * tube's annuli) the same u and v the
  * distance from the axis as a fraction of the disk's radius (0 at the
  * centre, 1 on the rim). */
 static int32_t tapered_uv(const void *shape, const hr_hit *hit, double uv[2])
@@ -381,7 +505,7 @@ static int32_t tapered_uv(const void *shape, const hr_hit *hit, double uv[2])
     const tapered_cylinder *c = shape;
     const hr_vec3 p = hit->point;
     uv[0] = shape_turn(p.y, p.x);
-    if (hit->surface == SURFACE_WALL) {
+    if (hit->surface == SURFACE_WALL || hit->surface == SURFACE_INNER) {
         uv[1] = p.z;
     } else {
         const double radius = hit->surface == SURFACE_CAP ? c->s : 1.0;
@@ -391,8 +515,8 @@ static int32_t tapered_uv(const void *shape, const hr_hit *hit, double uv[2])
     return 1;
 }
 
-/* By SURFACE_WALL, SURFACE_BASE and SURFACE_CAP. */
-static const char *const tapered_surface_names[3] = {"wall", "base", "cap"};
+/* By SURFACE_WALL, SURFACE_BASE, SURFACE_CAP and SURFACE_INNER. */
+static const char *const tapered_surface_names[4] = {"wall", "base", "cap", "inner"};
 
 #define TAPERED_CLASS(class_name, class_help, params_list, params_count, create_fn)          \
     {                                                                                       \
@@ -436,14 +560,38 @@ static const hr_shape_class open_tapered_cylinder_class = {
     .surface_uv = tapered_uv,
 };
 
+/* Hill's ECE661 reader's tube (SDL.cpp of the book's chapter-6 ray tracer). */
+static const hr_shape_class tapered_tube_class = {
+    .struct_size = sizeof(hr_shape_class),
+    .flags = HR_SHAPE_CLOSED,
+    .name = "taperedTube",
+    .help = "taperedCylinder s with a coaxial hole, the wall t thick (hole radius 1 - t at z = 0, "
+            "s - t at z = 1); surfaces wall, base, cap (annuli), inner",
+    .params = tube_params,
+    .param_count = 2,
+    .surface_count = 4,
+    .surface_names = tapered_surface_names,
+    .create = tube_create,
+    .destroy = tapered_destroy,
+    .bounds = tapered_bounds,
+    .transformed_bounds = tapered_transformed_bounds,
+    .hit = tube_hit,
+    .first_hit = tube_first_hit,
+    .any_hit = tube_any_hit,
+    .surface_uv = tapered_uv,
+};
+
 static const hr_shape_class *const tapered_classes[] = {
-    &tapered_cylinder_class, &cylinder_class, &cone_class, &open_tapered_cylinder_class};
+    &tapered_cylinder_class, &cylinder_class, &cone_class, &open_tapered_cylinder_class,
+    &tapered_tube_class,
+};
 
 static const hr_module_info tapered_module = {
     .struct_size = sizeof(hr_module_info),
     .abi_version = HR_SHAPE_ABI_VERSION,
     .name = "cylinder",
-    .description = "Hill's tapered cylinder, cylinder and cone, and the open tapered wall",
+    .description = "Hill's tapered cylinder, cylinder and cone, the open tapered wall, and Hill's "
+                   "tapered tube",
     .classes = tapered_classes,
     .class_count = (int32_t)(sizeof tapered_classes / sizeof tapered_classes[0]),
     SHAPE_BUILTIN_METADATA,

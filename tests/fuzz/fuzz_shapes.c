@@ -313,7 +313,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     shape.cls = fc->cls;
     double number;
     if (!create_shape(&in, fc, &shape, &number)) return 0;
-    const ref_shape ref = ref_shape_of(fc->cls->name, number);
+    const ref_shape ref = ref_shape_of(fc->cls->name, number, NAN);
     for (int r = 0; r < 4 && (r == 0 || fuzz_more(&in)); r++) {
         hr_ray ray;
         ray.origin.x = fuzz_double(&in);

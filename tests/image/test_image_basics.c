@@ -140,6 +140,44 @@ static void check_format_choice(const char *dir)
     hr_image_destroy(image);
 }
 
+/* The format table: names, extensions and the phrase for messages agree,
+ * and every code from HR_FORMAT_PNG up to the last is one format. */
+static void check_format_table(void)
+{
+    int32_t count = 0;
+    for (int32_t code = HR_FORMAT_PNG; hr_image_format_name(code); code++, count++) {
+        const char *name = hr_image_format_name(code), *ext = hr_image_format_extension(code);
+        CHECK(hr_image_format_from_name(name) == code);
+        char upper[32];
+        fixture_format(upper, sizeof upper, "x%s", ext);
+        for (char *c = upper; *c; c++) *c = (char)(*c >= 'a' && *c <= 'z' ? *c - 32 : *c);
+        CHECK_MSG(hr_image_format_from_path(upper) == code, "%s", upper);
+    }
+    CHECK(count >= 4);
+    CHECK(hr_image_format_name(HR_FORMAT_AUTO) == NULL);
+    CHECK(hr_image_format_extension(HR_FORMAT_PNG + count) == NULL);
+    CHECK(hr_image_format_from_name("PNG") == HR_FORMAT_AUTO); /* names are lower case, as --format takes them */
+    CHECK(hr_image_format_from_name(NULL) == HR_FORMAT_AUTO);
+    CHECK(hr_image_format_from_path("image.tiff") == HR_FORMAT_AUTO);
+    CHECK(hr_image_format_from_path("png") == HR_FORMAT_AUTO);
+    CHECK(hr_image_format_from_path(NULL) == HR_FORMAT_AUTO);
+    char list[128];
+    hr_image_format_list(list, sizeof list);
+    CHECK_MSG(strncmp(list, ".png, .exr, ", 12) == 0 && strstr(list, " or ") != NULL, "%s", list);
+    hr_image_format_list(list, 5); /* cut to fit, still a string */
+    CHECK(strcmp(list, ".png") == 0);
+    /* The writer's message lists them too. */
+    hr_image *image = fixture_image(ctx, 2, 2, 3, 0);
+    CHECK(hr_image_write(ctx, image, "x.tiff", NULL) == HR_ERROR_INVALID_ARGUMENT);
+    hr_image_format_list(list, sizeof list);
+    CHECK(strstr(hr_context_last_error(ctx), list) != NULL);
+    hr_image_write_options o;
+    hr_image_write_options_default(&o);
+    o.format = HR_FORMAT_PNG + count;
+    CHECK(hr_image_write(ctx, image, "x.png", &o) == HR_ERROR_INVALID_ARGUMENT);
+    hr_image_destroy(image);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -149,6 +187,7 @@ int main(void)
     check_alignment();
     check_default_options();
     check_format_choice(dir);
+    check_format_table();
     hr_context_destroy(ctx);
     return hr_test_end();
 }

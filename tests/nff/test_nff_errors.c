@@ -180,7 +180,7 @@ static void test_truncated_gzip(void)
     remove(path);
 }
 
-/* Files are read as SDL files are (lib/util/text_file.h): a device or a FIFO is
+/* Files are read as SDL files are (lib/sdl/text_file.h): a device or a FIFO is
  * refused at once, not read for ever, and a gzip file whose text inflates
  * past the scene size limit is refused rather than inflated into memory. */
 static void test_file_limits(void)

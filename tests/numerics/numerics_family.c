@@ -74,7 +74,7 @@ void nf_run_family(const char *module, const char *cls, double s, nf_probe_fn ma
         harness_close(&shape);
         return;
     }
-    const ref_shape ref = ref_shape_of(cls, s);
+    const ref_shape ref = ref_shape_of(cls, s, NAN);
     ray_rng rng;
     rng_seed(&rng, seed);
     for (int i = 0; i < rays; i++) {

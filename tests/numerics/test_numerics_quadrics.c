@@ -64,7 +64,7 @@ static double naive_worst(double distance, uint64_t seed)
         const double a = d.x * d.x + d.y * d.y + d.z * d.z, b = o.x * d.x + o.y * d.y + o.z * d.z;
         const double c = o.x * o.x + o.y * o.y + o.z * o.z - 1, disc = b * b - a * c;
         ref_trace expect;
-        ref_trace_ray(ref_shape_of("sphere", NAN), p.ray, &expect);
+        ref_trace_ray(ref_shape_of("sphere", NAN, NAN), p.ray, &expect);
         if (expect.count != 2 || !(disc >= 0)) continue;
         const double t = (-b - sqrt(disc)) / a;
         const double err = ref_to_double(nf_qabs((quad)t - expect.hits[0].t));

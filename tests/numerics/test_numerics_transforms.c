@@ -102,7 +102,7 @@ static void run_placement(const placement *pl, nc_result *out)
     d.shape = pl->cls, d.transform = t.m, d.inverse = t.inv;
     CHECK_OK(hr_scene_add_object(scene, &d, NULL));
     CHECK_OK(hr_scene_commit(scene));
-    const ref_shape ref = ref_shape_of(pl->cls, NAN);
+    const ref_shape ref = ref_shape_of(pl->cls, NAN, NAN);
     const double *m = t.m, *inv = t.inv;
     ray_rng rng;
     rng_seed(&rng, UINT64_C(0x7a0000) + (uint64_t)pl->angle);

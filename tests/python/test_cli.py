@@ -9,6 +9,7 @@ no traceback, no partial output file.
 import json
 import math
 import os
+import re
 import pathlib
 import pty
 import select
@@ -38,7 +39,15 @@ def run(*args, env=None, cwd=None):
     if env:
         full_env.update(env)
     return subprocess.run([str(HITRAY), *map(str, args)], capture_output=True, text=True,
-                          env=full_env, cwd=cwd, timeout=120)
+                          env=full_env, cwd=cwd, timeout=120, stdin=subprocess.DEVNULL)
+
+
+def run_bytes(*args, stdin=b"", env=None):
+    """hitray with `stdin` as its standard input; stdout kept as bytes."""
+    full_env = {k: v for k, v in os.environ.items() if k != "HITRAY_SHAPE_PATH"}
+    full_env.update(env or {})
+    return subprocess.run([str(HITRAY), *map(str, args)], capture_output=True, input=stdin,
+                          env=full_env, timeout=120)
 
 
 @pytest.fixture
@@ -184,6 +193,85 @@ def test_ppm_and_pfm_outputs(scene, tmp_path):
     assert run("render", scene, "-o", pfm, "--size", "9x7").returncode == 0
     width, height, rows = read_pfm(pfm)
     assert (width, height) == (9, 7)
+
+
+def test_window_is_the_full_renders_crop_bit_for_bit(tmp_path):
+    """--window X,Y,W,H gives the pixels of the full render exactly, as
+    Python's window= does: adaptive corners and samples are placed on the
+    full image, so a window cut anywhere (odd corner, odd size) matches."""
+    scene, args = ROOT / "scenes" / "demo.sdl", ["--size", "61x43", "--spp", "4", "--adaptive", "0.05"]
+    full, window = tmp_path / "full.pfm", tmp_path / "window.pfm"
+    assert run("render", scene, "-o", full, *args).returncode == 0
+    r = run("render", scene, "-o", window, *args, "--window", "7,11,23,19")
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("rendered 23x19 ")
+    _, _, rows = read_pfm(full)
+    width, height, crop = read_pfm(window)
+    assert (width, height) == (23, 19)
+    assert crop == [row[7:7 + 23] for row in rows[11:11 + 19]]
+
+
+@pytest.mark.parametrize("ext, format_args", [(".png", []), (".ppm", ["--format", "ppm"]),
+                                              (".pfm", ["--format", "pfm"]), (".exr", ["--format", "exr"])])
+def test_output_to_stdout_is_the_file_it_would_write(scene, tmp_path, ext, format_args):
+    """-o - writes to standard output the bytes -o FILE writes (PNG unless
+    --format names another), the summary going to stderr; nothing is left
+    in TMPDIR."""
+    target = tmp_path / f"file{ext}"
+    assert run("render", scene, "-o", target, "--size", "13x9").returncode == 0
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    r = run_bytes("render", scene, "-o", "-", "--size", "13x9", *format_args, env={"TMPDIR": str(tmp)})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == target.read_bytes()
+    assert r.stderr.decode().startswith("rendered 13x9 ") and "standard output" in r.stderr.decode()
+    assert list(tmp.iterdir()) == []
+
+
+def test_output_to_stdout_with_an_unusable_tmpdir_renders_nothing(scene, tmp_path):
+    r = run_bytes("render", scene, "-o", "-", "--size", "4x4", env={"TMPDIR": str(tmp_path / "absent")})
+    assert r.returncode == 1 and r.stdout == b""
+    assert b"absent" in r.stderr and len(r.stderr.splitlines()) == 1
+
+
+def test_output_to_stdout_on_a_terminal_is_refused(scene):
+    master, slave = pty.openpty()
+    try:
+        r = subprocess.run([str(HITRAY), "render", str(scene), "-o", "-", "--size", "4x4"], stdout=slave,
+                           stderr=subprocess.PIPE, timeout=60)
+    finally:
+        os.close(slave)
+        os.close(master)
+    assert r.returncode == 2 and b"terminal" in r.stderr
+
+
+def test_scene_from_stdin_renders_as_the_file(tmp_path):
+    """- as the scene reads SDL from standard input, its relative file names
+    (textures) from the current directory; its errors name <stdin>."""
+    demo = ROOT / "scenes" / "demo.sdl"
+    from_file, from_stdin = tmp_path / "file.pfm", tmp_path / "stdin.pfm"
+    assert run("render", demo, "-o", from_file, "--size", "24x18").returncode == 0
+    r = subprocess.run([str(HITRAY), "render", "-", "-o", str(from_stdin), "--size", "24x18"],
+                       input=demo.read_bytes(), capture_output=True, cwd=demo.parent, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert from_stdin.read_bytes() == from_file.read_bytes()
+    r = run_bytes("render", "-", "-o", tmp_path / "bad.png", stdin=b"sphere\nrotate 1 2\n")
+    assert r.returncode == 1 and r.stderr.startswith(b"hitray: <stdin>:3:1: ")
+    r = run_bytes("render", "-", "-o", tmp_path / "nul.png", stdin=b"sphere\0\n")
+    assert r.returncode == 1 and b"NUL" in r.stderr
+    assert not (tmp_path / "bad.png").exists() and not (tmp_path / "nul.png").exists()
+
+
+def test_stdin_scene_to_stdout_image(scene):
+    r = run_bytes("render", "-", "-o", "-", "--size", "5x5", "--format", "ppm", stdin=scene.read_bytes())
+    assert r.returncode == 0 and r.stdout.startswith(b"P6\n5 5\n255\n")
+
+
+def test_quiet_prints_nothing_even_on_a_terminal(scene, tmp_path):
+    rc, out, seen = run_on_a_terminal("render", scene, "-o", tmp_path / "q.png", "--size", "64x64", "--quiet")
+    assert (rc, out, seen) == (0, b"", "")
+    r = run("render", scene, "-o", tmp_path / "q.png", "--size", "8x8", "-q", "--stats")
+    assert (r.returncode, r.stdout, r.stderr) == (0, "", "")
 
 
 def test_stats_json_keys(scene, tmp_path):
@@ -642,6 +730,13 @@ def error_cases(tmp_path, scene):
         "savings without scene": ["savings", "--size", "4x4"],
         "savings at 1 spp": ["savings", scene, "--spp", "1"],
         "savings bad threshold": ["savings", scene, "--adaptive", "x"],
+        "window three numbers": ["render", scene, "-o", out, "--window", "0,0,4"],
+        "window not whole": ["render", scene, "-o", out, "--window", "0,0,4.5,4"],
+        "window empty": ["render", scene, "-o", out, "--window", "0,0,0,4"],
+        "window negative": ["render", scene, "-o", out, "--window", "-1,0,4,4"],
+        "window outside": ["render", scene, "-o", out, "--size", "8x8", "--window", "4,4,5,4"],
+        "unknown format": ["render", scene, "-o", out, "--format", "gif"],
+        "format against extension": ["render", scene, "-o", out, "--format", "ppm"],
     }
 
 
@@ -902,3 +997,19 @@ def test_exact_renders_the_same_image_as_the_default_cut_off(tmp_path):
     sa, sb = (json.loads((tmp_path / n).read_text()) for n in ("a.json", "b.json"))
     assert sa["rays_cut"] == sb["rays_cut"] == 0
     assert [sa[k] for k in ("primary", "shadow", "reflected")] == [sb[k] for k in ("primary", "shadow", "reflected")]
+
+
+# A number with a unit of time, or a count of instructions or cycles.
+_MEASUREMENT = re.compile(r"\d\s*(ns|us|µs|ms)\b|\binstructions?\b|\bcycles?\b")
+
+
+def test_shape_help_quotes_no_measurement():
+    """`hitray shapes` says what a choice does, not what it measured on some
+    machine: timings and instruction counts go stale, so they live in
+    bench/RESULTS.md and the help points there (the torus's solver)."""
+    r = run("shapes")
+    assert r.returncode == 0, r.stderr
+    bad = [line.strip() for line in r.stdout.splitlines() if _MEASUREMENT.search(line)]
+    assert not bad, f"help that quotes a measurement: {bad}"
+    solver = [line for line in r.stdout.splitlines() if line.strip().startswith("solver ")]
+    assert solver and "bench/RESULTS.md" in solver[0]

@@ -502,4 +502,5 @@ def test_view_without_the_viewer_beside_hitray(tmp_path):
     r = subprocess.run([str(lonely), "view", DEMO], capture_output=True, text=True, env=clean_env(), timeout=WAIT)
     line = one_error_line(r)
     assert line == (f"hitray: view: the viewer '{tmp_path}/bin/hitray-view' is not there (it is built only where "
-                    "SDL2 is installed: Debian's libsdl2-dev)")
+                    "SDL2 is installed, so pip's wheels leave it out: install Debian's libsdl2-dev and build "
+                    "from source, make build)")

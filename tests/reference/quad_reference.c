@@ -6,15 +6,16 @@
 
 #include "quad_poly.h"
 
-ref_shape ref_shape_of(const char *class_name, double s)
+ref_shape ref_shape_of(const char *class_name, double s, double t)
 {
-    ref_shape r = {REF_SPHERE, 0.0};
+    ref_shape r = {REF_SPHERE, 0.0, 0.0};
     if (strcmp(class_name, "plane") == 0) r.kind = REF_PLANE;
     else if (strcmp(class_name, "square") == 0) r.kind = REF_SQUARE;
     else if (strcmp(class_name, "cube") == 0) r.kind = REF_CUBE;
     else if (strcmp(class_name, "cylinder") == 0) r.kind = REF_TAPERED, r.s = 1.0;
     else if (strcmp(class_name, "cone") == 0) r.kind = REF_TAPERED, r.s = 0.0;
     else if (strcmp(class_name, "taperedCylinder") == 0) r.kind = REF_TAPERED, r.s = s;
+    else if (strcmp(class_name, "taperedTube") == 0) r.kind = REF_TUBE, r.s = s, r.t = t;
     else if (strcmp(class_name, "torus") == 0) r.kind = REF_TORUS, r.s = isnan(s) ? 0.2 : s;
     return r;
 }
@@ -151,9 +152,10 @@ static void trace_sphere(collector *col)
 }
 
 /* The plane z = h crossed inside |x|, |y| <= half (square) or radius
- * `radius` (disk); half < 0 and radius < 0: unbounded. */
+ * `radius` (disk; an annulus where `hole` > 0); half < 0 and radius < 0:
+ * unbounded. */
 static void trace_flat_z(collector *col, quad h, int surface, quad normal_z, quad half,
-                         quad radius)
+                         quad radius, quad hole)
 {
     const qvec o = col->o, d = col->d;
     if (d.z == 0) return;
@@ -166,8 +168,8 @@ static void trace_flat_z(collector *col, quad h, int surface, quad normal_z, qua
         edge = qmin(qabs(half - qabs(p.x)), qabs(half - qabs(p.y)));
     } else if (radius >= 0) {
         const quad rho = sqrtq(p.x * p.x + p.y * p.y);
-        valid = rho <= radius;
-        edge = radius - rho;
+        valid = rho <= radius && rho >= hole;
+        edge = qmin(qabs(radius - rho), hole > 0 ? qabs(rho - hole) : (quad)INFINITY);
     }
     const qvec n = {0, 0, normal_z};
     add_crossing(col, t, surface, n, valid, edge, qabs(t));
@@ -203,11 +205,13 @@ static void trace_cube(collector *col)
     }
 }
 
-static void trace_tapered(collector *col, double s)
+/* The wall of radius r0 + (s - 1) z over 0 <= z <= 1, as `surface`; its
+ * outward normal reversed when `inward` (the tube's inner wall). */
+static void trace_wall(collector *col, double s, quad r0, int surface, int inward)
 {
     const qvec o = col->o, d = col->d;
     const quad k = (quad)s - 1;
-    const quad w0 = 1 + k * o.z, omega = k * d.z;
+    const quad w0 = r0 + k * o.z, omega = k * d.z;
     const quad a = d.x * d.x + d.y * d.y - omega * omega;
     const quad b = o.x * d.x + o.y * d.y - w0 * omega;
     const quad c = o.x * o.x + o.y * o.y - w0 * w0;
@@ -217,16 +221,31 @@ static void trace_tapered(collector *col, double s)
     for (int i = 0; i < n; i++) {
         const quad t = roots[i];
         const qvec p = qat(o, d, t);
-        const quad w = 1 + k * p.z;
+        const quad w = r0 + k * p.z;
         const int valid = p.z >= 0 && p.z <= 1 && w >= 0;
-        const qvec normal = {p.x, p.y, -k * w};
+        const quad sign = inward ? -1 : 1;
+        const qvec normal = {sign * p.x, sign * p.y, -sign * k * w};
         const quad edge = qmin(qabs(p.z), qabs(1 - p.z));
         const quad sensitivity = qabs(w0) + qabs(omega * t);
-        add_crossing(col, t, 0, normal, valid, edge,
+        add_crossing(col, t, surface, normal, valid, edge,
                      quadric_condition(col, t, w, sensitivity, n == 2 ? sqrt_disc : qabs(b)));
     }
-    trace_flat_z(col, 0, 1, -1, -1, 1);
-    if (s > 0) trace_flat_z(col, 1, 2, 1, -1, s); /* the cone has no cap: only the apex */
+}
+
+static void trace_tapered(collector *col, double s)
+{
+    trace_wall(col, s, 1, 0, 0);
+    trace_flat_z(col, 0, 1, -1, -1, 1, 0);
+    if (s > 0) trace_flat_z(col, 1, 2, 1, -1, s, 0); /* the cone has no cap: only the apex */
+}
+
+static void trace_tube(collector *col, double s, double t)
+{
+    const quad r0 = 1 - (quad)t;
+    trace_wall(col, s, 1, 0, 0);
+    trace_wall(col, s, r0, 3, 1);
+    trace_flat_z(col, 0, 1, -1, -1, 1, r0);
+    trace_flat_z(col, 1, 2, 1, -1, s, (quad)s - t);
 }
 
 /* The torus (ring radius 1 about z, tube radius `tube`): the textbook quartic
@@ -329,8 +348,9 @@ static void trace_line(ref_shape shape, qvec origin, qvec dir, ref_trace *out)
     collector col = {out, origin, dir, (quad)INFINITY};
     switch (shape.kind) {
     case REF_SPHERE: trace_sphere(&col); break;
-    case REF_PLANE: trace_flat_z(&col, 0, 0, 1, -1, -1); break;
-    case REF_SQUARE: trace_flat_z(&col, 0, 0, 1, 1, -1); break;
+    case REF_PLANE: trace_flat_z(&col, 0, 0, 1, -1, -1, 0); break;
+    case REF_SQUARE: trace_flat_z(&col, 0, 0, 1, 1, -1, 0); break;
+    case REF_TUBE: trace_tube(&col, shape.s, shape.t); break;
     case REF_CUBE: trace_cube(&col); break;
     case REF_TORUS: trace_torus(&col, shape.s); break;
     default: trace_tapered(&col, shape.s); break;
@@ -342,11 +362,12 @@ static void trace_line(ref_shape shape, qvec origin, qvec dir, ref_trace *out)
     out->margin = (double)col.margin;
 }
 
-/* Distance from (rho, z) to the segment from (1, 0) to (s, 1) in a meridian
- * half-plane: the distance to the tapered wall (a surface of revolution). */
-static quad wall_distance(quad rho, quad z, quad s)
+/* Distance from (rho, z) to the segment from (r0, 0) to (r0 + s - 1, 1) in a
+ * meridian half-plane: the distance to the tapered wall (a surface of
+ * revolution). */
+static quad wall_distance(quad rho, quad z, quad s, quad r0)
 {
-    const quad ax = 1, az = 0, bx = s, bz = 1;
+    const quad ax = r0, az = 0, bx = r0 + s - 1, bz = 1;
     const quad vx = bx - ax, vz = bz - az;
     quad f = ((rho - ax) * vx + (z - az) * vz) / (vx * vx + vz * vz);
     f = qmin(qmax(f, 0), 1);
@@ -385,9 +406,12 @@ double ref_surface_distance(ref_shape shape, int surface, hr_vec3 point)
     }
     default: {
         const quad rho = sqrtq(p.x * p.x + p.y * p.y);
-        if (surface == 0) return (double)wall_distance(rho, p.z, (quad)shape.s);
+        const quad r0 = shape.kind == REF_TUBE ? 1 - (quad)shape.t : 0;
+        if (surface == 0) return (double)wall_distance(rho, p.z, (quad)shape.s, 1);
+        if (surface == 3) return (double)wall_distance(rho, p.z, (quad)shape.s, r0);
         const quad h = surface == 1 ? 0 : 1, radius = surface == 1 ? 1 : (quad)shape.s;
-        const quad e = qmax(rho - radius, 0);
+        const quad hole = shape.kind != REF_TUBE ? 0 : surface == 1 ? r0 : qmax(r0 + (quad)shape.s - 1, 0);
+        const quad e = qmax(rho - radius, 0) + qmax(hole - rho, 0);
         return (double)sqrtq((p.z - h) * (p.z - h) + e * e);
     }
     }

@@ -23,15 +23,20 @@ typedef __float128 quad;
 #define REF_CUBE 3
 #define REF_TAPERED 4 /* cylinder (s = 1), cone (s = 0), taperedCylinder */
 #define REF_TORUS 5   /* s is the tube radius (0.2 for NaN) */
+/* taperedTube: REF_TAPERED's frustum less the coaxial hole of radius
+ * (1 - t) + (s - 1) z; surfaces 0 wall, 1 base annulus, 2 cap annulus,
+ * 3 inner wall */
+#define REF_TUBE 6
 
 typedef struct ref_shape {
     int kind;
-    double s; /* REF_TAPERED: radius at z = 1 */
+    double s; /* REF_TAPERED, REF_TUBE: radius at z = 1 */
+    double t; /* REF_TUBE: the wall's thickness */
 } ref_shape;
 
 /* The reference shape of a class name ("cylinder" is s = 1, "cone" s = 0;
- * "taperedCylinder" takes `s`). */
-ref_shape ref_shape_of(const char *class_name, double s);
+ * "taperedCylinder" takes `s`, "taperedTube" `s` and `t`). */
+ref_shape ref_shape_of(const char *class_name, double s, double t);
 
 typedef struct ref_hit {
     quad t;

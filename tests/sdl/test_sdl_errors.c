@@ -133,6 +133,13 @@ static void objects(hr_context *ctx)
     /* A parameter the shape refuses: the scene's message, at the keyword. */
     EXPECT_ERROR(ctx, "sphere\n taperedCylinder -1", HR_ERROR_PARAMETER, 2, 2, "taperedCylinder",
                  "'s'");
+    /* Hill's ECE661 taperedTube takes s and t; a wall thicker than the cap's
+     * radius is refused naming t, at the keyword. */
+    EXPECT_ERROR(ctx, "taperedTube .75", HR_ERROR_SDL, 1, 16,
+                 "expected a number after 'taperedTube', found end of file");
+    EXPECT_ERROR(ctx, "sphere\n  taperedTube .5 .75", HR_ERROR_PARAMETER, 2, 3, "taperedTube",
+                 "'t' = 0.75 must be above 0, below 1 and at most s = 0.5");
+    EXPECT_ERROR(ctx, "taperedTube 1 0", HR_ERROR_PARAMETER, 1, 1, "'t' = 0");
     /* The file is the class's string parameter, read as any class's is. */
     EXPECT_ERROR(ctx, "mesh", HR_ERROR_SDL, 1, 5, "expected a word for 'file' of 'mesh', found end of file");
     EXPECT_ERROR(ctx, "mesh }", HR_ERROR_SDL, 1, 6, "expected a word for 'file' of 'mesh', found '}'");

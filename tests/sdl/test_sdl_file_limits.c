@@ -1,4 +1,4 @@
-/* What hr_sdl_load_file refuses to read (lib/util/text_file.h; issue 16, defect
+/* What hr_sdl_load_file refuses to read (lib/sdl/text_file.h; issue 16, defect
  * 2): a device that never ends (/dev/zero, /dev/urandom), a FIFO (whose open
  * would wait for a writer), a file larger than the scene size limit, and a
  * binary file, at its first NUL byte. Each is refused at once with an error

@@ -275,21 +275,37 @@ hr_status harness_create_composite(const hr_shape_class *cls, const char *const 
     return create_from(cls, params, objects, out_shape, error, error_size);
 }
 
+static int open_with(harness_shape *out, const char *file_stem, const char *class_name,
+                     double s_or_nan, double t);
+
 int harness_open(harness_shape *out, const char *file_stem, const char *class_name,
                  double s_or_nan)
+{
+    return open_with(out, file_stem, class_name, s_or_nan, NAN);
+}
+
+int harness_open_ref(harness_shape *out, const harness_class_ref *ref)
+{
+    return open_with(out, ref->module, ref->name, ref->s, ref->t > 0 ? ref->t : NAN);
+}
+
+static int open_with(harness_shape *out, const char *file_stem, const char *class_name,
+                     double s_or_nan, double t)
 {
     memset(out, 0, sizeof *out);
     if (!harness_load(file_stem, &out->module)) return 0;
     out->cls = harness_find_class(&out->module, class_name);
     CHECK_MSG(out->cls != NULL, "%s has no class '%s'", out->module.path, class_name);
     if (!out->cls) return 0;
-    /* The one number parameter of the catalog's classes: `s` of the
-     * tapered cylinder, `tube` of the torus (a class ignores the other). */
-    const char *names[] = {"s", "tube"};
-    const double values[] = {s_or_nan, s_or_nan};
+    /* The number parameters of the catalog's classes: `s` of the tapered
+     * cylinder and tube, `tube` of the torus (a class ignores the other),
+     * `t` of the tube. */
+    const char *names[] = {"s", "tube", "t"};
+    const double values[] = {s_or_nan, s_or_nan, t};
     char error[256];
-    hr_status st = harness_create(out->cls, names, values, isnan(s_or_nan) ? 0 : 2, &out->shape,
-                                  error, sizeof error);
+    hr_status st = harness_create(out->cls, names, values,
+                                  isnan(s_or_nan) ? 0 : isnan(t) ? 2 : 3, &out->shape, error,
+                                  sizeof error);
     CHECK_MSG(st == HR_OK && out->shape, "create %s: status %d: %s", class_name, (int)st, error);
     return st == HR_OK && out->shape;
 }
@@ -444,16 +460,20 @@ void harness_expect_hit(const char *what, const hr_hit *hit, double t, int surfa
 }
 
 const harness_class_ref harness_catalog[] = {
-    {"sphere", "sphere", NAN},
-    {"plane", "plane", NAN},
-    {"square", "square", NAN},
-    {"cube", "cube", NAN},
-    {"cylinder", "cylinder", NAN},
-    {"cylinder", "cone", NAN},
-    {"cylinder", "taperedCylinder", 0.5},
-    {"cylinder", "taperedCylinder", 0.0},
-    {"cylinder", "taperedCylinder", 3.0},
-    {"cylinder", "taperedCylinder", 1000.0},
-    {"torus", "torus", NAN},
+    {"sphere", "sphere", NAN, 0},
+    {"plane", "plane", NAN, 0},
+    {"square", "square", NAN, 0},
+    {"cube", "cube", NAN, 0},
+    {"cylinder", "cylinder", NAN, 0},
+    {"cylinder", "cone", NAN, 0},
+    {"cylinder", "taperedCylinder", 0.5, 0},
+    {"cylinder", "taperedCylinder", 0.0, 0},
+    {"cylinder", "taperedCylinder", 3.0, 0},
+    {"cylinder", "taperedCylinder", 1000.0, 0},
+    {"cylinder", "taperedTube", 1.0, 0.25},
+    {"cylinder", "taperedTube", 0.75, 0.125},
+    {"cylinder", "taperedTube", 3.0, 0.5},
+    {"cylinder", "taperedTube", 0.5, 0.5},
+    {"torus", "torus", NAN, 0},
 };
 const int harness_catalog_count = (int)(sizeof harness_catalog / sizeof harness_catalog[0]);

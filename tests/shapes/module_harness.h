@@ -96,13 +96,17 @@ int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tm
 int harness_hits(const harness_shape *shape, hr_ray ray, hr_hit hits[HARNESS_MAX_HITS]);
 
 /* Every class of the built-in modules, with a few tapers of taperedCylinder
- * (s is NaN for classes without parameters, and for the torus's default
- * tube). */
+ * and taperedTube (s is NaN for classes without parameters, and for the
+ * torus's default tube; t, taperedTube's thickness, is 0 elsewhere). */
 typedef struct harness_class_ref {
     const char *module;
     const char *name;
     double s;
+    double t;
 } harness_class_ref;
+
+/* harness_open for a catalog entry (passes its t as well). */
+int harness_open_ref(harness_shape *out, const harness_class_ref *ref);
 
 extern const harness_class_ref harness_catalog[];
 extern const int harness_catalog_count;

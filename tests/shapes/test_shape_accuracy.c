@@ -52,7 +52,8 @@ typedef struct stats {
 static int is_flat(ref_shape shape, int surface)
 {
     return shape.kind == REF_PLANE || shape.kind == REF_SQUARE || shape.kind == REF_CUBE ||
-           (shape.kind == REF_TAPERED && surface != 0);
+           (shape.kind == REF_TAPERED && surface != 0) ||
+           (shape.kind == REF_TUBE && (surface == 1 || surface == 2));
 }
 
 static void compare_ray(const harness_shape *shape, ref_shape ref, hr_ray ray, stats *st,
@@ -110,11 +111,11 @@ static void compare_ray(const harness_shape *shape, ref_shape ref, hr_ray ray, s
 static void test_random_rays(const harness_class_ref *cref, uint64_t seed)
 {
     harness_shape shape;
-    if (!harness_open(&shape, cref->module, cref->name, cref->s)) {
+    if (!harness_open_ref(&shape, cref)) {
         harness_close(&shape);
         return;
     }
-    const ref_shape ref = ref_shape_of(cref->name, cref->s);
+    const ref_shape ref = ref_shape_of(cref->name, cref->s, cref->t);
     hr_bounds bounds;
     shape.cls->bounds(shape.shape, &bounds);
     ray_rng rng;
@@ -156,7 +157,7 @@ static void test_far_sphere(void)
         harness_close(&sphere);
         return;
     }
-    const ref_shape ref = ref_shape_of("sphere", NAN);
+    const ref_shape ref = ref_shape_of("sphere", NAN, NAN);
     ray_rng rng;
     rng_seed(&rng, 1234567);
     const double distances[] = {1e4, 1e6};
@@ -202,7 +203,7 @@ static void test_far_sphere(void)
 static void test_from_inside(const harness_class_ref *cref, uint64_t seed)
 {
     harness_shape shape;
-    if (!harness_open(&shape, cref->module, cref->name, cref->s)) {
+    if (!harness_open_ref(&shape, cref)) {
         harness_close(&shape);
         return;
     }
@@ -210,7 +211,7 @@ static void test_from_inside(const harness_class_ref *cref, uint64_t seed)
         harness_close(&shape);
         return;
     }
-    const ref_shape ref = ref_shape_of(cref->name, cref->s);
+    const ref_shape ref = ref_shape_of(cref->name, cref->s, cref->t);
     hr_bounds b;
     shape.cls->bounds(shape.shape, &b);
     ray_rng rng;

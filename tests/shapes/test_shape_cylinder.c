@@ -1,7 +1,8 @@
 /* The cylinder module: cylinder (s = 1), cone (s = 0), taperedCylinder and
  * openTaperedCylinder (the wall alone), against hits worked out by hand, rays along the axis, rays through the
  * cone's apex, rays parallel to a generator line, the wall/disk seams swept
- * in 1e-7 steps, and create with s = 0, 1 and 1e6.
+ * in 1e-7 steps, create with s = 0, 1 and 1e6, and Hill's taperedTube (its
+ * surface 3 the inner wall).
  * Surfaces: 0 wall, 1 base (z = 0, normal -z), 2 cap (z = 1, normal +z).
  * The wall's outward normal at (x, y, z) is (x, y, -(s-1) r(z)), with
  * r(z) = 1 + (s-1) z. */
@@ -14,6 +15,7 @@
 #define WALL 0
 #define BASE 1
 #define CAP 2
+#define TUBE_INNER 3
 
 static harness_shape cylinder, cone;
 
@@ -313,6 +315,76 @@ static void test_open(void)
     }
 }
 
+/* taperedTube s = 1, t = 0.25: the wall 0.75 <= rho <= 1 (surface 0 outside,
+ * 3 inside, whose outward normal points at the axis), annuli at z = 0 and 1.
+ * Across at z = 0.5: the outer wall at t = 4 and 6, the inner at 4.25 and
+ * 5.75. Down the axis: through the hole, no hit. Vertically through the
+ * wall at rho = 0.9: the base annulus at t = 2, the cap's at t = 3; at
+ * rho = 0.7, in the hole: nothing. From inside the hole outward: the inner
+ * wall entered at t = 0.75, the outer left at 1. s = 0.5, t = 0.25 (hole
+ * radius 0.75 - 0.5 z): at z = 0.5 the outer radius is 0.75, the inner 0.5,
+ * so (2, 0, 0.5) + t (-1, 0, 0) enters at 1.25 and reaches the hole at 1.5,
+ * the inner normal (-0.5, 0, -0.5 * 0.5) reversed from the gradient. */
+static void test_tube(void)
+{
+    harness_module module;
+    if (!harness_load("cylinder", &module)) return;
+    const hr_shape_class *cls = harness_find_class(&module, "taperedTube");
+    CHECK(cls != NULL);
+    if (!cls) {
+        harness_unload(&module);
+        return;
+    }
+    const char *names[] = {"s", "t"};
+    const double straight[] = {1.0, 0.25}, narrowing[] = {0.5, 0.25};
+    harness_shape tube = {module, cls, NULL}, cone_tube = {module, cls, NULL};
+    char error[256];
+    CHECK_OK(harness_create(cls, names, straight, 2, &tube.shape, error, sizeof error));
+    CHECK_OK(harness_create(cls, names, narrowing, 2, &cone_tube.shape, error, sizeof error));
+    hr_hit h[HARNESS_MAX_HITS];
+    if (tube.shape) {
+        CHECK(harness_hits(&tube, harness_ray(5, 0, 0.5, -1, 0, 0), h) == 4);
+        harness_expect_hit("tube outer in", &h[0], 4, WALL, 1, harness_vec(1, 0, 0.5),
+                           harness_vec(1, 0, 0));
+        harness_expect_hit("tube inner out", &h[1], 4.25, TUBE_INNER, 0,
+                           harness_vec(0.75, 0, 0.5), harness_vec(-1, 0, 0));
+        harness_expect_hit("tube inner in", &h[2], 5.75, TUBE_INNER, 1,
+                           harness_vec(-0.75, 0, 0.5), harness_vec(1, 0, 0));
+        harness_expect_hit("tube outer out", &h[3], 6, WALL, 0, harness_vec(-1, 0, 0.5),
+                           harness_vec(-1, 0, 0));
+        CHECK(harness_hits(&tube, harness_ray(0, 0, 5, 0, 0, -1), h) == 0);
+        CHECK(harness_hits(&tube, harness_ray(0.9, 0, -2, 0, 0, 1), h) == 2);
+        harness_expect_hit("tube base annulus", &h[0], 2, BASE, 1, harness_vec(0.9, 0, 0),
+                           harness_vec(0, 0, -1));
+        harness_expect_hit("tube cap annulus", &h[1], 3, CAP, 0, harness_vec(0.9, 0, 1),
+                           harness_vec(0, 0, 1));
+        CHECK(harness_hits(&tube, harness_ray(0.7, 0, -2, 0, 0, 1), h) == 0);
+        CHECK(harness_hits(&tube, harness_ray(0, 0, 0.5, 1, 0, 0), h) == 2);
+        harness_expect_hit("tube from the hole", &h[0], 0.75, TUBE_INNER, 1,
+                           harness_vec(0.75, 0, 0.5), harness_vec(-1, 0, 0));
+        tube.cls->destroy(tube.shape);
+    }
+    if (cone_tube.shape) {
+        CHECK(harness_hits(&cone_tube, harness_ray(2, 0, 0.5, -1, 0, 0), h) == 4);
+        harness_expect_hit("narrowing tube in", &h[0], 1.25, WALL, 1, harness_vec(0.75, 0, 0.5),
+                           harness_vec(1, 0, 0.5));
+        harness_expect_hit("narrowing tube hole", &h[1], 1.5, TUBE_INNER, 0,
+                           harness_vec(0.5, 0, 0.5), harness_vec(-1, 0, -0.5));
+        cone_tube.cls->destroy(cone_tube.shape);
+    }
+    /* t must leave a hole (t < 1) of radius s - t >= 0 at the cap, and be
+     * a wall (t > 0); each refusal names t. */
+    const double bad[][2] = {{1.0, 0.0}, {2.0, 1.0}, {0.5, 0.75}, {1.0, NAN}, {NAN, 0.1}};
+    for (int i = 0; i < 5; i++) {
+        void *shape = NULL;
+        CHECK(harness_create(cls, names, bad[i], 2, &shape, error, sizeof error) ==
+              HR_ERROR_PARAMETER);
+        CHECK_MSG(strstr(error, isnan(bad[i][0]) ? "'s'" : "'t'") != NULL, "message: %s", error);
+        CHECK(shape == NULL);
+    }
+    harness_unload(&module);
+}
+
 /* create with s = 0, 1 and 1e6 (the ends of the range and the cylinder),
  * with the bounds that follow; s outside the range is the host's to refuse,
  * but the module refuses it too, naming the parameter. The cylinder and
@@ -373,6 +445,7 @@ int main(void)
     test_cone_side_and_generator();
     test_tapered();
     test_open();
+    test_tube();
     test_create();
     harness_close(&cone);
     harness_close(&cylinder);

@@ -34,7 +34,7 @@ static int within_bounds(const hr_bounds *b, const hr_hit *h)
 static void test_class(const harness_class_ref *ref, uint64_t seed)
 {
     harness_shape shape;
-    if (!harness_open(&shape, ref->module, ref->name, ref->s)) {
+    if (!harness_open_ref(&shape, ref)) {
         harness_close(&shape);
         return;
     }

@@ -29,6 +29,8 @@ static const expected_class expected[] = {
     {"cylinder", "cone", HR_SHAPE_CLOSED, 3, 0, {{-1, -1, 0}, {1, 1, 1}}},
     /* The open wall: no solid, one surface, the same s. */
     {"cylinder", "openTaperedCylinder", 0, 1, 1, {{-1, -1, 0}, {1, 1, 1}}},
+    /* Hill's tube: wall, base, cap, inner; s and t. */
+    {"cylinder", "taperedTube", HR_SHAPE_CLOSED, 4, 2, {{-1, -1, 0}, {1, 1, 1}}},
     {"torus", "torus", HR_SHAPE_CLOSED | HR_SHAPE_SDL_BARE, 1, 2, {{-1.2, -1.2, -0.2}, {1.2, 1.2, 0.2}}},
 };
 #define EXPECTED_COUNT (int)(sizeof expected / sizeof expected[0])
@@ -139,7 +141,7 @@ int main(void)
     test_module_info("plane", 1);
     test_module_info("square", 1);
     test_module_info("cube", 1);
-    test_module_info("cylinder", 4);
+    test_module_info("cylinder", 5);
     test_module_info("torus", 1);
     for (int i = 0; i < EXPECTED_COUNT; i++) test_class(&expected[i]);
     test_tapered_parameter();

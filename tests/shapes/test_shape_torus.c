@@ -305,7 +305,7 @@ static void test_random_rays(double tube, int solver, uint64_t seed)
         harness_close(&s);
         return;
     }
-    const ref_shape ref = ref_shape_of("torus", tube);
+    const ref_shape ref = ref_shape_of("torus", tube, NAN);
     hr_bounds b;
     s.cls->bounds(s.shape, &b);
     ray_rng rng;

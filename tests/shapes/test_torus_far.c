@@ -106,7 +106,7 @@ static void check_solver(hr_context *ctx, int solver)
     world w;
     if (!make_world(ctx, solvers[solver], &w)) return;
     const int strict = solvers[solver][0] == '\0';
-    const ref_shape ref = ref_shape_of("torus", 0.2);
+    const ref_shape ref = ref_shape_of("torus", 0.2, NAN);
     ray_rng rng;
     rng_seed(&rng, UINT64_C(0xfa770000));
     hr_intersection list;

@@ -70,6 +70,7 @@ def rendered(venv):
 
 def shipped_elf_files(site):
     files = [p for p in (site / "hitray").rglob("*.so*") if p.is_file()]
+    files += [p for p in (site / "hitray" / "bin").iterdir() if p.is_file()]
     files += [p for p in (site / "hitray.libs").glob("*.so*") if p.is_file()]
     return files
 
@@ -133,3 +134,41 @@ def test_auditwheel_show_finds_it_consistent(wheel):
     tag = re.search(r"-(manylinux_\d+_\d+_[a-z0-9_]+)\.whl$", wheel.name).group(1)
     assert f'consistent with\nthe following platform tag: "{tag}"' in result.stdout.replace(
         "consistent with the", "consistent with\nthe")
+
+
+DEMO_SCENE = """
+camera 0 2 8  0 0.5 0  0 1 0  40
+light 4 6 5  1 1 1
+push rotate -90 1 0 0 diffuse .6 .6 .6 plane pop
+push translate 0 1 0 diffuse .9 .2 .2 sphere pop
+"""
+
+
+@pytest.mark.parametrize("how", ["script", "module"])
+def test_the_hitray_command_renders_with_the_wheels_modules(venv, how):
+    # The venv's `hitray` script and `python -m hitray` both run the
+    # program the wheel carries, which finds the library and the shape
+    # modules inside the wheel with no library search path.
+    command = [str(venv["python"].parent / "hitray")] if how == "script" else [str(venv["python"]), "-m", "hitray"]
+    scene = venv["root"] / f"cli-{how}.sdl"
+    scene.write_text(DEMO_SCENE)
+    out = venv["root"] / f"cli-{how}.png"
+    result = subprocess.run(command + ["render", str(scene), "-o", str(out), "--size", "32x24"],
+                            capture_output=True, text=True, env=clean_env(), cwd=venv["root"], timeout=120)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    shapes = subprocess.run(command + ["shapes"], capture_output=True, text=True, env=clean_env(), timeout=60)
+    assert shapes.returncode == 0, shapes.stderr
+    assert str(venv["site"] / "hitray" / "lib" / "hitray" / "shapes" / "sphere.so") in shapes.stdout
+    version = subprocess.run(command + ["--version"], capture_output=True, text=True, env=clean_env(), timeout=60)
+    assert version.returncode == 0 and version.stdout.startswith("hitray "), version.stdout + version.stderr
+    # A usage error keeps the program's own exit status.
+    assert subprocess.run(command + ["frobnicate"], capture_output=True, env=clean_env(), timeout=60).returncode == 2
+
+
+def test_hitray_view_says_in_one_line_how_to_get_the_window(venv):
+    result = subprocess.run([str(venv["python"].parent / "hitray"), "view", "scene.sdl"], capture_output=True,
+                            text=True, env=clean_env(), cwd=venv["root"], timeout=60)
+    assert result.returncode == 1 and result.stdout == ""
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1 and "libsdl2-dev" in lines[0] and "pip's wheels leave it out" in lines[0], lines

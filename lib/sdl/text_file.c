@@ -1,5 +1,5 @@
 /* Reading a scene file whole, with limits (text_file.h). */
-#include "util/text_file.h"
+#include "sdl/text_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -8,23 +8,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "util/env_bytes.h"
 #include "util/errors.h"
 
 hr_status hr_scene_file_limit(const hr_context *ctx, size_t *out)
 {
-    *out = HR_SCENE_FILE_MAX_BYTES;
-    const char *env = getenv(HR_SCENE_FILE_MAX_BYTES_ENV);
-    if (!env || !*env) return HR_OK;
-    char *end = NULL;
-    errno = 0;
-    unsigned long long v = strtoull(env, &end, 10);
-    if (errno || *end || env[0] < '0' || env[0] > '9' || v == 0 || v > SIZE_MAX / 2)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "%s='%.40s' must be a positive number of bytes (the largest scene file "
-                        "read; default %zu)",
-                        HR_SCENE_FILE_MAX_BYTES_ENV, env, HR_SCENE_FILE_MAX_BYTES);
+    uint64_t v;
+    hr_status st = hr_env_bytes(ctx, HR_SCENE_FILE_MAX_BYTES_ENV, "the largest scene file read",
+                                HR_SCENE_FILE_MAX_BYTES, HR_SCENE_FILE_MAX_BYTES, SIZE_MAX / 2, &v);
     *out = (size_t)v;
-    return HR_OK;
+    return st;
 }
 
 static hr_status too_large(const hr_context *ctx, const char *path, const char *what, size_t limit)
