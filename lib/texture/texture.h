@@ -42,6 +42,10 @@ typedef struct hr_texture_kind {
     /* The colour at object-space point p, given every parameter (the
      * material's, then defaults); reentrant, allocation-free, finite. */
     hr_color (*solid)(const double *params, hr_vec3 p);
+    /* The colour averaged over the box p +- half (object space, each half
+     * >= 0), for filtering by a hit's footprint; with half = 0, solid's
+     * colour bit for bit. NULL: the texture has no filtered form. */
+    hr_color (*solid_box)(const double *params, hr_vec3 p, hr_vec3 half);
 } hr_texture_kind;
 
 /* The solid texture numbered `id` (< 0), NULL if there is none; the

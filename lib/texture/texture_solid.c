@@ -33,19 +33,46 @@ static hr_color blend(const double *p, int first, double t)
  * coordinate beyond 2^53 is a whole number of even or odd parity). */
 static int parity(double x) { return fabs(fmod(floor(x), 2.0)) == 1.0; }
 
+/* The mean over [x - h, x + h] of the square wave (-1)^floor(x), h >= 0.
+ * Its integral from 0 is the triangle wave T(x) = 1 - |x mod 2 - 1| (x mod 2
+ * exact by fmod), so the mean is (T(x + h) - T(x - h)) / 2h, in closed
+ * form. T's rounding (about u |x|, from x and x +- h) over 2h is the mean's
+ * error; below h = 2^-26 max(1, |x|) that could pass 2^-26, and the wave
+ * is taken at x alone (the point sample, exact: see parity). */
+static double square_wave_mean(double x, double h)
+{
+    if (!(h > 0x1p-26 * fmax(1.0, fabs(x)))) return parity(x) ? -1.0 : 1.0;
+    const double a = fmod(x - h, 2.0), b = fmod(x + h, 2.0);
+    const double ta = 1.0 - fabs((a < 0 ? a + 2.0 : a) - 1.0);
+    const double tb = 1.0 - fabs((b < 0 ? b + 2.0 : b) - 1.0);
+    return (tb - ta) / (2.0 * h);
+}
+
 /* -1, Hill's checkerboard ("jump"): A where floor(x/s) + floor(y/s) +
  * floor(z/s) is even, B where it is odd: cubes of side s, alternating, so
- * any plane through the object shows squares. */
+ * any plane through the object shows squares.
+ *
+ * Box-filtered in closed form: (-1)^(floor x + floor y + floor z) is the
+ * product of one square wave per axis, so its mean over a box is the
+ * product of the three axes' means (square_wave_mean), and the share of A
+ * is (1 + that) / 2. With half = 0 every axis is point-sampled: the parity
+ * of the sum, as Hill's jump. */
 static const hr_texture_param checker_params[] = {
     {"size", 1.0, HR_TEXTURE_PARAM_POSITIVE, 0.0, 1e300},
     COLOR_PARAMS("colour A", 1.0, 1.0, 1.0),
     COLOR_PARAMS("colour B", 0.1, 0.1, 0.1),
 };
-static hr_color checkerboard(const double *p, hr_vec3 q)
+static hr_color checkerboard_box(const double *p, hr_vec3 q, hr_vec3 half)
 {
     const double s = p[0];
-    int odd = parity(q.x / s) ^ parity(q.y / s) ^ parity(q.z / s);
-    return blend(p, 1, odd ? 0.0 : 1.0);
+    const double mean = square_wave_mean(q.x / s, half.x / s) *
+                        square_wave_mean(q.y / s, half.y / s) *
+                        square_wave_mean(q.z / s, half.z / s);
+    return blend(p, 1, 0.5 * (1.0 + mean));
+}
+static hr_color checkerboard(const double *p, hr_vec3 q)
+{
+    return checkerboard_box(p, q, v3(0.0, 0.0, 0.0));
 }
 
 /* -2, Hill's wood grain: rings about the z axis, r / M apart, whose radius
@@ -93,12 +120,13 @@ static hr_color marble(const double *p, hr_vec3 q)
     return blend(p, 4, t);
 }
 
-#define ROW(id, name, params, fn) {id, name, params, (int32_t)(sizeof params / sizeof params[0]), fn}
+#define ROW(id, name, params, fn, box)                                                  \
+    {id, name, params, (int32_t)(sizeof params / sizeof params[0]), fn, box}
 /* Numbered from -1 down without gaps: hr_solid_texture_name promises it. */
 static const hr_texture_kind solid_textures[] = {
-    ROW(-1, "checkerboard", checker_params, checkerboard),
-    ROW(-2, "wood", wood_params, wood),
-    ROW(-3, "marble", marble_params, marble),
+    ROW(-1, "checkerboard", checker_params, checkerboard, checkerboard_box),
+    ROW(-2, "wood", wood_params, wood, NULL),
+    ROW(-3, "marble", marble_params, marble, NULL),
 };
 #define SOLID_COUNT ((int32_t)(sizeof solid_textures / sizeof solid_textures[0]))
 
@@ -124,4 +152,4 @@ static const hr_texture_param image_params[] = {
     {"v max", 1.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
     {"nearest", 0.0, HR_TEXTURE_PARAM_WHOLE, 0.0, 1.0},
 };
-const hr_texture_kind hr_image_texture_kind = ROW(1, "image", image_params, NULL);
+const hr_texture_kind hr_image_texture_kind = ROW(1, "image", image_params, NULL, NULL);

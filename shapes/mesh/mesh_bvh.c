@@ -15,14 +15,9 @@
 
 /* The cost of visiting a node, in triangle tests (the SAH's constant). A
  * node tests four boxes in about as many instructions as one watertight
- * triangle test, but nodes cost memory. Measured (callgrind, whole process,
- * same images; bytes from test_shape_mesh_large's million-triangle closed
- * mesh):
- *   cost 4: SPD teapot 256x256 879 M instructions, gears 200x200 2,265 M,
- *           35.5 bytes a triangle;
- *   cost 2: 784 M, 2,229 M, 44.0 bytes;
- *   cost 1: 762 M, 2,185 M, 57.2 bytes.
- * 2 takes most of the speed for a quarter more memory. */
+ * triangle test, but nodes cost memory; 2 takes most of the speed of 1 for
+ * less memory (measured: bench/RESULTS.md, "The mesh BVH's traversal
+ * cost"). */
 #define TRAVERSAL_COST 2.0
 
 static void triangle_box(const mesh *m, uint32_t t, hr_bounds *out)

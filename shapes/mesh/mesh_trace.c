@@ -525,10 +525,9 @@ static inline leaf_fn leaf_callback(void)
  * triangle hit in the interval, which every order of the leaves finds, and
  * a closed mesh's (closed_any) is whether the first-hit search finds a
  * hit, which does not depend on the order either (closed_any_blocks): the
- * walk that skips sorting children. Measured (callgrind, 200x200, the
- * mesh's any hits): mount's terrain 38.2 M instructions -> 34.0 M, gears'
- * closed meshes 459 M -> 437 M. Out of line: inlined in walk, the second
- * walk cost the other queries' frame some 6 instructions each. */
+ * walk that skips sorting children. Out of line: inlined in walk, the
+ * second walk cost the other queries' frame (measured: bench/RESULTS.md,
+ * "The mesh's any-hit walk in any order"). */
 static __attribute__((noinline)) void walk_any_order(query *q)
 {
     leaf_fn leaf_of_cpu = leaf_callback();

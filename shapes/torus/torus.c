@@ -37,7 +37,6 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
 #include "torus_quartic.h"
 
 /* A tube of radius 1 closes the hole (a horn torus) and a larger one makes a
@@ -127,14 +126,9 @@ static hr_status refuse(const hr_create_args *args, const char *message, const c
  * else. */
 static hr_status torus_create(const hr_create_args *args, void **out_shape)
 {
-    double tube = 0.2;
-    const char *solver_name = "";
-    for (int32_t i = 0; i < args->param_count; i++) {
-        const hr_param *p = &args->params[i];
-        if (!p->name) continue;
-        if (strcmp(p->name, "tube") == 0) tube = p->number;
-        else if (strcmp(p->name, "solver") == 0 && p->string) solver_name = p->string;
-    }
+    const hr_param *tube_param = shape_param(args, "tube"), *solver_param = shape_param(args, "solver");
+    const double tube = tube_param ? tube_param->number : 0.2;
+    const char *solver_name = solver_param && solver_param->string ? solver_param->string : "";
     if (!(tube >= TUBE_MIN && tube <= TUBE_MAX)) {
         char value[40];
         snprintf(value, sizeof value, "%g", tube);
@@ -168,37 +162,16 @@ static void torus_destroy(void *shape)
     host->free(shape);
 }
 
-/* The numbers in the solver's help were measured with
- *   build/bench/torus_solvers --rays=20000 --repeats=7     (accuracy)
- *   bench/torus_solvers_instructions.sh build 2000          (instructions)
- *   build/bench/torus_solvers --rays=5000 --repeats=25 --no-reference (ns)
- * on the 2-core AMD EPYC development VM (ns: the best pass of 25 on a busy
- * machine; the instruction counts do not depend on the load). Per solve,
- * every hit / first hit, over the ray sets of that benchmark (near, far 1e4,
- * far 1e6, grazing, thin tube near and grazing):
- *
- *   solver          instructions         ns         worst |t error|      wrong counts on
- *                   all        first     all        (u * condition)      20000 near rays
- *   ferrari         600-1000   600-970   100-170    4.2e9 (2.0e-6 rel.)  6 spurious
- *   ferrari-newton  610-1240   610-1210  110-210    4.1                  6 spurious
- *   bracketing      530-3450   520-2250   70-490    2.4                  none
- *
- * The ranges run from the thin tube's rays, whose bracket (the slab
- * |z| <= tube) is short and mostly empty, to the grazing rays. Within 1e-12
- * of a tangency the Ferrari solvers miss roots that bracketing finds (11 in
- * the near set, 4 in the thin one); the counts that differ from the
- * reference the other way there (13-24 per set, for every solver) are lines
- * lying exactly in the tangent plane z = tube, whose double roots the quad
- * reference itself cannot resolve. */
+/* What each solver costs and how accurate it is, measured, is in
+ * bench/RESULTS.md ("Torus root solvers"). */
 static const hr_param_spec torus_params[] = {
     {"tube", HR_PARAM_NUMBER, 0, 0.2, TUBE_MIN, TUBE_MAX,
      "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole", 0},
     {"solver", HR_PARAM_STRING, 0, 0.0, 0.0, 0.0,
-     "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent, "
-     "t within 2.4 u*condition, 530-3450 instructions (70-490 ns) per ray; 'ferrari-newton' "
-     "(closed form + Newton) 610-1240 (110-210 ns), as accurate where it finds the roots but "
-     "may invent or lose a close pair; 'ferrari' (closed form) 600-1000 (100-170 ns), t errors "
-     "up to 2e-6 relative near tangents", 0},
+     "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent; "
+     "'ferrari-newton' (closed form + Newton) is as accurate where it finds the roots but may "
+     "invent or lose a close pair; 'ferrari' (closed form) errs most near tangents; costs and "
+     "errors measured: bench/RESULTS.md", 0},
 };
 
 /* (u, v): Hill's two angles as fractions of a turn: u about the z axis
@@ -216,40 +189,9 @@ static int32_t torus_uv(const void *shape, const hr_hit *hit, double uv[2])
 
 static const char *const torus_surface_names[1] = {"torus"};
 
-static const hr_shape_class torus_class = {
-    .struct_size = sizeof(hr_shape_class),
-    .flags = HR_SHAPE_CLOSED | HR_SHAPE_SDL_BARE,
-    .name = "torus",
-    .help = "ring radius 1 in the xy-plane about z, tube radius `tube` (default 0.2)",
-    .params = torus_params,
-    .param_count = 2,
-    .surface_count = 1,
-    .surface_names = torus_surface_names,
-    .create = torus_create,
-    .destroy = torus_destroy,
-    .bounds = torus_bounds,
-    .hit = torus_hit,
-    .first_hit = torus_first_hit,
-    .any_hit = torus_any_hit,
-    .surface_uv = torus_uv,
-};
-
-static const hr_shape_class *const torus_classes[] = {&torus_class};
-
-static const hr_module_info torus_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "torus",
-    .description = "Hill's generic torus: ring radius 1 about z, tube radius a parameter",
-    .classes = torus_classes,
-    .class_count = 1,
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &torus_module;
-}
+SHAPE_CLASS(torus, .flags = HR_SHAPE_CLOSED | HR_SHAPE_SDL_BARE, .name = "torus",
+            .help = "ring radius 1 in the xy-plane about z, tube radius `tube` (default 0.2)",
+            SHAPE_PARAMS(torus_params), .surface_count = 1, .surface_names = torus_surface_names,
+            .create = torus_create, .destroy = torus_destroy, .surface_uv = torus_uv);
+SHAPE_MODULE_OF(torus, "Hill's generic torus: ring radius 1 about z, tube radius a parameter",
+                SHAPE_BUILTIN_METADATA);

@@ -1,0 +1,103 @@
+/* The box-filtered checkerboard (lib/texture/texture_solid.c, compiled into
+ * this test) against numerical integration of the point-sampled one over
+ * the same box, and against itself point-sampled.
+ *
+ * Reference: the midpoint rule on an n-per-axis grid over the box, summed
+ * in long double, of the point texture with A = white and B = black (so the
+ * red channel is the share of A). Its error: along one axis the wave is +-1
+ * with a jump at each whole number; a grid cell without a jump is exact, a
+ * cell with one is off by at most 2 in a mean of n cells, so that axis's
+ * mean is within 2 J / n, J the whole numbers strictly inside the interval.
+ * The grid is a product, so the grid mean of the product of the axes' waves
+ * is the product of the axes' grid means, and a product of factors within
+ * [-1, 1] moves by at most the sum of their moves: the share of A, half the
+ * mean plus a half, is within sum_i J_i / n. The closed form adds at most
+ * 2^-26 per axis (see square_wave_mean); we allow sum_i J_i / n + 1e-6. */
+#include <math.h>
+#include <stdio.h>
+
+#include "hr_test.h"
+#include "texture/texture.h"
+
+static double params[7] = {1.0, 1, 1, 1, 0, 0, 0};
+
+static int jumps_inside(double lo, double hi)
+{
+    if (!(hi > lo)) return 0;
+    return (int)(ceil(hi) - floor(lo)) - 1;
+}
+
+static double reference(const hr_texture_kind *kind, hr_vec3 q, hr_vec3 h, int n[3])
+{
+    long double sum = 0;
+    const double lo[3] = {q.x - h.x, q.y - h.y, q.z - h.z};
+    const double step[3] = {2 * h.x / n[0], 2 * h.y / n[1], 2 * h.z / n[2]};
+    for (int i = 0; i < n[0]; i++)
+        for (int j = 0; j < n[1]; j++)
+            for (int k = 0; k < n[2]; k++) {
+                const hr_vec3 p = {n[0] > 1 ? lo[0] + (i + 0.5) * step[0] : q.x,
+                                   n[1] > 1 ? lo[1] + (j + 0.5) * step[1] : q.y,
+                                   n[2] > 1 ? lo[2] + (k + 0.5) * step[2] : q.z};
+                sum += kind->solid(params, p).r;
+            }
+    return (double)(sum / ((long double)n[0] * n[1] * n[2]));
+}
+
+static void check_box(const hr_texture_kind *kind, hr_vec3 q, hr_vec3 h, int per_axis)
+{
+    int n[3];
+    const double half[3] = {h.x, h.y, h.z}, at[3] = {q.x, q.y, q.z};
+    double tol = 1e-6;
+    for (int i = 0; i < 3; i++) {
+        n[i] = half[i] > 0 ? per_axis : 1;
+        if (half[i] > 0) tol += (double)jumps_inside(at[i] - half[i], at[i] + half[i]) / n[i];
+    }
+    const double want = reference(kind, q, h, n);
+    const double got = kind->solid_box(params, q, h).r;
+    CHECK_MSG(fabs(got - want) <= tol,
+              "box (%g, %g, %g) +- (%g, %g, %g): %.9f, integrated %.9f (tolerance %.3g)", q.x, q.y,
+              q.z, h.x, h.y, h.z, got, want, tol);
+}
+
+int main(void)
+{
+    const hr_texture_kind *kind = hr_solid_texture_find(-1);
+    CHECK(kind && kind->solid && kind->solid_box);
+    if (!(kind && kind->solid && kind->solid_box)) return hr_test_end();
+
+    /* A floor's footprints (no depth), from a fraction of a square to several. */
+    const double floors[][4] = {{0.3, 0.4, 0.1, 0.05}, {0.9, 0.2, 0.3, 0.3},  {-2.7, 5.1, 1.6, 0.2},
+                                {10.5, -3.25, 2.5, 4}, {0.0, 0.0, 0.5, 0.5},  {123.4, 56.7, 0.02, 3.3},
+                                {-0.01, 0.99, 0.75, 0.01}};
+    for (int i = 0; i < 7; i++)
+        check_box(kind, (hr_vec3){floors[i][0], floors[i][1], 0.5},
+                  (hr_vec3){floors[i][2], floors[i][3], 0}, 2048);
+    /* Boxes in all three axes. */
+    check_box(kind, (hr_vec3){0.2, 0.7, -0.4}, (hr_vec3){0.6, 0.3, 0.9}, 160);
+    check_box(kind, (hr_vec3){3.3, -1.1, 2.2}, (hr_vec3){1.7, 0.05, 0.4}, 160);
+
+    /* A box a whole period wide on one axis averages that axis to 0: the
+     * mean colour, (A + B) / 2, wherever it sits. */
+    for (int i = 0; i < 20; i++) {
+        const double x = -5 + 0.537 * i;
+        const double r = kind->solid_box(params, (hr_vec3){x, 0.3, 0.3}, (hr_vec3){1, 0, 0}).r;
+        CHECK_MSG(fabs(r - 0.5) <= 1e-12, "whole period at x = %g: %.17g", x, r);
+    }
+
+    /* half = 0 is the point sample bit for bit, at ordinary and huge
+     * coordinates and on the squares' edges; and the other solid
+     * textures have no box form yet. */
+    const double xs[] = {0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.999, 1e17, -3e300, 7.25, -1e-300};
+    for (int i = 0; i < 11; i++)
+        for (int j = 0; j < 11; j++) {
+            const hr_vec3 p = {xs[i], xs[j], xs[(i + j) % 11]};
+            const hr_color a = kind->solid(params, p);
+            const hr_color b = kind->solid_box(params, p, (hr_vec3){0, 0, 0});
+            const int odd = ((int)fabs(fmod(floor(p.x), 2.0)) ^ (int)fabs(fmod(floor(p.y), 2.0)) ^
+                             (int)fabs(fmod(floor(p.z), 2.0)));
+            CHECK_MSG(a.r == b.r && a.g == b.g && a.b == b.b && a.r == (odd ? 0.0 : 1.0),
+                      "point (%g, %g, %g): %g, box %g, parity %d", p.x, p.y, p.z, a.r, b.r, odd);
+        }
+    CHECK(hr_solid_texture_find(-2)->solid_box == NULL && hr_solid_texture_find(-3)->solid_box == NULL);
+    return hr_test_end();
+}
