@@ -40,7 +40,8 @@ endif
 configure = mkdir -p $(1) && cmake --preset $(2) -B $(1) $(CMAKE_FLAGS) $(call stdout_to,$(1)/configure.log)
 
 .PHONY: all deps deps-test deps-wheel build build-all demo test test-c test-asan test-tsan test-fuzz \
-        test-python test-python-asan test-memcheck test-wheel wheel install clean bench bench-accuracy \
+        test-python test-python-asan test-docs python-install test-memcheck test-wheel wheel install \
+        clean bench bench-accuracy \
         fuzz fuzz-long
 
 all: build
@@ -93,7 +94,7 @@ demo: build
 #                         runs every seed before it mutates), under clang's
 #                         ASan+UBSan
 #   label install         test-c and test-asan
-test: test-c test-asan test-tsan test-memcheck test-fuzz test-python test-wheel
+test: test-c test-asan test-tsan test-memcheck test-fuzz test-python test-docs test-wheel
 
 test-c: build-all
 	$(CTEST) --preset plain --test-dir $(BUILD) -j $(JOBS)
@@ -156,10 +157,18 @@ fuzz-long: deps-test
 # repository's root (pyproject.toml); its CMake build directory is kept in
 # $(PYTHON_BUILD), so an install with nothing changed compiles nothing. The
 # tests run on every core (pytest-xdist): each is independent of the others.
-test-python: build-all
+python-install: build-all
 	.venv/bin/python -m pip install -q --no-build-isolation \
 	    -C build-dir=$(abspath $(PYTHON_BUILD)) .
+
+test-python: python-install
 	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python
+
+# Every fenced block of README.md and docs/*.md run as its page says, or
+# marked not run with the reason, and docs/effects.md's tables rerun
+# (tests/docs/test_docs.py says how each kind of block is run).
+test-docs: python-install
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -rx -n $(JOBS) -p no:cacheprovider tests/docs
 
 # The package built with ASan+UBSan (library, modules and extension) into
 # $(PYTHON_ASAN_BUILD)/site, its tests run by the venv's interpreter with the
@@ -183,8 +192,9 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # The sdist, a wheel built from it (so the sdist is known to be complete),
-# and that wheel made a manylinux one by auditwheel (libpng, zlib and
-# OpenEXRCore copied into hitray.libs/, RPATHs rewritten with patchelf):
+# and that wheel made a manylinux one by auditwheel (libpng, OpenEXRCore and
+# libstb copied into hitray.libs/, RPATHs rewritten with patchelf; zlib is
+# the system's, which the manylinux policy allows):
 # $(DIST)/hitray-*.tar.gz and $(DIST)/wheelhouse/hitray-*manylinux*.whl.
 # The files are the working tree's (.gitignore leaves out the build trees).
 wheel: deps-wheel

@@ -19,14 +19,16 @@ static const char render_help[] =
     "Render the scene file SCENE (Hill's SDL, or NFF if it ends in .nff or\n"
     ".nff.gz; - reads SDL from standard input) and write the image to OUT;\n"
     "its extension picks the format: .png (8-bit sRGB), .exr (float), .ppm,\n"
-    ".pfm. OUT - writes the image to standard output (PNG unless --format).\n"
+    ".pfm (float), .jpg or .jpeg, .hdr (Radiance, float), .bmp, .tga.\n"
+    "OUT - writes the image to standard output (PNG unless --format).\n"
     "Prints one summary line: size, time, rays cast, rays per second (on\n"
     "stderr when the image goes to standard output).\n"
     "\n"
     "options:\n"
     "  -o, --output FILE     the image to write (required; - for standard output)\n"
     "  --format NAME         the image format, whatever OUT's extension: png,\n"
-    "                        exr, ppm or pfm\n"
+    "                        exr, ppm, pfm, jpeg, hdr, bmp or tga\n"
+    "  --jpeg-quality N      JPEG quality 1..100 (default 90)\n"
     "  --window X,Y,W,H      render only the W x H pixels whose top left is X,Y\n"
     "                        (from the image's top left); each is bit for bit\n"
     "                        that pixel of the full render\n"
@@ -74,6 +76,7 @@ typedef struct render_request {
     int32_t format;          /* HR_FORMAT_*: --format's, or OUT's extension's */
     cli_render_flags flags;
     int png16, linear_png, exr_half, stats, quiet;
+    int32_t jpeg_quality; /* 0: the library's default */
 } render_request;
 
 #define RENDER_FLAGS                                                                                          \
@@ -83,7 +86,8 @@ typedef struct render_request {
 static const cli_option render_own_options[] = {
     {"--output", "-o", 1},  {"--exr", NULL, 1},      {"--png16", NULL, 0}, {"--linear-png", NULL, 0},
     {"--exr-half", NULL, 0}, {"--stats", NULL, 0},   {"--stats-json", NULL, 1},
-    {"--format", NULL, 1},  {"--quiet", "-q", 0},    {"--help", "-h", 0},    {NULL, NULL, 0},
+    {"--format", NULL, 1},  {"--quiet", "-q", 0},    {"--jpeg-quality", NULL, 1},
+    {"--help", "-h", 0},    {NULL, NULL, 0},
 };
 
 /* `-o -`: the image goes to standard output, and the summary to stderr. */
@@ -136,11 +140,17 @@ static int parse_request(int argc, char **argv, render_request *r)
         else if (!strcmp(name, "--stats")) r->stats = 1;
         else if (!strcmp(name, "--format")) r->format_name = value;
         else if (!strcmp(name, "--quiet")) r->quiet = 1;
+        else if (!strcmp(name, "--jpeg-quality")) {
+            if (!cli_parse_int(name, value, 1, 100, &r->jpeg_quality)) return CLI_EXIT_USAGE;
+        }
     }
     if (!r->scene_path) return cli_usage_error("render: no scene file given (see 'hitray render --help')");
     if (!r->output) return cli_usage_error("render: no output file given (use -o OUT.png)");
     if (cli_render_flags_check(&r->flags)) return CLI_EXIT_USAGE;
     if (cli_output_format("--output", r->output, r->format_name, &r->format)) return CLI_EXIT_USAGE;
+    if (r->jpeg_quality && r->format != HR_FORMAT_JPEG)
+        return cli_usage_error("--jpeg-quality: the output '%s' is %s, not JPEG", r->output,
+                               hr_image_format_name(r->format));
     /* An image on a terminal is a screenful of noise, and no one meant it. */
     if (writes_stdout(r) && isatty(STDOUT_FILENO))
         return cli_usage_error("render: -o -: standard output is a terminal (redirect it to a file or a pipe)");
@@ -249,6 +259,7 @@ static int write_outputs(const render_request *r, hr_context *ctx, const hr_imag
     o.png_bits = r->png16 ? 16 : 8;
     o.png_linear = r->linear_png;
     o.exr_half = r->exr_half;
+    o.jpeg_quality = r->jpeg_quality;
     hr_file_batch *batch = NULL;
     hr_status st = hr_file_batch_create(ctx, &batch);
     if (st == HR_OK) st = hr_file_batch_add_image(batch, image, image_path, &o);

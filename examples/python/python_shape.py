@@ -93,6 +93,7 @@ SCENE = """! A Python paraboloid beside hitray's C shapes.
 camera 0 2.2 7.5   0 0.6 0   0 1 0   38
 background 0.55 0.7 0.9
 globalAmbient 0.2 0.2 0.2
+minReflectivity 0.1                ! let the ball's and the floor's reflectivity count (default 0.5)
 light 4 8 6   1 1 1
 light -6 5 4  0.4 0.4 0.5
 

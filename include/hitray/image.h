@@ -2,8 +2,8 @@
  *
  * Pixels are stored row by row from the top, channels interleaved, as 32-bit
  * floats in linear light. Writers: PNG (libpng), EXR (OpenEXRCore), PPM
- * (binary P6, 8-bit sRGB) and PFM (float, bottom row first as the format
- * says). Every writer writes to a temporary file beside the target and
+ * (binary P6, 8-bit sRGB), PFM (float, bottom row first as the format
+ * says), and JPEG, Radiance HDR, BMP and TGA (stb_image_write). Every writer writes to a temporary file beside the target and
  * renames it into place, so a failure never leaves a half-written image. */
 #ifndef HITRAY_IMAGE_H
 #define HITRAY_IMAGE_H
@@ -49,6 +49,10 @@ HR_API void hr_srgb8_encode(const float *linear, size_t count, uint8_t *codes);
 #define HR_FORMAT_EXR 2
 #define HR_FORMAT_PPM 3
 #define HR_FORMAT_PFM 4
+#define HR_FORMAT_JPEG 5 /* 8-bit sRGB, lossy (jpeg_quality) */
+#define HR_FORMAT_HDR 6  /* Radiance RGBE: linear, an 8-bit mantissa a channel */
+#define HR_FORMAT_BMP 7  /* 8-bit sRGB */
+#define HR_FORMAT_TGA 8  /* 8-bit sRGB, run-length encoded */
 
 /* The formats by name and extension, from one table (the codes above are
  * contiguous from HR_FORMAT_PNG: a code whose name is NULL is past the
@@ -72,7 +76,8 @@ typedef struct hr_image_write_options {
     int32_t png_linear; /* 1: write values as they are (what Hill's OpenGL
                            display showed); 0: sRGB-encode (default) */
     int32_t exr_half;   /* 1: 16-bit half floats; 0: 32-bit floats */
-    int32_t reserved;
+    int32_t jpeg_quality; /* 1..100; 0 (default): 90. Was `reserved`
+                             (always 0) before the JPEG writer. */
 } hr_image_write_options;
 HR_API void hr_image_write_options_default(hr_image_write_options *o);
 

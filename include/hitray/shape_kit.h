@@ -42,7 +42,18 @@
  * with the same test.
  *
  * shape_kit_instance.h, for a class without parameters: shape_plain_create,
- * shape_plain_destroy, and shape_set_bounds. */
+ * shape_plain_destroy, and shape_set_bounds.
+ *
+ * shape_kit_z0.h, the plane z = 0: shape_z0_crossing (no infinity or NaN
+ * for a parallel ray) and shape_z0_fill (point, normal, error bound).
+ *
+ * shape_kit_uv.h, for surface_uv: shape_turn (an angle as a fraction of a
+ * turn, in [0, 1)) and SHAPE_UV_PROBE (the answer to "does this shape give
+ * (u, v)?").
+ *
+ * shape_kit_module.h, the declaration of a module: shape_param(args, name)
+ * for create, and SHAPE_CLASS with SHAPE_MODULE_OF (or SHAPE_MODULE for
+ * several classes), the class table, module info and entry point. */
 #ifndef HITRAY_SHAPE_KIT_H
 #define HITRAY_SHAPE_KIT_H
 
@@ -50,5 +61,8 @@
 #include "shape_kit_hits.h"
 #include "shape_kit_instance.h"
 #include "shape_kit_math.h"
+#include "shape_kit_module.h"
+#include "shape_kit_uv.h"
+#include "shape_kit_z0.h"
 
 #endif

@@ -148,7 +148,8 @@ hr_status hr_image_write_unpublished(const hr_context *ctx, const hr_image *imag
     case HR_FORMAT_PNG: st = hr_write_png(ctx, &px, &o, out); break;
     case HR_FORMAT_EXR: st = hr_write_exr(ctx, &px, &o, out); break;
     case HR_FORMAT_PPM: st = hr_write_ppm(ctx, &px, out); break;
-    default: st = hr_write_pfm(ctx, &px, out); break;
+    case HR_FORMAT_PFM: st = hr_write_pfm(ctx, &px, out); break;
+    default: st = hr_write_stb(ctx, &px, &o, out); break;
     }
     if (st) {
         hr_atomic_file_abort(out);

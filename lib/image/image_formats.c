@@ -18,6 +18,10 @@ static const image_format formats[] = {
     {HR_FORMAT_EXR, "exr", {".exr", NULL}},
     {HR_FORMAT_PPM, "ppm", {".ppm", NULL}},
     {HR_FORMAT_PFM, "pfm", {".pfm", NULL}},
+    {HR_FORMAT_JPEG, "jpeg", {".jpg", ".jpeg"}},
+    {HR_FORMAT_HDR, "hdr", {".hdr", NULL}},
+    {HR_FORMAT_BMP, "bmp", {".bmp", NULL}},
+    {HR_FORMAT_TGA, "tga", {".tga", NULL}},
 };
 #define FORMAT_COUNT (int32_t)(sizeof formats / sizeof formats[0])
 

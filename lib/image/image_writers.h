@@ -28,5 +28,8 @@ hr_status hr_write_exr(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out);
 hr_status hr_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out);
 hr_status hr_write_pfm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out);
+/* JPEG, HDR, BMP and TGA (o->format says which) through stb_image_write. */
+hr_status hr_write_stb(const hr_context *ctx, const hr_pixels *px, const hr_image_write_options *o,
+                       hr_atomic_file *out);
 
 #endif

@@ -13,12 +13,16 @@
  * the best-shaped ear, the one of largest area for its edge lengths: a
  * quadrilateral is cut along its better diagonal, a convex polygon into
  * rounded triangles rather than a fan. Each cut is O(n) (the ear test of
- * the two neighbours and the choice of the next ear), O(n^2) in all.
+ * the two neighbours and the choice of the next ear), O(n^2) in all; past
+ * NFF_BEST_EAR_VERTICES a concave polygon's ears are tested against a grid
+ * of its non-convex corners and chosen from a heap (nff_ear_index.h), about
+ * O(n log n) for a simple polygon.
  * Past NFF_BEST_EAR_VERTICES vertices (no SPD polygon comes near) a convex
  * polygon is cut as a zigzag strip instead, O(n), whose triangles are as
- * round as a strip's can be; a concave one keeps ear clipping, whose
- * O(n^2) bounds how many vertices it may have (NFF_MAX_CONCAVE_VERTICES:
- * seconds at most, never a hang).
+ * round as a strip's can be; a concave one keeps ear clipping, which for
+ * a polygon that is not simple falls back to a pass per cut, O(n^2): that
+ * bounds how many vertices it may have (NFF_MAX_CONCAVE_VERTICES: seconds
+ * at most, never a hang).
  * A vertex in line with its neighbours is dropped without a triangle (the
  * triangle has no area). A polygon that is not simple (no ear left, which
  * only a self-crossing polygon or rounding can cause) has its remaining
@@ -34,6 +38,7 @@
 #include <string.h>
 
 #include "util/errors.h"
+#include "nff/nff_ear_index.h"
 #include "nff/nff_reader.h"
 
 /* Vertex indices of one mesh are 32-bit (the mesh module's limit). */
@@ -41,9 +46,7 @@
 #define NFF_BEST_EAR_VERTICES 1024
 #define NFF_MAX_CONCAVE_VERTICES 16384
 
-typedef struct pt2 {
-    double x, y;
-} pt2;
+typedef ear_pt pt2;
 
 static double orient(pt2 a, pt2 b, pt2 c)
 {
@@ -61,7 +64,37 @@ typedef struct clipper {
     const pt2 *p;
     size_t *prev, *next;
     double *quality; /* of the ear at each vertex; -1: no ear; INFINITY: in line */
+    /* Past NFF_BEST_EAR_VERTICES: the corners that were not convex at the
+     * start (only those can lie in an ear of a simple polygon: a convex one
+     * never turns reflex), and which corners are still there. */
+    const ear_grid *grid;
+    const unsigned char *alive;
 } clipper;
+
+static int in_ear(pt2 pa, pt2 pi, pt2 pb, pt2 q)
+{
+    if (same(q, pa) || same(q, pi) || same(q, pb)) return 0;
+    return orient(pa, pi, q) >= 0.0 && orient(pi, pb, q) >= 0.0 && orient(pb, pa, q) >= 0.0;
+}
+
+/* Whether a corner of the grid other than a, i, b lies in their ear. */
+static int grid_blocks(const clipper *c, size_t a, size_t i, size_t b)
+{
+    const pt2 pa = c->p[a], pi = c->p[i], pb = c->p[b];
+    const pt2 lo = {fmin(pa.x, fmin(pi.x, pb.x)), fmin(pa.y, fmin(pi.y, pb.y))};
+    const pt2 hi = {fmax(pa.x, fmax(pi.x, pb.x)), fmax(pa.y, fmax(pi.y, pb.y))};
+    size_t x0, y0, x1, y1;
+    ear_grid_range(c->grid, lo, hi, &x0, &y0, &x1, &y1);
+    for (size_t y = y0; y <= y1; y++)
+        for (size_t x = x0; x <= x1; x++) {
+            const size_t cell = y * c->grid->nx + x;
+            for (size_t k = c->grid->first[cell]; k < c->grid->first[cell + 1]; k++) {
+                const size_t j = c->grid->items[k];
+                if (j != a && j != i && j != b && c->alive[j] && in_ear(pa, pi, pb, c->p[j])) return 1;
+            }
+        }
+    return 0;
+}
 
 /* The ear at i, or why not: INFINITY for a vertex in line with its
  * neighbours (dropped first, without a triangle), -1 for a reflex corner
@@ -74,11 +107,11 @@ static double ear_quality(const clipper *c, size_t i)
     const double o = orient(pa, pi, pb);
     if (o == 0.0) return INFINITY;
     if (o < 0.0) return -1.0;
-    for (size_t j = c->next[b]; j != a; j = c->next[j]) {
-        const pt2 q = c->p[j];
-        if (same(q, pa) || same(q, pi) || same(q, pb)) continue;
-        if (orient(pa, pi, q) >= 0.0 && orient(pi, pb, q) >= 0.0 && orient(pb, pa, q) >= 0.0)
-            return -1.0;
+    if (c->grid) {
+        if (grid_blocks(c, a, i, b)) return -1.0;
+    } else {
+        for (size_t j = c->next[b]; j != a; j = c->next[j])
+            if (in_ear(pa, pi, pb, c->p[j])) return -1.0;
     }
     return o / (dist2(pa, pi) + dist2(pi, pb) + dist2(pb, pa));
 }
@@ -102,17 +135,23 @@ static size_t choose(const clipper *c, size_t start)
 /* Triangles of the polygon p[0, n) (counter-clockwise) as index triples
  * into `tris`; returns how many (at most n - 2). `work_idx` holds 2 n
  * indices (the lists' links), `work_q` n qualities. */
-static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx, double *work_q)
+static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx, double *work_q,
+                        const ear_grid *grid, unsigned char *alive, ear_heap *heap)
 {
-    clipper c = {p, work_idx, work_idx + n, work_q};
+    clipper c = {p, work_idx, work_idx + n, work_q, grid, alive};
     for (size_t i = 0; i < n; i++) {
         c.prev[i] = i ? i - 1 : n - 1;
         c.next[i] = i + 1 < n ? i + 1 : 0;
     }
     for (size_t i = 0; i < n; i++) c.quality[i] = ear_quality(&c, i);
+    if (heap)
+        for (size_t i = 0; i < n; i++) ear_heap_update(heap, i);
     size_t left = n, count = 0, start = 0;
     while (left > 3) {
-        const size_t i = choose(&c, start);
+        /* The heap's top is choose's best ear but for ties, which it breaks
+         * by the lower number rather than the ring's order from `start`. */
+        const size_t top = heap ? ear_heap_top(heap) : EAR_HEAP_NONE;
+        const size_t i = top != EAR_HEAP_NONE && c.quality[top] >= 0.0 ? top : choose(&c, start);
         const size_t a = c.prev[i], b = c.next[i];
         if (c.quality[i] != INFINITY) {
             tris[3 * count] = (uint32_t)a, tris[3 * count + 1] = (uint32_t)i;
@@ -125,6 +164,12 @@ static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx
         start = a;
         c.quality[a] = ear_quality(&c, a);
         c.quality[b] = ear_quality(&c, b);
+        if (heap) {
+            alive[i] = 0;
+            ear_heap_remove(heap, i);
+            ear_heap_update(heap, a);
+            ear_heap_update(heap, b);
+        }
     }
     const size_t a = c.prev[start], b = c.next[start];
     if (orient(p[a], p[start], p[b]) != 0.0) {
@@ -133,6 +178,35 @@ static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx
         count++;
     }
     return count;
+}
+
+/* Ear clipping past NFF_BEST_EAR_VERTICES: the same cuts, each ear tested
+ * against the corners of the grid cells its triangle covers and the best
+ * ear taken from a heap, so a cut costs about log n rather than n. */
+static hr_status clip_large(nff_reader *r, nff_word at, const pt2 *p, size_t n, uint32_t *tris,
+                            size_t *work_idx, double *work_q, size_t *made)
+{
+    size_t *reflex = malloc(n * sizeof *reflex);
+    unsigned char *alive = malloc(n);
+    ear_grid grid = {0};
+    ear_heap heap = {0};
+    int ok = reflex && alive && ear_heap_init(&heap, n, work_q);
+    size_t m = 0;
+    if (ok) {
+        for (size_t i = 0; i < n; i++) {
+            alive[i] = 1;
+            if (orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) <= 0.0) reflex[m++] = i;
+        }
+        ok = ear_grid_build(&grid, p, reflex, m);
+    }
+    if (ok) *made = clip_ears(p, n, tris, work_idx, work_q, &grid, alive, &heap);
+    ear_grid_free(&grid);
+    ear_heap_free(&heap);
+    free(alive);
+    free(reflex);
+    return ok ? HR_OK
+              : hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for a polygon", r->file,
+                         (int)at.line);
 }
 
 /* 1 if no corner of the counter-clockwise polygon turns clockwise. */
@@ -292,8 +366,13 @@ hr_status nff_read_polygon(nff_reader *r, nff_word p, int smooth)
                              "ear clipping would take too long over: split it",
                              (int)p.length, p.text, count, NFF_MAX_CONCAVE_VERTICES);
         }
-        const size_t made =
-            strip ? zigzag(plane, count, tris) : clip_ears(plane, count, tris, idx, quality);
+        size_t made = 0;
+        if (strip) made = zigzag(plane, count, tris);
+        else if (count <= NFF_BEST_EAR_VERTICES) made = clip_ears(plane, count, tris, idx, quality, NULL, NULL, NULL);
+        else if ((st = clip_large(r, p, plane, count, tris, idx, quality, &made))) {
+            free(block);
+            return st;
+        }
         if (made) st = append(r, p, smooth ? &r->smooth : &r->flat, v, normals, count, tris, made);
     }
     free(block);

@@ -79,10 +79,8 @@ static int bounds_finite(const hr_bounds *b)
 /* The child given as parameter `name`, checked to be a solid. */
 static hr_status find_operand(const hr_create_args *args, const char *name, const void **out)
 {
-    *out = NULL;
-    for (int32_t i = 0; i < args->param_count; i++)
-        if (strcmp(args->params[i].name, name) == 0 && args->params[i].type == HR_PARAM_OBJECT)
-            *out = args->objects ? args->objects[i] : NULL;
+    const hr_param *p = shape_param(args, name);
+    *out = p && p->type == HR_PARAM_OBJECT && args->objects ? args->objects[p - args->params] : NULL;
     if (!*out) {
         snprintf(args->error, args->error_size, "parameter '%s' must name an object", name);
         return HR_ERROR_PARAMETER;
@@ -309,22 +307,5 @@ CSG_CLASS(intersection_class, "intersection", csg_params, intersection_create,
 CSG_CLASS(difference_class, "difference", difference_params, difference_create,
           "CSG: every point inside a and not inside b");
 
-static const hr_shape_class *const csg_classes[] = {&union_class, &intersection_class,
-                                                    &difference_class};
-
-static const hr_module_info csg_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "csg",
-    .description = "CSG booleans of two solids: union, intersection, difference",
-    .classes = csg_classes,
-    .class_count = 3,
-    SHAPE_BUILTIN_METADATA,
-};
-
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &csg_module;
-}
+SHAPE_MODULE("csg", "CSG booleans of two solids: union, intersection, difference",
+             SHAPE_BUILTIN_METADATA, &union_class, &intersection_class, &difference_class);

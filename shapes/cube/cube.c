@@ -26,7 +26,6 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
 
 /* Face ids: 2 axis for the +1 face of an axis, 2 axis + 1 for the -1 face. */
 static shape_span cube_axis_span(double o, double d, int axis)
@@ -102,40 +101,8 @@ static int32_t cube_uv(const void *shape, const hr_hit *hit, double uv[2])
 /* Surface i is the face of its axis and sign (cube_fill's order). */
 static const char *const cube_surface_names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
-static const hr_shape_class cube_class = {
-    .struct_size = sizeof(hr_shape_class),
-    .flags = HR_SHAPE_CLOSED,
-    .name = "cube",
-    .help = "cube with corners (+-1, +-1, +-1); surfaces +x, -x, +y, -y, +z, -z",
-    .params = NULL,
-    .param_count = 0,
-    .surface_count = 6,
-    .surface_names = cube_surface_names,
-    .create = shape_plain_create,
-    .destroy = shape_plain_destroy,
-    .bounds = cube_bounds,
-    .hit = cube_hit,
-    .first_hit = cube_first_hit,
-    .any_hit = cube_any_hit,
-    .surface_uv = cube_uv,
-};
-
-static const hr_shape_class *const cube_classes[] = {&cube_class};
-
-static const hr_module_info cube_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "cube",
-    .description = "Hill's generic cube: corners (+-1, +-1, +-1)",
-    .classes = cube_classes,
-    .class_count = 1,
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &cube_module;
-}
+SHAPE_CLASS(cube, .flags = HR_SHAPE_CLOSED, .name = "cube",
+            .help = "cube with corners (+-1, +-1, +-1); surfaces +x, -x, +y, -y, +z, -z",
+            .surface_count = 6, .surface_names = cube_surface_names, .create = shape_plain_create,
+            .destroy = shape_plain_destroy, .surface_uv = cube_uv);
+SHAPE_MODULE_OF(cube, "Hill's generic cube: corners (+-1, +-1, +-1)", SHAPE_BUILTIN_METADATA);

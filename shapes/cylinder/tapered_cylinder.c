@@ -77,7 +77,6 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
 
 #define SURFACE_WALL 0
 #define SURFACE_BASE 1
@@ -416,10 +415,8 @@ static hr_status tapered_make(const hr_create_args *args, double s, void **out_s
  * cannot draw, in case a host (or a test) passes something else. */
 static hr_status tapered_cylinder_create(const hr_create_args *args, void **out_shape)
 {
-    double s = 1.0;
-    for (int32_t i = 0; i < args->param_count; i++)
-        if (args->params[i].name && strcmp(args->params[i].name, "s") == 0)
-            s = args->params[i].number;
+    const hr_param *s_param = shape_param(args, "s");
+    const double s = s_param ? s_param->number : 1.0;
     if (!(s >= 0.0 && s <= TAPER_MAX)) {
         if (args->error && args->error_size)
             snprintf(args->error, args->error_size,
@@ -434,12 +431,8 @@ static hr_status tapered_cylinder_create(const hr_create_args *args, void **out_
  * point at the cap's centre). The host has checked each range alone. */
 static hr_status tube_create(const hr_create_args *args, void **out_shape)
 {
-    double s = NAN, t = NAN;
-    for (int32_t i = 0; i < args->param_count; i++) {
-        if (!args->params[i].name) continue;
-        if (strcmp(args->params[i].name, "s") == 0) s = args->params[i].number;
-        if (strcmp(args->params[i].name, "t") == 0) t = args->params[i].number;
-    }
+    const hr_param *s_param = shape_param(args, "s"), *t_param = shape_param(args, "t");
+    const double s = s_param ? s_param->number : NAN, t = t_param ? t_param->number : NAN;
     const char *problem = NULL;
     if (!(s >= 0.0 && s <= TAPER_MAX)) problem = "s";
     else if (!(t > 0.0 && t < 1.0 && t <= s)) problem = "t";
@@ -581,26 +574,8 @@ static const hr_shape_class tapered_tube_class = {
     .surface_uv = tapered_uv,
 };
 
-static const hr_shape_class *const tapered_classes[] = {
-    &tapered_cylinder_class, &cylinder_class, &cone_class, &open_tapered_cylinder_class,
-    &tapered_tube_class,
-};
-
-static const hr_module_info tapered_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "cylinder",
-    .description = "Hill's tapered cylinder, cylinder and cone, the open tapered wall, and Hill's "
-                   "tapered tube",
-    .classes = tapered_classes,
-    .class_count = (int32_t)(sizeof tapered_classes / sizeof tapered_classes[0]),
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &tapered_module;
-}
+SHAPE_MODULE("cylinder",
+             "Hill's tapered cylinder, cylinder and cone, the open tapered wall, and Hill's "
+             "tapered tube",
+             SHAPE_BUILTIN_METADATA, &tapered_cylinder_class, &cylinder_class, &cone_class,
+             &open_tapered_cylinder_class, &tapered_tube_class);

@@ -16,17 +16,16 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <hitray/shape_kit_module.h>
+
 #include "mesh.h"
 #include "mesh_arrays.h"
 #include "mesh_text.h"
 
 static const hr_param *find(const hr_create_args *args, const char *name)
 {
-    for (int32_t i = 0; i < args->param_count; i++)
-        if (args->params[i].name && strcmp(args->params[i].name, name) == 0 &&
-            args->params[i].type == HR_PARAM_NUMBERS)
-            return &args->params[i];
-    return NULL;
+    const hr_param *p = shape_param(args, name);
+    return p && p->type == HR_PARAM_NUMBERS ? p : NULL;
 }
 
 static size_t element_count(const hr_param *p)

@@ -30,6 +30,7 @@
 #include <math.h>
 
 #include <hitray/shape_kit_hits.h>
+#include <hitray/shape_kit_module.h>
 
 #include "../common/shape_builtin.h"
 #include "mesh.h"
@@ -70,11 +71,8 @@ static void mesh_destroy_shape(void *shape)
 static hr_status mesh_create(const hr_create_args *args, void **out_shape)
 {
     *out_shape = NULL;
-    const char *file = NULL;
-    for (int32_t i = 0; i < args->param_count; i++)
-        if (args->params[i].name && strcmp(args->params[i].name, "file") == 0 &&
-            args->params[i].type == HR_PARAM_STRING)
-            file = args->params[i].string;
+    const hr_param *file_param = shape_param(args, "file");
+    const char *file = file_param && file_param->type == HR_PARAM_STRING ? file_param->string : NULL;
     mesh *m = NULL;
     hr_status st = mesh_load_file(args->host, file, args->base_dir, &m, args->error,
                                   args->error_size);
@@ -120,11 +118,10 @@ DEFINE_SOLID_CREATE(buckyball, MESH_BUCKYBALL)
 static hr_status teapot_create(const hr_create_args *args, void **out_shape)
 {
     *out_shape = NULL;
-    double level = MESH_TEAPOT_DEFAULT_LEVEL;
-    for (int32_t i = 0; i < args->param_count; i++)
-        if (args->params[i].name && strcmp(args->params[i].name, "tessellation") == 0 &&
-            args->params[i].type == HR_PARAM_NUMBER)
-            level = args->params[i].number;
+    const hr_param *level_param = shape_param(args, "tessellation");
+    const double level = level_param && level_param->type == HR_PARAM_NUMBER
+                             ? level_param->number
+                             : MESH_TEAPOT_DEFAULT_LEVEL;
     /* The host checked the range; a fraction of a step it cannot see. */
     if (!(level >= MESH_TEAPOT_MIN_LEVEL && level <= MESH_BEZIER_MAX_LEVEL) ||
         level != floor(level)) {
@@ -219,26 +216,9 @@ static const hr_shape_class teapot_class =
                "size (y up, base at y = -0.75); open, as Newell made it",
                teapot_params, 1, teapot_create);
 
-static const hr_shape_class *const mesh_classes[] = {
-    &mesh_class, &tetrahedron_class, &octahedron_class, &dodecahedron_class, &icosahedron_class,
-    &triangle_mesh_class, &buckyball_class, &teapot_class,
-};
-
-static const hr_module_info mesh_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "mesh",
-    .description = "triangle meshes from Hill's .3vn and OBJ files or from arrays, the regular "
-                   "solids, the buckyball and Newell's teapot",
-    .classes = mesh_classes,
-    .class_count = (int32_t)(sizeof mesh_classes / sizeof mesh_classes[0]),
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &mesh_module;
-}
+SHAPE_MODULE("mesh",
+             "triangle meshes from Hill's .3vn and OBJ files or from arrays, the regular solids, "
+             "the buckyball and Newell's teapot",
+             SHAPE_BUILTIN_METADATA, &mesh_class, &tetrahedron_class, &octahedron_class,
+             &dodecahedron_class, &icosahedron_class, &triangle_mesh_class, &buckyball_class,
+             &teapot_class);

@@ -10,20 +10,12 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
-#include "../common/shape_z0.h"
-
-static void plane_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
-{
-    (void)shape;
-    shape_z0_fill(ray, hit);
-}
 
 static hr_status plane_trace(const hr_hit_args *args, int32_t mode)
 {
     shape_crossing crossing;
     const int count = shape_z0_crossing(&args->ray, &crossing);
-    return shape_report(args, mode, &crossing, count, plane_fill);
+    return shape_report(args, mode, &crossing, count, shape_z0_report_fill);
 }
 
 SHAPE_DEFINE_HIT_MODES(plane, plane_trace)
@@ -47,40 +39,7 @@ static int32_t plane_uv(const void *shape, const hr_hit *hit, double uv[2])
 
 static const char *const plane_surface_names[1] = {"plane"};
 
-static const hr_shape_class plane_class = {
-    .struct_size = sizeof(hr_shape_class),
-    .flags = 0,
-    .name = "plane",
-    .help = "the whole plane z = 0, normal +z (not a solid)",
-    .params = NULL,
-    .param_count = 0,
-    .surface_count = 1,
-    .surface_names = plane_surface_names,
-    .create = shape_plain_create,
-    .destroy = shape_plain_destroy,
-    .bounds = plane_bounds,
-    .hit = plane_hit,
-    .surface_uv = plane_uv,
-    .first_hit = plane_first_hit,
-    .any_hit = plane_any_hit,
-};
-
-static const hr_shape_class *const plane_classes[] = {&plane_class};
-
-static const hr_module_info plane_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "plane",
-    .description = "Hill's generic plane: z = 0",
-    .classes = plane_classes,
-    .class_count = 1,
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &plane_module;
-}
+SHAPE_CLASS(plane, .name = "plane", .help = "the whole plane z = 0, normal +z (not a solid)",
+            .surface_count = 1, .surface_names = plane_surface_names, .create = shape_plain_create,
+            .destroy = shape_plain_destroy, .surface_uv = plane_uv);
+SHAPE_MODULE_OF(plane, "Hill's generic plane: z = 0", SHAPE_BUILTIN_METADATA);

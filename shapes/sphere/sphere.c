@@ -33,7 +33,6 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
 #include "sphere_coefficients.h"
 
 /* The crossings from the coefficients: the discriminant by Lagrange's
@@ -155,42 +154,9 @@ static int32_t sphere_uv(const void *shape, const hr_hit *hit, double uv[2])
 
 static const char *const sphere_surface_names[1] = {"sphere"};
 
-static const hr_shape_class sphere_class = {
-    .struct_size = sizeof(hr_shape_class),
-    .flags = HR_SHAPE_CLOSED,
-    .name = "sphere",
-    .help = "unit sphere centred at the origin",
-    .params = NULL,
-    .param_count = 0,
-    .surface_count = 1,
-    .surface_names = sphere_surface_names,
-    .create = shape_plain_create,
-    .destroy = shape_plain_destroy,
-    .bounds = sphere_bounds,
-    .hit = sphere_hit,
-    .first_hit = sphere_first_hit,
-    .any_hit = sphere_any_hit,
-    .transformed_bounds = sphere_transformed_bounds,
-    .surface_uv = sphere_uv,
-};
-
-static const hr_shape_class *const sphere_classes[] = {&sphere_class};
-
-static const hr_module_info sphere_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "sphere",
-    .description = "Hill's generic sphere: radius 1 at the origin",
-    .classes = sphere_classes,
-    .class_count = 1,
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch, so the module always
- * answers with its description. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &sphere_module;
-}
+SHAPE_CLASS(sphere, .flags = HR_SHAPE_CLOSED, .name = "sphere",
+            .help = "unit sphere centred at the origin", .surface_count = 1,
+            .surface_names = sphere_surface_names, .create = shape_plain_create,
+            .destroy = shape_plain_destroy, .transformed_bounds = sphere_transformed_bounds,
+            .surface_uv = sphere_uv);
+SHAPE_MODULE_OF(sphere, "Hill's generic sphere: radius 1 at the origin", SHAPE_BUILTIN_METADATA);

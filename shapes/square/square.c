@@ -11,14 +11,6 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
-#include "../common/shape_z0.h"
-
-static void square_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
-{
-    (void)shape;
-    shape_z0_fill(ray, hit);
-}
 
 static hr_status square_trace(const hr_hit_args *args, int32_t mode)
 {
@@ -31,7 +23,7 @@ static hr_status square_trace(const hr_hit_args *args, int32_t mode)
         shape_z0_fill(&args->ray, &probe);
         if (!(fabs(probe.point.x) <= 1.0 && fabs(probe.point.y) <= 1.0)) count = 0;
     }
-    return shape_report(args, mode, &crossing, count, square_fill);
+    return shape_report(args, mode, &crossing, count, shape_z0_report_fill);
 }
 
 SHAPE_DEFINE_HIT_MODES(square, square_trace)
@@ -55,40 +47,8 @@ static int32_t square_uv(const void *shape, const hr_hit *hit, double uv[2])
 
 static const char *const square_surface_names[1] = {"square"};
 
-static const hr_shape_class square_class = {
-    .struct_size = sizeof(hr_shape_class),
-    .flags = 0,
-    .name = "square",
-    .help = "the square z = 0, |x| <= 1, |y| <= 1, normal +z (not a solid)",
-    .params = NULL,
-    .param_count = 0,
-    .surface_count = 1,
-    .surface_names = square_surface_names,
-    .create = shape_plain_create,
-    .destroy = shape_plain_destroy,
-    .bounds = square_bounds,
-    .hit = square_hit,
-    .surface_uv = square_uv,
-    .first_hit = square_first_hit,
-    .any_hit = square_any_hit,
-};
-
-static const hr_shape_class *const square_classes[] = {&square_class};
-
-static const hr_module_info square_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "square",
-    .description = "Hill's generic square: z = 0, |x|, |y| <= 1",
-    .classes = square_classes,
-    .class_count = 1,
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &square_module;
-}
+SHAPE_CLASS(square, .name = "square",
+            .help = "the square z = 0, |x| <= 1, |y| <= 1, normal +z (not a solid)",
+            .surface_count = 1, .surface_names = square_surface_names, .create = shape_plain_create,
+            .destroy = shape_plain_destroy, .surface_uv = square_uv);
+SHAPE_MODULE_OF(square, "Hill's generic square: z = 0, |x|, |y| <= 1", SHAPE_BUILTIN_METADATA);

@@ -37,7 +37,6 @@
 
 #include <hitray/shape_kit.h>
 #include "../common/shape_builtin.h"
-#include "../common/shape_uv.h"
 #include "torus_quartic.h"
 
 /* A tube of radius 1 closes the hole (a horn torus) and a larger one makes a
@@ -127,14 +126,9 @@ static hr_status refuse(const hr_create_args *args, const char *message, const c
  * else. */
 static hr_status torus_create(const hr_create_args *args, void **out_shape)
 {
-    double tube = 0.2;
-    const char *solver_name = "";
-    for (int32_t i = 0; i < args->param_count; i++) {
-        const hr_param *p = &args->params[i];
-        if (!p->name) continue;
-        if (strcmp(p->name, "tube") == 0) tube = p->number;
-        else if (strcmp(p->name, "solver") == 0 && p->string) solver_name = p->string;
-    }
+    const hr_param *tube_param = shape_param(args, "tube"), *solver_param = shape_param(args, "solver");
+    const double tube = tube_param ? tube_param->number : 0.2;
+    const char *solver_name = solver_param && solver_param->string ? solver_param->string : "";
     if (!(tube >= TUBE_MIN && tube <= TUBE_MAX)) {
         char value[40];
         snprintf(value, sizeof value, "%g", tube);
@@ -195,40 +189,9 @@ static int32_t torus_uv(const void *shape, const hr_hit *hit, double uv[2])
 
 static const char *const torus_surface_names[1] = {"torus"};
 
-static const hr_shape_class torus_class = {
-    .struct_size = sizeof(hr_shape_class),
-    .flags = HR_SHAPE_CLOSED | HR_SHAPE_SDL_BARE,
-    .name = "torus",
-    .help = "ring radius 1 in the xy-plane about z, tube radius `tube` (default 0.2)",
-    .params = torus_params,
-    .param_count = 2,
-    .surface_count = 1,
-    .surface_names = torus_surface_names,
-    .create = torus_create,
-    .destroy = torus_destroy,
-    .bounds = torus_bounds,
-    .hit = torus_hit,
-    .first_hit = torus_first_hit,
-    .any_hit = torus_any_hit,
-    .surface_uv = torus_uv,
-};
-
-static const hr_shape_class *const torus_classes[] = {&torus_class};
-
-static const hr_module_info torus_module = {
-    .struct_size = sizeof(hr_module_info),
-    .abi_version = HR_SHAPE_ABI_VERSION,
-    .name = "torus",
-    .description = "Hill's generic torus: ring radius 1 about z, tube radius a parameter",
-    .classes = torus_classes,
-    .class_count = 1,
-    SHAPE_BUILTIN_METADATA,
-};
-
-/* The host checks abi_version and explains a mismatch. */
-HR_DEFINE_SHAPE_MODULE(host_version, host)
-{
-    (void)host_version;
-    (void)host;
-    return &torus_module;
-}
+SHAPE_CLASS(torus, .flags = HR_SHAPE_CLOSED | HR_SHAPE_SDL_BARE, .name = "torus",
+            .help = "ring radius 1 in the xy-plane about z, tube radius `tube` (default 0.2)",
+            SHAPE_PARAMS(torus_params), .surface_count = 1, .surface_names = torus_surface_names,
+            .create = torus_create, .destroy = torus_destroy, .surface_uv = torus_uv);
+SHAPE_MODULE_OF(torus, "Hill's generic torus: ring radius 1 about z, tube radius a parameter",
+                SHAPE_BUILTIN_METADATA);

@@ -71,7 +71,7 @@ static void check_default_options(void)
     CHECK(o.png_bits == 8);
     CHECK(o.png_linear == 0);
     CHECK(o.exr_half == 0);
-    CHECK(o.reserved == 0);
+    CHECK(o.jpeg_quality == 0);
     hr_image_write_options_default(NULL);
 }
 

@@ -316,6 +316,39 @@ static void test_large_convex_polygon(void)
     hr_scene_destroy(r.scene);
 }
 
+/* A concave polygon of 16384 vertices, a star of alternate radii 1 and
+ * 0.5 (ear clipping with its grid and heap: a fraction of a second, where
+ * a pass over the polygon for each cut took seconds): every tip is
+ * covered, every notch between two tips is empty. */
+static void test_large_concave_polygon(void)
+{
+    enum { N = 16384 };
+    char *text = malloc(64 + (size_t)N * 48);
+    if (!text) return;
+    size_t used = (size_t)sprintf(text, "f 1 1 1 1 0 1 0 0\np %d\n", N);
+    for (int i = 0; i < N; i++) {
+        const double a = 2.0 * PI * i / N, radius = i % 2 ? 0.5 : 1.0;
+        used += (size_t)sprintf(text + used, "%.17g %.17g 0\n", radius * cos(a), radius * sin(a));
+    }
+    hr_sdl_result r = {0};
+    r.struct_size = sizeof r;
+    CHECK_OK(hr_nff_load_string(ctx, text, "star", &r));
+    free(text);
+    if (!r.scene) return;
+    CHECK_OK(hr_scene_commit(r.scene));
+    const hr_vec3 down = {0, 0, -1};
+    /* At radius 0.75 along vertex i: inside the tip of an even i, in the
+     * notch of an odd one (its edges pass 1e-4 away either side). */
+    for (int i = 0; i < N; i += 97) {
+        const double a = 2.0 * PI * i / N;
+        const hr_vec3 o = {0.75 * cos(a), 0.75 * sin(a), 1};
+        if (i % 2) expect_miss(r.scene, o, down, "a star's notch");
+        else expect_hit(r.scene, o, down, 0, 1.0, "a star's tip");
+    }
+    expect_hit(r.scene, (hr_vec3){0, 0, 1}, down, 0, 1.0, "a star's centre");
+    hr_scene_destroy(r.scene);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -328,6 +361,7 @@ int main(void)
     test_string_and_gzip();
     test_no_view();
     test_large_convex_polygon();
+    test_large_concave_polygon();
     hr_context_destroy(ctx);
     return hr_test_end();
 }

@@ -274,6 +274,49 @@ def test_quiet_prints_nothing_even_on_a_terminal(scene, tmp_path):
     assert (r.returncode, r.stdout, r.stderr) == (0, "", "")
 
 
+@pytest.mark.parametrize("name, pil_format", [("a.bmp", "BMP"), ("a.tga", "TGA"), ("a.jpg", "JPEG"),
+                                              ("a.JPEG", "JPEG"), ("a.hdr", None)])
+def test_more_output_formats_by_extension(scene, tmp_path, name, pil_format):
+    """JPEG, HDR, BMP and TGA beside PNG: BMP and TGA hold exactly the PPM's
+    8-bit codes (Pillow reads them back), JPEG codes close to them at
+    quality 100, HDR a Radiance file."""
+    PIL = pytest.importorskip("PIL.Image", reason="Pillow reads the images (scripts/requirements-test.txt)")
+    ppm, out = tmp_path / "ref.ppm", tmp_path / name
+    assert run("render", scene, "-o", ppm, "--size", "19x13").returncode == 0
+    extra = ["--jpeg-quality", "100"] if pil_format == "JPEG" else []
+    r = run("render", scene, "-o", out, "--size", "19x13", *extra)
+    assert r.returncode == 0, r.stderr
+    if pil_format is None:
+        assert out.read_bytes().startswith(b"#?RADIANCE\n")
+        return
+    reference = PIL.open(ppm).convert("RGB")
+    with PIL.open(out) as image:
+        assert image.format == pil_format and image.size == (19, 13)
+        got = image.convert("RGB").tobytes()
+    worst = max(abs(a - b) for a, b in zip(got, reference.tobytes()))
+    # JPEG at quality 100 (every DCT coefficient quantised by 1, no chroma
+    # subsampling) loses only the DCT's and YCbCr's rounding: 2 codes here.
+    assert worst <= (4 if pil_format == "JPEG" else 0)
+
+
+def test_jpeg_quality_and_format_names(scene, tmp_path):
+    sizes = {}
+    for q in ("10", "95"):
+        r = run_bytes("render", scene, "-o", "-", "--format", "jpeg", "--jpeg-quality", q, "--size", "64x48")
+        assert r.returncode == 0 and r.stdout.startswith(b"\xff\xd8"), r.stderr
+        sizes[q] = len(r.stdout)
+    assert sizes["10"] < sizes["95"]
+    r = run("render", scene, "-o", tmp_path / "a.png", "--jpeg-quality", "50")
+    assert r.returncode == 2 and "--jpeg-quality" in r.stderr and "png" in r.stderr
+    r = run("render", scene, "-o", tmp_path / "a.jpg", "--jpeg-quality", "101")
+    assert r.returncode == 2 and "1..100" in r.stderr
+    r = run("render", scene, "-o", tmp_path / "a.gif")
+    assert r.returncode == 2 and ".jpg" in r.stderr and ".tga" in r.stderr
+    help_text = run("render", "--help").stdout
+    for name in ("png", "exr", "ppm", "pfm", "jpeg", "hdr", "bmp", "tga"):
+        assert name in help_text
+
+
 def test_stats_json_keys(scene, tmp_path):
     stats = tmp_path / "stats.json"
     r = run("render", scene, "-o", tmp_path / "s.png", "--size", "16x12", "--stats-json", stats, "--threads", "2")

@@ -67,3 +67,13 @@ def test_the_notebook_style_demo_script_renders_the_demo(tmp_path):
                       "--spp", "1", "-o", tmp_path / "demo.png"], tmp_path)
     assert png_size(tmp_path / "demo.png") == (64, 48)
     assert "objects:" in out and "enters" in out
+
+
+def test_the_python_shape_example_draws_no_warning(tmp_path):
+    """Its scene's reflectivities count (minReflectivity set below them): the
+    example does not warn about its own coefficients."""
+    result = subprocess.run([sys.executable, "-W", "error", str(ROOT / "examples/python/python_shape.py"),
+                             str(tmp_path / "p.png"), "--size", "64x48"], capture_output=True, text=True,
+                            cwd=tmp_path, timeout=600)
+    assert result.returncode == 0 and "Warning" not in result.stderr, result.stderr[-3000:]
+    assert png_size(tmp_path / "p.png") == (64, 48)

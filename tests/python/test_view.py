@@ -474,7 +474,7 @@ def test_view_bad_camera_is_refused_before_a_window(display, tmp_path):
 
 @pytest.mark.parametrize("args, message, status", [
     (("--exit-when-done",), "--exit-when-done: needs --screenshot FILE", 2),
-    (("--screenshot", "shot.jpg"), "--screenshot: cannot tell the format of 'shot.jpg'", 2),
+    (("--screenshot", "shot.gif"), "--screenshot: cannot tell the format of 'shot.gif'", 2),
     (("-o", "nodir/x.png"), "cannot write 'nodir/x.png': no directory 'nodir'", 1),
     (("--block", "0"), "--block", 2),
     (("--spp", "x"), "--spp", 2),

@@ -1,11 +1,11 @@
-/* hitray built-in shapes: (u, v) on their surfaces (hr_shape_class.surface_uv),
- * the pieces several shapes share. Static inline, as <hitray/shape_kit.h>. */
-#ifndef HITRAY_SHAPES_SHAPE_UV_H
-#define HITRAY_SHAPES_SHAPE_UV_H
+/* hitray shape kit: (u, v) on a surface (hr_shape_class.surface_uv), the
+ * pieces several shapes share. */
+#ifndef HITRAY_SHAPE_KIT_UV_H
+#define HITRAY_SHAPE_KIT_UV_H
 
 #include <math.h>
 
-#include <hitray/shape_module.h>
+#include "shape_module.h"
 
 /* The angle of (x, y) about the origin as a fraction of a turn, in [0, 1):
  * 0 along +x, 1/4 along +y. (0, 0) gives 0. */

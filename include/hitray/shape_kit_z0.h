@@ -1,9 +1,10 @@
-/* hitray built-in shapes: the plane z = 0, which the plane and the square
- * share. Private to the built-ins (a plugin has <hitray/shape_kit.h>). */
-#ifndef HITRAY_SHAPES_SHAPE_Z0_H
-#define HITRAY_SHAPES_SHAPE_Z0_H
+/* hitray shape kit: the plane z = 0, which the plane, the square and any
+ * flat shape in it (the example plugin's disk) share. */
+#ifndef HITRAY_SHAPE_KIT_Z0_H
+#define HITRAY_SHAPE_KIT_Z0_H
 
-#include <hitray/shape_kit.h>
+#include "shape_kit_hits.h"
+#include "shape_kit_math.h"
 
 /* The crossing of the ray with z = 0: t = -o.z / d.z, one rounding. A ray
  * with d.z == 0 (+0 or -0) is parallel and never crosses: it is refused before
@@ -28,6 +29,14 @@ static inline void shape_z0_fill(const hr_ray *ray, hr_hit *hit)
                             ray->origin.y + hit->t * ray->dir.y, 0.0);
     hit->normal = shape_vec3(0.0, 0.0, 1.0);
     hit->error = shape_ray_point_error(ray, hit->t, 1);
+}
+
+/* shape_z0_fill in the form shape_report takes, for a shape whose hits are
+ * all crossings of z = 0 (its data does not change the point). */
+static inline void shape_z0_report_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+{
+    (void)shape;
+    shape_z0_fill(ray, hit);
 }
 
 #endif
