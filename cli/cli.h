@@ -147,6 +147,9 @@ typedef struct cli_scene {
 #define CLI_STDIN_NAME "<stdin>"
 int cli_scene_load(cli_scene *s, const char *path);
 int cli_is_nff(const char *path);
+/* .obj or .3vn (any case): a mesh file, rendered as a scene of that mesh
+ * alone, framed and lit (a default camera and one light fitted to it). */
+int cli_is_mesh(const char *path);
 int cli_scene_commit(cli_scene *s);
 /* The scene file's camera at width x height, or, for a file that sets none,
  * one that frames what is there (Hill's default at (0,0,5) may see nothing

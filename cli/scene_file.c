@@ -1,5 +1,6 @@
 /* Loading a scene file for the verbs that need one (cli.h). */
 #include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,52 @@ int cli_is_nff(const char *path)
     size_t n = strlen(path);
     return (n >= 4 && strcasecmp(path + n - 4, ".nff") == 0) ||
            (n >= 7 && strcasecmp(path + n - 7, ".nff.gz") == 0);
+}
+
+int cli_is_mesh(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && (strcasecmp(path + n - 4, ".obj") == 0 || strcasecmp(path + n - 4, ".3vn") == 0);
+}
+
+/* A mesh file given as the scene: an SDL scene of that one mesh (read
+ * from the file's own folder), framed by the camera a scene without one
+ * gets, and lit by one white light above and behind that camera's eye, so
+ * the side in view is lit and its shading shows the form. */
+static hr_status load_mesh_scene(cli_scene *s, const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    char dir[4096], text[4200];
+    size_t dir_len = slash ? (size_t)(slash - path) : 1;
+    if (dir_len >= sizeof dir || strlen(base) + 8 >= sizeof text) {
+        snprintf(text, sizeof text, "'%.100s...': the name is too long", path);
+        return hr_context_set_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, NULL, 0, 0, text);
+    }
+    memcpy(dir, slash ? (slash == path ? "/" : path) : ".", slash == path ? 1 : dir_len);
+    dir[slash == path ? 1 : dir_len] = '\0';
+    if (strpbrk(base, " \t\n\r!\"{}")) {
+        snprintf(text, sizeof text,
+                 "'%s': a mesh rendered as the scene needs a name without blanks, '!', '\"' or braces "
+                 "(write an SDL scene with 'mesh FILE' instead)", path);
+        return hr_context_set_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, NULL, 0, 0, text);
+    }
+    snprintf(text, sizeof text, "mesh %s\n", base);
+    hr_status st = hr_sdl_load_string(s->ctx, text, path, dir, &s->sdl);
+    if (st != HR_OK) return st;
+    hr_camera cam = s->sdl.camera;
+    st = hr_scene_frame_camera(s->sdl.scene, &cam);
+    if (st != HR_OK) return st;
+    hr_vec3 back = {cam.eye.x - cam.look.x, cam.eye.y - cam.look.y, cam.eye.z - cam.look.z};
+    double distance = sqrt(back.x * back.x + back.y * back.y + back.z * back.z);
+    hr_light light;
+    memset(&light, 0, sizeof light);
+    light.struct_size = sizeof light;
+    light.position = (hr_vec3){cam.eye.x + 0.5 * back.x + distance * cam.up.x,
+                               cam.eye.y + 0.5 * back.y + distance * cam.up.y,
+                               cam.eye.z + 0.5 * back.z + distance * cam.up.z};
+    light.color = (hr_color){1.0, 1.0, 1.0};
+    return hr_scene_add_light(s->sdl.scene, &light);
 }
 
 /* The library's warnings, one line each on stderr (never stdout, which
@@ -75,6 +122,7 @@ int cli_scene_load(cli_scene *s, const char *path)
     cli_status("loading", s->path);
     if (from_stdin) st = hr_sdl_load_string(s->ctx, text, CLI_STDIN_NAME, NULL, &s->sdl);
     else if (cli_is_nff(path)) st = hr_nff_load_file(s->ctx, path, &s->sdl);
+    else if (cli_is_mesh(path)) st = load_mesh_scene(s, path);
     else st = hr_sdl_load_file(s->ctx, path, &s->sdl);
     free(text);
     cli_status(NULL, NULL);

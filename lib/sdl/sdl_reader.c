@@ -187,6 +187,14 @@ static hr_status not_a_command(sdl_reader *r, sdl_located t)
     char found[64];
     sdl_describe(t.token, found, sizeof found);
     double number;
+    /* A mesh file read as SDL fails on its first word ('v', or a count). */
+    const char *file = r->src->file ? r->src->file : "";
+    size_t file_len = strlen(file);
+    const char *ext = file_len > 4 ? file + file_len - 4 : "";
+    if (equal_ignoring_case(ext, ".obj") || equal_ignoring_case(ext, ".3vn"))
+        return sdl_error(r->src, HR_ERROR_SDL, t,
+                         "unexpected %s: '%s' is a mesh file, not SDL (an SDL scene reads it with "
+                         "'mesh %s'; 'hitray render' renders it as the scene)", found, file, file);
     if (t.token->kind == SDL_TOKEN_OPEN)
         return sdl_error(r->src, HR_ERROR_SDL, t,
                          "unexpected '{': only 'def NAME {' opens a block");

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "util/errors.h"
+#include "util/strutil.h"
 #include "util/solid_textures.h"
 #include "texture/texture.h"
 #include "geometry/transform_inline.h"
@@ -25,19 +26,20 @@ static hr_status fill_params(hr_context *ctx, const hr_material *m, const hr_sha
         const double v = i < m->parameter_count ? m->parameters[i] : p->default_value;
         const char *why = NULL;
         char range[96] = "";
-        if (p->kind == HR_TEXTURE_PARAM_POSITIVE) {
-            if (p->max < 1e300) snprintf(range, sizeof range, " (at most %g)", p->max);
-        } else {
-            snprintf(range, sizeof range, " (within [%g, %g])", p->min, p->max);
-        }
+        char lo[HR_SHORTEST_BYTES], hi[HR_SHORTEST_BYTES], value[HR_SHORTEST_BYTES];
+        if (p->kind == HR_TEXTURE_PARAM_POSITIVE)
+            snprintf(range, sizeof range, " (at most %s)", hr_shortest(p->max, hi));
+        else
+            snprintf(range, sizeof range, " (within [%s, %s])", hr_shortest(p->min, lo), hr_shortest(p->max, hi));
         if (!isfinite(v)) why = "must be finite";
-        else if (p->kind == HR_TEXTURE_PARAM_POSITIVE && !(v > 0.0 && v <= p->max)) why = "must be positive";
-        else if (p->kind != HR_TEXTURE_PARAM_POSITIVE && !(v >= p->min && v <= p->max)) why = "is out of range";
+        else if (p->kind == HR_TEXTURE_PARAM_POSITIVE && !(v > 0.0)) why = "must be positive", range[0] = '\0';
+        else if (!(v >= p->min && v <= p->max)) why = "is out of range";
         else if (p->kind == HR_TEXTURE_PARAM_WHOLE && v != floor(v)) why = "must be a whole number";
         if (why)
             return hr_error(ctx, HR_ERROR_PARAMETER,
-                            "shape '%s': texture %d (%s): parameter %d (%s) is %g and %s%s",
-                            cls->name, (int)m->texture, kind->name, (int)i + 1, p->name, v, why,
+                            "shape '%s': texture %d (%s): parameter %d (%s) is %s and %s%s",
+                            cls->name, (int)m->texture, kind->name, (int)i + 1, p->name,
+                            hr_shortest(v, value), why,
                             range);
         out[i] = v;
     }

@@ -88,12 +88,33 @@ static const hr_texture_param wood_params[] = {
     COLOR_PARAMS("colour A", 0.85, 0.6, 0.35),
     COLOR_PARAMS("colour B", 0.45, 0.25, 0.1),
 };
-static hr_color wood(const double *p, hr_vec3 q)
+/* Filtered, the rings are box-filtered across themselves: the ring number
+ * is taken as linear over the box, and the square wave of its parity is
+ * averaged over the box's half-width in ring numbers, sum_i |d ring / d x_i|
+ * half_i (exact where the box spans one axis across straight rings; a box
+ * filter of the same width elsewhere). Where rings are finer than the box
+ * the mean tends to 0 and the colour to (A + B) / 2; on the axis, where
+ * they wobble infinitely fast, the colour is that mean. */
+static hr_color wood_box(const double *p, hr_vec3 q, hr_vec3 half)
 {
     const double r = hypot(q.x, q.y);
     const double theta = atan2(q.y, q.x);
-    const double ring = r / p[0] + p[1] * sin(p[2] * theta + p[3] * q.z);
-    return blend(p, 4, parity(ring) ? 0.0 : 1.0);
+    const double phase = p[2] * theta + p[3] * q.z;
+    const double ring = r / p[0] + p[1] * sin(phase);
+    double width = 0.0;
+    if (half.x > 0.0 || half.y > 0.0 || half.z > 0.0) {
+        const double turn = p[1] * cos(phase) * p[2] / (r * r); /* d ring / d theta over r^2 */
+        const double gx = q.x / (r * p[0]) - turn * q.y;
+        const double gy = q.y / (r * p[0]) + turn * q.x;
+        const double gz = p[1] * cos(phase) * p[3];
+        width = fabs(gx) * half.x + fabs(gy) * half.y + fabs(gz) * half.z;
+        if (!(width < 1e300)) return blend(p, 4, 0.5);
+    }
+    return blend(p, 4, 0.5 * (1.0 + square_wave_mean(ring, width)));
+}
+static hr_color wood(const double *p, hr_vec3 q)
+{
+    return wood_box(p, q, v3(0.0, 0.0, 0.0));
 }
 
 /* -3, Hill's marble: veins across z (f of them per unit) bent by his
@@ -125,7 +146,7 @@ static hr_color marble(const double *p, hr_vec3 q)
 /* Numbered from -1 down without gaps: hr_solid_texture_name promises it. */
 static const hr_texture_kind solid_textures[] = {
     ROW(-1, "checkerboard", checker_params, checkerboard, checkerboard_box),
-    ROW(-2, "wood", wood_params, wood, NULL),
+    ROW(-2, "wood", wood_params, wood, wood_box),
     ROW(-3, "marble", marble_params, marble, NULL),
 };
 #define SOLID_COUNT ((int32_t)(sizeof solid_textures / sizeof solid_textures[0]))

@@ -1,5 +1,6 @@
 #include "util/strutil.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -41,4 +42,13 @@ int hr_str_ends_with(const char *s, const char *suffix)
 {
     size_t ns = strlen(s), nx = strlen(suffix);
     return ns >= nx && memcmp(s + ns - nx, suffix, nx) == 0;
+}
+
+const char *hr_shortest(double v, char *buf)
+{
+    for (int digits = 1; digits <= 17; digits++) {
+        snprintf(buf, HR_SHORTEST_BYTES, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v) break;
+    }
+    return buf;
 }

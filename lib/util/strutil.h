@@ -12,5 +12,9 @@ char *hr_path_join(const char *a, const char *b);
 char *hr_path_dirname(const char *path);
 /* 1 if s ends with suffix. */
 int hr_str_ends_with(const char *s, const char *suffix);
+/* v in the fewest significant digits (up to 17) that read back as v, so a
+ * message never shows 1.0000001 as 1; `buf` holds HR_SHORTEST_BYTES. */
+#define HR_SHORTEST_BYTES 32
+const char *hr_shortest(double v, char *buf);
 
 #endif

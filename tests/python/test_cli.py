@@ -317,6 +317,38 @@ def test_jpeg_quality_and_format_names(scene, tmp_path):
         assert name in help_text
 
 
+TETRAHEDRON_OBJ = "v -1 -1 0\nv 1 -1 0\nv 0 1 0.5\nv 0 0 -1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
+TETRAHEDRON_3VN = ("4 4 4\n-1 -1 0\n1 -1 0\n0 1 0.5\n0 0 -1\n"
+                   "0 -0.24 0.97\n0 -0.71 -0.71\n0.8 0.4 -0.4\n-0.8 0.4 -0.4\n"
+                   "3 0 1 2 0 0 0\n3 0 1 3 1 1 1\n3 1 2 3 2 2 2\n3 2 0 3 3 3 3\n")
+
+
+@pytest.mark.parametrize("name, text", [("tet.obj", TETRAHEDRON_OBJ), ("Tet.3VN", TETRAHEDRON_3VN)])
+def test_a_mesh_file_renders_framed_and_lit(tmp_path, name, text):
+    """hitray render bunny.obj: the mesh alone, framed by the default
+    camera and lit: its pixels are neither all background nor all black."""
+    mesh = tmp_path / "in" / name
+    mesh.parent.mkdir()
+    mesh.write_text(text)
+    out = tmp_path / "mesh.pfm"
+    r = run("render", mesh, "-o", out, "--size", "32x24")
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ""  # no "no lights" or "empty scene" warning
+    _, _, rows = read_pfm(out)
+    background, pixels = rows[0][0], [p for row in rows for p in row]
+    lit = [p for p in pixels if p != background]
+    assert len(lit) > len(pixels) // 10  # framed: the mesh fills a good part
+    assert max(max(p) for p in lit) > 0.2  # lit, not a silhouette
+    assert len(set(lit)) > 2  # shaded: the faces differ
+
+
+def test_a_mesh_file_with_a_blank_in_its_name_is_refused_clearly(tmp_path):
+    mesh = tmp_path / "my tet.obj"
+    mesh.write_text(TETRAHEDRON_OBJ)
+    r = run("render", mesh, "-o", tmp_path / "o.png")
+    assert r.returncode == 1 and "mesh FILE" in r.stderr and len(r.stderr.splitlines()) == 1
+
+
 def test_stats_json_keys(scene, tmp_path):
     stats = tmp_path / "stats.json"
     r = run("render", scene, "-o", tmp_path / "s.png", "--size", "16x12", "--stats-json", stats, "--threads", "2")

@@ -86,3 +86,11 @@ def test_the_stubs_match_the_extension_and_the_package_type_checks():
                             "-p", "hitray"], capture_output=True, text=True, timeout=600,
                            cwd=ROOT / "bindings" / "python" / "src")
     assert check.returncode == 0, check.stdout + check.stderr
+
+
+def test_shape_params_carry_the_exclusive_ends():
+    """Every key the library gives for a parameter (hr_param_spec, its
+    flags included) is a field of ShapeParam, so shape_classes() works."""
+    for cls in hitray.shape_classes().values():
+        for p in cls.params:
+            assert isinstance(p.min_exclusive, bool) and isinstance(p.max_exclusive, bool)

@@ -205,6 +205,23 @@ static void empty_scene_warning(hr_context *ctx)
     }
 }
 
+/* A mesh file read as SDL names the 'mesh FILE' that reads it. */
+static void mesh_file_as_sdl(hr_context *ctx)
+{
+    const char *names[] = {"bunny.obj", "tet.3VN"};
+    const char *texts[] = {"v 0 0 0\nv 1 0 0\n", "4 4 4\n0 0 0\n"};
+    for (int i = 0; i < 2; i++) {
+        hr_sdl_result r;
+        memset(&r, 0, sizeof r);
+        r.struct_size = sizeof r;
+        CHECK(hr_sdl_load_string(ctx, texts[i], names[i], NULL, &r) == HR_ERROR_SDL);
+        char want[64];
+        snprintf(want, sizeof want, "'mesh %s'", names[i]);
+        CHECK_MSG(strstr(hr_context_last_error(ctx), want) != NULL, "%s", hr_context_last_error(ctx));
+        CHECK(strstr(hr_context_last_error(ctx), "is a mesh file, not SDL") != NULL);
+    }
+}
+
 int main(void)
 {
     hr_context *ctx = sdl_test_context(SDL_STUB_SHAPES);
@@ -213,6 +230,7 @@ int main(void)
     torus_tube(ctx);
     threshold_warnings(ctx);
     empty_scene_warning(ctx);
+    mesh_file_as_sdl(ctx);
     hr_context_destroy(ctx);
     refused_module();
     return hr_test_end();

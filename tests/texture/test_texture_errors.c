@@ -94,6 +94,10 @@ int main(void)
            "parameter 4 (octaves) is 17 and is out of range (within [1, 16])");
     expect(ctx, "texture -1 parameters 2 1 2e6 sphere", dir, HR_ERROR_PARAMETER, "test.sdl:1:",
            "parameter 2 (colour A red) is 2e+06 and is out of range");
+    expect(ctx, "texture -1 parameters 1 1e308 cube", dir, HR_ERROR_PARAMETER, "test.sdl:1:",
+           "parameter 1 (size) is 1e+308 and is out of range (at most 1e+300)");
+    expect(ctx, "texture -3 parameters 1 1000000.001 sphere", dir, HR_ERROR_PARAMETER, "test.sdl:1:",
+           "parameter 1 (veins per unit) is 1000000.001 and is out of range (within [-1e+06, 1e+06])");
     expect(ctx, "makePixmap 1 ok.png texture 1 parameters 2 0 0 sphere", dir, HR_ERROR_PARAMETER,
            "test.sdl:1:", "image texture 1: the (u, v) range [0, 0] x [0, 1] must not be empty");
     expect(ctx, "makePixmap 1 ok.png texture 1 parameters 5 0 1 0 1 0.5 sphere", dir,

@@ -22,6 +22,9 @@ class ShapeParam:
     min: float
     max: float
     help: str
+    # Whether min or max is itself outside the range (a radius "> 0").
+    min_exclusive: bool = False
+    max_exclusive: bool = False
 
 
 @dataclass(frozen=True)

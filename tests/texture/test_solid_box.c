@@ -1,6 +1,7 @@
-/* The box-filtered checkerboard (lib/texture/texture_solid.c, compiled into
- * this test) against numerical integration of the point-sampled one over
- * the same box, and against itself point-sampled.
+/* The box-filtered checkerboard and wood (lib/texture/texture_solid.c,
+ * compiled into this test) against numerical integration of the
+ * point-sampled ones over the same box, and against themselves
+ * point-sampled.
  *
  * Reference: the midpoint rule on an n-per-axis grid over the box, summed
  * in long double, of the point texture with A = white and B = black (so the
@@ -19,7 +20,11 @@
 #include "hr_test.h"
 #include "texture/texture.h"
 
-static double params[7] = {1.0, 1, 1, 1, 0, 0, 0};
+static double checker[7] = {1.0, 1, 1, 1, 0, 0, 0};
+/* Wood: rings 0.1 apart, A white and B black; straight (no wobble) or
+ * Hill's default wobble. */
+static double straight_wood[10] = {0.1, 0.0, 4, 2.0, 1, 1, 1, 0, 0, 0};
+static double wobbly_wood[10] = {0.1, 0.4, 4, 2.0, 1, 1, 1, 0, 0, 0};
 
 static int jumps_inside(double lo, double hi)
 {
@@ -27,7 +32,8 @@ static int jumps_inside(double lo, double hi)
     return (int)(ceil(hi) - floor(lo)) - 1;
 }
 
-static double reference(const hr_texture_kind *kind, hr_vec3 q, hr_vec3 h, int n[3])
+static double reference(const hr_texture_kind *kind, const double *params, hr_vec3 q, hr_vec3 h,
+                        int n[3])
 {
     long double sum = 0;
     const double lo[3] = {q.x - h.x, q.y - h.y, q.z - h.z};
@@ -52,11 +58,49 @@ static void check_box(const hr_texture_kind *kind, hr_vec3 q, hr_vec3 h, int per
         n[i] = half[i] > 0 ? per_axis : 1;
         if (half[i] > 0) tol += (double)jumps_inside(at[i] - half[i], at[i] + half[i]) / n[i];
     }
-    const double want = reference(kind, q, h, n);
-    const double got = kind->solid_box(params, q, h).r;
+    const double want = reference(kind, checker, q, h, n);
+    const double got = kind->solid_box(checker, q, h).r;
     CHECK_MSG(fabs(got - want) <= tol,
               "box (%g, %g, %g) +- (%g, %g, %g): %.9f, integrated %.9f (tolerance %.3g)", q.x, q.y,
               q.z, h.x, h.y, h.z, got, want, tol);
+}
+
+/* Wood. Straight rings across a box along x at (x, 0, z), x > 0: the ring
+ * number is x / 0.1, linear, so the filter is the exact mean, and the
+ * midpoint rule's bound holds with the jumps counted in ring numbers (a
+ * rule over n cells in x). A box many rings wide, or on the axis, gives the
+ * mean colour: the wave's mean over w rings is at most 1 / (2 w) (its
+ * integral, the triangle wave, is within [0, 1]). half = 0 is Hill's wood
+ * bit for bit. */
+static void test_wood(void)
+{
+    const hr_texture_kind *wood = hr_solid_texture_find(-2);
+    CHECK(wood && wood->solid_box);
+    if (!(wood && wood->solid_box)) return;
+    const double boxes[][2] = {{0.33, 0.02}, {1.234, 0.07}, {2.5, 0.011}, {0.8, 0.3}};
+    for (int i = 0; i < 4; i++) {
+        const hr_vec3 q = {boxes[i][0], 0, 0.4}, h = {boxes[i][1], 0, 0};
+        int n[3] = {4096, 1, 1};
+        const double want = reference(wood, straight_wood, q, h, n);
+        const double got = wood->solid_box(straight_wood, q, h).r;
+        const double tol = jumps_inside((q.x - h.x) / 0.1, (q.x + h.x) / 0.1) / 4096.0 + 1e-6;
+        CHECK_MSG(fabs(got - want) <= tol, "straight wood at %g +- %g: %.9f, integrated %.9f",
+                  q.x, h.x, got, want);
+    }
+    for (int i = 0; i < 10; i++) {
+        const hr_vec3 q = {0.3 + 0.41 * i, -0.2 * i, 0.1 * i};
+        const double far = wood->solid_box(wobbly_wood, q, (hr_vec3){5, 5, 5}).r;
+        CHECK_MSG(fabs(far - 0.5) <= 1.0 / (2 * 50), "wood over 50 rings at %d: %.9f", i, far);
+        const double axis = wood->solid_box(wobbly_wood, (hr_vec3){0, 0, q.z}, (hr_vec3){1e-3, 0, 0}).r;
+        CHECK_MSG(axis == 0.5, "wood on the axis: %.17g", axis);
+        const hr_vec3 p = {q.x - 2, q.y + 0.7, q.z - 0.3};
+        const double r = hypot(p.x, p.y), theta = atan2(p.y, p.x);
+        const double ring = r / 0.1 + 0.4 * sin(4 * theta + 2.0 * p.z);
+        const double hill = fabs(fmod(floor(ring), 2.0)) == 1.0 ? 0.0 : 1.0;
+        const double point = wood->solid(wobbly_wood, p).r;
+        CHECK_MSG(point == hill && wood->solid_box(wobbly_wood, p, (hr_vec3){0, 0, 0}).r == point,
+                  "wood point %d: %g, Hill's %g", i, point, hill);
+    }
 }
 
 int main(void)
@@ -80,7 +124,7 @@ int main(void)
      * mean colour, (A + B) / 2, wherever it sits. */
     for (int i = 0; i < 20; i++) {
         const double x = -5 + 0.537 * i;
-        const double r = kind->solid_box(params, (hr_vec3){x, 0.3, 0.3}, (hr_vec3){1, 0, 0}).r;
+        const double r = kind->solid_box(checker, (hr_vec3){x, 0.3, 0.3}, (hr_vec3){1, 0, 0}).r;
         CHECK_MSG(fabs(r - 0.5) <= 1e-12, "whole period at x = %g: %.17g", x, r);
     }
 
@@ -91,13 +135,14 @@ int main(void)
     for (int i = 0; i < 11; i++)
         for (int j = 0; j < 11; j++) {
             const hr_vec3 p = {xs[i], xs[j], xs[(i + j) % 11]};
-            const hr_color a = kind->solid(params, p);
-            const hr_color b = kind->solid_box(params, p, (hr_vec3){0, 0, 0});
+            const hr_color a = kind->solid(checker, p);
+            const hr_color b = kind->solid_box(checker, p, (hr_vec3){0, 0, 0});
             const int odd = ((int)fabs(fmod(floor(p.x), 2.0)) ^ (int)fabs(fmod(floor(p.y), 2.0)) ^
                              (int)fabs(fmod(floor(p.z), 2.0)));
             CHECK_MSG(a.r == b.r && a.g == b.g && a.b == b.b && a.r == (odd ? 0.0 : 1.0),
                       "point (%g, %g, %g): %g, box %g, parity %d", p.x, p.y, p.z, a.r, b.r, odd);
         }
-    CHECK(hr_solid_texture_find(-2)->solid_box == NULL && hr_solid_texture_find(-3)->solid_box == NULL);
+    test_wood();
+    CHECK(hr_solid_texture_find(-3)->solid_box == NULL);
     return hr_test_end();
 }
