@@ -33,6 +33,18 @@ static inline const hr_param *shape_param(const hr_create_args *args, const char
     return NULL;
 }
 
+/* Whether the number v lies in spec's range (every number does when
+ * min > max), each end inclusive unless its HR_PARAM_*_EXCLUSIVE flag is
+ * set; NaN never does, and -0 is not > 0. The host's check before create
+ * (and so a module's or a test's that must agree with it). */
+static inline int shape_param_accepts(const hr_param_spec *spec, double v)
+{
+    if (!(spec->min <= spec->max)) return 1;
+    const int above = spec->flags & HR_PARAM_MIN_EXCLUSIVE ? v > spec->min : v >= spec->min;
+    const int below = spec->flags & HR_PARAM_MAX_EXCLUSIVE ? v < spec->max : v <= spec->max;
+    return above && below;
+}
+
 /* The designated initializers of a class's parameter list. */
 #define SHAPE_PARAMS(specs)                                                    \
     .params = (specs), .param_count = (int32_t)(sizeof(specs) / sizeof((specs)[0]))

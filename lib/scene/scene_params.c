@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <hitray/shape_kit_module.h>
+
 #include "util/errors.h"
 #include "util/suggest.h"
 
@@ -74,7 +76,7 @@ static hr_status check_numbers(hr_context *ctx, const hr_shape_class *cls, const
                             "shape '%s': element %lld of parameter '%s' must be a finite "
                             "number, not %g",
                             cls->name, (long long)i, p->name, v);
-        if (!hr_param_spec_accepts(spec, v)) {
+        if (!shape_param_accepts(spec, v)) {
             char range[128];
             format_range(spec, range, sizeof range);
             return hr_error(ctx, HR_ERROR_PARAMETER,
@@ -144,7 +146,7 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
                 return hr_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s': parameter '%s' must be a finite number, not %g",
                                 cls->name, p->name, p->number);
-            if (!hr_param_spec_accepts(spec, p->number)) {
+            if (!shape_param_accepts(spec, p->number)) {
                 char range[128];
                 format_range(spec, range, sizeof range);
                 return hr_error(ctx, HR_ERROR_PARAMETER,

@@ -35,6 +35,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <hitray/shape_kit_module.h>
+
 #include "fuzz_input.h"
 #include "fuzz_modes.h"
 #include "hr_test.h"
@@ -245,7 +247,7 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
         if (spec->type == HR_PARAM_NUMBER) {
             p->number = fuzz_double(in);
             if (isnan(*number)) *number = p->number;
-            if (!hr_param_spec_accepts(spec, p->number)) valid = 0;
+            if (!shape_param_accepts(spec, p->number)) valid = 0;
             /* The teapot's steps a side are counted: a fraction is refused. */
             if (strcmp(spec->name, "tessellation") == 0 && p->number != floor(p->number))
                 valid = 0;
@@ -283,7 +285,7 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
                 if (!spec->required && fuzz_choice(in, 2) == 0) p->count = 0;
                 for (int j = 0; j < p->count; j++) {
                     a[j] = fuzz_double(in);
-                    if (!isfinite(a[j]) || !hr_param_spec_accepts(spec, a[j])) valid = 0;
+                    if (!isfinite(a[j]) || !shape_param_accepts(spec, a[j])) valid = 0;
                 }
             }
             known = 0;
