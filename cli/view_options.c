@@ -15,9 +15,9 @@ const cli_option cli_view_options[] = {
     {"--camera", NULL, 1, "EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE", "the first camera, as for 'hitray render'"},
     {"--min-weight", NULL, 1, NULL, NULL},
     {"--exact", NULL, 0, NULL, NULL},
-    {"--output", "-o", 1, "FILE", "where the P key saves the picture: FILE itself the first time, then FILE "
-                                  "numbered (hitray-view-2.png, ...) so that no picture is overwritten "
-                                  "(default hitray-view.png; .png .exr .ppm .pfm .jpg .hdr .bmp .tga)"},
+    {"--output", "-o", 1, "FILE", "where the P key saves the picture: FILE, or once that exists FILE numbered "
+                                  "(hitray-view-2.png, -3, ...), so that no picture is overwritten (default "
+                                  "hitray-view.png; .png .exr .ppm .pfm .jpg .hdr .bmp .tga)"},
     {"--screenshot", NULL, 1, "FILE", "write every final pass to FILE and print 'wrote FILE: camera ...' (for "
                                       "scripts)"},
     {"--exit-when-done", NULL, 0, NULL, "quit after the first final pass (and its --screenshot)"},

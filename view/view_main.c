@@ -5,8 +5,10 @@
  * options, a missing display, the scene file (its located error), the
  * camera. So a mistake costs one line on stderr and exit status 2 (a
  * usage error) or 1 (a file, the display), and leaves no window behind. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "render_flags.h"
@@ -185,6 +187,23 @@ static int save_frame(viewer *v, const char *path, const char *verb)
     return 0;
 }
 
+static int file_exists(const char *path, void *user)
+{
+    (void)user;
+    return access(path, F_OK) == 0;
+}
+
+/* P: the picture shown into -o's file, or the first numbered name beside it
+ * no file has yet. */
+static void save_numbered(viewer *v)
+{
+    char path[PATH_MAX];
+    if (!view_save_path(v->req->output, file_exists, NULL, path, sizeof path))
+        cli_error("view: no free name to save to beside '%s'", v->req->output);
+    else
+        save_frame(v, path, "saved");
+}
+
 /* The tiles finished since the last call into the texture, and the window
  * drawn. `all`: the whole picture (the first draw). */
 static void show_tiles(viewer *v, int all)
@@ -259,8 +278,10 @@ static void on_key(viewer *v, SDL_Keycode key)
     case VIEW_PRINT_CAMERA:
         view_camera_line(&v->camera, line, sizeof line);
         print_line(line);
+        view_camera_option(&v->camera, line, sizeof line);
+        print_line(line);
         return;
-    case VIEW_SAVE: save_frame(v, v->req->output, "saved"); return;
+    case VIEW_SAVE: save_numbered(v); return;
     default: break;
     }
     if (!view_apply(action, &v->camera, &v->steps)) return; /* a step change */
