@@ -41,16 +41,6 @@ static void format_bound(double v, char *buf, size_t size)
     else snprintf(buf, size, "%g", v);
 }
 
-/* Whether v lies in the spec's range (none when min > max), each end
- * inclusive unless its HR_PARAM_*_EXCLUSIVE flag is set. -0 is not > 0. */
-static int in_range(const hr_param_spec *spec, double v)
-{
-    if (!(spec->min <= spec->max)) return 1;
-    int above = spec->flags & HR_PARAM_MIN_EXCLUSIVE ? v > spec->min : v >= spec->min;
-    int below = spec->flags & HR_PARAM_MAX_EXCLUSIVE ? v < spec->max : v <= spec->max;
-    return above && below;
-}
-
 /* "[0, 100]", or with an excluded end "(0, 1e+06]: it must be > 0", for
  * the messages of out-of-range numbers. */
 static void format_range(const hr_param_spec *spec, char *buf, size_t size)
@@ -84,7 +74,7 @@ static hr_status check_numbers(hr_context *ctx, const hr_shape_class *cls, const
                             "shape '%s': element %lld of parameter '%s' must be a finite "
                             "number, not %g",
                             cls->name, (long long)i, p->name, v);
-        if (!in_range(spec, v)) {
+        if (!hr_param_spec_accepts(spec, v)) {
             char range[128];
             format_range(spec, range, sizeof range);
             return hri_error(ctx, HR_ERROR_PARAMETER,
@@ -154,7 +144,7 @@ hr_status hri_params_resolve(hr_scene *scene, const hr_shape_class *cls, const c
                 return hri_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s': parameter '%s' must be a finite number, not %g",
                                 cls->name, p->name, p->number);
-            if (!in_range(spec, p->number)) {
+            if (!hr_param_spec_accepts(spec, p->number)) {
                 char range[128];
                 format_range(spec, range, sizeof range);
                 return hri_error(ctx, HR_ERROR_PARAMETER,
