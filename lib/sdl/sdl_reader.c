@@ -2,6 +2,7 @@
 #include "sdl/sdl_reader.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -226,6 +227,16 @@ static hr_status not_a_command(sdl_reader *r, sdl_located t)
     if (near.best)
         return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s (did you mean '%s'?)", found,
                          near.best);
+    /* No typo of a known word: perhaps a shape whose module is elsewhere.
+     * The library's message says where modules were looked for. */
+    const hr_shape_class *cls = NULL;
+    char searched[1024];
+    if (hr_context_find_shape_class(r->ctx, t.token->text, &cls, NULL) != HR_OK) {
+        snprintf(searched, sizeof searched, "%s", hr_context_last_error(r->ctx));
+        return sdl_error(r->src, HR_ERROR_SDL, t,
+                         "unknown keyword %s: no SDL command, and %s (HITRAY_SHAPE_PATH, ':'-separated, "
+                         "names more directories to search)", found, searched);
+    }
     return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s", found);
 }
 
