@@ -156,6 +156,18 @@ typedef struct hr_param_spec {
 #define HR_PARAM_MIN_EXCLUSIVE 1 /* the number must be > min */
 #define HR_PARAM_MAX_EXCLUSIVE 2 /* the number must be < max */
 
+/* Whether the number v lies in spec's range (every number does when
+ * min > max), each end inclusive unless its HR_PARAM_*_EXCLUSIVE flag is
+ * set; NaN never does, and -0 is not > 0. The host's check before create,
+ * for a module or a test that must agree with it. */
+static inline int hr_param_spec_accepts(const hr_param_spec *spec, double v)
+{
+    if (!(spec->min <= spec->max)) return 1;
+    const int above = spec->flags & HR_PARAM_MIN_EXCLUSIVE ? v > spec->min : v >= spec->min;
+    const int below = spec->flags & HR_PARAM_MAX_EXCLUSIVE ? v < spec->max : v <= spec->max;
+    return above && below;
+}
+
 /* Flags of a shape class. */
 #define HR_SHAPE_CLOSED 1    /* a solid: entering/exiting alternate (CSG-able) */
 #define HR_SHAPE_COMPOSITE 2 /* takes HR_PARAM_OBJECT children (CSG) */

@@ -195,6 +195,25 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
                   all[n_all - 1].entering ? "entering" : "exiting");
 }
 
+/* The given number named `name`, NaN when absent. */
+static double given_number(const hr_param *given, int count, const char *name)
+{
+    for (int i = 0; i < count; i++)
+        if (given[i].type == HR_PARAM_NUMBER && strcmp(given[i].name, name) == 0)
+            return given[i].number;
+    return NAN;
+}
+
+/* Relations between parameters that no single range can state, so a
+ * built-in class refuses them in create: taperedTube's wall may be no
+ * thicker than its cap's radius (t <= s). */
+static int relations_hold(const hr_shape_class *cls, const hr_param *given, int count)
+{
+    if (strcmp(cls->name, "taperedTube") == 0)
+        return given_number(given, count, "t") <= given_number(given, count, "s");
+    return 1;
+}
+
 /* Creates the class with every parameter from the input, in the class's
  * order: a number parameter any double, a string one a choice. Returns 1
  * with the shape made, 0 when it was not. A refusal must come with
@@ -202,7 +221,8 @@ static void check_ray(const harness_shape *shape, const fuzz_class *fc, ref_shap
  * The host checks ranges before create (shape_module.h), so a module may
  * rely on it; the built-in modules refuse out-of-range values all the same
  * (in case a host or a test passes them) and nothing else but a wrong
- * string, so for them both ways are checked. A plugin is given only what
+ * string or a broken relation (relations_hold), so for them both ways are
+ * checked. A plugin is given only what
  * a host would pass it, and may refuse more than its ranges say (the
  * example disk refuses a radius of 0). `number` receives the first number
  * parameter (s, tube), NaN for none. */
@@ -225,9 +245,7 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
         if (spec->type == HR_PARAM_NUMBER) {
             p->number = fuzz_double(in);
             if (isnan(*number)) *number = p->number;
-            /* min > max: no range stated */
-            if (spec->min <= spec->max && !(p->number >= spec->min && p->number <= spec->max))
-                valid = 0;
+            if (!hr_param_spec_accepts(spec, p->number)) valid = 0;
             /* The teapot's steps a side are counted: a fraction is refused. */
             if (strcmp(spec->name, "tessellation") == 0 && p->number != floor(p->number))
                 valid = 0;
@@ -265,14 +283,13 @@ static int create_shape(fuzz_input *in, const fuzz_class *fc, harness_shape *sha
                 if (!spec->required && fuzz_choice(in, 2) == 0) p->count = 0;
                 for (int j = 0; j < p->count; j++) {
                     a[j] = fuzz_double(in);
-                    if (!isfinite(a[j]) || (spec->min <= spec->max &&
-                                            !(a[j] >= spec->min && a[j] <= spec->max)))
-                        valid = 0;
+                    if (!isfinite(a[j]) || !hr_param_spec_accepts(spec, a[j])) valid = 0;
                 }
             }
             known = 0;
         }
     }
+    if (!relations_hold(cls, given, count)) valid = 0;
     if (!fc->builtin && !valid) return 0; /* the host refuses it, create never sees it */
     if (!fc->builtin) known = 0;
     char error[512];
