@@ -32,6 +32,7 @@ int cmd_hits(int argc, char **argv);
 int cmd_shapes(int argc, char **argv);
 int cmd_savings(int argc, char **argv);
 int cmd_view(int argc, char **argv);
+int cmd_completion(int argc, char **argv);
 
 /* --- errors (args.c) --- */
 
@@ -45,10 +46,19 @@ int cli_library_error(const hr_context *ctx, hr_status status);
 
 /* --- options (args.c) --- */
 
+/* One option of a verb: what the parser accepts, and what --help and the
+ * shell completion (cmd_completion.c) say of it, from this one entry. */
 typedef struct cli_option {
     const char *name;  /* "--size" */
     const char *alias; /* "-o", or NULL */
     int takes_value;
+    /* The value as the help names it: "WxH", "N"; "FILE" (or ending in it)
+     * a file name, completed as one; "auto|all" its choices. NULL when the
+     * option takes none. */
+    const char *value;
+    /* Its text in --help, wrapped there. NULL in a verb's table: the render
+     * flag of that name, with its shared text (cli_render_flags_table). */
+    const char *help;
 } cli_option;
 
 typedef struct cli_parser {
@@ -72,6 +82,33 @@ void cli_parser_init(cli_parser *p, int argc, char **argv, const cli_option *opt
  * "--name value", "--name=value" and "-o value"; an option given twice is
  * an error. */
 int cli_next(cli_parser *p, const char **name, const char **value);
+
+/* The "options:" lines of --help: each option with its value's name, its
+ * text from column 25, wrapped within 78 columns. */
+void cli_print_options(FILE *f, const cli_option *table);
+
+/* The verbs (verbs.c): one table for the dispatch, the help, the "did you
+ * mean" and the shell completion. */
+typedef struct cli_verb {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *synopsis; /* what follows the name in the help */
+    const char *summary;  /* lines after the first start with '\n' and are indented */
+    const cli_option *options; /* its own options (ending with a zeroed entry) */
+    unsigned render_flags;     /* and the shared render flags it takes (CLI_RF_*) */
+    /* What its positional argument is, for the completion: "FILE" a file
+     * name, "a|b" its choices, NULL none. */
+    const char *operand;
+} cli_verb;
+extern const cli_verb cli_verbs[];
+extern const int32_t cli_verb_count;
+/* The options of `hitray` itself, before a verb. */
+extern const cli_option cli_top_options[];
+
+/* Each verb's own options, for its parser, its --help and the completion
+ * (the render flags it shares are added by cli_render_flags_table). */
+extern const cli_option cli_render_options[], cli_hits_options[], cli_shapes_options[], cli_savings_options[],
+    cli_view_options[], cli_completion_options[];
 
 /* Strict number parsing: the whole text must be the number. Each reports its
  * own error naming `option` (a usage error) and returns 0 on failure, 1 on

@@ -16,15 +16,14 @@ static const char hits_help[] =
     "Numbers are printed with 17 significant digits, so they read back exactly.\n"
     "No output means no hit. `object` is the object's index in file order.\n"
     "\n"
-    "options:\n"
-    "  --origin X,Y,Z        where the ray starts (world coordinates)\n"
-    "  --dir X,Y,Z           its direction (any non-zero length; t is measured\n"
-    "                        in units of this vector)\n"
-    "  --all                 every hit, not just the first\n"
-    "  -h, --help            this help\n";
+    "options:\n";
 
-static const cli_option hits_options[] = {
-    {"--origin", NULL, 1}, {"--dir", NULL, 1}, {"--all", NULL, 0}, {"--help", "-h", 0}, {NULL, NULL, 0},
+const cli_option cli_hits_options[] = {
+    {"--origin", NULL, 1, "X,Y,Z", "where the ray starts (world coordinates)"},
+    {"--dir", NULL, 1, "X,Y,Z", "its direction (any non-zero length; t is measured in units of this vector)"},
+    {"--all", NULL, 0, NULL, "every hit, not just the first"},
+    {"--help", "-h", 0, NULL, "this help"},
+    {NULL, NULL, 0, NULL, NULL},
 };
 
 typedef struct hits_request {
@@ -41,7 +40,7 @@ static int parse_request(int argc, char **argv, hits_request *r)
 {
     memset(r, 0, sizeof *r);
     cli_parser p;
-    cli_parser_init(&p, argc, argv, hits_options);
+    cli_parser_init(&p, argc, argv, cli_hits_options);
     const char *name, *value;
     int kind;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
@@ -54,6 +53,7 @@ static int parse_request(int argc, char **argv, hits_request *r)
         double v[3];
         if (!strcmp(name, "--help")) {
             fputs(hits_help, stdout);
+            cli_print_options(stdout, cli_hits_options);
             return PARSE_HELP;
         } else if (!strcmp(name, "--all")) {
             r->all = 1;

@@ -26,48 +26,8 @@ static const char render_help[] =
     "Prints one summary line: size, time, rays cast, rays per second (on\n"
     "stderr when the image goes to standard output).\n"
     "\n"
-    "options:\n"
-    "  -o, --output FILE     the image to write (required; - for standard output)\n"
-    "  --format NAME         the image format, whatever OUT's extension: png,\n"
-    "                        exr, ppm, pfm, jpeg, hdr, bmp or tga\n"
-    "  --jpeg-quality N      JPEG quality 1..100 (default 90)\n"
-    "  --window X,Y,W,H      render only the W x H pixels whose top left is X,Y\n"
-    "                        (from the image's top left); each is bit for bit\n"
-    "                        that pixel of the full render\n"
-    "  -q, --quiet           no summary line, no progress bar (errors and\n"
-    "                        warnings still go to stderr)\n"
-    "  --exr FILE            also write the linear image as OpenEXR\n"
-    "  --size WxH            image size in pixels (default: an NFF file's\n"
-    "                        resolution, else 640x480)\n"
-    "  --spp N               samples per pixel (default 1: the pixel centre)\n"
-    "  --threads N           threads (default 0: every core); the image is the\n"
-    "                        same whatever the count\n"
-    "  --depth N             recursion depth for reflection and refraction\n"
-    "                        (default: the scene's maxRecursionDepth)\n"
-    "  --block N             Hill's blocksize: one ray per NxN pixels (default 1)\n"
-    "  --camera EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE\n"
-    "                        eye, look-at point, up vector, vertical view angle in\n"
-    "                        degrees; overrides the scene's camera (a scene with\n"
-    "                        none is framed automatically)\n"
-    "  --png16               16-bit PNG\n"
-    "  --linear-png          PNG values written linearly, not sRGB-encoded\n"
-    "  --exr-half            EXR with 16-bit half floats\n"
-    "  --effects auto|all    auto (default): run only the effects the scene calls\n"
-    "                        for; all: run every effect's code (same image), to\n"
-    "                        measure what the analysis saves\n"
-    "  --adaptive T          adaptive supersampling: sample pixel corners, give\n"
-    "                        the --spp pattern (N >= 2) only to pixels whose\n"
-    "                        corners differ by more than T (0..1, sRGB-encoded)\n"
-    "  --min-weight W        trace no reflected or refracted ray whose weight\n"
-    "                        (product of the coefficients on its path) is below W\n"
-    "                        (default: what is cut of a sample weighs under 2^-24\n"
-    "                        in all, which changes no pixel of a normal scene)\n"
-    "  --exact               trace every contribution, however small (no cut-off,\n"
-    "                        no ray budget)\n"
-    "  --stats               also print rays by kind and the effects that ran\n"
-    "  --stats-json FILE     write the statistics as one JSON object\n"
-    "  -h, --help            this help\n"
-    "\n" CLI_EXIT_HELP;
+    "options:\n";
+static const char render_help_end[] = "\n" CLI_EXIT_HELP;
 
 typedef struct render_request {
     const char *scene_path;
@@ -81,15 +41,33 @@ typedef struct render_request {
     int32_t jpeg_quality; /* 0: the library's default */
 } render_request;
 
-#define RENDER_FLAGS                                                                                          \
-    (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_EFFECTS | \
-     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT | CLI_RF_WINDOW)
-
-static const cli_option render_own_options[] = {
-    {"--output", "-o", 1},  {"--exr", NULL, 1},      {"--png16", NULL, 0}, {"--linear-png", NULL, 0},
-    {"--exr-half", NULL, 0}, {"--stats", NULL, 0},   {"--stats-json", NULL, 1},
-    {"--format", NULL, 1},  {"--quiet", "-q", 0},    {"--jpeg-quality", NULL, 1},
-    {"--help", "-h", 0},    {NULL, NULL, 0},
+/* In --help's order; the entries with no text are the shared render
+ * flags (render_flags.c). */
+const cli_option cli_render_options[] = {
+    {"--output", "-o", 1, "FILE", "the image to write (required; - for standard output)"},
+    {"--format", NULL, 1, "NAME", "the image format, whatever OUT's extension: png, exr, ppm, pfm, jpeg, hdr, "
+                                  "bmp or tga"},
+    {"--jpeg-quality", NULL, 1, "N", "JPEG quality 1..100 (default 90)"},
+    {"--window", NULL, 1, NULL, NULL},
+    {"--quiet", "-q", 0, NULL, "no summary line, no progress bar (errors and warnings still go to stderr)"},
+    {"--exr", NULL, 1, "FILE", "also write the linear image as OpenEXR"},
+    {"--size", NULL, 1, NULL, NULL},
+    {"--spp", NULL, 1, NULL, NULL},
+    {"--threads", NULL, 1, NULL, NULL},
+    {"--depth", NULL, 1, NULL, NULL},
+    {"--block", NULL, 1, NULL, NULL},
+    {"--camera", NULL, 1, NULL, NULL},
+    {"--png16", NULL, 0, NULL, "16-bit PNG"},
+    {"--linear-png", NULL, 0, NULL, "PNG values written linearly, not sRGB-encoded"},
+    {"--exr-half", NULL, 0, NULL, "EXR with 16-bit half floats"},
+    {"--effects", NULL, 1, NULL, NULL},
+    {"--adaptive", NULL, 1, NULL, NULL},
+    {"--min-weight", NULL, 1, NULL, NULL},
+    {"--exact", NULL, 0, NULL, NULL},
+    {"--stats", NULL, 0, NULL, "also print rays by kind and the effects that ran"},
+    {"--stats-json", NULL, 1, "FILE", "write the statistics as one JSON object"},
+    {"--help", "-h", 0, NULL, "this help"},
+    {NULL, NULL, 0, NULL, NULL},
 };
 
 /* `-o -`: the image goes to standard output, and the summary to stderr. */
@@ -113,8 +91,8 @@ static int parse_request(int argc, char **argv, render_request *r)
 {
     memset(r, 0, sizeof *r);
     cli_render_flags_init(&r->flags);
-    cli_option options[32];
-    if (cli_render_flags_table(render_own_options, RENDER_FLAGS, options, 32) < 0)
+    cli_option options[CLI_TABLE_CAPACITY];
+    if (cli_render_flags_table(cli_render_options, CLI_RENDER_FLAGS, options, CLI_TABLE_CAPACITY) < 0)
         return cli_usage_error("render: the option table is too small");
     cli_parser p;
     cli_parser_init(&p, argc, argv, options);
@@ -129,6 +107,8 @@ static int parse_request(int argc, char **argv, render_request *r)
         }
         if (!strcmp(name, "--help")) {
             fputs(render_help, stdout);
+            cli_print_options(stdout, options);
+            fputs(render_help_end, stdout);
             return PARSE_HELP;
         }
         if (cli_render_flag_bit(name)) {

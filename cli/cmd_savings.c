@@ -35,17 +35,7 @@ static const char savings_help[] =
     "  both                  adaptive and min-weight together (when each has\n"
     "                        one value)\n"
     "\n"
-    "options:\n"
-    "  --size WxH            image size in pixels (default 320x240)\n"
-    "  --spp N               samples per pixel of the full render, and of the\n"
-    "                        pixels adaptive supersampling refines (default 16)\n"
-    "  --adaptive T[,T...]   adaptive thresholds, 0..1 (default 0.05); up to 8\n"
-    "  --min-weight W[,W...] contribution cut-offs, 0..1 (default 0.05); up to 8\n"
-    "  --depth N             recursion depth (default: the scene's)\n"
-    "  --threads N           threads (default 0: every core); the numbers are the\n"
-    "                        same whatever the count\n"
-    "  --json                one JSON object per row instead of the table\n"
-    "  -h, --help            this help\n";
+    "options:\n";
 
 #define MAX_VALUES 8
 
@@ -79,11 +69,18 @@ static int parse_values(const char *option, const char *text, double *out, int *
 
 /* --adaptive and --min-weight are savings' own: each takes a list, a row
  * per value. */
-static const cli_option savings_own_options[] = {
-    {"--adaptive", NULL, 1}, {"--min-weight", NULL, 1}, {"--json", NULL, 0}, {"--help", "-h", 0},
-    {NULL, NULL, 0},
+const cli_option cli_savings_options[] = {
+    {"--size", NULL, 1, "WxH", "image size in pixels (default 320x240)"},
+    {"--spp", NULL, 1, "N", "samples per pixel of the full render, and of the pixels adaptive supersampling "
+                            "refines (default 16)"},
+    {"--adaptive", NULL, 1, "T[,T...]", "adaptive thresholds, 0..1 (default 0.05); up to 8"},
+    {"--min-weight", NULL, 1, "W[,W...]", "contribution cut-offs, 0..1 (default 0.05); up to 8"},
+    {"--depth", NULL, 1, "N", "recursion depth (default: the scene's)"},
+    {"--threads", NULL, 1, "N", "threads (default 0: every core); the numbers are the same whatever the count"},
+    {"--json", NULL, 0, NULL, "one JSON object per row instead of the table"},
+    {"--help", "-h", 0, NULL, "this help"},
+    {NULL, NULL, 0, NULL, NULL},
 };
-#define SAVINGS_FLAGS (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_DEPTH | CLI_RF_THREADS)
 
 /* 0: go on; -1: stop with success (help printed); else the exit status of
  * the error reported (CLI_EXIT_USAGE). */
@@ -94,8 +91,8 @@ static int parse_request(int argc, char **argv, savings_request *r)
     r->flags.width = 320, r->flags.height = 240, r->flags.spp = 16;
     r->adaptive[0] = 0.05, r->min_weight[0] = 0.05;
     r->adaptive_count = r->min_weight_count = 1;
-    cli_option options[16];
-    if (cli_render_flags_table(savings_own_options, SAVINGS_FLAGS, options, 16) < 0)
+    cli_option options[CLI_TABLE_CAPACITY];
+    if (cli_render_flags_table(cli_savings_options, CLI_SAVINGS_FLAGS, options, CLI_TABLE_CAPACITY) < 0)
         return cli_error("savings: the option table is too small");
     cli_parser p;
     cli_parser_init(&p, argc, argv, options);
@@ -110,6 +107,7 @@ static int parse_request(int argc, char **argv, savings_request *r)
         }
         if (!strcmp(name, "--help")) {
             fputs(savings_help, stdout);
+            cli_print_options(stdout, options);
             return -1;
         }
         /* Its own options first: --adaptive and --min-weight are also render

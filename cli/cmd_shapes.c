@@ -15,10 +15,9 @@ static const char shapes_help[] =
     "(u, v) for image textures. Modules that could not be loaded are listed\n"
     "with the reason.\n"
     "\n"
-    "options:\n"
-    "  -h, --help            this help\n";
+    "options:\n";
 
-static const cli_option shapes_options[] = {{"--help", "-h", 0}, {NULL, NULL, 0}};
+const cli_option cli_shapes_options[] = {{"--help", "-h", 0, NULL, "this help"}, {NULL, NULL, 0, NULL, NULL}};
 
 static const char *type_name(int32_t type)
 {
@@ -107,7 +106,7 @@ static int list_modules(hr_context *ctx)
 int cmd_shapes(int argc, char **argv)
 {
     cli_parser p;
-    cli_parser_init(&p, argc, argv, shapes_options);
+    cli_parser_init(&p, argc, argv, cli_shapes_options);
     const char *name, *value;
     int kind;
     while ((kind = cli_next(&p, &name, &value)) != CLI_END) {
@@ -115,6 +114,7 @@ int cmd_shapes(int argc, char **argv)
         if (kind == CLI_POSITIONAL) return cli_usage_error("shapes: unexpected argument '%s'", value);
         if (!strcmp(name, "--help")) {
             fputs(shapes_help, stdout);
+            cli_print_options(stdout, cli_shapes_options);
             return CLI_EXIT_OK;
         }
     }

@@ -1,26 +1,8 @@
 /* hitray: the command-line front end of the library. This file only picks
- * the verb; each verb lives in its own cmd_*.c. */
+ * the verb (verbs.c lists them); each verb lives in its own cmd_*.c. */
 #include <string.h>
 
 #include "cli.h"
-
-/* The verbs: one table for the dispatch, the help and the "did you mean". */
-typedef struct cli_verb {
-    const char *name;
-    int (*run)(int argc, char **argv);
-    const char *synopsis; /* what follows the name in the help */
-    const char *summary;  /* lines after the first start with '\n' and are indented */
-} cli_verb;
-
-static const cli_verb verbs[] = {
-    {"render", cmd_render, "SCENE -o OUT", "render an SDL or NFF scene file to an image (.png .exr .ppm .pfm)"},
-    {"hits", cmd_hits, "SCENE --origin X,Y,Z --dir X,Y,Z [--all]", "where a ray meets the scene, as JSON lines"},
-    {"shapes", cmd_shapes, "", "list the shape modules found and their parameters"},
-    {"savings", cmd_savings, "SCENE", "rays saved and error caused by each opt-in saving"},
-    {"view", cmd_view, "SCENE",
-     "render in a window, coarse to fine, and fly Hill's camera\n(runs hitray-view, built where SDL2 is installed)"},
-};
-#define VERB_COUNT (int32_t)(sizeof verbs / sizeof verbs[0])
 
 /* Help columns: the name and synopsis, then the summary from column 25. */
 #define SUMMARY_COLUMN 24
@@ -33,8 +15,8 @@ static void print_usage(void)
           "\n"
           "commands:\n",
           stdout);
-    for (int32_t i = 0; i < VERB_COUNT; i++) {
-        const cli_verb *v = &verbs[i];
+    for (int32_t i = 0; i < cli_verb_count; i++) {
+        const cli_verb *v = &cli_verbs[i];
         int width = printf("  %s%s%s", v->name, *v->synopsis ? " " : "", v->synopsis);
         if (width >= SUMMARY_COLUMN - 1) printf("\n%*s", SUMMARY_COLUMN, "");
         else printf("%*s", SUMMARY_COLUMN - width, "");
@@ -44,12 +26,9 @@ static void print_usage(void)
         }
         putchar('\n');
     }
-    fputs("\n"
-          "options:\n"
-          "  -h, --help            this help; 'hitray <command> --help' for a command's\n"
-          "  --version             the version of hitray and of the library it runs on\n"
-          "\n" CLI_EXIT_HELP,
-          stdout);
+    fputs("\noptions:\n", stdout);
+    cli_print_options(stdout, cli_top_options);
+    fputs("\n" CLI_EXIT_HELP, stdout);
 }
 
 static int print_version(void)
@@ -78,12 +57,13 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (version) return print_version();
-    for (int32_t i = 0; i < VERB_COUNT; i++)
-        if (!strcmp(verb, verbs[i].name)) return verbs[i].run(argc - 1, argv + 1);
+    for (int32_t i = 0; i < cli_verb_count; i++)
+        if (!strcmp(verb, cli_verbs[i].name)) return cli_verbs[i].run(argc - 1, argv + 1);
     if (verb[0] == '-') return cli_usage_error("unknown option '%s' (see 'hitray --help')", verb);
-    const char *names[VERB_COUNT];
-    for (int32_t i = 0; i < VERB_COUNT; i++) names[i] = verbs[i].name;
-    const char *near = hr_suggest(verb, names, VERB_COUNT);
+    const char *names[32];
+    int32_t count = 0;
+    for (int32_t i = 0; i < cli_verb_count && count < 32; i++) names[count++] = cli_verbs[i].name;
+    const char *near = hr_suggest(verb, names, count);
     if (near) return cli_usage_error("unknown command '%s' (did you mean '%s'? see 'hitray --help')", verb, near);
     return cli_usage_error("unknown command '%s' (see 'hitray --help')", verb);
 }

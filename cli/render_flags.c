@@ -9,18 +9,42 @@ typedef struct render_flag {
     unsigned bit;
 } render_flag;
 
+/* Each flag as `hitray render --help` describes it; a verb that means
+ * something else by one (the viewer's --spp is its final pass's) gives its
+ * own text in its own table. */
 static const render_flag flags[] = {
-    {{"--size", NULL, 1}, CLI_RF_SIZE},
-    {{"--spp", NULL, 1}, CLI_RF_SPP},
-    {{"--threads", NULL, 1}, CLI_RF_THREADS},
-    {{"--depth", NULL, 1}, CLI_RF_DEPTH},
-    {{"--block", NULL, 1}, CLI_RF_BLOCK},
-    {{"--camera", NULL, 1}, CLI_RF_CAMERA},
-    {{"--effects", NULL, 1}, CLI_RF_EFFECTS},
-    {{"--adaptive", NULL, 1}, CLI_RF_ADAPTIVE},
-    {{"--min-weight", NULL, 1}, CLI_RF_MIN_WEIGHT},
-    {{"--exact", NULL, 0}, CLI_RF_EXACT},
-    {{"--window", NULL, 1}, CLI_RF_WINDOW},
+    {{"--size", NULL, 1, "WxH", "image size in pixels (default: an NFF file's resolution, else 640x480)"},
+     CLI_RF_SIZE},
+    {{"--spp", NULL, 1, "N", "samples per pixel (default 1: the pixel centre)"}, CLI_RF_SPP},
+    {{"--threads", NULL, 1, "N", "threads (default 0: every core); the image is the same whatever the count"},
+     CLI_RF_THREADS},
+    {{"--depth", NULL, 1, "N", "recursion depth for reflection and refraction (default: the scene's "
+                               "maxRecursionDepth)"},
+     CLI_RF_DEPTH},
+    {{"--block", NULL, 1, "N", "Hill's blocksize: one ray per NxN pixels (default 1)"}, CLI_RF_BLOCK},
+    {{"--camera", NULL, 1, "EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE",
+      "eye, look-at point, up vector, vertical view angle in degrees; overrides the scene's camera (a scene "
+      "with none is framed automatically)"},
+     CLI_RF_CAMERA},
+    {{"--effects", NULL, 1, "auto|all",
+      "auto (default): run only the effects the scene calls for; all: run every effect's code (same "
+      "image), to measure what the analysis saves"},
+     CLI_RF_EFFECTS},
+    {{"--adaptive", NULL, 1, "T",
+      "adaptive supersampling: sample pixel corners, give the --spp pattern (N >= 2) only to pixels whose "
+      "corners differ by more than T (0..1, sRGB-encoded)"},
+     CLI_RF_ADAPTIVE},
+    {{"--min-weight", NULL, 1, "W",
+      "trace no reflected or refracted ray whose weight (product of the coefficients on its path) is "
+      "below W (default: what is cut of a sample weighs under 2^-24 in all, which changes no pixel of a "
+      "normal scene)"},
+     CLI_RF_MIN_WEIGHT},
+    {{"--exact", NULL, 0, NULL, "trace every contribution, however small (no cut-off, no ray budget)"},
+     CLI_RF_EXACT},
+    {{"--window", NULL, 1, "X,Y,W,H",
+      "render only the W x H pixels whose top left is X,Y (from the image's top left); each is bit for bit "
+      "that pixel of the full render"},
+     CLI_RF_WINDOW},
 };
 #define FLAG_COUNT (int)(sizeof flags / sizeof flags[0])
 
@@ -42,12 +66,25 @@ static int named(const cli_option *table, const char *name)
     return 0;
 }
 
+static const render_flag *find_flag(const char *name)
+{
+    for (int i = 0; i < FLAG_COUNT; i++)
+        if (!strcmp(flags[i].option.name, name)) return &flags[i];
+    return NULL;
+}
+
 int cli_render_flags_table(const cli_option *own, unsigned which, cli_option *out, int capacity)
 {
     int n = 0;
     for (const cli_option *o = own; o->name; o++) {
         if (n + 1 >= capacity) return -1;
-        out[n++] = *o;
+        out[n] = *o;
+        if (!o->help) { /* the shared flag here, in the verb's order */
+            const render_flag *shared = find_flag(o->name);
+            if (!shared || !(which & shared->bit)) return -1;
+            out[n] = shared->option;
+        }
+        n++;
     }
     for (int i = 0; i < FLAG_COUNT; i++) {
         if (!(which & flags[i].bit) || named(own, flags[i].option.name)) continue;
@@ -60,9 +97,8 @@ int cli_render_flags_table(const cli_option *own, unsigned which, cli_option *ou
 
 unsigned cli_render_flag_bit(const char *name)
 {
-    for (int i = 0; i < FLAG_COUNT; i++)
-        if (!strcmp(flags[i].option.name, name)) return flags[i].bit;
-    return 0;
+    const render_flag *f = find_flag(name);
+    return f ? f->bit : 0;
 }
 
 static int parse_effects(const char *option, const char *text, int32_t *out)

@@ -25,6 +25,19 @@
 #define CLI_RF_EXACT (1u << 9)      /* --exact */
 #define CLI_RF_WINDOW (1u << 10)    /* --window X,Y,W,H */
 
+/* The render flags each verb takes. The viewer's passes set their own
+ * block sizes and samples and keep every effect's analysis on
+ * (view/view_passes.c): --effects, --adaptive and --window are not the
+ * viewer's. savings renders every pixel and has its own --adaptive and
+ * --min-weight, lists of values. */
+#define CLI_RENDER_FLAGS                                                                                     \
+    (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_EFFECTS | \
+     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT | CLI_RF_WINDOW)
+#define CLI_VIEW_FLAGS                                                                                       \
+    (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_MIN_WEIGHT | \
+     CLI_RF_EXACT)
+#define CLI_SAVINGS_FLAGS (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_DEPTH | CLI_RF_THREADS)
+
 typedef struct cli_render_flags {
     unsigned given;        /* the CLI_RF_* flags the user gave */
     int32_t width, height; /* 0: the scene file's size */
@@ -40,9 +53,13 @@ typedef struct cli_render_flags {
 void cli_render_flags_init(cli_render_flags *f);
 
 /* The verb's option table: `own` (ending with a zeroed entry) followed by
- * the render flags in `which`, a flag `own` already names left to `own`.
- * Returns the entries written before the zeroed end, or -1 if `capacity`
- * (counting the end) is too small. */
+ * the render flags in `which` it does not name. An entry of `own` with no
+ * help text is the render flag of that name, put there (so a verb orders
+ * its help); one with a text is the verb's own, even if a render flag has
+ * its name. Returns the entries written before the zeroed end, or -1 if
+ * `capacity` (counting the end) is too small or an entry with no text
+ * names no render flag in `which`. */
+#define CLI_TABLE_CAPACITY 40
 int cli_render_flags_table(const cli_option *own, unsigned which, cli_option *out, int capacity);
 
 /* The CLI_RF_* bit of a render flag's name, 0 for any other option. */

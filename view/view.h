@@ -11,7 +11,8 @@
  *
  * The files: view_main.c (options, the order of the checks, the event
  * loop), view_passes.c (which passes), view_render.c (the render thread),
- * view_keys.c (keys to camera moves), view_status.c (the window title),
+ * view_keys.c (keys to camera moves), view_save_path.c (the P key's file
+ * names), view_status.c (the window title),
  * view_pixels.c (linear light to the window's 8-bit sRGB). Only the window
  * code (view_main.c, view_window.c) knows SDL. */
 #ifndef HITRAY_VIEW_H
@@ -126,6 +127,18 @@ extern const char view_keys_help[];
 /* "camera ex ey ez lx ly lz ux uy uz angle": the SDL line, every number
  * written so that it reads back to the same double. */
 void view_camera_line(const hr_camera *cam, char *buf, size_t size);
+/* "--camera ex,ey,ez,lx,ly,lz,ux,uy,uz,angle": the same camera as the
+ * option of 'hitray render' and 'hitray view', numbers as above. */
+void view_camera_option(const hr_camera *cam, char *buf, size_t size);
+
+/* --- where P saves (view_save_path.c) --- */
+
+/* `path` if no file has that name (`exists` says, given `user`), else the
+ * first of path-2, path-3, ... (the number before the extension:
+ * shot-2.png) that none has. 1 and the name in `out`, or 0 if it does not
+ * fit in `size` or 100000 names are taken. */
+int view_save_path(const char *path, int (*exists)(const char *path, void *user), void *user, char *out,
+                   size_t size);
 
 /* --- the status line (view_status.c) --- */
 

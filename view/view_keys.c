@@ -15,8 +15,10 @@ const char view_keys_help[] =
     "  Up / Down    pitch: look up / down (about u)\n"
     "  Q / E        roll left / right (about n)\n"
     "  [ / ]        halve / double the slide step and the angle\n"
-    "  C            print the camera as an SDL 'camera' line\n"
-    "  P            save the picture shown (-o FILE) and print its camera line\n"
+    "  C            print the camera as an SDL 'camera' line and as the --camera\n"
+    "               option\n"
+    "  P            save the picture shown (-o FILE, numbered once it exists)\n"
+    "               and print its camera line\n"
     "  H            print these keys\n"
     "  Esc          quit\n";
 
@@ -65,6 +67,13 @@ int view_apply(view_action action, hr_camera *cam, view_steps *steps)
 void view_camera_line(const hr_camera *cam, char *buf, size_t size)
 {
     snprintf(buf, size, "camera %.17g %.17g %.17g  %.17g %.17g %.17g  %.17g %.17g %.17g  %.17g", cam->eye.x,
+             cam->eye.y, cam->eye.z, cam->look.x, cam->look.y, cam->look.z, cam->up.x, cam->up.y, cam->up.z,
+             cam->view_angle);
+}
+
+void view_camera_option(const hr_camera *cam, char *buf, size_t size)
+{
+    snprintf(buf, size, "--camera %.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", cam->eye.x,
              cam->eye.y, cam->eye.z, cam->look.x, cam->look.y, cam->look.z, cam->up.x, cam->up.y, cam->up.z,
              cam->view_angle);
 }

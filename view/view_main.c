@@ -5,8 +5,10 @@
  * options, a missing display, the scene file (its located error), the
  * camera. So a mistake costs one line on stderr and exit status 2 (a
  * usage error) or 1 (a file, the display), and leaves no window behind. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "render_flags.h"
@@ -25,29 +27,13 @@ static const char view_help[] =
     "title shows the pass, rays per second, the effects that ran and the\n"
     "time to the final pass. Needs a display (X11 or Wayland).\n"
     "\n"
-    "options:\n"
-    "  --size WxH            image size in pixels (default: an NFF file's\n"
-    "                        resolution, else 640x480)\n"
-    "  --spp N               samples per pixel of the final pass (default 1);\n"
-    "                        the block passes cast one ray per block\n"
-    "  --threads N           threads (default 0: every core)\n"
-    "  --depth N             recursion depth for reflection and refraction\n"
-    "                        (default: the scene's maxRecursionDepth)\n"
-    "  --block N             the finest pass: one ray per NxN block (default 1);\n"
-    "                        refining stops there, to frame a slow scene fast\n"
-    "  --camera EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE\n"
-    "                        the first camera, as for 'hitray render'\n"
-    "  -o, --output FILE     where the P key saves the picture (default\n"
-    "                        hitray-view.png; .png .exr .ppm .pfm)\n"
-    "  --screenshot FILE     write every final pass to FILE and print\n"
-    "                        'wrote FILE: camera ...' (for scripts)\n"
-    "  --exit-when-done      quit after the first final pass (and its\n"
-    "                        --screenshot)\n"
-    "  -h, --help            this help\n"
+    "options:\n";
+
+static const char view_help_end[] =
     "\n"
     "The final pass is the image 'hitray render' makes with the same scene,\n"
-    "size, --spp, --depth, --block, --min-weight, --exact and camera, bit for bit; a block pass is\n"
-    "'hitray render --block N'.\n"
+    "size, --spp, --depth, --block, --min-weight, --exact and camera, bit for\n"
+    "bit; a block pass is 'hitray render --block N'.\n"
     "\n";
 
 #define DEFAULT_OUTPUT "hitray-view.png"
@@ -59,17 +45,6 @@ typedef struct view_request {
     int exit_when_done;
     cli_render_flags flags;
 } view_request;
-
-static const cli_option view_own_options[] = {
-    {"--output", "-o", 1}, {"--screenshot", NULL, 1}, {"--exit-when-done", NULL, 0}, {"--help", "-h", 0},
-    {NULL, NULL, 0},
-};
-/* The viewer's passes set their own block sizes and samples and keep every
- * effect's analysis on (view_passes.c): --effects and --adaptive are not
- * the viewer's. */
-#define VIEW_FLAGS \
-    (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_MIN_WEIGHT | \
-     CLI_RF_EXACT)
 
 /* Go on, stop after the help, or stop with the exit status of the error
  * reported. */
@@ -89,8 +64,8 @@ static int parse_request(int argc, char **argv, view_request *r)
     memset(r, 0, sizeof *r);
     cli_render_flags_init(&r->flags);
     r->output = DEFAULT_OUTPUT;
-    cli_option options[32];
-    if (cli_render_flags_table(view_own_options, VIEW_FLAGS, options, 32) < 0)
+    cli_option options[CLI_TABLE_CAPACITY];
+    if (cli_render_flags_table(cli_view_options, CLI_VIEW_FLAGS, options, CLI_TABLE_CAPACITY) < 0)
         return cli_error("view: the option table is too small");
     cli_parser p;
     cli_parser_init(&p, argc, argv, options);
@@ -105,6 +80,8 @@ static int parse_request(int argc, char **argv, view_request *r)
         }
         if (!strcmp(name, "--help")) {
             fputs(view_help, stdout);
+            cli_print_options(stdout, options);
+            fputs(view_help_end, stdout);
             fputs(view_keys_help, stdout);
             return PARSE_HELP;
         }
@@ -210,6 +187,23 @@ static int save_frame(viewer *v, const char *path, const char *verb)
     return 0;
 }
 
+static int file_exists(const char *path, void *user)
+{
+    (void)user;
+    return access(path, F_OK) == 0;
+}
+
+/* P: the picture shown into -o's file, or the first numbered name beside it
+ * no file has yet. */
+static void save_numbered(viewer *v)
+{
+    char path[PATH_MAX];
+    if (!view_save_path(v->req->output, file_exists, NULL, path, sizeof path))
+        cli_error("view: no free name to save to beside '%s'", v->req->output);
+    else
+        save_frame(v, path, "saved");
+}
+
 /* The tiles finished since the last call into the texture, and the window
  * drawn. `all`: the whole picture (the first draw). */
 static void show_tiles(viewer *v, int all)
@@ -284,8 +278,10 @@ static void on_key(viewer *v, SDL_Keycode key)
     case VIEW_PRINT_CAMERA:
         view_camera_line(&v->camera, line, sizeof line);
         print_line(line);
+        view_camera_option(&v->camera, line, sizeof line);
+        print_line(line);
         return;
-    case VIEW_SAVE: save_frame(v, v->req->output, "saved"); return;
+    case VIEW_SAVE: save_numbered(v); return;
     default: break;
     }
     if (!view_apply(action, &v->camera, &v->steps)) return; /* a step change */

@@ -1,4 +1,5 @@
-/* The context: creation, search directories, version. Module loading and
+/* The context: its state, search directories, version (hr_context_create,
+ * which gives it the host table, is trace/host_services.c). Module loading and
  * class lookup live in module_loader.c; errors in errors.c. */
 #include <stdlib.h>
 #include <string.h>
@@ -8,30 +9,26 @@
 #include "core/module_loader.h"
 #include "util/strutil.h"
 
-HR_API hr_status hr_context_create(hr_context **out)
+hr_context *hri_context_new(void)
 {
-    if (!out) return HR_ERROR_INVALID_ARGUMENT;
-    *out = NULL;
     hr_context *ctx = calloc(1, sizeof *ctx);
-    if (!ctx) return HR_ERROR_OUT_OF_MEMORY;
+    if (!ctx) return NULL;
     if (pthread_mutex_init(&ctx->lock, NULL) != 0) {
         free(ctx);
-        return HR_ERROR_OUT_OF_MEMORY;
+        return NULL;
     }
     if (pthread_key_create(&ctx->error_key, free) != 0) {
         pthread_mutex_destroy(&ctx->lock);
         free(ctx);
-        return HR_ERROR_OUT_OF_MEMORY;
+        return NULL;
     }
-    hr_host_services_init(&ctx->host);
-    *out = ctx;
-    return HR_OK;
+    return ctx;
 }
 
 HR_API void hr_context_destroy(hr_context *ctx)
 {
     if (!ctx) return;
-    hr_modules_unload_all(ctx);
+    hri_modules_unload_all(ctx);
     for (int32_t i = 0; i < ctx->dir_count; i++) free(ctx->dirs[i]);
     free(ctx->dirs);
     /* Only the calling thread's slot can be reached; other threads' slots are
@@ -53,15 +50,15 @@ HR_API hr_status hr_context_set_scene_memory(hr_context *ctx, uint64_t bytes)
 HR_API hr_status hr_context_add_shape_dir(hr_context *ctx, const char *dir)
 {
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
-    if (!dir || !*dir) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "empty shape directory");
-    char *copy = hr_strdup(dir);
-    if (!copy) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!dir || !*dir) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "empty shape directory");
+    char *copy = hri_strdup(dir);
+    if (!copy) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     pthread_mutex_lock(&ctx->lock);
     char **dirs = realloc(ctx->dirs, (size_t)(ctx->dir_count + 1) * sizeof *dirs);
     if (!dirs) {
         pthread_mutex_unlock(&ctx->lock);
         free(copy);
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     }
     dirs[ctx->dir_count++] = copy;
     ctx->dirs = dirs;

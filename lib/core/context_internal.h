@@ -42,7 +42,7 @@ struct hr_context {
     hr_host host;             /* the services table given to every module */
     /* The last class hr_context_find_shape_class found, and the counts of
      * classes and modules it was found among: both only grow until
-     * hr_modules_unload_all (which clears this), so while they are the same
+     * hri_modules_unload_all (which clears this), so while they are the same
      * the first match for that name is still this one. A scene adds its
      * objects class after class, mostly of one class. */
     hr_class_entry last_found;
@@ -50,9 +50,9 @@ struct hr_context {
     uint64_t scene_memory; /* hr_context_set_scene_memory; 0: the default */
 };
 
-/* The host services table (host_services.c: trace_child inlines object
- * tracing from object_trace.h, as the scene walk does, and the scratch
- * lists are the walk's own stack, trace.c). */
-void hr_host_services_init(hr_host *host);
+/* A context with everything but its host table (ctx->host, zeroed), or NULL
+ * when out of memory. The table is made of the tracing layer's services, so
+ * hr_context_create, which fills it, lives above core (trace/host_services.c). */
+hr_context *hri_context_new(void);
 
 #endif

@@ -40,7 +40,7 @@ static void module_free(hr_module *m)
     free(m);
 }
 
-void hr_modules_unload_all(hr_context *ctx)
+void hri_modules_unload_all(hr_context *ctx)
 {
     for (int32_t i = 0; i < ctx->module_count; i++) module_free(ctx->modules[i]);
     free(ctx->modules);
@@ -61,7 +61,7 @@ static void refuse(hr_module *m, const char *fmt, ...)
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
     free(m->error);
-    m->error = hr_strdup(buf);
+    m->error = hri_strdup(buf);
 }
 
 /* Copy a class declared with `struct_size` bytes into a zeroed full-size
@@ -150,7 +150,7 @@ static hr_module *load_file(hr_context *ctx, const char *path)
 {
     hr_module *m = calloc(1, sizeof *m);
     if (!m) return NULL;
-    m->path = hr_strdup(path);
+    m->path = hri_strdup(path);
     if (!m->path) {
         free(m);
         return NULL;
@@ -218,7 +218,7 @@ static hr_module *refused_insecure(const char *path, const char *dir)
 {
     hr_module *m = calloc(1, sizeof *m);
     if (!m) return NULL;
-    if (!(m->path = hr_strdup(path))) {
+    if (!(m->path = hri_strdup(path))) {
         free(m);
         return NULL;
     }
@@ -240,7 +240,7 @@ static void scan_dir(hr_context *ctx, const char *dir)
     size_t count = 0, cap = 0;
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.' || !hr_str_ends_with(e->d_name, ".so")) continue;
+        if (e->d_name[0] == '.' || !hri_str_ends_with(e->d_name, ".so")) continue;
         if (count == cap) {
             size_t ncap = cap ? cap * 2 : 16;
             char **grown = realloc(names, ncap * sizeof *grown);
@@ -248,7 +248,7 @@ static void scan_dir(hr_context *ctx, const char *dir)
             names = grown;
             cap = ncap;
         }
-        if (!(names[count] = hr_strdup(e->d_name))) break;
+        if (!(names[count] = hri_strdup(e->d_name))) break;
         count++;
     }
     closedir(d);
@@ -256,7 +256,7 @@ static void scan_dir(hr_context *ctx, const char *dir)
      * no module never allocated the list). */
     if (count > 1) qsort(names, count, sizeof *names, compare_names);
     for (size_t i = 0; i < count; i++) {
-        char *path = hr_path_join(dir, names[i]);
+        char *path = hri_path_join(dir, names[i]);
         if (path && !known_path(ctx, path)) {
             hr_module *m = insecure ? refused_insecure(path, dir) : load_file(ctx, path);
             if (m && !append_module(ctx, m)) module_free(m);
@@ -275,10 +275,10 @@ static char *default_shape_dir(void)
     /* The loader reports the path it was given (often bin/../lib/...); the
      * canonical one reads better in messages and `hitray shapes`. */
     char *real = realpath(info.dli_fname, NULL);
-    char *libdir = hr_path_dirname(real ? real : info.dli_fname);
+    char *libdir = hri_path_dirname(real ? real : info.dli_fname);
     free(real);
     if (!libdir) return NULL;
-    char *dir = hr_path_join(libdir, "hitray/shapes");
+    char *dir = hri_path_join(libdir, "hitray/shapes");
     free(libdir);
     return dir;
 }
@@ -290,7 +290,7 @@ static void for_each_search_dir(hr_context *ctx, void (*fn)(hr_context *, const 
     for (int32_t i = 0; i < ctx->dir_count; i++) fn(ctx, ctx->dirs[i], user);
     const char *env = getenv("HITRAY_SHAPE_PATH");
     if (env && *env) {
-        char *copy = hr_strdup(env);
+        char *copy = hri_strdup(env);
         char *save = NULL;
         for (char *tok = copy ? strtok_r(copy, ":", &save) : NULL; tok;
              tok = strtok_r(NULL, ":", &save))
@@ -365,11 +365,11 @@ static hr_status not_found(hr_context *ctx, const char *name, char *msg, size_t 
         if (n > 0) len += (size_t)n;
     }
     hr_suggester near;
-    hr_suggester_init(&near, name);
-    for (int32_t i = 0; i < ctx->class_count; i++) hr_suggester_offer(&near, ctx->classes[i].cls->name);
+    hri_suggester_init(&near, name);
+    for (int32_t i = 0; i < ctx->class_count; i++) hri_suggester_offer(&near, ctx->classes[i].cls->name);
     for (int32_t i = 0; i < ctx->module_count; i++)
         for (int32_t j = 0; j < ctx->modules[i]->class_count; j++)
-            hr_suggester_offer(&near, ctx->modules[i]->classes[j].name);
+            hri_suggester_offer(&near, ctx->modules[i]->classes[j].name);
     char hint[128] = "";
     if (near.best) snprintf(hint, sizeof hint, " (did you mean '%.96s'?)", near.best);
     snprintf(msg, size, "no shape module provides '%s'%s (searched: %s)%s", name, hint,
@@ -381,7 +381,7 @@ HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
                                              const hr_shape_class **out,
                                              const char **module_path)
 {
-    if (!ctx || !name || !out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL argument");
+    if (!ctx || !name || !out) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL argument");
     hr_class_entry scratch;
     char msg[MESSAGE_SIZE];
     pthread_mutex_lock(&ctx->lock);
@@ -409,7 +409,7 @@ HR_API hr_status hr_context_find_shape_class(hr_context *ctx, const char *name,
         st = not_found(ctx, name, msg, sizeof msg);
     }
     pthread_mutex_unlock(&ctx->lock);
-    return st ? hr_error(ctx, st, "%s", msg) : HR_OK;
+    return st ? hri_error(ctx, st, "%s", msg) : HR_OK;
 }
 
 /* Put a class in front of the searched modules. */
@@ -430,7 +430,7 @@ static hr_status add_explicit_class(hr_context *ctx, const hr_shape_class *cls, 
 HR_API hr_status hr_context_load_module(hr_context *ctx, const char *path)
 {
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
-    if (!path || !*path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "empty module path");
+    if (!path || !*path) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "empty module path");
     char msg[MESSAGE_SIZE] = "out of memory";
     pthread_mutex_lock(&ctx->lock);
     hr_module *m = load_file(ctx, path);
@@ -449,19 +449,19 @@ HR_API hr_status hr_context_load_module(hr_context *ctx, const char *path)
             st = add_explicit_class(ctx, &m->classes[i], m->path);
     }
     pthread_mutex_unlock(&ctx->lock);
-    return st ? hr_error(ctx, st, "%s", msg) : HR_OK;
+    return st ? hri_error(ctx, st, "%s", msg) : HR_OK;
 }
 
 HR_API hr_status hr_context_register_shape_class(hr_context *ctx, const hr_shape_class *cls,
                                                  const char *origin)
 {
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
-    if (!cls) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL shape class");
+    if (!cls) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL shape class");
     char msg[MESSAGE_SIZE] = "out of memory";
     pthread_mutex_lock(&ctx->lock);
     hr_status st = HR_OK;
     hr_module *m = calloc(1, sizeof *m);
-    if (!m || !(m->path = hr_strdup(origin && *origin ? origin : "(registered in process)")) ||
+    if (!m || !(m->path = hri_strdup(origin && *origin ? origin : "(registered in process)")) ||
         !(m->classes = calloc(1, sizeof *m->classes)) ||
         !(m->class_ptrs = calloc(1, sizeof *m->class_ptrs))) {
         module_free(m);
@@ -481,7 +481,7 @@ HR_API hr_status hr_context_register_shape_class(hr_context *ctx, const hr_shape
         }
     }
     pthread_mutex_unlock(&ctx->lock);
-    return st ? hr_error(ctx, st, "%s", msg) : HR_OK;
+    return st ? hri_error(ctx, st, "%s", msg) : HR_OK;
 }
 
 HR_API int32_t hr_context_module_count(hr_context *ctx)
@@ -502,11 +502,11 @@ static const char *or_empty(const char *text)
 HR_API hr_status hr_context_module(hr_context *ctx, int32_t index, hr_module_entry *out)
 {
     if (!ctx || !out || out->struct_size < sizeof(uint32_t))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL argument or struct_size 0");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "NULL argument or struct_size 0");
     pthread_mutex_lock(&ctx->lock);
     if (index < 0 || index >= ctx->module_count) {
         pthread_mutex_unlock(&ctx->lock);
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "module index %d out of range [0, %d)",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "module index %d out of range [0, %d)",
                         (int)index, (int)ctx->module_count);
     }
     const hr_module *m = ctx->modules[index];

@@ -5,6 +5,6 @@
 #include "core/context_internal.h"
 
 /* dlclose every module and free the tables. */
-void hr_modules_unload_all(hr_context *ctx);
+void hri_modules_unload_all(hr_context *ctx);
 
 #endif

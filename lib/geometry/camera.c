@@ -40,27 +40,27 @@ static int camera_axes(const hr_camera *cam, hr_vec3 *u, hr_vec3 *v, hr_vec3 *n)
 
 HR_API hr_status hr_camera_validate(hr_context *ctx, const hr_camera *cam)
 {
-    if (!cam) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: NULL");
+    if (!cam) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: NULL");
     if (cam->width <= 0 || cam->height <= 0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "camera: image size %dx%d must be positive", (int)cam->width,
                         (int)cam->height);
     if (!v3_is_finite(cam->eye) || !v3_is_finite(cam->look) || !v3_is_finite(cam->up))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "camera: eye, look and up must be finite numbers");
     if (!(cam->view_angle > 0.0 && cam->view_angle < 180.0))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "camera: view angle %g must be in (0, 180) degrees", cam->view_angle);
     hr_vec3 u, v, n;
     if (v3_length(v3_sub(cam->eye, cam->look)) == 0.0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: eye and look are the same point");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: eye and look are the same point");
     if (!camera_axes(cam, &u, &v, &n))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "camera: up vector is zero or parallel to the view direction");
     return HR_OK;
 }
 
-int hr_camera_frame_init(hr_camera_frame *f, const hr_camera *cam)
+int hri_camera_frame_init(hr_camera_frame *f, const hr_camera *cam)
 {
     hr_vec3 u, v, n;
     if (cam->width <= 0 || cam->height <= 0 ||
@@ -80,9 +80,9 @@ HR_API hr_status hr_camera_ray(const hr_camera *cam, double px, double py, hr_ra
     hr_camera_frame f;
     /* The same refusals as hr_camera_validate, and a finite position: the
      * direction promised is unit length, never NaN. */
-    if (!cam || !out || !isfinite(px) || !isfinite(py) || !hr_camera_frame_init(&f, cam))
+    if (!cam || !out || !isfinite(px) || !isfinite(py) || !hri_camera_frame_init(&f, cam))
         return HR_ERROR_INVALID_ARGUMENT;
-    hr_camera_frame_ray(&f, px, py, out);
+    hri_camera_frame_ray(&f, px, py, out);
     return HR_OK;
 }
 

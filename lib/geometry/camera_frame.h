@@ -17,23 +17,23 @@ typedef struct hr_camera_frame {
 } hr_camera_frame;
 
 /* 0 (and the frame unset) where hr_camera_ray refuses the camera. */
-int hr_camera_frame_init(hr_camera_frame *f, const hr_camera *cam);
+int hri_camera_frame_init(hr_camera_frame *f, const hr_camera *cam);
 
 /* The ray's two coordinates on the image plane, each of one image
  * coordinate alone, so a caller that makes a row of rays works each column's
  * and the row's out once: x of px, y of py (pixels from the top left). */
-static inline double hr_camera_frame_x(const hr_camera_frame *f, double px)
+static inline double hri_camera_frame_x(const hr_camera_frame *f, double px)
 {
     return f->half_width * (2.0 * px / f->width - 1.0);
 }
 
-static inline double hr_camera_frame_y(const hr_camera_frame *f, double py)
+static inline double hri_camera_frame_y(const hr_camera_frame *f, double py)
 {
     return f->half_height * (1.0 - 2.0 * py / f->height);
 }
 
 /* The ray through the image plane's point (x, y). */
-static inline void hr_camera_frame_ray_xy(const hr_camera_frame *f, double x, double y, hr_ray *out)
+static inline void hri_camera_frame_ray_xy(const hr_camera_frame *f, double x, double y, hr_ray *out)
 {
     hr_vec3 dir = v3_add(v3_add(v3_scale(f->u, x), v3_scale(f->v, y)), v3_neg(f->n));
     out->origin = f->eye;
@@ -41,9 +41,9 @@ static inline void hr_camera_frame_ray_xy(const hr_camera_frame *f, double x, do
 }
 
 /* The ray through image position (px, py), pixels from the top left. */
-static inline void hr_camera_frame_ray(const hr_camera_frame *f, double px, double py, hr_ray *out)
+static inline void hri_camera_frame_ray(const hr_camera_frame *f, double px, double py, hr_ray *out)
 {
-    hr_camera_frame_ray_xy(f, hr_camera_frame_x(f, px), hr_camera_frame_y(f, py), out);
+    hri_camera_frame_ray_xy(f, hri_camera_frame_x(f, px), hri_camera_frame_y(f, py), out);
 }
 
 #endif

@@ -198,8 +198,8 @@ HR_API hr_status hr_transform_from_matrix(hr_transform *t, const double m[16])
     return HR_OK;
 }
 
-HR_API hr_vec3 hr_transform_point(const double m[16], hr_vec3 p) { return hr_xform_point(m, p); }
+HR_API hr_vec3 hr_transform_point(const double m[16], hr_vec3 p) { return hri_xform_point(m, p); }
 
-HR_API hr_vec3 hr_transform_vector(const double m[16], hr_vec3 v) { return hr_xform_vector(m, v); }
+HR_API hr_vec3 hr_transform_vector(const double m[16], hr_vec3 v) { return hri_xform_vector(m, v); }
 
-HR_API hr_vec3 hr_transform_normal(const double inv[16], hr_vec3 n) { return hr_xform_normal(inv, n); }
+HR_API hr_vec3 hr_transform_normal(const double inv[16], hr_vec3 n) { return hri_xform_normal(inv, n); }

@@ -14,37 +14,37 @@
 #include <hitray/common.h>
 
 /* Coordinate r (0, 1, 2) of M p and of M v: the operations of
- * hr_xform_point and hr_xform_vector for that row, in their order, so one
+ * hri_xform_point and hri_xform_vector for that row, in their order, so one
  * coordinate has the same bits as the whole product's. */
-static inline double hr_xform_point_row(const double m[16], hr_vec3 p, int r)
+static inline double hri_xform_point_row(const double m[16], hr_vec3 p, int r)
 {
     const double *row = m + 4 * r;
     return row[0] * p.x + row[1] * p.y + row[2] * p.z + row[3];
 }
-static inline double hr_xform_vector_row(const double m[16], hr_vec3 v, int r)
+static inline double hri_xform_vector_row(const double m[16], hr_vec3 v, int r)
 {
     const double *row = m + 4 * r;
     return row[0] * v.x + row[1] * v.y + row[2] * v.z;
 }
 
 /* M p (with translation). */
-static inline hr_vec3 hr_xform_point(const double m[16], hr_vec3 p)
+static inline hr_vec3 hri_xform_point(const double m[16], hr_vec3 p)
 {
-    hr_vec3 r = {hr_xform_point_row(m, p, 0), hr_xform_point_row(m, p, 1),
-                 hr_xform_point_row(m, p, 2)};
+    hr_vec3 r = {hri_xform_point_row(m, p, 0), hri_xform_point_row(m, p, 1),
+                 hri_xform_point_row(m, p, 2)};
     return r;
 }
 
 /* M v (no translation). */
-static inline hr_vec3 hr_xform_vector(const double m[16], hr_vec3 v)
+static inline hr_vec3 hri_xform_vector(const double m[16], hr_vec3 v)
 {
-    hr_vec3 r = {hr_xform_vector_row(m, v, 0), hr_xform_vector_row(m, v, 1),
-                 hr_xform_vector_row(m, v, 2)};
+    hr_vec3 r = {hri_xform_vector_row(m, v, 0), hri_xform_vector_row(m, v, 1),
+                 hri_xform_vector_row(m, v, 2)};
     return r;
 }
 
 /* (M^-1)^T n: a normal back to world space, given M^-1. */
-static inline hr_vec3 hr_xform_normal(const double inv[16], hr_vec3 n)
+static inline hr_vec3 hri_xform_normal(const double inv[16], hr_vec3 n)
 {
     hr_vec3 r = {inv[0] * n.x + inv[4] * n.y + inv[8] * n.z,
                  inv[1] * n.x + inv[5] * n.y + inv[9] * n.z,
@@ -56,7 +56,7 @@ static inline hr_vec3 hr_xform_normal(const double inv[16], hr_vec3 n)
  * roundings that every error bound below uses. */
 #define HR_XFORM_GAMMA3 (3.0 * DBL_EPSILON * 0.5 / (1.0 - 3.0 * DBL_EPSILON * 0.5))
 
-/* What the error bound of M p (hr_xform_error) takes from M alone, per row:
+/* What the error bound of M p (hri_xform_error) takes from M alone, per row:
  * the sum of |linear part| and |translation|. An object works them out
  * once, when its transform is set, instead of on every hit. */
 typedef struct hr_xform_error_terms {
@@ -64,7 +64,7 @@ typedef struct hr_xform_error_terms {
     double shift_abs[3]; /* |m[4r+3]| */
 } hr_xform_error_terms;
 
-static inline hr_xform_error_terms hr_xform_error_terms_of(const double m[16])
+static inline hr_xform_error_terms hri_xform_error_terms_of(const double m[16])
 {
     hr_xform_error_terms k;
     for (int r = 0; r < 3; r++) {
@@ -77,8 +77,8 @@ static inline hr_xform_error_terms hr_xform_error_terms_of(const double m[16])
 
 /* The error bound of a point after p' = M p, where p carried `e` per
  * coordinate: |M| e carried through, plus the rounding of the product,
- * gamma(3) (|M| |p| + |translation|) per row; k = hr_xform_error_terms_of(m). */
-static inline double hr_xform_error_with(const double m[16], const hr_xform_error_terms *k,
+ * gamma(3) (|M| |p| + |translation|) per row; k = hri_xform_error_terms_of(m). */
+static inline double hri_xform_error_with(const double m[16], const hr_xform_error_terms *k,
                                          hr_vec3 p, double e)
 {
     double worst = 0.0;
@@ -113,7 +113,7 @@ static inline double hr_xform_error_with(const double m[16], const hr_xform_erro
  * of points, zeros, subnormals, infinities and NaN among them. */
 
 /* Every off-diagonal entry of m's linear part is zero. */
-static inline int hr_xform_is_diagonal(const double m[16])
+static inline int hri_xform_is_diagonal(const double m[16])
 {
     return m[1] == 0 && m[2] == 0 && m[4] == 0 && m[6] == 0 && m[8] == 0 && m[9] == 0;
 }
@@ -123,7 +123,7 @@ static inline int hr_xform_is_diagonal(const double m[16])
  * included), and an under- or overflow of the product can only turn a yes
  * into a no, which costs the full product and nothing else. Read from the
  * bits, 0 < |prod| <= DBL_MAX is one unsigned compare. */
-static inline int hr_xform_nonzero_finite(hr_vec3 r)
+static inline int hri_xform_nonzero_finite(hr_vec3 r)
 {
     const double prod = r.x * r.y * r.z;
     uint64_t bits;
@@ -131,40 +131,40 @@ static inline int hr_xform_nonzero_finite(hr_vec3 r)
     return (bits & ~(UINT64_C(1) << 63)) - 1 < UINT64_C(0x7fefffffffffffff);
 }
 
-/* hr_xform_point, hr_xform_vector and hr_xform_normal, the same bits, one
- * term a row when `diagonal` (hr_xform_is_diagonal of the matrix given). */
-static inline hr_vec3 hr_xform_point_as(const double m[16], int diagonal, hr_vec3 p)
+/* hri_xform_point, hri_xform_vector and hri_xform_normal, the same bits, one
+ * term a row when `diagonal` (hri_xform_is_diagonal of the matrix given). */
+static inline hr_vec3 hri_xform_point_as(const double m[16], int diagonal, hr_vec3 p)
 {
     if (diagonal) {
         const hr_vec3 r = {m[0] * p.x + m[3], m[5] * p.y + m[7], m[10] * p.z + m[11]};
-        if (hr_xform_nonzero_finite(r)) return r;
+        if (hri_xform_nonzero_finite(r)) return r;
     }
-    return hr_xform_point(m, p);
+    return hri_xform_point(m, p);
 }
-static inline hr_vec3 hr_xform_vector_as(const double m[16], int diagonal, hr_vec3 v)
+static inline hr_vec3 hri_xform_vector_as(const double m[16], int diagonal, hr_vec3 v)
 {
     if (diagonal) {
         const hr_vec3 r = {m[0] * v.x, m[5] * v.y, m[10] * v.z};
-        if (hr_xform_nonzero_finite(r)) return r;
+        if (hri_xform_nonzero_finite(r)) return r;
     }
-    return hr_xform_vector(m, v);
+    return hri_xform_vector(m, v);
 }
-static inline hr_vec3 hr_xform_normal_as(const double inv[16], int diagonal, hr_vec3 n)
+static inline hr_vec3 hri_xform_normal_as(const double inv[16], int diagonal, hr_vec3 n)
 {
     if (diagonal) {
         const hr_vec3 r = {inv[0] * n.x, inv[5] * n.y, inv[10] * n.z};
-        if (hr_xform_nonzero_finite(r)) return r;
+        if (hri_xform_nonzero_finite(r)) return r;
     }
-    return hr_xform_normal(inv, n);
+    return hri_xform_normal(inv, n);
 }
 
-/* hr_xform_error_with, the same bits, for a FINITE p: with m diagonal, a
+/* hri_xform_error_with, the same bits, for a FINITE p: with m diagonal, a
  * row's |products| are +0 but for the diagonal one, and adding +0 to a sum
  * of magnitudes changes nothing (+0 + +0 is +0). */
-static inline double hr_xform_error_as(const double m[16], const hr_xform_error_terms *k, int diagonal,
+static inline double hri_xform_error_as(const double m[16], const hr_xform_error_terms *k, int diagonal,
                                        hr_vec3 p, double e)
 {
-    if (!diagonal) return hr_xform_error_with(m, k, p, e);
+    if (!diagonal) return hri_xform_error_with(m, k, p, e);
     const double at[3] = {p.x, p.y, p.z};
     double worst = 0.0;
 #pragma GCC unroll 3
@@ -177,11 +177,11 @@ static inline double hr_xform_error_as(const double m[16], const hr_xform_error_
     return worst;
 }
 
-/* hr_xform_error_with for a matrix whose terms are not kept. */
-static inline double hr_xform_error(const double m[16], hr_vec3 p, double e)
+/* hri_xform_error_with for a matrix whose terms are not kept. */
+static inline double hri_xform_error(const double m[16], hr_vec3 p, double e)
 {
-    const hr_xform_error_terms k = hr_xform_error_terms_of(m);
-    return hr_xform_error_with(m, &k, p, e);
+    const hr_xform_error_terms k = hri_xform_error_terms_of(m);
+    return hri_xform_error_with(m, &k, p, e);
 }
 
 #endif

@@ -53,7 +53,7 @@ static char *temp_template(const char *target)
 {
     const char *slash = strrchr(target, '/');
     const char *base = slash ? slash + 1 : target;
-    char *dir = hr_path_dirname(target);
+    char *dir = hri_path_dirname(target);
     if (!dir) return NULL;
     size_t nb = strlen(base) < TEMP_BASE_MAX ? strlen(base) : TEMP_BASE_MAX;
     size_t n = strlen(dir) + nb + sizeof "/..XXXXXX";
@@ -70,7 +70,7 @@ static hr_status check_target(const hr_context *ctx, const char *target)
     struct stat st;
     if (stat(target, &st) != 0) return HR_OK; /* absent (or a dangling link): created */
     if (!S_ISREG(st.st_mode))
-        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': not a regular file (%s)", target,
+        return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': not a regular file (%s)", target,
                         S_ISDIR(st.st_mode)    ? "a directory"
                         : S_ISFIFO(st.st_mode) ? "a FIFO"
                         : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
@@ -78,7 +78,7 @@ static hr_status check_target(const hr_context *ctx, const char *target)
     /* access() grants root everything; a file nobody may write is read-only
      * for root too, as far as replacing it goes. */
     if ((st.st_mode & 0222) == 0 || access(target, W_OK) != 0)
-        return hr_error(ctx, HR_ERROR_IO,
+        return hri_error(ctx, HR_ERROR_IO,
                         "cannot write '%s': the file is read-only (mode %04o); make it writable "
                         "or remove it first",
                         target, (unsigned)(st.st_mode & 07777));
@@ -90,7 +90,7 @@ static hr_status check_target(const hr_context *ctx, const char *target)
 static int open_unnamed(const char *destination)
 {
 #ifdef O_TMPFILE
-    char *dir = hr_path_dirname(destination);
+    char *dir = hri_path_dirname(destination);
     if (!dir) return -1;
     int fd = open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0600);
     free(dir);
@@ -101,14 +101,14 @@ static int open_unnamed(const char *destination)
 #endif
 }
 
-hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atomic_file *out)
+hr_status hri_atomic_file_open(const hr_context *ctx, const char *target, hr_atomic_file *out)
 {
     memset(out, 0, sizeof *out);
     if (!target || !*target)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write an image: empty file name");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write an image: empty file name");
     size_t len = strlen(target);
     if (target[len - 1] == '/')
-        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': the name is a directory", target);
+        return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': the name is a directory", target);
     hr_status checked = check_target(ctx, target);
     if (checked) return checked;
 
@@ -117,15 +117,15 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
     struct stat link_st;
     char *destination = NULL;
     if (lstat(target, &link_st) == 0 && S_ISLNK(link_st.st_mode)) destination = realpath(target, NULL);
-    if (!destination) destination = hr_strdup(target);
-    if (!destination) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+    if (!destination) destination = hri_strdup(target);
+    if (!destination) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
     char *templ = NULL;
     int fd = open_unnamed(destination);
     if (fd < 0) {
         templ = temp_template(destination);
         if (!templ) {
             free(destination);
-            return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
+            return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", target);
         }
         fd = mkstemp(templ);
     }
@@ -133,7 +133,7 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
         int err = errno;
         free(templ);
         free(destination);
-        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
+        return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
     }
     FILE *fp = NULL;
     if (fchmod(fd, mode_for(destination)) != 0 || !(fp = fdopen(fd, "wb"))) {
@@ -142,7 +142,7 @@ hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atom
         if (templ) unlink(templ);
         free(templ);
         free(destination);
-        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
+        return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", target, strerror(err));
     }
     out->target = target;
     out->destination = destination;
@@ -161,12 +161,12 @@ static void release(hr_atomic_file *f)
 
 static hr_status fail(const hr_context *ctx, hr_atomic_file *f, int err)
 {
-    hr_status st = hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err));
-    hr_atomic_file_abort(f);
+    hr_status st = hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err));
+    hri_atomic_file_abort(f);
     return st;
 }
 
-hr_status hr_atomic_file_finish(const hr_context *ctx, hr_atomic_file *f)
+hr_status hri_atomic_file_finish(const hr_context *ctx, hr_atomic_file *f)
 {
     /* Everything must reach the disk before the rename publishes the file:
      * a crash after the rename must not leave an empty or partial image. */
@@ -205,7 +205,7 @@ static int name_unnamed(hr_atomic_file *f)
     return 0;
 }
 
-hr_status hr_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f)
+hr_status hri_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f)
 {
     int err = 0;
     if (!f->temp_path) err = name_unnamed(f);
@@ -215,12 +215,12 @@ hr_status hr_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f)
     f->temp_path = NULL; /* in place: nothing to remove */
     if (fclose(f->fp) != 0) err = errno; /* the data is synced: only report */
     f->fp = NULL;
-    hr_status st = err ? hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err)) : HR_OK;
+    hr_status st = err ? hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", f->target, strerror(err)) : HR_OK;
     release(f);
     return st;
 }
 
-void hr_atomic_file_abort(hr_atomic_file *f)
+void hri_atomic_file_abort(hr_atomic_file *f)
 {
     if (f->fp) fclose(f->fp); /* an unnamed file goes with its last descriptor */
     f->fp = NULL;

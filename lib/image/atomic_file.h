@@ -34,18 +34,18 @@ typedef struct hr_atomic_file {
 
 /* Create the temporary file for `target`. On failure nothing is left on
  * disk, `*out` needs no cleanup, and the error names `target`. */
-hr_status hr_atomic_file_open(const hr_context *ctx, const char *target, hr_atomic_file *out);
+hr_status hri_atomic_file_open(const hr_context *ctx, const char *target, hr_atomic_file *out);
 
 /* Flush and sync the temporary file: every failure of the disk (full, I/O
  * error) shows here, before anything is put in place. On failure `f` is
  * released (as by abort). */
-hr_status hr_atomic_file_finish(const hr_context *ctx, hr_atomic_file *f);
+hr_status hri_atomic_file_finish(const hr_context *ctx, hr_atomic_file *f);
 
 /* Put a finished file in place (name it, rename it onto the target). Either
  * way `f` is released. */
-hr_status hr_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f);
+hr_status hri_atomic_file_publish(const hr_context *ctx, hr_atomic_file *f);
 
 /* Give up: close and remove the temporary file, release `f`. */
-void hr_atomic_file_abort(hr_atomic_file *f);
+void hri_atomic_file_abort(hr_atomic_file *f);
 
 #endif

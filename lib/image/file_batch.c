@@ -15,11 +15,11 @@ struct hr_file_batch {
 
 HR_API hr_status hr_file_batch_create(hr_context *ctx, hr_file_batch **out)
 {
-    if (!out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "file batch: NULL output");
+    if (!out) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "file batch: NULL output");
     *out = NULL;
     if (!ctx) return HR_ERROR_INVALID_ARGUMENT;
     hr_file_batch *b = calloc(1, sizeof *b);
-    if (!b) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!b) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     b->ctx = ctx;
     *out = b;
     return HR_OK;
@@ -52,8 +52,8 @@ HR_API hr_status hr_file_batch_add_image(hr_file_batch *batch, const hr_image *i
 {
     if (!batch) return HR_ERROR_INVALID_ARGUMENT;
     hr_atomic_file *f = next_slot(batch);
-    if (!f) return hr_error(batch->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-    hr_status st = hr_image_write_unpublished(batch->ctx, image, path, options, f);
+    if (!f) return hri_error(batch->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    hr_status st = hri_image_write_unpublished(batch->ctx, image, path, options, f);
     if (st == HR_OK) keep(batch, f);
     return st;
 }
@@ -61,18 +61,18 @@ HR_API hr_status hr_file_batch_add_image(hr_file_batch *batch, const hr_image *i
 HR_API hr_status hr_file_batch_add_bytes(hr_file_batch *batch, const char *path, const void *data, size_t size)
 {
     if (!batch) return HR_ERROR_INVALID_ARGUMENT;
-    if (!path || !*path) return hr_error(batch->ctx, HR_ERROR_INVALID_ARGUMENT, "file batch: empty file name");
-    if (!data && size) return hr_error(batch->ctx, HR_ERROR_INVALID_ARGUMENT, "file batch: NULL data");
+    if (!path || !*path) return hri_error(batch->ctx, HR_ERROR_INVALID_ARGUMENT, "file batch: empty file name");
+    if (!data && size) return hri_error(batch->ctx, HR_ERROR_INVALID_ARGUMENT, "file batch: NULL data");
     hr_atomic_file *f = next_slot(batch);
-    if (!f) return hr_error(batch->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-    hr_status st = hr_atomic_file_open(batch->ctx, path, f);
+    if (!f) return hri_error(batch->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    hr_status st = hri_atomic_file_open(batch->ctx, path, f);
     if (st) return st;
     if (size && fwrite(data, 1, size, f->fp) != size) {
-        st = hr_error(batch->ctx, HR_ERROR_IO, "cannot write '%s': write error", path);
-        hr_atomic_file_abort(f);
+        st = hri_error(batch->ctx, HR_ERROR_IO, "cannot write '%s': write error", path);
+        hri_atomic_file_abort(f);
         return st;
     }
-    if ((st = hr_atomic_file_finish(batch->ctx, f))) return st;
+    if ((st = hri_atomic_file_finish(batch->ctx, f))) return st;
     keep(batch, f);
     return HR_OK;
 }
@@ -82,8 +82,8 @@ HR_API hr_status hr_file_batch_commit(hr_file_batch *batch)
     if (!batch) return HR_ERROR_INVALID_ARGUMENT;
     hr_status st = HR_OK;
     for (int32_t i = 0; i < batch->count; i++) {
-        if (st) hr_atomic_file_abort(&batch->files[i]);
-        else st = hr_atomic_file_publish(batch->ctx, &batch->files[i]);
+        if (st) hri_atomic_file_abort(&batch->files[i]);
+        else st = hri_atomic_file_publish(batch->ctx, &batch->files[i]);
     }
     batch->count = 0;
     return st;
@@ -92,7 +92,7 @@ HR_API hr_status hr_file_batch_commit(hr_file_batch *batch)
 HR_API void hr_file_batch_destroy(hr_file_batch *batch)
 {
     if (!batch) return;
-    for (int32_t i = 0; i < batch->count; i++) hr_atomic_file_abort(&batch->files[i]);
+    for (int32_t i = 0; i < batch->count; i++) hri_atomic_file_abort(&batch->files[i]);
     free(batch->files);
     free(batch);
 }

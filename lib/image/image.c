@@ -21,17 +21,17 @@ struct hr_image {
 static hr_status image_new(hr_context *ctx, int32_t width, int32_t height, int32_t channels, int zeroed,
                            hr_image **out)
 {
-    if (!out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: NULL output pointer");
+    if (!out) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: NULL output pointer");
     *out = NULL;
     if (width <= 0 || height <= 0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: size %dx%d must be positive",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: size %dx%d must be positive",
                         (int)width, (int)height);
     if (channels != 3 && channels != 4)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: %d channels; only 3 (RGB) or 4 (RGBA)",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image: %d channels; only 3 (RGB) or 4 (RGBA)",
                         (int)channels);
     size_t count = (size_t)width * (size_t)height;
     if (count > SIZE_MAX / sizeof(float) / (size_t)channels)
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: %dx%d is too large", (int)width, (int)height);
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: %dx%d is too large", (int)width, (int)height);
     count *= (size_t)channels;
     /* On cache lines of their own: a render's threads write neighbouring
      * tiles at once, and with rows of whole lines (a width that is a
@@ -46,7 +46,7 @@ static hr_status image_new(hr_context *ctx, int32_t width, int32_t height, int32
      * request may be refused, which changes nothing but the count. */
     size_t align = bytes >= IMAGE_HUGE_PAGE ? IMAGE_HUGE_PAGE : IMAGE_ALIGN;
     if (bytes > SIZE_MAX - (align - 1))
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: %dx%d is too large", (int)width, (int)height);
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: %dx%d is too large", (int)width, (int)height);
     bytes = (bytes + align - 1) / align * align;
 
     hr_image *image = malloc(sizeof *image);
@@ -56,7 +56,7 @@ static hr_status image_new(hr_context *ctx, int32_t width, int32_t height, int32
     if (!image || !pixels) {
         free(image);
         free(pixels);
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: out of memory for %dx%d", (int)width,
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "image: out of memory for %dx%d", (int)width,
                         (int)height);
     }
     image->width = width;
@@ -73,7 +73,7 @@ HR_API hr_status hr_image_create(hr_context *ctx, int32_t width, int32_t height,
     return image_new(ctx, width, height, channels, 1, out);
 }
 
-hr_status hr_image_create_unset(hr_context *ctx, int32_t width, int32_t height, int32_t channels,
+hr_status hri_image_create_unset(hr_context *ctx, int32_t width, int32_t height, int32_t channels,
                                 hr_image **out)
 {
     return image_new(ctx, width, height, channels, 0, out);
@@ -108,23 +108,23 @@ static hr_status read_options(const hr_context *ctx, const hr_image_write_option
     hr_image_write_options_default(o);
     if (given) {
         if (given->struct_size < sizeof(uint32_t))
-            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write options: struct_size not set");
+            return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write options: struct_size not set");
         HR_SIZED_COPY_IN(o, given);
     }
     if (o->png_bits == 0) o->png_bits = 8;
     if (o->png_bits != 8 && o->png_bits != 16)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': png_bits is %d; only 8 or 16",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': png_bits is %d; only 8 or 16",
                         path, (int)o->png_bits);
     if (o->format == HR_FORMAT_AUTO) {
         o->format = hr_image_format_from_path(path);
         if (o->format == HR_FORMAT_AUTO) {
             char known[128];
             hr_image_format_list(known, sizeof known);
-            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown image format (use %s)",
+            return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown image format (use %s)",
                             path, known);
         }
     } else if (!hr_image_format_name(o->format)) {
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown format code %d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': unknown format code %d",
                         path, (int)o->format);
     }
     return HR_OK;
@@ -132,36 +132,36 @@ static hr_status read_options(const hr_context *ctx, const hr_image_write_option
 
 /* Write `image` to `out`'s temporary file and finish it (image_writers.h):
  * on success only publishing is left; on failure `out` is released. */
-hr_status hr_image_write_unpublished(const hr_context *ctx, const hr_image *image, const char *path,
+hr_status hri_image_write_unpublished(const hr_context *ctx, const hr_image *image, const char *path,
                                      const hr_image_write_options *options, hr_atomic_file *out)
 {
-    if (!image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: NULL image");
-    if (!path || !*path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: empty file name");
+    if (!image) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: NULL image");
+    if (!path || !*path) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "image write: empty file name");
     hr_image_write_options o;
     hr_status st = read_options(ctx, options, path, &o);
     if (st) return st;
 
     hr_pixels px = {image->width, image->height, image->channels, image->pixels};
-    st = hr_atomic_file_open(ctx, path, out);
+    st = hri_atomic_file_open(ctx, path, out);
     if (st) return st;
     switch (o.format) {
-    case HR_FORMAT_PNG: st = hr_write_png(ctx, &px, &o, out); break;
-    case HR_FORMAT_EXR: st = hr_write_exr(ctx, &px, &o, out); break;
-    case HR_FORMAT_PPM: st = hr_write_ppm(ctx, &px, out); break;
-    case HR_FORMAT_PFM: st = hr_write_pfm(ctx, &px, out); break;
-    default: st = hr_write_stb(ctx, &px, &o, out); break;
+    case HR_FORMAT_PNG: st = hri_write_png(ctx, &px, &o, out); break;
+    case HR_FORMAT_EXR: st = hri_write_exr(ctx, &px, &o, out); break;
+    case HR_FORMAT_PPM: st = hri_write_ppm(ctx, &px, out); break;
+    case HR_FORMAT_PFM: st = hri_write_pfm(ctx, &px, out); break;
+    default: st = hri_write_stb(ctx, &px, &o, out); break;
     }
     if (st) {
-        hr_atomic_file_abort(out);
+        hri_atomic_file_abort(out);
         return st;
     }
-    return hr_atomic_file_finish(ctx, out);
+    return hri_atomic_file_finish(ctx, out);
 }
 
 HR_API hr_status hr_image_write(hr_context *ctx, const hr_image *image, const char *path,
                                 const hr_image_write_options *options)
 {
     hr_atomic_file out;
-    hr_status st = hr_image_write_unpublished(ctx, image, path, options, &out);
-    return st ? st : hr_atomic_file_publish(ctx, &out);
+    hr_status st = hri_image_write_unpublished(ctx, image, path, options, &out);
+    return st ? st : hri_atomic_file_publish(ctx, &out);
 }

@@ -119,17 +119,17 @@ static exr_result_t write_chunks(exr_context_t exr, const hr_pixels *px)
     return rv;
 }
 
-hr_status hr_write_exr(const hr_context *ctx, const hr_pixels *px,
+hr_status hri_write_exr(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out)
 {
     /* The encoder takes a row's length in bytes as an int32_t. */
     if ((size_t)px->width * (size_t)px->channels * sizeof(float) > INT32_MAX)
-        return hr_error(ctx, HR_ERROR_UNSUPPORTED, "cannot write '%s': %d pixels is too wide for the EXR writer",
+        return hri_error(ctx, HR_ERROR_UNSUPPORTED, "cannot write '%s': %d pixels is too wide for the EXR writer",
                         out->target, (int)px->width);
     /* OpenEXRCore writes with pwrite at offsets of its own; nothing may sit
      * in the stdio buffer in front of it. */
     if (fflush(out->fp) != 0)
-        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", out->target, strerror(errno));
+        return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", out->target, strerror(errno));
     exr_sink sink = {fileno(out->fp), {0}};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = on_exr_error;
@@ -148,7 +148,7 @@ hr_status hr_write_exr(const hr_context *ctx, const hr_pixels *px,
         if (rv == EXR_ERR_SUCCESS) rv = frv;
     }
     if (rv != EXR_ERR_SUCCESS)
-        return hr_error(ctx, rv == EXR_ERR_OUT_OF_MEMORY ? HR_ERROR_OUT_OF_MEMORY : HR_ERROR_IO,
+        return hri_error(ctx, rv == EXR_ERR_OUT_OF_MEMORY ? HR_ERROR_OUT_OF_MEMORY : HR_ERROR_IO,
                         "cannot write '%s': OpenEXR: %s", out->target,
                         sink.message[0] ? sink.message : exr_get_default_error_message(rv));
     return HR_OK;

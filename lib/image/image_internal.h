@@ -10,7 +10,7 @@
 
 /* hr_image_create without the zeroing: the same checks, errors and
  * alignment. */
-hr_status hr_image_create_unset(hr_context *ctx, int32_t width, int32_t height, int32_t channels,
+hr_status hri_image_create_unset(hr_context *ctx, int32_t width, int32_t height, int32_t channels,
                                 hr_image **out);
 
 #endif

@@ -59,13 +59,13 @@ static void encode_row(const float *src, int32_t width, int32_t channels, int sr
 {
     if (srgb && bits == 8 && channels == 3) {
         /* The common case, by the table all at once. */
-        hr_srgb8_encode_rgb(src, (size_t)width, channels, dst);
+        hri_srgb8_encode_rgb(src, (size_t)width, channels, dst);
         return;
     }
     uint32_t max_code = bits == 16 ? 65535u : 255u;
     for (int32_t x = 0; x < width; x++) {
         for (int32_t c = 0; c < channels; c++) {
-            uint32_t code = hr_code_value(*src++, srgb && c < 3, max_code);
+            uint32_t code = hri_code_value(*src++, srgb && c < 3, max_code);
             if (bits == 16) {
                 *dst++ = (png_byte)(code >> 8);
                 *dst++ = (png_byte)(code & 0xffu);
@@ -87,7 +87,7 @@ static hr_status write_image(const hr_context *ctx, const hr_pixels *px,
         /* png, info and row belong to the caller, which frees them. */
         char rows[64] = "";
         if (rows_done > 0) snprintf(rows, sizeof rows, " (after %d of %d rows)", (int)rows_done, (int)px->height);
-        return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': libpng: %s%s%s%s%s", out->target,
+        return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': libpng: %s%s%s%s%s", out->target,
                         failure->message, failure->warning[0] ? " (" : "", failure->warning,
                         failure->warning[0] ? ")" : "", rows);
     }
@@ -111,7 +111,7 @@ static hr_status write_image(const hr_context *ctx, const hr_pixels *px,
     return HR_OK;
 }
 
-hr_status hr_write_png(const hr_context *ctx, const hr_pixels *px,
+hr_status hri_write_png(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out)
 {
     png_failure failure;
@@ -123,7 +123,7 @@ hr_status hr_write_png(const hr_context *ctx, const hr_pixels *px,
     png_infop info = png ? png_create_info_struct(png) : NULL;
     hr_status st;
     if (!row || !png || !info)
-        st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", out->target);
+        st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", out->target);
     else
         st = write_image(ctx, px, o, out, png, info, row, &failure);
     png_destroy_write_struct(png ? &png : NULL, info ? &info : NULL);

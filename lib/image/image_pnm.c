@@ -10,15 +10,15 @@
 
 static hr_status write_failed(const hr_context *ctx, const hr_atomic_file *out)
 {
-    return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", out->target, strerror(errno));
+    return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", out->target, strerror(errno));
 }
 
 static hr_status out_of_memory(const hr_context *ctx, const hr_atomic_file *out)
 {
-    return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", out->target);
+    return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", out->target);
 }
 
-hr_status hr_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out)
+hr_status hri_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out)
 {
     size_t row_bytes = (size_t)px->width * 3;
     unsigned char *row = malloc(row_bytes);
@@ -27,7 +27,7 @@ hr_status hr_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_fil
     if (fprintf(out->fp, "P6\n%d %d\n255\n", (int)px->width, (int)px->height) < 0) st = write_failed(ctx, out);
     for (int32_t y = 0; y < px->height && st == HR_OK; y++) {
         const float *src = px->data + (size_t)y * (size_t)px->width * (size_t)px->channels;
-        hr_srgb8_encode_rgb(src, (size_t)px->width, px->channels, row);
+        hri_srgb8_encode_rgb(src, (size_t)px->width, px->channels, row);
         if (fwrite(row, 1, row_bytes, out->fp) != row_bytes) st = write_failed(ctx, out);
     }
     free(row);
@@ -46,7 +46,7 @@ static void store_le32(unsigned char *dst, float value)
     dst[3] = (unsigned char)(bits >> 24);
 }
 
-hr_status hr_write_pfm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out)
+hr_status hri_write_pfm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out)
 {
     size_t row_bytes = (size_t)px->width * 3 * 4;
     unsigned char *row = malloc(row_bytes);

@@ -25,7 +25,7 @@ static hr_status check_size(hr_context *ctx, const char *path, long long w, long
 {
     if (w < 1 || h < 1 || w > HR_IMAGE_READ_MAX_SIDE || h > HR_IMAGE_READ_MAX_SIDE ||
         w * h > HR_IMAGE_READ_MAX_PIXELS)
-        return hr_error(ctx, HR_ERROR_UNSUPPORTED,
+        return hri_error(ctx, HR_ERROR_UNSUPPORTED,
                         "image '%s' is %lld x %lld pixels; the most read is %d on a side and %ld "
                         "pixels in all",
                         path, w, h, HR_IMAGE_READ_MAX_SIDE, (long)HR_IMAGE_READ_MAX_PIXELS);
@@ -53,11 +53,11 @@ static hr_status check_png_chunks(hr_context *ctx, const char *path, FILE *f, lo
     for (;;) {
         unsigned char head[8];
         if (fseek(f, (long)at, SEEK_SET) != 0 || fread(head, 1, 8, f) != 8)
-            return hr_error(ctx, HR_ERROR_IO, "cannot read PNG '%s': cut at byte %lld, before its IEND chunk",
+            return hri_error(ctx, HR_ERROR_IO, "cannot read PNG '%s': cut at byte %lld, before its IEND chunk",
                             path, size < at ? size : at);
         const long long length = be32(head);
         if (length > size - at - 12)
-            return hr_error(ctx, HR_ERROR_IO,
+            return hri_error(ctx, HR_ERROR_IO,
                             "cannot read PNG '%s': the chunk at byte %lld declares %lld bytes, but only "
                             "%lld follow it",
                             path, at, length, size - at - 12 > 0 ? size - at - 12 : 0);
@@ -70,8 +70,8 @@ static hr_status check_png_chunks(hr_context *ctx, const char *path, FILE *f, lo
         }
         at += 12 + length;
     }
-    return fseek(f, 0, SEEK_SET) == 0 ? HR_OK
-                                      : hr_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
+    if (fseek(f, 0, SEEK_SET) == 0) return HR_OK;
+    return hri_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
 }
 
 static void on_palette_error(png_structp png, png_const_charp message)
@@ -117,15 +117,15 @@ static hr_status check_palette_indices(hr_context *ctx, const char *path, FILE *
 {
     const int entries = png->palette_entries;
     png_bytep rows = malloc((size_t)png->width * png->height);
-    if (!rows) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+    if (!rows) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
     int max = -1;
     if (read_palette_indices(f, png->width, png->height, rows))
         for (size_t i = 0; i < (size_t)png->width * png->height; i++) max = rows[i] > max ? rows[i] : max;
     free(rows);
     if (fseek(f, 0, SEEK_SET) != 0)
-        return hr_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
+        return hri_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
     if (max >= entries)
-        return hr_error(ctx, HR_ERROR_IO,
+        return hri_error(ctx, HR_ERROR_IO,
                         "cannot read PNG '%s': a pixel is palette index %d, but the palette has %d %s",
                         path, max, entries, entries == 1 ? "entry" : "entries");
     return HR_OK;
@@ -144,7 +144,7 @@ static hr_status read_png(hr_context *ctx, const char *path, FILE *f, long long 
     memset(&png, 0, sizeof png);
     png.version = PNG_IMAGE_VERSION;
     if (!png_image_begin_read_from_stdio(&png, f))
-        return hr_error(ctx, HR_ERROR_IO, "cannot read PNG '%s': %s", path, png.message);
+        return hri_error(ctx, HR_ERROR_IO, "cannot read PNG '%s': %s", path, png.message);
     st = check_size(ctx, path, png.width, png.height);
     if (st) {
         png_image_free(&png);
@@ -154,12 +154,12 @@ static hr_status read_png(hr_context *ctx, const char *path, FILE *f, long long 
     png_uint_16 *pixels = malloc(PNG_IMAGE_SIZE(png));
     if (!pixels) {
         png_image_free(&png);
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
     }
     if (!png_image_finish_read(&png, NULL, pixels, 0, NULL)) {
         free(pixels);
         png_image_free(&png);
-        return hr_error(ctx, HR_ERROR_IO, "cannot read PNG '%s': %s", path, png.message);
+        return hri_error(ctx, HR_ERROR_IO, "cannot read PNG '%s': %s", path, png.message);
     }
     hr_image *img;
     if ((st = hr_image_create(ctx, (int32_t)png.width, (int32_t)png.height, 3, &img))) {
@@ -218,7 +218,7 @@ static hr_status check_bmp_size(hr_context *ctx, const char *path, FILE *f, long
 {
     unsigned char h[32] = {0};
     if (fread(h, 1, sizeof h, f) != sizeof h || fseek(f, 0, SEEK_SET) != 0)
-        return hr_error(ctx, HR_ERROR_IO, "cannot read BMP '%s': its header is cut (%lld bytes)", path, size);
+        return hri_error(ctx, HR_ERROR_IO, "cannot read BMP '%s': its header is cut (%lld bytes)", path, size);
     const long long offset = le32(h + 10), header = le32(h + 14);
     long long w, rows, bits;
     if (header == 12) {
@@ -229,7 +229,7 @@ static hr_status check_bmp_size(hr_context *ctx, const char *path, FILE *f, long
     if (w < 1 || rows < 1 || bits < 1) return HR_OK; /* stb or check_size names these */
     const long long need = offset + (w * bits + 31) / 32 * 4 * rows;
     if (need > size)
-        return hr_error(ctx, HR_ERROR_IO,
+        return hri_error(ctx, HR_ERROR_IO,
                         "cannot read BMP '%s': its header promises %lld x %lld pixels of %lld bits at "
                         "byte %lld, %lld bytes in all, but the file has %lld",
                         path, w, rows, bits, offset, need, size);
@@ -244,7 +244,7 @@ static hr_status check_jpeg_size(hr_context *ctx, const char *path, long long w,
 {
     const long long need = ((w + 7) / 8) * ((h + 7) / 8) / 8;
     if (need > size)
-        return hr_error(ctx, HR_ERROR_IO,
+        return hri_error(ctx, HR_ERROR_IO,
                         "cannot read JPEG '%s': %lld x %lld pixels need at least %lld bytes of coded data, "
                         "but the file has %lld",
                         path, w, h, need, size);
@@ -260,20 +260,20 @@ static hr_status read_stb(hr_context *ctx, const char *path, FILE *f, long long 
     stb_source src = {f, size, 0};
     int w, h, n;
     if (!stbi_info_from_callbacks(&stb_io, &src, &w, &h, &n))
-        return hr_error(ctx, HR_ERROR_IO, "cannot read %s '%s': %s", format, path, stbi_failure_reason());
+        return hri_error(ctx, HR_ERROR_IO, "cannot read %s '%s': %s", format, path, stbi_failure_reason());
     /* A top-down BMP gives its height negative here (stb's load flips it). */
     if ((st = check_size(ctx, path, w, h == INT_MIN ? 0 : abs(h)))) return st;
     if (!is_bmp && (st = check_jpeg_size(ctx, path, w, abs(h), size))) return st;
     if (fseek(f, 0, SEEK_SET) != 0)
-        return hr_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
+        return hri_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
     clearerr(f);
     src.past_end = 0;
     unsigned char *pixels = stbi_load_from_callbacks(&stb_io, &src, &w, &h, &n, 3);
     if (!pixels)
-        return hr_error(ctx, HR_ERROR_IO, "cannot read %s '%s': %s", format, path, stbi_failure_reason());
+        return hri_error(ctx, HR_ERROR_IO, "cannot read %s '%s': %s", format, path, stbi_failure_reason());
     if (src.past_end) {
         stbi_image_free(pixels);
-        return hr_error(ctx, HR_ERROR_IO, "cannot read %s '%s': the file ends before its pixel data does "
+        return hri_error(ctx, HR_ERROR_IO, "cannot read %s '%s': the file ends before its pixel data does "
                         "(%lld bytes)", format, path, size);
     }
     hr_image *img;
@@ -282,7 +282,7 @@ static hr_status read_stb(hr_context *ctx, const char *path, FILE *f, long long 
         return st;
     }
     float decoded[256];
-    for (int c = 0; c < 256; c++) decoded[c] = (float)hr_srgb_decode(c / 255.0);
+    for (int c = 0; c < 256; c++) decoded[c] = (float)hri_srgb_decode(c / 255.0);
     float *dst = hr_image_data(img);
     for (size_t i = 0; i < (size_t)w * (size_t)h * 3; i++) dst[i] = decoded[pixels[i]];
     stbi_image_free(pixels);
@@ -292,30 +292,30 @@ static hr_status read_stb(hr_context *ctx, const char *path, FILE *f, long long 
 
 HR_API hr_status hr_image_read(hr_context *ctx, const char *path, hr_image **out)
 {
-    if (!path || !out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_image_read: NULL argument");
+    if (!path || !out) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_image_read: NULL argument");
     *out = NULL;
     /* A regular file only: a FIFO or a device could block the read, or never
      * end (O_NONBLOCK: opening a FIFO with no writer would wait for one). */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) return hr_error(ctx, HR_ERROR_IO, "cannot open image '%s': %s", path, strerror(errno));
+    if (fd < 0) return hri_error(ctx, HR_ERROR_IO, "cannot open image '%s': %s", path, strerror(errno));
     struct stat info;
     const int stat_failed = fstat(fd, &info) != 0;
     if (stat_failed || !S_ISREG(info.st_mode)) {
         const char *why = stat_failed ? strerror(errno) : S_ISDIR(info.st_mode) ? "a directory"
                                                                                  : "not a regular file";
         close(fd);
-        return hr_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, why);
+        return hri_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, why);
     }
     FILE *f = fdopen(fd, "rb");
     if (!f) {
         close(fd);
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory opening '%s'", path);
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory opening '%s'", path);
     }
     unsigned char magic[8] = {0};
     size_t got = fread(magic, 1, sizeof magic, f);
     hr_status st;
     if (fseek(f, 0, SEEK_SET) != 0)
-        st = hr_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
+        st = hri_error(ctx, HR_ERROR_IO, "cannot read image '%s': %s", path, strerror(errno));
     else if (got == 8 && png_sig_cmp(magic, 0, 8) == 0)
         st = read_png(ctx, path, f, (long long)info.st_size, out);
     else if (got >= 2 && magic[0] == 'B' && magic[1] == 'M')
@@ -323,7 +323,7 @@ HR_API hr_status hr_image_read(hr_context *ctx, const char *path, hr_image **out
     else if (got >= 3 && magic[0] == 0xff && magic[1] == 0xd8 && magic[2] == 0xff)
         st = read_stb(ctx, path, f, (long long)info.st_size, "JPEG", out);
     else
-        st = hr_error(ctx, HR_ERROR_IO, "image '%s' is not a PNG, BMP or JPEG file", path);
+        st = hri_error(ctx, HR_ERROR_IO, "image '%s' is not a PNG, BMP or JPEG file", path);
     fclose(f);
     return st;
 }

@@ -17,7 +17,7 @@ static double clamp01(double v)
     return v;
 }
 
-double hr_srgb_encode(double linear)
+double hri_srgb_encode(double linear)
 {
     double v = clamp01(linear);
     if (v == 1.0) return 1.0; /* exactly, not 1.055 - 0.055 */
@@ -25,7 +25,7 @@ double hr_srgb_encode(double linear)
     return 1.055 * pow(v, 1.0 / 2.4) - 0.055;
 }
 
-double hr_srgb_decode(double encoded)
+double hri_srgb_decode(double encoded)
 {
     double v = clamp01(encoded);
     if (v == 1.0) return 1.0;
@@ -36,7 +36,7 @@ double hr_srgb_decode(double encoded)
 /* The code value by the formula: what the table below reproduces. */
 static uint32_t code_by_formula(float linear, int srgb, uint32_t max_code)
 {
-    double v = srgb ? hr_srgb_encode(linear) : clamp01(linear);
+    double v = srgb ? hri_srgb_encode(linear) : clamp01(linear);
     /* v is in [0, 1], so the sum is in [0.5, max_code + 0.5]: no overflow. */
     return (uint32_t)floor(v * (double)max_code + 0.5);
 }
@@ -109,7 +109,7 @@ static uint32_t srgb8_code(float linear)
     return code;
 }
 
-uint32_t hr_code_value(float linear, int srgb, uint32_t max_code)
+uint32_t hri_code_value(float linear, int srgb, uint32_t max_code)
 {
     if (srgb && max_code == 255) {
         pthread_once(&srgb8_once, srgb8_build);
@@ -118,7 +118,7 @@ uint32_t hr_code_value(float linear, int srgb, uint32_t max_code)
     return code_by_formula(linear, srgb, max_code);
 }
 
-uint32_t hr_code_value_by_formula(float linear, int srgb, uint32_t max_code)
+uint32_t hri_code_value_by_formula(float linear, int srgb, uint32_t max_code)
 {
     return code_by_formula(linear, srgb, max_code);
 }
@@ -130,7 +130,7 @@ HR_API void hr_srgb8_encode(const float *linear, size_t count, uint8_t *codes)
     for (size_t i = 0; i < count; i++) codes[i] = (uint8_t)srgb8_code(linear[i]);
 }
 
-void hr_srgb8_encode_rgb(const float *pixels, size_t count, int32_t channels, uint8_t *codes)
+void hri_srgb8_encode_rgb(const float *pixels, size_t count, int32_t channels, uint8_t *codes)
 {
     pthread_once(&srgb8_once, srgb8_build);
     for (size_t i = 0; i < count; i++, pixels += channels, codes += 3) {

@@ -8,20 +8,20 @@
 
 /* The sRGB transfer function (IEC 61966-2-1), the exact piecewise curve,
  * of a linear value clamped to [0, 1]; NaN counts as 0. */
-double hr_srgb_encode(double linear);
+double hri_srgb_encode(double linear);
 
 /* The inverse: the linear value of an sRGB-encoded value in [0, 1]. */
-double hr_srgb_decode(double encoded);
+double hri_srgb_decode(double encoded);
 
 /* `linear` as a code value in 0..max_code (255 or 65535), rounded to
  * nearest: sRGB-encoded if `srgb`, else only clamped (NaN gives 0). */
-uint32_t hr_code_value(float linear, int srgb, uint32_t max_code);
-/* The 8-bit sRGB codes (hr_code_value(v, 1, 255)) of the red, green and
+uint32_t hri_code_value(float linear, int srgb, uint32_t max_code);
+/* The 8-bit sRGB codes (hri_code_value(v, 1, 255)) of the red, green and
  * blue of `count` pixels of `channels` floats each (3 or 4: alpha is
  * skipped), three bytes a pixel: a row of a PPM. */
-void hr_srgb8_encode_rgb(const float *pixels, size_t count, int32_t channels, uint8_t *codes);
-/* The same by the formula alone (hr_code_value answers 8-bit sRGB from a
+void hri_srgb8_encode_rgb(const float *pixels, size_t count, int32_t channels, uint8_t *codes);
+/* The same by the formula alone (hri_code_value answers 8-bit sRGB from a
  * table built with it); for the test that the two agree. */
-uint32_t hr_code_value_by_formula(float linear, int srgb, uint32_t max_code);
+uint32_t hri_code_value_by_formula(float linear, int srgb, uint32_t max_code);
 
 #endif

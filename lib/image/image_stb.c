@@ -44,7 +44,7 @@ static void *rgb_copy(const hr_pixels *px, int floats)
     void *rgb = malloc(count * 3 * (floats ? sizeof(float) : 1));
     if (!rgb) return NULL;
     if (!floats) {
-        hr_srgb8_encode_rgb(px->data, count, px->channels, rgb);
+        hri_srgb8_encode_rgb(px->data, count, px->channels, rgb);
         return rgb;
     }
     float *dst = rgb;
@@ -53,20 +53,20 @@ static void *rgb_copy(const hr_pixels *px, int floats)
     return rgb;
 }
 
-hr_status hr_write_stb(const hr_context *ctx, const hr_pixels *px, const hr_image_write_options *o,
+hr_status hri_write_stb(const hr_context *ctx, const hr_pixels *px, const hr_image_write_options *o,
                        hr_atomic_file *out)
 {
     int quality = o->jpeg_quality ? (int)o->jpeg_quality : JPEG_DEFAULT_QUALITY;
     if (o->format == HR_FORMAT_JPEG && (quality < 1 || quality > 100))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': jpeg_quality is %d; only 1..100",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "cannot write '%s': jpeg_quality is %d; only 1..100",
                         out->target, quality);
     /* The formats' own limits: stb_image_write takes int sizes, and JPEG's
      * header has 16 bits for each side. */
     if (o->format == HR_FORMAT_JPEG && (px->width > 65535 || px->height > 65535))
-        return hr_error(ctx, HR_ERROR_UNSUPPORTED, "cannot write '%s': JPEG holds at most 65535 pixels a side",
+        return hri_error(ctx, HR_ERROR_UNSUPPORTED, "cannot write '%s': JPEG holds at most 65535 pixels a side",
                         out->target);
     void *rgb = rgb_copy(px, o->format == HR_FORMAT_HDR);
-    if (!rgb) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", out->target);
+    if (!rgb) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "cannot write '%s': out of memory", out->target);
     sink s = {out->fp, 0};
     int w = (int)px->width, h = (int)px->height, ok = 0;
     errno = 0;
@@ -78,8 +78,8 @@ hr_status hr_write_stb(const hr_context *ctx, const hr_pixels *px, const hr_imag
     }
     int saved = errno;
     free(rgb);
-    if (s.failed) return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", out->target, strerror(saved));
-    if (!ok) return hr_error(ctx, HR_ERROR_IO, "cannot write '%s': the %s encoder failed", out->target,
+    if (s.failed) return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': %s", out->target, strerror(saved));
+    if (!ok) return hri_error(ctx, HR_ERROR_IO, "cannot write '%s': the %s encoder failed", out->target,
                              hr_image_format_name(o->format));
     return HR_OK;
 }

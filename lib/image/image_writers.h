@@ -17,19 +17,19 @@ typedef struct hr_pixels {
 } hr_pixels;
 
 /* hr_image_write up to the last step: the image written to `out`'s
- * temporary file and synced; hr_atomic_file_publish puts it in place. On
+ * temporary file and synced; hri_atomic_file_publish puts it in place. On
  * failure `out` is released. */
-hr_status hr_image_write_unpublished(const hr_context *ctx, const hr_image *image, const char *path,
+hr_status hri_image_write_unpublished(const hr_context *ctx, const hr_image *image, const char *path,
                                      const hr_image_write_options *options, hr_atomic_file *out);
 
-hr_status hr_write_png(const hr_context *ctx, const hr_pixels *px,
+hr_status hri_write_png(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out);
-hr_status hr_write_exr(const hr_context *ctx, const hr_pixels *px,
+hr_status hri_write_exr(const hr_context *ctx, const hr_pixels *px,
                        const hr_image_write_options *o, hr_atomic_file *out);
-hr_status hr_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out);
-hr_status hr_write_pfm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out);
+hr_status hri_write_ppm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out);
+hr_status hri_write_pfm(const hr_context *ctx, const hr_pixels *px, hr_atomic_file *out);
 /* JPEG, HDR, BMP and TGA (o->format says which) through stb_image_write. */
-hr_status hr_write_stb(const hr_context *ctx, const hr_pixels *px, const hr_image_write_options *o,
+hr_status hri_write_stb(const hr_context *ctx, const hr_pixels *px, const hr_image_write_options *o,
                        hr_atomic_file *out);
 
 #endif

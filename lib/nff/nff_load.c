@@ -38,7 +38,7 @@ static hr_status read_scene(hr_context *ctx, const char *text, size_t length, co
     nff_reader_release(&reader);
     if (st) {
         hr_scene_destroy(scene);
-        hr_load_result_empty(result);
+        hri_load_result_empty(result);
     }
     return st;
 }
@@ -47,18 +47,18 @@ static hr_status load_text(hr_context *ctx, const char *text, size_t length, con
                            hr_sdl_result *out)
 {
     hr_sdl_result result;
-    hr_load_result_empty(&result);
+    hri_load_result_empty(&result);
     hr_status st = read_scene(ctx, text, length, name, &result);
-    hr_load_result_give(out, &result);
+    hri_load_result_give(out, &result);
     return st;
 }
 
 HR_API hr_status hr_nff_load_string(hr_context *ctx, const char *text, const char *name,
                                     hr_sdl_result *out)
 {
-    hr_status st = hr_load_result_begin(ctx, out, "NFF");
+    hr_status st = hri_load_result_begin(ctx, out, "NFF");
     if (st) return st;
-    if (!text) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_nff_load_string: NULL text");
+    if (!text) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_nff_load_string: NULL text");
     return load_text(ctx, text, strlen(text), name ? name : "<string>", out);
 }
 
@@ -72,14 +72,14 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
     *length = 0;
     int fd;
     size_t file_size, limit;
-    hr_status st = hr_scene_file_open(ctx, path, "scene file", &fd, &file_size, &limit);
+    hr_status st = hri_scene_file_open(ctx, path, "scene file", &fd, &file_size, &limit);
     if (st) return st;
     (void)file_size;
     errno = 0;
     gzFile f = gzdopen(fd, "rb");
     if (!f) {
         close(fd);
-        return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the scene file: %s",
+        return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the scene file: %s",
                            path, errno ? strerror(errno) : "out of memory");
     }
     size_t capacity = 0, used = 0;
@@ -87,14 +87,14 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
     for (;;) {
         if (used == capacity) {
             if (capacity > limit) {
-                st = hr_scene_file_too_large(ctx, path, "scene file", limit);
+                st = hri_scene_file_too_large(ctx, path, "scene file", limit);
                 break;
             }
             size_t grown_capacity = capacity ? 2 * capacity : 256 * 1024;
             if (grown_capacity > limit + 1) grown_capacity = limit + 1;
             char *grown = realloc(data, grown_capacity);
             if (!grown) {
-                st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+                st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
                 break;
             }
             data = grown;
@@ -107,14 +107,14 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
         const char *why = n <= 0 ? gzerror(f, &code) : "";
         /* A stream cut short reads as an end with Z_BUF_ERROR set. */
         if (n < 0 || (code != Z_OK && code != Z_STREAM_END)) {
-            st = hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the scene file: %s",
+            st = hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the scene file: %s",
                              path, code == Z_ERRNO ? strerror(errno) : why);
             break;
         }
         if (n == 0) break;
         used += (size_t)n;
         if (used > limit) {
-            st = hr_scene_file_too_large(ctx, path, "scene file", limit);
+            st = hri_scene_file_too_large(ctx, path, "scene file", limit);
             break;
         }
     }
@@ -130,9 +130,9 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
 
 HR_API hr_status hr_nff_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)
 {
-    hr_status st = hr_load_result_begin(ctx, out, "NFF");
+    hr_status st = hri_load_result_begin(ctx, out, "NFF");
     if (st) return st;
-    if (!path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_nff_load_file: NULL path");
+    if (!path) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_nff_load_file: NULL path");
     char *text;
     size_t length;
     if ((st = read_file(ctx, path, &text, &length))) return st;

@@ -205,7 +205,7 @@ static hr_status clip_large(nff_reader *r, nff_word at, const pt2 *p, size_t n, 
     free(alive);
     free(reflex);
     return ok ? HR_OK
-              : hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for a polygon", r->file,
+              : hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for a polygon", r->file,
                          (int)at.line);
 }
 
@@ -304,7 +304,7 @@ static hr_status append(nff_reader *r, nff_word at, nff_mesh_batch *b, const hr_
     if (grow(&b->points, &b->point_capacity, b->point_count, n, 3) ||
         (b->smooth && grow(&b->normals, &b->normal_capacity, b->point_count, n, 3)) ||
         grow(&b->triangles, &b->triangle_capacity, b->triangle_count, count, 3))
-        return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for polygons",
+        return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for polygons",
                         r->file, (int)at.line);
     if (b->point_count == 0 && b->triangle_count == 0) b->first = at;
     for (size_t i = 0; i < n; i++) {
@@ -343,7 +343,7 @@ hr_status nff_read_polygon(nff_reader *r, nff_word p, int smooth)
                                  2 * sizeof(size_t) + sizeof(double));
     char *block = malloc(size);
     if (!block)
-        return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for a polygon",
+        return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory for a polygon",
                         r->file, (int)p.line);
     hr_vec3 *v = (hr_vec3 *)block, *normals = v + count;
     pt2 *plane = (pt2 *)(normals + count);

@@ -49,7 +49,7 @@ hr_status nff_error(const nff_reader *r, hr_status status, nff_word at, const ch
     va_start(ap, fmt);
     vsnprintf(what, sizeof what, fmt, ap);
     va_end(ap);
-    return hr_error_at(r->ctx, status, r->file, at.line, at.column, "%s:%d:%d: %s", r->file,
+    return hri_error_at(r->ctx, status, r->file, at.line, at.column, "%s:%d:%d: %s", r->file,
                        (int)at.line, (int)at.column, what);
 }
 
@@ -162,7 +162,7 @@ hr_status nff_reader_run(nff_reader *r)
     if (!st && (st = hr_scene_set_globals(r->scene, &r->globals))) {
         char why[1024];
         snprintf(why, sizeof why, "%s", hr_context_last_error(r->ctx));
-        st = hr_error(r->ctx, st, "%s: %s", r->file, why);
+        st = hri_error(r->ctx, st, "%s: %s", r->file, why);
     }
     return st;
 }

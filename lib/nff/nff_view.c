@@ -119,7 +119,7 @@ hr_status nff_read_light(nff_reader *r, nff_word l)
     if (r->light_count == r->light_capacity) {
         size_t cap = r->light_capacity ? 2 * r->light_capacity : 8;
         nff_light *grown = realloc(r->lights, cap * sizeof *grown);
-        if (!grown) return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        if (!grown) return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         r->lights = grown;
         r->light_capacity = cap;
     }

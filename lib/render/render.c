@@ -145,9 +145,9 @@ static hr_color trace_camera_ray(worker *w, double px, double py)
 {
     render_job *job = w->job;
     hr_ray ray;
-    hr_camera_frame_ray(&job->frame, px, py, &ray);
+    hri_camera_frame_ray(&job->frame, px, py, &ray);
     w->primary++;
-    return hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
+    return hri_shade_ray(&w->tc, &ray, 0, job->max_depth);
 }
 
 /* The caller's own flag (hr_render_options.cancel). */
@@ -186,15 +186,15 @@ static void render_tile_centres(worker *w, int32_t x0, int32_t y0, int32_t x1, i
 {
     render_job *job = w->job;
     const hr_camera_frame *f = &job->frame;
-    for (int32_t x = x0; x < x1; x++) w->columns[x - x0] = hr_camera_frame_x(f, x + 0.5);
+    for (int32_t x = x0; x < x1; x++) w->columns[x - x0] = hri_camera_frame_x(f, x + 0.5);
     for (int32_t y = y0; y < y1; y++) {
-        const double plane_y = hr_camera_frame_y(f, y + 0.5);
+        const double plane_y = hri_camera_frame_y(f, y + 0.5);
         float *px = pixel_at(job, x0, y);
         for (int32_t i = 0; i < x1 - x0; i++, px += 3) {
             hr_ray ray;
-            hr_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
+            hri_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
             uint64_t over_before = w->tc.rays_over_budget;
-            hr_color c = hr_shade_ray(&w->tc, &ray, 0, job->max_depth);
+            hr_color c = hri_shade_ray(&w->tc, &ray, 0, job->max_depth);
             w->pixels_over_budget += w->tc.rays_over_budget != over_before;
             px[0] = (float)(0.0 + c.r), px[1] = (float)(0.0 + c.g), px[2] = (float)(0.0 + c.b);
         }
@@ -236,9 +236,9 @@ static corner_sample sample_corner(worker *w, int32_t x, int32_t y)
     uint64_t over_before = w->tc.rays_over_budget;
     c.linear = trace_camera_ray(w, x, y);
     c.over_budget = w->tc.rays_over_budget != over_before;
-    c.shown[0] = hr_srgb_encode(c.linear.r);
-    c.shown[1] = hr_srgb_encode(c.linear.g);
-    c.shown[2] = hr_srgb_encode(c.linear.b);
+    c.shown[0] = hri_srgb_encode(c.linear.r);
+    c.shown[1] = hri_srgb_encode(c.linear.g);
+    c.shown[2] = hri_srgb_encode(c.linear.b);
     return c;
 }
 
@@ -376,18 +376,18 @@ static int32_t core_count(void)
 static hr_status check_window(hr_context *ctx, hr_render_options *o)
 {
     if (o->window_x < 0 || o->window_y < 0 || o->window_width < 0 || o->window_height < 0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: window x %d, y %d, width %d, height %d must not be negative",
                         (int)o->window_x, (int)o->window_y, (int)o->window_width, (int)o->window_height);
     if (o->window_x >= o->width || o->window_y >= o->height)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: window origin (%d, %d) lies outside the %dx%d image", (int)o->window_x,
                         (int)o->window_y, (int)o->width, (int)o->height);
     if (o->window_width == 0) o->window_width = o->width - o->window_x;
     if (o->window_height == 0) o->window_height = o->height - o->window_y;
     if ((int64_t)o->window_x + o->window_width > o->width ||
         (int64_t)o->window_y + o->window_height > o->height)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: window %dx%d at (%d, %d) reaches past the %dx%d image", (int)o->window_width,
                         (int)o->window_height, (int)o->window_x, (int)o->window_y, (int)o->width,
                         (int)o->height);
@@ -402,49 +402,49 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
     if (o->block_size == 0) o->block_size = 1;
     if (o->tile_size == 0) o->tile_size = DEFAULT_TILE;
     if (o->width <= 0 || o->height <= 0 || o->width > HR_RENDER_MAX_SIDE || o->height > HR_RENDER_MAX_SIDE)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: image size %dx%d must be within 1..%d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: image size %dx%d must be within 1..%d",
                         (int)o->width, (int)o->height, HR_RENDER_MAX_SIDE);
     if (o->samples_per_pixel < 1 || o->samples_per_pixel > HR_RENDER_MAX_SAMPLES)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: samples per pixel %d must be within 1..%d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: samples per pixel %d must be within 1..%d",
                         (int)o->samples_per_pixel, HR_RENDER_MAX_SAMPLES);
     if (o->threads < 0 || o->threads > HR_RENDER_MAX_THREADS)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: threads %d must be within 0..%d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: threads %d must be within 0..%d",
                         (int)o->threads, HR_RENDER_MAX_THREADS);
     if (o->block_size < 1 || o->block_size > HR_RENDER_MAX_BLOCK)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: block size %d must be within 1..%d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: block size %d must be within 1..%d",
                         (int)o->block_size, HR_RENDER_MAX_BLOCK);
     if (o->tile_size < 1 || o->tile_size > HR_RENDER_MAX_TILE)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: tile size %d must be within 1..%d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: tile size %d must be within 1..%d",
                         (int)o->tile_size, HR_RENDER_MAX_TILE);
     if (o->max_depth > HR_MAX_RECURSION_DEPTH)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: depth %d must be at most %d",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: depth %d must be at most %d",
                         (int)o->max_depth, HR_MAX_RECURSION_DEPTH);
     if (o->effects != HR_EFFECTS_AUTO && o->effects != HR_EFFECTS_ALL)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: effects must be HR_EFFECTS_AUTO or HR_EFFECTS_ALL");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: effects must be HR_EFFECTS_AUTO or HR_EFFECTS_ALL");
     if (!(o->adaptive_threshold >= 0.0 && o->adaptive_threshold <= 1.0))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: adaptive threshold %g must be within 0..1 (0: off)", o->adaptive_threshold);
     if (o->adaptive_threshold > 0.0 && o->samples_per_pixel < 2)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: adaptive supersampling needs samples per pixel >= 2 (the most a pixel gets)");
     if (o->adaptive_threshold > 0.0 && o->block_size > 1)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: adaptive supersampling works on single pixels: block size must be 1");
     if (!(o->min_weight >= 0.0 && o->min_weight <= 1.0))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: minimum weight %g must be within 0..1 (0: the default, 2^-24)", o->min_weight);
     if (o->exact != 0 && o->exact != 1)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: exact must be 0 or 1, not %d", (int)o->exact);
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: exact must be 0 or 1, not %d", (int)o->exact);
     if (o->exact && o->min_weight > 0.0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: exact (trace every contribution) and a minimum weight %g exclude each other",
                         o->min_weight);
     if (o->ray_budget < 0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: ray budget %lld must be positive (0: the default, %d rays per camera sample)",
                         (long long)o->ray_budget, HR_DEFAULT_RAY_BUDGET);
     if (o->exact && o->ray_budget > 0)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: exact (trace every contribution) and a ray budget %lld exclude each other",
                         (long long)o->ray_budget);
     return check_window(ctx, o);
@@ -458,7 +458,7 @@ static void warn_over_budget(const render_job *job, const worker *workers, int32
     for (int32_t i = 0; i < started; i++) pixels += workers[i].pixels_over_budget;
     if (pixels == 0) return;
     int64_t budget = job->opt.ray_budget > 0 ? job->opt.ray_budget : HR_DEFAULT_RAY_BUDGET;
-    hr_warn(job->scene->ctx, HR_WARNING_RAY_BUDGET, NULL, 0, 0,
+    hri_warn(job->scene->ctx, HR_WARNING_RAY_BUDGET, NULL, 0, 0,
             "render: %llu of %llu pixels reached the ray budget of %lld rays per camera sample, so their "
             "faintest reflections and refractions were not traced (raise it with a larger ray budget, or "
             "trace everything with exact)",
@@ -472,24 +472,24 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
 {
     if (!scene) return HR_ERROR_INVALID_ARGUMENT;
     hr_context *ctx = scene->ctx;
-    if (!out_image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: NULL output image");
+    if (!out_image) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: NULL output image");
     *out_image = NULL;
     if (!scene->committed)
-        return hr_error(ctx, HR_ERROR_STATE, "render: the scene is not committed (call hr_scene_commit)");
+        return hri_error(ctx, HR_ERROR_STATE, "render: the scene is not committed (call hr_scene_commit)");
     if (!camera || camera->struct_size < sizeof(uint32_t))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: NULL camera or struct_size not set");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: NULL camera or struct_size not set");
     /* The render's threads trace one level deeper than the caller: a shape
      * that renders its own scene from its hit is stopped like one that
      * queries it. */
     int32_t *level;
-    hr_status nesting = hr_query_enter(ctx, "render", &level);
+    hr_status nesting = hri_query_enter(ctx, "render", &level);
     if (nesting) return nesting;
     int32_t query_level = *level;
-    hr_query_leave(level);
+    hri_query_leave(level);
     /* Aligned, or the job's lines would be split differently from its
      * fields (sizeof is a multiple of the alignment, as aligned_alloc needs). */
     render_job *job = aligned_alloc(HR_CACHE_LINE, sizeof *job);
-    if (!job) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!job) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     memset(job, 0, sizeof *job);
     job->scene = scene;
     job->query_level = query_level;
@@ -499,7 +499,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     if (options) {
         if (options->struct_size < sizeof(uint32_t)) {
             free(job);
-            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render options: struct_size not set");
+            return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render options: struct_size not set");
         }
         HR_SIZED_COPY_IN(&job->opt, options);
     }
@@ -508,11 +508,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         job->camera.width = job->opt.width, job->camera.height = job->opt.height;
         st = hr_camera_validate(ctx, &job->camera);
         /* A camera hr_camera_validate accepts always has a frame. */
-        if (st == HR_OK && !hr_camera_frame_init(&job->frame, &job->camera))
-            st = hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: no view through it");
+        if (st == HR_OK && !hri_camera_frame_init(&job->frame, &job->camera))
+            st = hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: no view through it");
     }
     hr_image *image = NULL;
-    if (st == HR_OK) st = hr_image_create_unset(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
+    if (st == HR_OK) st = hri_image_create_unset(ctx, job->opt.window_width, job->opt.window_height, 3, &image);
     if (st) {
         free(job);
         return st;
@@ -538,9 +538,9 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     for (int32_t i = 0; ready && i < nthreads; i++) {
         worker *w = &workers[i];
         w->job = job;
-        hr_trace_ctx_init(&w->tc, scene);
+        hri_trace_ctx_init(&w->tc, scene);
         w->tc.force_all_effects = job->opt.effects == HR_EFFECTS_ALL;
-        hr_trace_ctx_set_bounds(&w->tc, job->opt.exact, job->opt.min_weight, job->opt.ray_budget);
+        hri_trace_ctx_set_bounds(&w->tc, job->opt.exact, job->opt.min_weight, job->opt.ray_budget);
         w->tc.cancelled = &job->cancelled;
         w->tc.cancel_flag = job->opt.cancel;
         w->tc.poll = poll_progress;
@@ -563,11 +563,11 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         for (int32_t i = 1; i < started; i++) pthread_join(workers[i].thread, NULL);
     }
     double seconds = now_seconds() - t0;
-    if (!ready) st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-    else if (job->failure) st = hr_error(ctx, job->failure, "render: a shape failed while tracing: %s",
+    if (!ready) st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    else if (job->failure) st = hri_error(ctx, job->failure, "render: a shape failed while tracing: %s",
                                          hr_status_name(job->failure));
     else if (atomic_load(&job->cancelled) || caller_cancelled(job))
-        st = hr_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
+        st = hri_error(ctx, HR_ERROR_CANCELLED, "render cancelled");
     if (st == HR_OK) warn_over_budget(job, workers, started);
     if (st == HR_OK && stats && stats->struct_size >= sizeof(uint32_t)) {
         hr_render_stats s = {0};
@@ -591,7 +591,7 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
         HR_SIZED_COPY_OUT(stats, &s);
     }
     for (int32_t i = 0; workers && i < nthreads; i++) {
-        hr_trace_ctx_release(&workers[i].tc);
+        hri_trace_ctx_release(&workers[i].tc);
         free(workers[i].corners);
         free(workers[i].columns);
     }

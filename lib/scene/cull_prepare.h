@@ -23,7 +23,7 @@ static inline void unbounded_cull_prepare(hr_object *o)
     for (int k = 0; k < 3; k++)
         if (!isnan(lo[k]) && !isnan(hi[k]) && lo[k] <= hi[k] && (isfinite(lo[k]) || isfinite(hi[k])))
             o->slab_axes |= 1u << k;
-    const hr_xform_error_terms terms = hr_xform_error_terms_of(o->inv);
+    const hr_xform_error_terms terms = hri_xform_error_terms_of(o->inv);
     const double gain = fmax(terms.row_abs[0], fmax(terms.row_abs[1], terms.row_abs[2]));
     o->cull_dir_limit = gain > 0.0 ? 0x1p190 / gain : 0.0; /* NaN or 0: never culled */
 }

@@ -30,7 +30,7 @@
  * make that non-zero, so its shadow ray can be saved. Commit marks the
  * materials some light is inert for (HR_MAT_INERT_LIGHT); only their light
  * loops ask. Inline, as shade's light loop asks it. */
-static inline int hr_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
+static inline int hri_light_adds_nothing(const hr_light *L, const hr_material *mat, uint32_t flags)
 {
     hr_color d = flags & HR_MAT_DIFFUSE ? mat->diffuse : rgb(0, 0, 0);
     hr_color sp = flags & HR_MAT_SPECULAR ? mat->specular : rgb(0, 0, 0);
@@ -47,7 +47,7 @@ static inline int hr_light_adds_nothing(const hr_light *L, const hr_material *ma
  * to 0. The SPD's materials use exponent 100000, where the cut-off is
  * 0.99240: most of a highlight's pow calls go. exp2's own rounding is
  * immaterial against that margin. */
-static inline double hr_specular_cutoff(double exponent)
+static inline double hri_specular_cutoff(double exponent)
 {
     /* exponent 0 (pow is 1 everywhere) and non-positive ones cut nothing. */
     return exponent > 0 ? exp2(-1100.0 / exponent) : 0.0;
@@ -55,6 +55,6 @@ static inline double hr_specular_cutoff(double exponent)
 
 /* The material flags of every object and the scene's effects, at commit
  * (scene_effects.c). */
-void hr_scene_work_out_effects(hr_scene *s);
+void hri_scene_work_out_effects(hr_scene *s);
 
 #endif

@@ -21,17 +21,17 @@ HR_API void hr_scene_globals_default(hr_scene_globals *g)
     if (!g) return;
     memset(g, 0, sizeof *g);
     g->struct_size = sizeof *g;
-    hr_fields_default(&hr_globals_field_table, g);
+    hri_fields_default(&hri_globals_field_table, g);
 }
 
 HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
 {
-    if (!ctx || !out) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_scene_create: NULL argument");
+    if (!ctx || !out) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_scene_create: NULL argument");
     *out = NULL;
     hr_scene *s = calloc(1, sizeof *s);
-    if (!s) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!s) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     s->ctx = ctx;
-    hr_status st = hr_scene_budget_init(ctx, &s->budget);
+    hr_status st = hri_scene_budget_init(ctx, &s->budget);
     if (st) {
         free(s);
         return st;
@@ -45,10 +45,10 @@ HR_API void hr_scene_destroy(hr_scene *scene)
 {
     if (!scene) return;
     /* Composites before their children: reverse order of creation. */
-    for (int64_t i = scene->object_count - 1; i >= 0; i--) hr_object_free(scene->objects[i]);
+    for (int64_t i = scene->object_count - 1; i >= 0; i--) hri_object_free(scene->objects[i]);
     free(scene->objects);
     free(scene->lights);
-    hr_pixmap_set_free(&scene->pixmaps);
+    hri_pixmap_set_free(&scene->pixmaps);
     free(scene->unbounded);
     accel_bvh4_release(&scene->bvh);
     free(scene->leaf_objects);
@@ -59,20 +59,20 @@ HR_API hr_status hr_scene_add_light(hr_scene *s, const hr_light *light)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!light || light->struct_size < sizeof(uint32_t))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: NULL or struct_size not set");
-    if (s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "cannot add a light to a committed scene");
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: NULL or struct_size not set");
+    if (s->committed) return hri_error(s->ctx, HR_ERROR_STATE, "cannot add a light to a committed scene");
     hr_light l = {0};
     HR_SIZED_COPY_IN(&l, light);
     if (!v3_is_finite(l.position))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: position must be finite");
-    if (!hr_color_in_range(l.color))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light: position must be finite");
+    if (!hri_color_in_range(l.color))
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
                         "light: colour (%g %g %g) must be finite, each within +-%g", l.color.r,
                         l.color.g, l.color.b, HR_MAX_COLOR);
     if (s->light_count == s->light_cap) {
         int32_t cap = s->light_cap ? s->light_cap * 2 : 8;
         hr_light *grown = realloc(s->lights, (size_t)cap * sizeof *grown);
-        if (!grown) return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        if (!grown) return hri_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         s->lights = grown;
         s->light_cap = cap;
     }
@@ -84,21 +84,21 @@ HR_API hr_status hr_scene_set_globals(hr_scene *s, const hr_scene_globals *g)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!g || g->struct_size < sizeof(uint32_t))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "globals: NULL or struct_size not set");
-    if (s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "cannot change a committed scene");
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "globals: NULL or struct_size not set");
+    if (s->committed) return hri_error(s->ctx, HR_ERROR_STATE, "cannot change a committed scene");
     hr_scene_globals v;
     hr_scene_globals_default(&v);
     HR_SIZED_COPY_IN(&v, g);
     if (v.max_recursion_depth < 0 || v.max_recursion_depth > HR_MAX_RECURSION_DEPTH)
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
                         "globals: maxRecursionDepth must be within 0..%d, not %d",
                         HR_MAX_RECURSION_DEPTH, (int)v.max_recursion_depth);
-    if (!hr_color_in_range(v.background) || !hr_color_in_range(v.global_ambient))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+    if (!hri_color_in_range(v.background) || !hri_color_in_range(v.global_ambient))
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
                         "globals: background and globalAmbient must be finite, each within +-%g",
                         HR_MAX_COLOR);
     if (!isfinite(v.min_reflectivity) || !isfinite(v.min_transparency))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT,
                         "globals: minReflectivity and minTransparency must be finite");
     s->globals = v;
     return HR_OK;
@@ -116,7 +116,7 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
         else unbounded++;
     }
     if (bounded > INT32_MAX / 2)
-        return hr_error(s->ctx, HR_ERROR_UNSUPPORTED, "too many objects (%lld)", (long long)bounded);
+        return hri_error(s->ctx, HR_ERROR_UNSUPPORTED, "too many objects (%lld)", (long long)bounded);
     hr_bounds *boxes = malloc((size_t)(bounded ? bounded : 1) * sizeof *boxes);
     int32_t *owner = malloc((size_t)(bounded ? bounded : 1) * sizeof *owner);
     s->unbounded = malloc((size_t)(unbounded ? unbounded : 1) * sizeof *s->unbounded);
@@ -125,7 +125,7 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
         free(owner);
         free(s->unbounded);
         s->unbounded = NULL;
-        return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        return hri_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     }
     int32_t nb = 0;
     s->unbounded_count = 0;
@@ -161,15 +161,15 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
         free(s->unbounded);
         s->unbounded = NULL;
         s->unbounded_count = 0;
-        return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory building the BVH");
+        return hri_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory building the BVH");
     }
     /* Items name BVH inputs; the walk wants the objects themselves. */
     for (uint32_t i = 0; i < s->bvh.item_count; i++) s->leaf_objects[i] = s->objects[owner[s->bvh.items[i]]];
     free(owner);
-    hr_scene_work_out_effects(s);
+    hri_scene_work_out_effects(s);
     s->committed = 1;
     if (s->object_count == 0)
-        hr_warn(s->ctx, HR_WARNING_EMPTY_SCENE, NULL, 0, 0,
+        hri_warn(s->ctx, HR_WARNING_EMPTY_SCENE, NULL, 0, 0,
                 "the scene has no objects: every pixel is the background colour");
     return HR_OK;
 }

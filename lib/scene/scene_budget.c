@@ -27,7 +27,7 @@ static uint64_t process_memory(void)
     return m;
 }
 
-hr_status hr_scene_budget_init(hr_context *ctx, hr_scene_budget *b)
+hr_status hri_scene_budget_init(hr_context *ctx, hr_scene_budget *b)
 {
     memset(b, 0, sizeof *b);
     if (ctx->scene_memory) {
@@ -37,13 +37,13 @@ hr_status hr_scene_budget_init(hr_context *ctx, hr_scene_budget *b)
     /* Half: the render's own buffers, the scene's acceleration structure and
      * the program around the library need room too. */
     const uint64_t half = process_memory() / 2;
-    return hr_env_bytes(ctx, HR_SCENE_MEMORY_ENV, "the memory one scene may take", half, half, UINT64_MAX,
+    return hri_env_bytes(ctx, HR_SCENE_MEMORY_ENV, "the memory one scene may take", half, half, UINT64_MAX,
                         &b->limit);
 }
 
 static hr_status over(const hr_context *ctx, const hr_scene_budget *b, uint64_t bytes, const char *what)
 {
-    return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY,
+    return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY,
                     "%s needs %llu bytes more than the scene's memory budget of %llu bytes leaves (it holds "
                     "%llu bytes of objects, %llu of shape data, %llu of texels); set %s or "
                     "hr_context_set_scene_memory to raise it",
@@ -54,7 +54,7 @@ static hr_status over(const hr_context *ctx, const hr_scene_budget *b, uint64_t 
 
 static uint64_t used(const hr_scene_budget *b) { return b->objects + b->shape_data + b->texels; }
 
-hr_status hr_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint64_t *kind, uint64_t bytes,
+hr_status hri_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint64_t *kind, uint64_t bytes,
                                  const char *what)
 {
     if (bytes > b->limit - used(b)) return over(ctx, b, bytes, what);
@@ -62,7 +62,7 @@ hr_status hr_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint
     return HR_OK;
 }
 
-hr_status hr_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what)
+hr_status hri_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what)
 {
     return over(ctx, b, b->refused, what);
 }
@@ -84,10 +84,10 @@ static size_t block_size(void *p, size_t asked)
 
 static _Thread_local hr_scene_budget *charging;
 
-void hr_scene_budget_begin(hr_scene_budget *b) { charging = b; }
-void hr_scene_budget_end(void) { charging = NULL; }
+void hri_scene_budget_begin(hr_scene_budget *b) { charging = b; }
+void hri_scene_budget_end(void) { charging = NULL; }
 
-void *hr_scene_budget_alloc(size_t size)
+void *hri_scene_budget_alloc(size_t size)
 {
     if (size == 0) size = 1;
     hr_scene_budget *b = charging;
@@ -102,7 +102,7 @@ void *hr_scene_budget_alloc(size_t size)
 
 /* Only a free while a shape is made gives bytes back (a temporary buffer
  * of its reader): the rest go when the scene goes. */
-void hr_scene_budget_free(void *p)
+void hri_scene_budget_free(void *p)
 {
     hr_scene_budget *b = charging;
 #ifdef __GLIBC__

@@ -21,22 +21,22 @@ typedef struct hr_scene_budget {
 /* The budget a new scene of `ctx` gets: hr_context_set_scene_memory's, or
  * HITRAY_MAX_SCENE_MEMORY, or half of what the process may use (the lesser
  * of RLIMIT_AS and physical memory). */
-hr_status hr_scene_budget_init(hr_context *ctx, hr_scene_budget *b);
+hr_status hri_scene_budget_init(hr_context *ctx, hr_scene_budget *b);
 /* Charges `bytes` of `kind` (one of the budget's counters), or refuses
  * with an HR_ERROR_OUT_OF_MEMORY naming `what`, the amounts and how to
  * raise the limit, charging nothing. */
-hr_status hr_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint64_t *kind, uint64_t bytes,
+hr_status hri_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint64_t *kind, uint64_t bytes,
                                  const char *what);
 /* The refusal's message after a shape's create failed for want of budget
  * (b->refused set by the allocator). */
-hr_status hr_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what);
+hr_status hri_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what);
 
 /* Shape data: hr_host.alloc and free. Between begin and end on this thread
  * (a shape's create) every allocation is charged to `b`, or refused past
  * its limit, and every free gives its bytes back. */
-void hr_scene_budget_begin(hr_scene_budget *b);
-void hr_scene_budget_end(void);
-void *hr_scene_budget_alloc(size_t size);
-void hr_scene_budget_free(void *p);
+void hri_scene_budget_begin(hr_scene_budget *b);
+void hri_scene_budget_end(void);
+void *hri_scene_budget_alloc(size_t size);
+void hri_scene_budget_free(void *p);
 
 #endif

@@ -46,7 +46,7 @@ static void place_texture(hr_object *o)
  * The material flags do not depend on maxRecursionDepth: hr_scene_shade and
  * hr_render may ask for more depth than the scene's, and shade stops at the
  * depth it is given. Only the scene's effects say what its own depth does. */
-void hr_scene_work_out_effects(hr_scene *s)
+void hri_scene_work_out_effects(hr_scene *s)
 {
     const hr_scene_globals *g = &s->globals;
     int lit = 0;
@@ -70,11 +70,11 @@ void hr_scene_work_out_effects(hr_scene *s)
         if (m->transparency > 0 && m->transparency >= g->min_transparency) f |= HR_MAT_REFRACTS;
         if (f & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR))
             for (int32_t k = 0; k < s->light_count; k++)
-                if (hr_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
+                if (hri_light_adds_nothing(&s->lights[k], m, f)) f |= HR_MAT_INERT_LIGHT;
         o->mat_flags = f;
         place_texture(o);
         if (o->texture && (f & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) effects |= HR_EFFECT_TEXTURE;
-        o->specular_cutoff = hr_specular_cutoff(m->specular_exponent);
+        o->specular_cutoff = hri_specular_cutoff(m->specular_exponent);
         if (f & HR_MAT_EMITS) effects |= HR_EFFECT_EMISSION;
         if (f & HR_MAT_AMBIENT) effects |= HR_EFFECT_AMBIENT;
         if (f & HR_MAT_DIFFUSE) effects |= HR_EFFECT_DIFFUSE | HR_EFFECT_SHADOWS;

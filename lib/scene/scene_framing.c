@@ -52,7 +52,7 @@ HR_API hr_status hr_scene_frame_camera(const hr_scene *s, hr_camera *cam)
     if (!v3_is_finite(eye) || !v3_is_finite(centre)) {
         double reach;
         int64_t i = farthest_object(s, &reach);
-        return hr_error(s->ctx, HR_ERROR_NUMERIC,
+        return hri_error(s->ctx, HR_ERROR_NUMERIC,
                         "cannot frame a camera: object %lld (a '%s') reaches %g from the origin, so "
                         "far that a view of it overflows; give the scene a camera",
                         (long long)i, i >= 0 ? s->objects[i]->cls->name : "?", reach);

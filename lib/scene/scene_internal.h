@@ -30,9 +30,9 @@ typedef struct hr_object {
     void *shape;              /* what the class's create returned */
     int32_t identity;         /* m is the identity: skip the transforms */
     int32_t diagonal;         /* m's and inv's linear parts are diagonal
-                                 (hr_xform_is_diagonal): one term a row */
+                                 (hri_xform_is_diagonal): one term a row */
     double inv[16], m[16];    /* m: object -> world (for a child: -> parent); inv: back */
-    hr_xform_error_terms m_error; /* hr_xform_error_terms_of(m) */
+    hr_xform_error_terms m_error; /* hri_xform_error_terms_of(m) */
     /* What tracing does not read. */
     const char *module_path;
     hr_material material;     /* `parameters` points at params_copy */
@@ -41,7 +41,7 @@ typedef struct hr_object {
     int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
     uint32_t mat_flags;       /* HR_MAT_* (scene/material_analysis.h) */
-    double specular_cutoff;   /* hr_specular_cutoff of the material's exponent */
+    double specular_cutoff;   /* hri_specular_cutoff of the material's exponent */
     hr_bounds local_bounds;   /* object space */
     /* For an unbounded object's cull in object space (lib/scene/cull_prepare.h, lib/trace/ray_cull.h):
      * bit k when local_bounds has a finite end on axis k, and the largest
@@ -77,8 +77,8 @@ struct hr_scene {
 /* The checks on a full-size material (scene_materials.c);
  * hr_material_validate is the public door, which first reads only the bytes
  * the caller declared. */
-hr_status hr_material_check(hr_context *ctx, const hr_material *m);
+hr_status hri_material_check(hr_context *ctx, const hr_material *m);
 /* Destroys the object's shape and frees what it owns (scene_objects.c). */
-void hr_object_free(hr_object *o);
+void hri_object_free(hr_object *o);
 
 #endif

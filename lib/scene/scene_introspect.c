@@ -24,9 +24,9 @@ HR_API hr_status hr_scene_object_info(const hr_scene *s, int64_t index, hr_objec
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!out || out->struct_size < sizeof(uint32_t))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "object info: NULL or struct_size not set");
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "object info: NULL or struct_size not set");
     if (index < 0 || index >= s->object_count)
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "object index %lld out of range [0, %lld)",
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "object index %lld out of range [0, %lld)",
                         (long long)index, (long long)s->object_count);
     const hr_object *o = s->objects[index];
     hr_object_info info = {0};
@@ -45,7 +45,7 @@ HR_API hr_status hr_scene_light(const hr_scene *s, int32_t index, hr_light *out)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!out || out->struct_size < sizeof(uint32_t) || index < 0 || index >= s->light_count)
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light index %d out of range", (int)index);
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "light index %d out of range", (int)index);
     HR_SIZED_COPY_OUT(out, &s->lights[index]);
     return HR_OK;
 }

@@ -29,7 +29,7 @@ static hr_object *object_alloc(void)
     return o;
 }
 
-void hr_object_free(hr_object *o)
+void hri_object_free(hr_object *o)
 {
     if (!o) return;
     if (o->shape) o->cls->destroy(o->shape);
@@ -97,7 +97,7 @@ static hr_status grow_objects(hr_scene *s)
     if (s->object_count < s->object_cap) return HR_OK;
     int64_t cap = s->object_cap ? s->object_cap * 2 : 16;
     hr_object **grown = realloc(s->objects, (size_t)cap * sizeof *grown);
-    if (!grown) return hr_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!grown) return hri_error(s->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     s->objects = grown;
     s->object_cap = cap;
     return HR_OK;
@@ -110,14 +110,14 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     hr_material_default(&o->material);
     if (d->material) {
         if (d->material->struct_size < sizeof(uint32_t))
-            return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
+            return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
         HR_SIZED_COPY_IN(&o->material, d->material);
     }
-    hr_status st = hr_material_check(ctx, &o->material);
+    hr_status st = hri_material_check(ctx, &o->material);
     if (st) return st;
     if (o->material.parameter_count > 0) {
         o->params_copy = malloc((size_t)o->material.parameter_count * sizeof(double));
-        if (!o->params_copy) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        if (!o->params_copy) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         memcpy(o->params_copy, o->material.parameters,
                (size_t)o->material.parameter_count * sizeof(double));
     }
@@ -129,21 +129,21 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
         memcpy(t.m, d->transform, sizeof t.m);
         memcpy(t.inv, d->inverse, sizeof t.inv);
         if (!doubles_are_finite(t.m, 16) || !doubles_are_finite(t.inv, 16))
-            return hr_error(ctx, HR_ERROR_NUMERIC, "object transform has a non-finite entry");
+            return hri_error(ctx, HR_ERROR_NUMERIC, "object transform has a non-finite entry");
         if (t.m[12] != 0 || t.m[13] != 0 || t.m[14] != 0 || t.m[15] != 1)
-            return hr_error(ctx, HR_ERROR_NUMERIC, "object transform is not affine (last row must be 0 0 0 1)");
+            return hri_error(ctx, HR_ERROR_NUMERIC, "object transform is not affine (last row must be 0 0 0 1)");
     } else if (d->transform) {
         if (hr_transform_from_matrix(&t, d->transform) != HR_OK)
-            return hr_error(ctx, HR_ERROR_NUMERIC,
+            return hri_error(ctx, HR_ERROR_NUMERIC,
                             "object transform is singular, not affine or not finite");
     } else if (d->inverse) {
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object has an inverse but no transform");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object has an inverse but no transform");
     }
     memcpy(o->m, t.m, sizeof o->m);
     memcpy(o->inv, t.inv, sizeof o->inv);
     o->identity = is_identity(o->m);
-    o->diagonal = !o->identity && hr_xform_is_diagonal(o->m) && hr_xform_is_diagonal(o->inv);
-    o->m_error = hr_xform_error_terms_of(o->m);
+    o->diagonal = !o->identity && hri_xform_is_diagonal(o->m) && hri_xform_is_diagonal(o->inv);
+    o->m_error = hri_xform_error_terms_of(o->m);
     return HR_OK;
 }
 
@@ -160,7 +160,7 @@ static hr_status set_composite_depth(hr_scene *s, hr_object *o, const void *cons
     if (deepest < 0) return HR_OK;
     const int32_t depth = ((const hr_object *)children[deepest])->composite_depth + 1;
     if (depth > HR_MAX_COMPOSITE_DEPTH)
-        return hr_error(s->ctx, HR_ERROR_PARAMETER,
+        return hri_error(s->ctx, HR_ERROR_PARAMETER,
                         "shape '%s': parameter '%s' would nest composites %d deep, beyond the "
                         "limit of %d; nest long chains as balanced trees ((a b) (c d))",
                         cls->name, cls->params[deepest].name, (int)depth, HR_MAX_COMPOSITE_DEPTH);
@@ -173,15 +173,15 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     hr_context *ctx = s->ctx;
     if (!d || d->struct_size < offsetof(hr_object_desc, shape) + sizeof(d->shape))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: NULL description or struct_size not set");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: NULL description or struct_size not set");
     hr_object_desc desc = {0};
     HR_SIZED_COPY_IN(&desc, d);
     if (s->committed)
-        return hr_error(ctx, HR_ERROR_STATE, "cannot add an object to a committed scene");
+        return hri_error(ctx, HR_ERROR_STATE, "cannot add an object to a committed scene");
     if (!desc.shape || !*desc.shape)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: no shape name");
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object: no shape name");
     if (desc.param_count < 0 || (desc.param_count > 0 && !desc.params))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object '%s': bad parameter list", desc.shape);
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "object '%s': bad parameter list", desc.shape);
     hr_status st = grow_objects(s);
     if (st) return st;
 
@@ -194,25 +194,25 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     char what[160];
     snprintf(what, sizeof what, "object %lld (a '%s')", (long long)s->object_count, cls->name);
     const uint64_t object_bytes = sizeof(hr_object) + 64;
-    if ((st = hr_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, what))) return st;
+    if ((st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, what))) return st;
     hr_object *o = object_alloc();
     if (!o) {
         s->budget.objects -= object_bytes;
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     }
     o->cls = cls;
     o->module_path = module_path;
     o->index = s->object_count;
     o->top_level = 1;
     if ((st = set_material_and_transform(s, o, &desc))) {
-        hr_object_free(o);
+        hri_object_free(o);
         s->budget.objects -= object_bytes;
         return st;
     }
 
     /* The resolved parameters live only through create: on the stack for
      * the usual few, so a scene of many objects pays no allocation for them.
-     * hr_params_resolve sets all n entries of both before anything reads them. */
+     * hri_params_resolve sets all n entries of both before anything reads them. */
     enum { FEW_PARAMS = 16 };
     hr_param few_params[FEW_PARAMS];
     const void *few_children[FEW_PARAMS];
@@ -225,12 +225,12 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         if (!full || !children) {
             free(full);
             free(children);
-            hr_object_free(o);
+            hri_object_free(o);
             s->budget.objects -= object_bytes;
-            return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+            return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         }
     }
-    st = hr_params_resolve(s, cls, module_path, desc.params, desc.param_count, full, children);
+    st = hri_params_resolve(s, cls, module_path, desc.params, desc.param_count, full, children);
     if (st == HR_OK) st = set_composite_depth(s, o, children);
     if (st == HR_OK) {
         char message[512];
@@ -245,21 +245,21 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         args.error_size = sizeof message;
         args.base_dir = desc.base_dir ? desc.base_dir : "";
         s->budget.refused = 0;
-        hr_scene_budget_begin(&s->budget);
+        hri_scene_budget_begin(&s->budget);
         st = cls->create(&args, &o->shape);
-        hr_scene_budget_end();
+        hri_scene_budget_end();
         if (st != HR_OK || !o->shape) {
             o->shape = NULL;
             if (st == HR_OK) st = HR_ERROR_MODULE;
             if (s->budget.refused) /* the shape's own message says only "out of memory" */
-                st = hr_scene_budget_refused(ctx, &s->budget, what);
+                st = hri_scene_budget_refused(ctx, &s->budget, what);
             else
-                st = hr_error(ctx, st, "shape '%s' (module '%s'): %s", cls->name, module_path,
+                st = hri_error(ctx, st, "shape '%s' (module '%s'): %s", cls->name, module_path,
                               message[0] ? message : "create failed without a message");
         }
     }
     if (st == HR_OK)
-        st = hr_texture_bind(s->ctx, &o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
+        st = hri_texture_bind(s->ctx, &o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
     if (st == HR_OK) {
         for (int32_t i = 0; i < n; i++)
             if (children[i]) {
@@ -272,7 +272,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         free(children);
     }
     if (st) {
-        hr_object_free(o);
+        hri_object_free(o);
         s->budget.objects -= object_bytes;
         return st;
     }

@@ -66,20 +66,20 @@ static hr_status check_numbers(hr_context *ctx, const hr_shape_class *cls, const
                                const hr_param_spec *spec, const hr_param *p)
 {
     if (p->count < 0 || (p->count > 0 && !p->numbers))
-        return hr_error(ctx, HR_ERROR_PARAMETER,
+        return hri_error(ctx, HR_ERROR_PARAMETER,
                         "shape '%s': parameter '%s' has count %lld and %s pointer", cls->name,
                         p->name, (long long)p->count, p->numbers ? "a" : "a NULL");
     for (int64_t i = 0; i < p->count; i++) {
         double v = p->numbers[i];
         if (!isfinite(v))
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s': element %lld of parameter '%s' must be a finite "
                             "number, not %g",
                             cls->name, (long long)i, p->name, v);
         if (!shape_param_accepts(spec, v)) {
             char range[128];
             format_range(spec, range, sizeof range);
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s' (module '%s'): element %lld of parameter '%s' = %g is "
                             "outside %s",
                             cls->name, module_path, (long long)i, p->name, v, range);
@@ -88,7 +88,7 @@ static hr_status check_numbers(hr_context *ctx, const hr_shape_class *cls, const
     return HR_OK;
 }
 
-hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const char *module_path,
+hr_status hri_params_resolve(hr_scene *scene, const hr_shape_class *cls, const char *module_path,
                             const hr_param *given, int32_t given_count, hr_param *full,
                             const void **objects)
 {
@@ -96,7 +96,7 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
     hr_status st;
     int32_t seen[256] = {0};
     if (cls->param_count > 256)
-        return hr_error(ctx, HR_ERROR_MODULE, "shape '%s' (module '%s') declares too many parameters",
+        return hri_error(ctx, HR_ERROR_MODULE, "shape '%s' (module '%s') declares too many parameters",
                         cls->name, module_path);
     for (int32_t i = 0; i < cls->param_count; i++) {
         const hr_param_spec *spec = &cls->params[i];
@@ -118,7 +118,7 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
     for (int32_t g = 0; g < given_count; g++) {
         const hr_param *p = &given[g];
         if (!p->name)
-            return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter %d has no name",
+            return hri_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter %d has no name",
                             cls->name, (int)g);
         int32_t k = -1;
         for (int32_t i = 0; i < cls->param_count; i++)
@@ -127,36 +127,36 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
             char names[512], hint[128] = "";
             list_params(cls, names, sizeof names);
             hr_suggester near;
-            hr_suggester_init(&near, p->name);
-            for (int32_t i = 0; i < cls->param_count; i++) hr_suggester_offer(&near, cls->params[i].name);
+            hri_suggester_init(&near, p->name);
+            for (int32_t i = 0; i < cls->param_count; i++) hri_suggester_offer(&near, cls->params[i].name);
             if (near.best) snprintf(hint, sizeof hint, " (did you mean '%.96s'?)", near.best);
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s' (module '%s') has no parameter '%s'%s; %s", cls->name,
                             module_path, p->name, hint, names);
         }
         const hr_param_spec *spec = &cls->params[k];
         if (seen[k]++)
-            return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' given twice",
+            return hri_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' given twice",
                             cls->name, p->name);
         if (p->type != spec->type)
-            return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' must be %s, not %s",
+            return hri_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' must be %s, not %s",
                             cls->name, p->name, type_name(spec->type), type_name(p->type));
         if (spec->type == HR_PARAM_NUMBER) {
             if (!isfinite(p->number))
-                return hr_error(ctx, HR_ERROR_PARAMETER,
+                return hri_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s': parameter '%s' must be a finite number, not %g",
                                 cls->name, p->name, p->number);
             if (!shape_param_accepts(spec, p->number)) {
                 char range[128];
                 format_range(spec, range, sizeof range);
-                return hr_error(ctx, HR_ERROR_PARAMETER,
+                return hri_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s' (module '%s'): parameter '%s' = %g is outside %s",
                                 cls->name, module_path, p->name, p->number, range);
             }
             full[k].number = p->number;
         } else if (spec->type == HR_PARAM_STRING) {
             if (!p->string)
-                return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' is NULL",
+                return hri_error(ctx, HR_ERROR_PARAMETER, "shape '%s': parameter '%s' is NULL",
                                 cls->name, p->name);
             full[k].string = p->string;
         } else if (spec->type == HR_PARAM_NUMBERS) {
@@ -165,25 +165,25 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
             full[k].count = p->count;
         } else {
             if (!(cls->flags & HR_SHAPE_COMPOSITE))
-                return hr_error(ctx, HR_ERROR_MODULE,
+                return hri_error(ctx, HR_ERROR_MODULE,
                                 "shape '%s' (module '%s') takes an object parameter but is not "
                                 "marked composite",
                                 cls->name, module_path);
             if (p->object < 0 || p->object >= scene->object_count)
-                return hr_error(ctx, HR_ERROR_PARAMETER,
+                return hri_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s': parameter '%s' names object %lld, but the scene has "
                                 "objects 0..%lld",
                                 cls->name, p->name, (long long)p->object,
                                 (long long)scene->object_count - 1);
             const hr_object *child = scene->objects[p->object];
             if (!child->top_level)
-                return hr_error(ctx, HR_ERROR_PARAMETER,
+                return hri_error(ctx, HR_ERROR_PARAMETER,
                                 "shape '%s': parameter '%s' names object %lld, which another "
                                 "composite already uses",
                                 cls->name, p->name, (long long)p->object);
             for (int32_t i = 0; i < cls->param_count; i++)
                 if (objects[i] == child)
-                    return hr_error(ctx, HR_ERROR_PARAMETER,
+                    return hri_error(ctx, HR_ERROR_PARAMETER,
                                     "shape '%s': object %lld given twice", cls->name,
                                     (long long)p->object);
             full[k].object = p->object;
@@ -192,7 +192,7 @@ hr_status hr_params_resolve(hr_scene *scene, const hr_shape_class *cls, const ch
     }
     for (int32_t i = 0; i < cls->param_count; i++)
         if (cls->params[i].required && !seen[i])
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s' (module '%s'): parameter '%s' is required", cls->name,
                             module_path, cls->params[i].name);
     return HR_OK;

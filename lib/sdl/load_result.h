@@ -8,11 +8,11 @@
 #include <hitray/hitray.h>
 
 /* No scene, no camera, the default camera in `camera`. */
-void hr_load_result_empty(hr_sdl_result *r);
+void hri_load_result_empty(hr_sdl_result *r);
 /* Copy the bytes the caller's struct has, keeping its struct_size. */
-void hr_load_result_give(hr_sdl_result *out, const hr_sdl_result *full);
+void hri_load_result_give(hr_sdl_result *out, const hr_sdl_result *full);
 /* Checks ctx and out (`reader` names the reader in the message, "SDL") and
  * empties out, so that every later failure leaves out->scene NULL. */
-hr_status hr_load_result_begin(hr_context *ctx, hr_sdl_result *out, const char *reader);
+hr_status hri_load_result_begin(hr_context *ctx, hr_sdl_result *out, const char *reader);
 
 #endif

@@ -64,7 +64,7 @@ static void format_at(const sdl_source *src, sdl_located at, const char *fmt, va
                       const sdl_token **origin)
 {
     /* The caller's part first: its arguments may point into the context's
-     * error slot (a message being passed on), which hr_error_at rewrites. */
+     * error slot (a message being passed on), which hri_error_at rewrites. */
     char what[MESSAGE_SIZE];
     vsnprintf(what, sizeof what, fmt, ap);
     place_message(src, at, what, t, origin);
@@ -78,7 +78,7 @@ hr_status sdl_error(const sdl_source *src, hr_status status, sdl_located at, con
     va_start(ap, fmt);
     format_at(src, at, fmt, ap, &t, &origin);
     va_end(ap);
-    return hr_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
+    return hri_error_at(src->ctx, status, src->file, origin->line, origin->column, "%s", t.data);
 }
 
 void sdl_warning(const sdl_source *src, int32_t code, sdl_located at, const char *fmt, ...)
@@ -89,7 +89,7 @@ void sdl_warning(const sdl_source *src, int32_t code, sdl_located at, const char
     va_start(ap, fmt);
     format_at(src, at, fmt, ap, &t, &origin);
     va_end(ap);
-    hr_warn(src->ctx, code, src->file, origin->line, origin->column, "%s", t.data);
+    hri_warn(src->ctx, code, src->file, origin->line, origin->column, "%s", t.data);
 }
 
 const char *sdl_describe_run_on(const sdl_source *src, sdl_located keyword, sdl_located found,

@@ -48,7 +48,7 @@ static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const
     sdl_source_release(&src);
     if (st) {
         hr_scene_destroy(scene);
-        hr_load_result_empty(result);
+        hri_load_result_empty(result);
     }
     return st;
 }
@@ -57,43 +57,43 @@ static hr_status load_text(hr_context *ctx, const char *text, size_t length, con
                            const char *base_dir, hr_sdl_result *out)
 {
     hr_sdl_result result;
-    hr_load_result_empty(&result);
+    hri_load_result_empty(&result);
     sdl_token_list tokens;
     int32_t bad_line = 0, bad_column = 0;
     hr_status st = sdl_lex(text, length, &tokens, &bad_line, &bad_column);
     if (st == HR_ERROR_SDL)
-        hr_error_at(ctx, st, name, bad_line, bad_column,
+        hri_error_at(ctx, st, name, bad_line, bad_column,
                     "%s:%d:%d: unexpected NUL byte (is this a text file?)", name, (int)bad_line,
                     (int)bad_column);
     else if (st)
-        hr_error(ctx, st, "out of memory reading '%s'", name);
+        hri_error(ctx, st, "out of memory reading '%s'", name);
     else
         st = read_scene(ctx, &tokens, name, base_dir, &result);
     sdl_token_list_release(&tokens);
-    hr_load_result_give(out, &result);
+    hri_load_result_give(out, &result);
     return st;
 }
 
 HR_API hr_status hr_sdl_load_string(hr_context *ctx, const char *text, const char *name,
                                     const char *base_dir, hr_sdl_result *out)
 {
-    hr_status st = hr_load_result_begin(ctx, out, "SDL");
+    hr_status st = hri_load_result_begin(ctx, out, "SDL");
     if (st) return st;
-    if (!text) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_string: NULL text");
+    if (!text) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_string: NULL text");
     return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, out);
 }
 
 HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)
 {
-    hr_status st = hr_load_result_begin(ctx, out, "SDL");
+    hr_status st = hri_load_result_begin(ctx, out, "SDL");
     if (st) return st;
-    if (!path) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_file: NULL path");
+    if (!path) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_file: NULL path");
     char *text;
     size_t length;
-    if ((st = hr_scene_file_read(ctx, path, "scene file", &text, &length))) return st;
-    char *base_dir = hr_path_dirname(path);
+    if ((st = hri_scene_file_read(ctx, path, "scene file", &text, &length))) return st;
+    char *base_dir = hri_path_dirname(path);
     if (!base_dir)
-        st = hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     else
         st = load_text(ctx, text, length, path, base_dir, out);
     free(base_dir);

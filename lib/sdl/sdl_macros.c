@@ -122,7 +122,7 @@ hr_status sdl_macro_define(sdl_source *src, sdl_located keyword)
         macro.body_count++;
     }
     if (sdl_macros_add(&src->macros, &macro) != HR_OK)
-        return hr_error(src->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory storing macro '%s'",
+        return hri_error(src->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory storing macro '%s'",
                         name.token->text);
     return HR_OK;
 }

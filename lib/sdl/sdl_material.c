@@ -37,14 +37,14 @@ static hr_status check_value(sdl_reader *r, sdl_located at)
 
 hr_status sdl_cmd_material_color(sdl_reader *r, sdl_located keyword)
 {
-    hr_status st = sdl_read_field(r, keyword, &hr_material_field_table, &r->material, NULL);
+    hr_status st = sdl_read_field(r, keyword, &hri_material_field_table, &r->material, NULL);
     return st ? st : check_value(r, keyword);
 }
 
 hr_status sdl_cmd_material_number(sdl_reader *r, sdl_located keyword)
 {
     sdl_located at;
-    hr_status st = sdl_read_field(r, keyword, &hr_material_field_table, &r->material, &at);
+    hr_status st = sdl_read_field(r, keyword, &hri_material_field_table, &r->material, &at);
     if (st) return st;
     sdl_note_coefficient(r, keyword);
     return check_value(r, at);
@@ -57,7 +57,7 @@ hr_status sdl_cmd_texture(sdl_reader *r, sdl_located keyword)
     if (st) return st;
     if (texture < 0 && !hr_solid_texture_name((int32_t)texture)) {
         char known[256];
-        hr_solid_texture_list(known, sizeof known);
+        hri_solid_texture_list(known, sizeof known);
         return sdl_error(r->src, HR_ERROR_SDL, keyword, "there is no solid texture %lld (there are %s)",
                          (long long)texture, known);
     }
@@ -81,7 +81,7 @@ hr_status sdl_cmd_parameters(sdl_reader *r, sdl_located keyword)
             double *grown = realloc(values, (size_t)capacity * sizeof *grown);
             if (!grown) {
                 free(values);
-                return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+                return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
             }
             values = grown;
         }

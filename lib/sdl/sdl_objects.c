@@ -67,14 +67,14 @@ static int module_class_exists(hr_context *ctx, const char *word)
 
 void sdl_offer_object_keywords(sdl_reader *r, hr_suggester *near)
 {
-    for (int i = 0; i < OBJECT_COUNT; i++) hr_suggester_offer(near, objects[i]);
+    for (int i = 0; i < OBJECT_COUNT; i++) hri_suggester_offer(near, objects[i]);
     int32_t n = hr_context_module_count(r->ctx);
     for (int32_t i = 0; i < n; i++) {
         hr_module_entry e;
         memset(&e, 0, sizeof e);
         e.struct_size = sizeof e;
         if (hr_context_module(r->ctx, i, &e) != HR_OK || !e.loaded) continue;
-        for (int32_t k = 0; k < e.class_count; k++) hr_suggester_offer(near, e.classes[k]->name);
+        for (int32_t k = 0; k < e.class_count; k++) hri_suggester_offer(near, e.classes[k]->name);
     }
 }
 
@@ -130,7 +130,7 @@ static hr_status grow(sdl_reader *r, void **items, size_t *capacity, size_t need
     if (needed <= *capacity) return HR_OK;
     size_t wanted = *capacity ? 2 * *capacity : 8;
     void *grown = realloc(*items, wanted * size);
-    if (!grown) return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!grown) return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     *items = grown;
     *capacity = wanted;
     return HR_OK;

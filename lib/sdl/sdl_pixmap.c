@@ -24,8 +24,8 @@ hr_status sdl_cmd_make_pixmap(sdl_reader *r, sdl_located keyword)
     }
     const char *name = file.token->text;
     const int relative = name[0] != '/' && r->base_dir && r->base_dir[0];
-    char *path = relative ? hr_path_join(r->base_dir, name) : hr_strdup(name);
-    if (!path) return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    char *path = relative ? hri_path_join(r->base_dir, name) : hri_strdup(name);
+    if (!path) return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     hr_image *image = NULL;
     st = hr_image_read(r->ctx, path, &image);
     free(path);

@@ -2,6 +2,7 @@
 #include "sdl/sdl_reader.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -63,7 +64,7 @@ hr_status sdl_reader_init(sdl_reader *r, hr_context *ctx, hr_scene *scene, sdl_s
     r->src = src;
     r->base_dir = base_dir;
     r->stack = malloc(16 * sizeof *r->stack);
-    if (!r->stack) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!r->stack) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     r->stack_capacity = 16;
     r->stack_count = 1;
     hr_transform_identity(&r->stack[0]);
@@ -143,22 +144,22 @@ hr_status sdl_read_whole(sdl_reader *r, sdl_located keyword, double min, double 
 hr_status sdl_read_field(sdl_reader *r, sdl_located keyword, const hr_field_table *table,
                          void *record, sdl_located *at)
 {
-    const hr_field *f = hr_field_find(table, keyword.token->text);
+    const hr_field *f = hri_field_find(table, keyword.token->text);
     hr_status st;
     if (f && f->kind == HR_FIELD_COLOR) {
         hr_color c;
         if ((st = sdl_read_color(r, keyword, &c))) return st;
-        memcpy(hr_field_in(record, f), &c, sizeof c);
+        memcpy(hri_field_in(record, f), &c, sizeof c);
         if (at) *at = keyword;
         return HR_OK;
     }
     if (f && f->kind == HR_FIELD_NUMBER) {
         double v;
         if ((st = sdl_read_number(r, keyword, &v, at))) return st;
-        memcpy(hr_field_in(record, f), &v, sizeof v);
+        memcpy(hri_field_in(record, f), &v, sizeof v);
         return HR_OK;
     }
-    return hr_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a colour or number field",
+    return hri_error(r->ctx, HR_ERROR_SDL, "internal: '%s' is not a colour or number field",
                     keyword.token->text);
 }
 
@@ -220,12 +221,22 @@ static hr_status not_a_command(sdl_reader *r, sdl_located t)
                          "unknown keyword %s: a module for it was found but refused: %s", found,
                          refused);
     hr_suggester near;
-    hr_suggester_init(&near, t.token->text);
-    for (size_t i = 0; i < COMMAND_COUNT; i++) hr_suggester_offer(&near, commands[i].keyword);
+    hri_suggester_init(&near, t.token->text);
+    for (size_t i = 0; i < COMMAND_COUNT; i++) hri_suggester_offer(&near, commands[i].keyword);
     sdl_offer_object_keywords(r, &near);
     if (near.best)
         return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s (did you mean '%s'?)", found,
                          near.best);
+    /* No typo of a known word: perhaps a shape whose module is elsewhere.
+     * The library's message says where modules were looked for. */
+    const hr_shape_class *cls = NULL;
+    char searched[1024];
+    if (hr_context_find_shape_class(r->ctx, t.token->text, &cls, NULL) != HR_OK) {
+        snprintf(searched, sizeof searched, "%s", hr_context_last_error(r->ctx));
+        return sdl_error(r->src, HR_ERROR_SDL, t,
+                         "unknown keyword %s: no SDL command, and %s (HITRAY_SHAPE_PATH, ':'-separated, "
+                         "names more directories to search)", found, searched);
+    }
     return sdl_error(r->src, HR_ERROR_SDL, t, "unknown keyword %s", found);
 }
 

@@ -17,7 +17,7 @@
 
 hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
 {
-    hr_status st = sdl_read_field(r, keyword, &hr_globals_field_table, &r->globals, NULL);
+    hr_status st = sdl_read_field(r, keyword, &hri_globals_field_table, &r->globals, NULL);
     if (st) return st;
     /* Hand them over now, so that a colour the scene refuses is reported
      * here rather than at the end of the file. */
@@ -28,7 +28,7 @@ hr_status sdl_cmd_global_color(sdl_reader *r, sdl_located keyword)
 
 hr_status sdl_cmd_global_threshold(sdl_reader *r, sdl_located keyword)
 {
-    return sdl_read_field(r, keyword, &hr_globals_field_table, &r->globals, NULL);
+    return sdl_read_field(r, keyword, &hri_globals_field_table, &r->globals, NULL);
 }
 
 hr_status sdl_cmd_max_recursion_depth(sdl_reader *r, sdl_located keyword)

@@ -16,7 +16,7 @@ hr_status sdl_source_init(sdl_source *src, hr_context *ctx, const char *file,
     src->tokens = tokens;
     sdl_macros_init(&src->macros);
     src->frames = malloc(8 * sizeof *src->frames);
-    if (!src->frames) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!src->frames) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     src->frame_capacity = 8;
     src->frame_count = 1;
     src->frames[0].next = tokens->tokens;
@@ -112,7 +112,7 @@ hr_status sdl_source_expand(sdl_source *src, int32_t macro, sdl_located use, sdl
         return sdl_error(src, HR_ERROR_SDL, use, "macros nested more than %d levels deep",
                          SDL_MAX_MACRO_NESTING);
     if (reserve_expansion_and_frame(src) != HR_OK)
-        return hr_error(src->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory expanding macro '%s'",
+        return hri_error(src->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory expanding macro '%s'",
                         m->name->text);
     sdl_expansion *e = &src->expansions[src->expansion_count];
     e->parent = name.expansion;

@@ -57,7 +57,7 @@ hr_status sdl_note_material_use(sdl_reader *r)
         if (r->coefficient_use_count == r->coefficient_use_capacity) {
             size_t capacity = r->coefficient_use_capacity ? 2 * r->coefficient_use_capacity : 16;
             sdl_coefficient_use *grown = realloc(r->coefficient_uses, capacity * sizeof *grown);
-            if (!grown) return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+            if (!grown) return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
             r->coefficient_uses = grown;
             r->coefficient_use_capacity = capacity;
         }
@@ -83,7 +83,7 @@ void sdl_warn_thresholds(sdl_reader *r)
     }
     for (int k = 0; k < SDL_COEFFICIENT_KINDS; k++)
         if (below[k] > SDL_SHOWN_THRESHOLD_WARNINGS)
-            hr_warn(r->ctx, HR_WARNING_BELOW_THRESHOLD, r->src->file, 0, 0,
+            hri_warn(r->ctx, HR_WARNING_BELOW_THRESHOLD, r->src->file, 0, 0,
                     "%s: %zu more %s commands below %s %g", r->src->file,
                     below[k] - SDL_SHOWN_THRESHOLD_WARNINGS, kinds[k].keyword, kinds[k].threshold,
                     threshold(&r->globals, k));

@@ -68,7 +68,7 @@ hr_status sdl_cmd_push(sdl_reader *r, sdl_located keyword)
     if (r->stack_count == r->stack_capacity) {
         int32_t capacity = 2 * r->stack_capacity;
         hr_transform *grown = realloc(r->stack, (size_t)capacity * sizeof *grown);
-        if (!grown) return hr_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        if (!grown) return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         r->stack = grown;
         r->stack_capacity = capacity;
     }

@@ -11,10 +11,10 @@
 #include "util/env_bytes.h"
 #include "util/errors.h"
 
-hr_status hr_scene_file_limit(const hr_context *ctx, size_t *out)
+hr_status hri_scene_file_limit(const hr_context *ctx, size_t *out)
 {
     uint64_t v;
-    hr_status st = hr_env_bytes(ctx, HR_SCENE_FILE_MAX_BYTES_ENV, "the largest scene file read",
+    hr_status st = hri_env_bytes(ctx, HR_SCENE_FILE_MAX_BYTES_ENV, "the largest scene file read",
                                 HR_SCENE_FILE_MAX_BYTES, HR_SCENE_FILE_MAX_BYTES, SIZE_MAX / 2, &v);
     *out = (size_t)v;
     return st;
@@ -22,7 +22,7 @@ hr_status hr_scene_file_limit(const hr_context *ctx, size_t *out)
 
 static hr_status too_large(const hr_context *ctx, const char *path, const char *what, size_t limit)
 {
-    return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+    return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0,
                        "%s: the %s is larger than %zu bytes, the scene size limit (set %s to "
                        "raise it)",
                        path, what, limit, HR_SCENE_FILE_MAX_BYTES_ENV);
@@ -49,7 +49,7 @@ static hr_status read_open_file(const hr_context *ctx, int fd, const char *path,
     if (capacity < 4096) capacity = 4096;
     size_t used = 0;
     char *data = malloc(capacity + 1);
-    if (!data) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+    if (!data) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
     for (;;) {
         if (used == capacity) {
             if (capacity > limit) {
@@ -60,7 +60,7 @@ static hr_status read_open_file(const hr_context *ctx, int fd, const char *path,
             char *grown = realloc(data, grown_capacity + 1);
             if (!grown) {
                 free(data);
-                return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+                return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
             }
             data = grown;
             capacity = grown_capacity;
@@ -70,7 +70,7 @@ static hr_status read_open_file(const hr_context *ctx, int fd, const char *path,
         if (n < 0) {
             int err = errno;
             free(data);
-            return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the %s: %s", path,
+            return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the %s: %s", path,
                                what, strerror(err));
         }
         if (n == 0) break;
@@ -79,7 +79,7 @@ static hr_status read_open_file(const hr_context *ctx, int fd, const char *path,
             int32_t line, column;
             place_of(data, (size_t)(nul - data), &line, &column);
             free(data);
-            return hr_error_at(ctx, HR_ERROR_SDL, path, line, column,
+            return hri_error_at(ctx, HR_ERROR_SDL, path, line, column,
                                "%s:%d:%d: unexpected NUL byte (is this a text file?)", path,
                                (int)line, (int)column);
         }
@@ -95,28 +95,28 @@ static hr_status read_open_file(const hr_context *ctx, int fd, const char *path,
     return HR_OK;
 }
 
-hr_status hr_scene_file_open(const hr_context *ctx, const char *path, const char *what, int *fd_out,
+hr_status hri_scene_file_open(const hr_context *ctx, const char *path, const char *what, int *fd_out,
                              size_t *size_out, size_t *limit_out)
 {
     *fd_out = -1;
     size_t limit;
-    hr_status st = hr_scene_file_limit(ctx, &limit);
+    hr_status st = hri_scene_file_limit(ctx, &limit);
     if (st) return st;
     /* O_NONBLOCK: opening a FIFO with no writer would otherwise wait for one. */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
-        return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the %s: %s", path, what,
+        return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the %s: %s", path, what,
                            strerror(errno));
     struct stat info;
     if (fstat(fd, &info) != 0) {
         int err = errno;
         close(fd);
-        return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the %s: %s", path, what,
+        return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the %s: %s", path, what,
                            strerror(err));
     }
     if (!S_ISREG(info.st_mode)) {
         close(fd);
-        return hr_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+        return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0,
                            "%s: cannot read the %s: not a regular file (%s)", path, what,
                            S_ISDIR(info.st_mode)    ? "a directory"
                            : S_ISFIFO(info.st_mode) ? "a FIFO"
@@ -133,20 +133,20 @@ hr_status hr_scene_file_open(const hr_context *ctx, const char *path, const char
     return HR_OK;
 }
 
-hr_status hr_scene_file_too_large(const hr_context *ctx, const char *path, const char *what,
+hr_status hri_scene_file_too_large(const hr_context *ctx, const char *path, const char *what,
                                   size_t limit)
 {
     return too_large(ctx, path, what, limit);
 }
 
-hr_status hr_scene_file_read(const hr_context *ctx, const char *path, const char *what, char **text,
+hr_status hri_scene_file_read(const hr_context *ctx, const char *path, const char *what, char **text,
                              size_t *length)
 {
     *text = NULL;
     *length = 0;
     int fd;
     size_t size, limit;
-    hr_status st = hr_scene_file_open(ctx, path, what, &fd, &size, &limit);
+    hr_status st = hri_scene_file_open(ctx, path, what, &fd, &size, &limit);
     if (st) return st;
     st = read_open_file(ctx, fd, path, what, limit, size, text, length);
     close(fd);

@@ -29,21 +29,21 @@
 /* The limit in force: HITRAY_MAX_SCENE_BYTES if set, else the default. A
  * value that is not a positive decimal byte count is an error naming the
  * variable. */
-hr_status hr_scene_file_limit(const hr_context *ctx, size_t *out);
+hr_status hri_scene_file_limit(const hr_context *ctx, size_t *out);
 
 /* The regular file at `path` opened for reading (the checks above but the
  * NUL byte's), for a reader that reads it its own way (gzip): *fd_out (the
  * caller closes it), its size, and the limit in force, which a reader that
  * inflates applies to what it inflates. */
-hr_status hr_scene_file_open(const hr_context *ctx, const char *path, const char *what, int *fd_out,
+hr_status hri_scene_file_open(const hr_context *ctx, const char *path, const char *what, int *fd_out,
                              size_t *size_out, size_t *limit_out);
 /* The error for a scene text beyond `limit` bytes. */
-hr_status hr_scene_file_too_large(const hr_context *ctx, const char *path, const char *what,
+hr_status hri_scene_file_too_large(const hr_context *ctx, const char *path, const char *what,
                                   size_t limit);
 
 /* The whole regular file at `path` into a malloc'd buffer (*text, freed by
  * the caller; NUL-terminated, *length bytes before the terminator). */
-hr_status hr_scene_file_read(const hr_context *ctx, const char *path, const char *what, char **text,
+hr_status hri_scene_file_read(const hr_context *ctx, const char *path, const char *what, char **text,
                              size_t *length);
 
 #endif

@@ -10,14 +10,14 @@
 #include "texture/texture.h"
 #include "geometry/vec.h"
 
-const hr_pixmap *hr_pixmap_find(const hr_pixmap_set *set, int32_t index)
+const hr_pixmap *hri_pixmap_find(const hr_pixmap_set *set, int32_t index)
 {
     for (int32_t i = 0; i < set->count; i++)
         if (set->pixmaps[i]->index == index) return set->pixmaps[i];
     return NULL;
 }
 
-void hr_pixmap_set_free(hr_pixmap_set *set)
+void hri_pixmap_set_free(hr_pixmap_set *set)
 {
     for (int32_t i = 0; i < set->count; i++) {
         free(set->pixmaps[i]->rgb);
@@ -36,14 +36,14 @@ static hr_status copy_pixels(hr_context *ctx, int32_t index, const hr_image *ima
     const float *src = hr_image_data((hr_image *)image);
     float *rgb = malloc((size_t)w * (size_t)h * 3 * sizeof *rgb);
     if (!rgb)
-        return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory for pixmap %d (%d x %d)",
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory for pixmap %d (%d x %d)",
                         (int)index, (int)w, (int)h);
     for (size_t p = 0; p < (size_t)w * (size_t)h; p++)
         for (int c = 0; c < 3; c++) {
             const float v = src[p * (size_t)ch + (size_t)c];
             if (!(fabsf(v) <= HR_MAX_COLOR)) {
                 free(rgb);
-                return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                          "pixmap %d: pixel (%d, %d) has %s %g; pixels must be finite, each within "
                          "+-%g",
                          (int)index, (int)(p % (size_t)w), (int)(p / (size_t)w),
@@ -55,34 +55,34 @@ static hr_status copy_pixels(hr_context *ctx, int32_t index, const hr_image *ima
     return HR_OK;
 }
 
-uint64_t hr_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size)
+uint64_t hri_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size)
 {
     const int32_t w = hr_image_width(image), h = hr_image_height(image);
     snprintf(what, what_size, "pixmap %d (%d x %d texels)", (int)index, (int)w, (int)h);
     return (uint64_t)w * (uint64_t)h * 3 * sizeof(float);
 }
 
-hr_status hr_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image)
+hr_status hri_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image)
 {
-    if (!image) return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: NULL image", (int)index);
+    if (!image) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: NULL image", (int)index);
     if (index < 1)
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap number %d: pixmaps are numbered from 1",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap number %d: pixmaps are numbered from 1",
                         (int)index);
-    if (hr_pixmap_find(set, index))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d is made already", (int)index);
+    if (hri_pixmap_find(set, index))
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d is made already", (int)index);
     const int32_t ch = hr_image_channels(image);
     if (hr_image_width(image) < 1 || hr_image_height(image) < 1 || (ch != 3 && ch != 4))
-        return hr_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: the image must be RGB or RGBA",
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "pixmap %d: the image must be RGB or RGBA",
                         (int)index);
     if (set->count == set->cap) {
         int32_t cap = set->cap ? 2 * set->cap : 4;
         hr_pixmap **grown = realloc(set->pixmaps, (size_t)cap * sizeof *grown);
-        if (!grown) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        if (!grown) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         set->pixmaps = grown;
         set->cap = cap;
     }
     hr_pixmap *pm = calloc(1, sizeof *pm);
-    if (!pm) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!pm) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     hr_status st = copy_pixels(ctx, index, image, &pm->rgb);
     if (st) {
         free(pm);
@@ -104,7 +104,7 @@ static hr_color texel(const hr_pixmap *pm, int32_t x, int32_t y)
 /* x in [0, n) from a coordinate that may be one step outside. */
 static int32_t wrap(int32_t x, int32_t n) { return x < 0 ? x + n : x >= n ? x - n : x; }
 
-hr_color hr_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest)
+hr_color hri_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest)
 {
     /* Texel centres sit at (x + 1/2) / width across and, since rows run
      * from the top, at 1 - (y + 1/2) / height up. */

@@ -17,7 +17,7 @@ static hr_status fill_params(hr_context *ctx, const hr_material *m, const hr_sha
                              const hr_texture_kind *kind, double *out)
 {
     if (m->parameter_count > kind->param_count)
-        return hr_error(ctx, HR_ERROR_PARAMETER,
+        return hri_error(ctx, HR_ERROR_PARAMETER,
                         "shape '%s': texture %d (%s) takes at most %d parameters, not %d",
                         cls->name, (int)m->texture, kind->name, (int)kind->param_count,
                         (int)m->parameter_count);
@@ -28,18 +28,18 @@ static hr_status fill_params(hr_context *ctx, const hr_material *m, const hr_sha
         char range[96] = "";
         char lo[HR_SHORTEST_BYTES], hi[HR_SHORTEST_BYTES], value[HR_SHORTEST_BYTES];
         if (p->kind == HR_TEXTURE_PARAM_POSITIVE)
-            snprintf(range, sizeof range, " (at most %s)", hr_shortest(p->max, hi));
+            snprintf(range, sizeof range, " (at most %s)", hri_shortest(p->max, hi));
         else
-            snprintf(range, sizeof range, " (within [%s, %s])", hr_shortest(p->min, lo), hr_shortest(p->max, hi));
+            snprintf(range, sizeof range, " (within [%s, %s])", hri_shortest(p->min, lo), hri_shortest(p->max, hi));
         if (!isfinite(v)) why = "must be finite";
         else if (p->kind == HR_TEXTURE_PARAM_POSITIVE && !(v > 0.0)) why = "must be positive", range[0] = '\0';
         else if (!(v >= p->min && v <= p->max)) why = "is out of range";
         else if (p->kind == HR_TEXTURE_PARAM_WHOLE && v != floor(v)) why = "must be a whole number";
         if (why)
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s': texture %d (%s): parameter %d (%s) is %s and %s%s",
                             cls->name, (int)m->texture, kind->name, (int)i + 1, p->name,
-                            hr_shortest(v, value), why,
+                            hri_shortest(v, value), why,
                             range);
         out[i] = v;
     }
@@ -47,7 +47,7 @@ static hr_status fill_params(hr_context *ctx, const hr_material *m, const hr_sha
 }
 
 
-hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
+hr_status hri_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
                           const void *shape, const char *module_path, const hr_pixmap_set *pixmaps,
                           hr_texture **out)
 {
@@ -55,18 +55,18 @@ hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_
     *out = NULL;
     /* A composite's hits carry its leaves' materials: its own is unused. */
     if (id == 0 || (cls->flags & HR_SHAPE_COMPOSITE)) return HR_OK;
-    const hr_texture_kind *kind = id < 0 ? hr_solid_texture_find(id) : &hr_image_texture_kind;
+    const hr_texture_kind *kind = id < 0 ? hri_solid_texture_find(id) : &hri_image_texture_kind;
     const hr_pixmap *pixmap = NULL;
     if (!kind) {
         char known[256];
-        hr_solid_texture_list(known, sizeof known);
-        return hr_error(ctx, HR_ERROR_PARAMETER, "shape '%s': there is no solid texture %d (there are %s)",
+        hri_solid_texture_list(known, sizeof known);
+        return hri_error(ctx, HR_ERROR_PARAMETER, "shape '%s': there is no solid texture %d (there are %s)",
                         cls->name, (int)id, known);
     }
     if (id > 0) {
         const int has_entry = HR_CLASS_HAS(cls, surface_uv) && cls->surface_uv;
         if (!has_entry || cls->surface_uv(shape, NULL, NULL) != 1)
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s' (module '%s') gives no (u, v) on %s, so it cannot carry "
                             "image texture %d",
                             cls->name, module_path,
@@ -74,8 +74,8 @@ hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_
                                         "without texture coordinates, say)"
                                       : "its surface",
                             (int)id);
-        if (!(pixmap = hr_pixmap_find(pixmaps, id)))
-            return hr_error(ctx, HR_ERROR_PARAMETER,
+        if (!(pixmap = hri_pixmap_find(pixmaps, id)))
+            return hri_error(ctx, HR_ERROR_PARAMETER,
                             "shape '%s': image texture %d needs pixmap %d, which is not made "
                             "(makePixmap %d FILE before the object)",
                             cls->name, (int)id, (int)id, (int)id);
@@ -87,12 +87,12 @@ hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_
                    params[HR_IMAGE_PARAM_VMIN] == params[HR_IMAGE_PARAM_VMAX] ||
                    !isfinite(params[HR_IMAGE_PARAM_UMAX] - params[HR_IMAGE_PARAM_UMIN]) ||
                    !isfinite(params[HR_IMAGE_PARAM_VMAX] - params[HR_IMAGE_PARAM_VMIN])))
-        return hr_error(ctx, HR_ERROR_PARAMETER,
+        return hri_error(ctx, HR_ERROR_PARAMETER,
                         "shape '%s': image texture %d: the (u, v) range [%g, %g] x [%g, %g] must "
                         "not be empty (u min != u max, v min != v max)",
                         cls->name, (int)id, params[0], params[1], params[2], params[3]);
     hr_texture *t = calloc(1, sizeof *t);
-    if (!t) return hr_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!t) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     t->kind = kind;
     t->pixmap = pixmap;
     memcpy(t->params, params, (size_t)kind->param_count * sizeof *params);
@@ -100,17 +100,17 @@ hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_
     return HR_OK;
 }
 
-hr_color hr_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
                           const hr_hit *hit)
 {
-    hr_vec3 p = hr_xform_point(t->to_object, hit->point);
-    hr_vec3 n = hr_xform_normal(t->to_world, hit->normal);
+    hr_vec3 p = hri_xform_point(t->to_object, hit->point);
+    hr_vec3 n = hri_xform_normal(t->to_world, hit->normal);
     if (t->kind->solid) {
         /* A solid texture is looked up just inside the surface, past the
          * point's error bound: a face lying on one of its own lattice
          * planes (a floor at z = 0 under a checkerboard) would otherwise
          * fall on either side from one pixel to the next. */
-        const double inset = 2.0 * hr_xform_error(t->to_object, hit->point, hit->error);
+        const double inset = 2.0 * hri_xform_error(t->to_object, hit->point, hit->error);
         hr_vec3 inward = v3_normalize(n);
         /* Near double's range the error bound is infinite: there the
          * point is used as it is, never an infinite or NaN one. */
@@ -132,5 +132,5 @@ hr_color hr_texture_color(const hr_texture *t, const hr_shape_class *cls, const 
     r = isfinite(r) ? r - floor(r) : 0.0;
     if (!(s < 1.0)) s = 0.0;
     if (!(r < 1.0)) r = 0.0;
-    return hr_pixmap_sample(t->pixmap, s, r, q[HR_IMAGE_PARAM_NEAREST] != 0.0);
+    return hri_pixmap_sample(t->pixmap, s, r, q[HR_IMAGE_PARAM_NEAREST] != 0.0);
 }

@@ -51,9 +51,9 @@ typedef struct hr_texture_kind {
 /* The solid texture numbered `id` (< 0), NULL if there is none; the
  * public hr_solid_texture_name gives its name, and lib/util/solid_textures.h
  * the list for messages. */
-const hr_texture_kind *hr_solid_texture_find(int32_t id);
+const hr_texture_kind *hri_solid_texture_find(int32_t id);
 /* The parameters of an image texture (texture N > 0). */
-extern const hr_texture_kind hr_image_texture_kind;
+extern const hr_texture_kind hri_image_texture_kind;
 #define HR_IMAGE_PARAM_UMIN 0
 #define HR_IMAGE_PARAM_UMAX 1
 #define HR_IMAGE_PARAM_VMIN 2
@@ -64,8 +64,8 @@ extern const hr_texture_kind hr_image_texture_kind;
  * the same on every machine (a fixed integer hash of the lattice points, no
  * table to set up, no rand()); and his turbulence, `octaves` layers of it at
  * doubling frequency and halving weight, normalised to [0, 1). */
-double hr_noise(hr_vec3 p);
-double hr_turbulence(hr_vec3 p, int32_t octaves);
+double hri_noise(hr_vec3 p);
+double hri_turbulence(hr_vec3 p, int32_t octaves);
 
 /* One of a scene's pixmaps (pixmap.c): linear RGB floats, rows from the top. */
 typedef struct hr_pixmap {
@@ -76,7 +76,7 @@ typedef struct hr_pixmap {
 /* The pixmap's colour at (s, t) in [0, 1) x [0, 1), s across from the left,
  * t up from the bottom: bilinear between the four nearest texel centres,
  * wrapping at the edges (a texture tiles), or the nearest texel. */
-hr_color hr_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest);
+hr_color hri_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest);
 /* A scene's pixmaps (hr_scene.pixmaps), each on its own allocation, so
  * the textures that use one hold its address across later additions. */
 typedef struct hr_pixmap_set {
@@ -84,15 +84,15 @@ typedef struct hr_pixmap_set {
     int32_t count, cap;
 } hr_pixmap_set;
 /* Pixmap `index` of the set, NULL if it is not made. */
-const hr_pixmap *hr_pixmap_find(const hr_pixmap_set *set, int32_t index);
+const hr_pixmap *hri_pixmap_find(const hr_pixmap_set *set, int32_t index);
 /* Adds pixmap `index` (>= 1, not made yet) with the pixels of `image`
  * (RGB or RGBA, each finite and within +-HR_MAX_COLOR), raising the error
  * on ctx when it cannot. */
-hr_status hr_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image);
+hr_status hri_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, const hr_image *image);
 /* The bytes pixmap `index` of `image` keeps (its texels as RGB floats),
  * and its name for messages, "pixmap N (W x H texels)", into `what`. */
-uint64_t hr_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size);
-void hr_pixmap_set_free(hr_pixmap_set *set);
+uint64_t hri_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size);
+void hri_pixmap_set_free(hr_pixmap_set *set);
 
 /* What an object's texture needs at a hit. */
 typedef struct hr_texture {
@@ -109,14 +109,14 @@ typedef struct hr_texture {
  * composite, whose hits carry its leaves' materials); refuses an image
  * texture on a class that gives no (u, v), or whose pixmap is not in
  * `pixmaps`, naming the class, the module and the number. */
-hr_status hr_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
+hr_status hri_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape_class *cls,
                           const void *shape, const char *module_path, const hr_pixmap_set *pixmaps,
                           hr_texture **out);
 /* The colour that multiplies the material's ambient and diffuse colours at
  * `hit` (world space, as shade has it) of an object of class `cls` and shape
  * `shape` textured by `t`; t's maps (to_object, to_world) are set at commit
  * (lib/scene/scene_effects.c). */
-hr_color hr_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
                           const hr_hit *hit);
 
 #endif

@@ -60,7 +60,7 @@ static uint32_t cell(double x, double *frac)
 
 static double smooth(double t) { return t * t * (3.0 - 2.0 * t); }
 
-double hr_noise(hr_vec3 p)
+double hri_noise(hr_vec3 p)
 {
     double fx, fy, fz;
     uint32_t i = cell(p.x, &fx), j = cell(p.y, &fy), k = cell(p.z, &fz);
@@ -80,11 +80,11 @@ double hr_noise(hr_vec3 p)
     return n < 1.0 ? n : 0x1.fffffffffffffp-1;
 }
 
-double hr_turbulence(hr_vec3 p, int32_t octaves)
+double hri_turbulence(hr_vec3 p, int32_t octaves)
 {
     double sum = 0.0, weight = 0.5, total = 0.0;
     for (int32_t o = 0; o < octaves; o++) {
-        sum += weight * hr_noise(p);
+        sum += weight * hri_noise(p);
         total += weight;
         p = v3_scale(p, 2.0);
         weight *= 0.5;

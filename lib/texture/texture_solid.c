@@ -133,7 +133,7 @@ static const hr_texture_param marble_params[] = {
 };
 static hr_color marble(const double *p, hr_vec3 q)
 {
-    const double turb = hr_turbulence(v3_scale(q, p[1]), (int32_t)p[3]);
+    const double turb = hri_turbulence(v3_scale(q, p[1]), (int32_t)p[3]);
     /* The phase overflows for z near double's range: a vein there (sin of
      * an infinite phase is NaN, which would reach the pixel). */
     const double phase = PI * p[0] * q.z + p[2] * turb;
@@ -151,7 +151,7 @@ static const hr_texture_kind solid_textures[] = {
 };
 #define SOLID_COUNT ((int32_t)(sizeof solid_textures / sizeof solid_textures[0]))
 
-const hr_texture_kind *hr_solid_texture_find(int32_t id)
+const hr_texture_kind *hri_solid_texture_find(int32_t id)
 {
     for (int32_t i = 0; i < SOLID_COUNT; i++)
         if (solid_textures[i].id == id) return &solid_textures[i];
@@ -160,7 +160,7 @@ const hr_texture_kind *hr_solid_texture_find(int32_t id)
 
 HR_API const char *hr_solid_texture_name(int32_t texture)
 {
-    const hr_texture_kind *kind = hr_solid_texture_find(texture);
+    const hr_texture_kind *kind = hri_solid_texture_find(texture);
     return kind ? kind->name : NULL;
 }
 
@@ -173,4 +173,4 @@ static const hr_texture_param image_params[] = {
     {"v max", 1.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
     {"nearest", 0.0, HR_TEXTURE_PARAM_WHOLE, 0.0, 1.0},
 };
-const hr_texture_kind hr_image_texture_kind = ROW(1, "image", image_params, NULL, NULL);
+const hr_texture_kind hri_image_texture_kind = ROW(1, "image", image_params, NULL, NULL);

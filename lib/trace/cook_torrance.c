@@ -7,7 +7,7 @@
 
 #define PI 3.14159265358979323846
 
-double hr_fresnel(double c, double eta)
+double hri_fresnel(double c, double eta)
 {
     const double g2 = eta * eta + c * c - 1.0;
     if (!(g2 > 0.0)) return 1.0; /* total internal reflection */
@@ -39,18 +39,18 @@ static double microfacet_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double 
     return d * g / (4.0 * nv);
 }
 
-double hr_cook_torrance_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m)
+double hri_cook_torrance_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m)
 {
     double vh;
     const double r = microfacet_lobe(n, l, v, m, &vh);
     return r < HR_COOK_TORRANCE_MAX ? r : HR_COOK_TORRANCE_MAX;
 }
 
-double hr_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta)
+double hri_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta)
 {
     double vh = 0.0;
     const double lobe = microfacet_lobe(n, l, v, m, &vh);
     if (!(lobe > 0.0)) return 0.0;
-    const double r = hr_fresnel(vh, eta) * lobe;
+    const double r = hri_fresnel(vh, eta) * lobe;
     return r < HR_COOK_TORRANCE_MAX ? r : HR_COOK_TORRANCE_MAX;
 }

@@ -6,7 +6,7 @@
 
 #include <hitray/common.h>
 
-/* The largest value hr_cook_torrance returns is HR_COOK_TORRANCE_MAX: a
+/* The largest value hri_cook_torrance returns is HR_COOK_TORRANCE_MAX: a
  * grazing view or light makes the term's 1 / (n.v) unbounded, and a colour
  * times it stays within the bound that keeps every pixel finite
  * (util/color_bounds.h). */
@@ -22,14 +22,14 @@
  * 2 (n.h)(n.l) / (v.h)), and F Fresnel's reflectance for unpolarised light
  * at relative index `eta` (the material's 1 / speedOfLight) and angle
  * acos(v.h). 0 where the light or the eye is below the surface. */
-double hr_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta);
+double hri_cook_torrance(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m, double eta);
 
 /* The same with F = 1: D G / (4 (n.v)), capped alike. Its integral over the
  * lights' hemisphere is the lobe's directional albedo, at most 1. */
-double hr_cook_torrance_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m);
+double hri_cook_torrance_lobe(hr_vec3 n, hr_vec3 l, hr_vec3 v, double m);
 
 /* Fresnel's reflectance of unpolarised light at cos(angle) c and relative
  * index eta (1 beyond the critical angle), in Cook and Torrance's form. */
-double hr_fresnel(double c, double eta);
+double hri_fresnel(double c, double eta);
 
 #endif

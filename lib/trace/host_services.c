@@ -1,6 +1,8 @@
 /* The host services every shape module is given (hr_host, the table a
  * context holds): memory, hit lists and the tracing of a composite's
- * children. The scratch lists are the scene walk's own stack (trace.c). */
+ * children. The scratch lists are the scene walk's own stack (trace.c).
+ * hr_context_create is here, above core, because it fills a new context's
+ * table with these: core calls no layer above it. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +16,7 @@
 static hr_status host_reserve(void *call, hr_intersection *list, int32_t capacity)
 {
     if (!list || capacity < 0) return HR_ERROR_INVALID_ARGUMENT;
-    return call ? hr_trace_list_reserve(call, list, capacity) : hr_intersection_reserve(list, capacity);
+    return call ? hri_trace_list_reserve(call, list, capacity) : hri_intersection_reserve(list, capacity);
 }
 
 /* Sorts the hits from `start` on by t, leaving those before `start` alone:
@@ -44,7 +46,7 @@ static hr_status host_trace_child(void *call, const void *child, const hr_ray *r
     /* Composites ask for every hit (csg.c does but for its probes): that
      * mode gets object_trace's copy made for it. */
     hr_status st = mode == HR_TRACE_ALL ? object_trace(call, child, ray, tmin, tmax, HR_TRACE_ALL, 0, out)
-                                        : hr_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
+                                        : hri_object_trace(call, child, ray, tmin, tmax, mode, 0, out);
     if (st == HR_OK) sort_tail_by_t(out, start);
     return st;
 }
@@ -61,18 +63,27 @@ static const hr_shape_class *host_child_class(const void *child)
     return o->cls;
 }
 
-void hr_host_services_init(hr_host *host)
+static void host_services_init(hr_host *host)
 {
     memset(host, 0, sizeof *host);
     host->struct_size = sizeof *host;
     host->abi_version = HR_SHAPE_ABI_VERSION;
     /* Shape data counts against the scene budget of the scene being built. */
-    host->alloc = hr_scene_budget_alloc;
-    host->free = hr_scene_budget_free;
+    host->alloc = hri_scene_budget_alloc;
+    host->free = hri_scene_budget_free;
     host->reserve = host_reserve;
-    host->scratch_acquire = hr_trace_scratch_acquire;
-    host->scratch_release = hr_trace_scratch_release;
+    host->scratch_acquire = hri_trace_scratch_acquire;
+    host->scratch_release = hri_trace_scratch_release;
     host->trace_child = host_trace_child;
     host->child_bounds = host_child_bounds;
     host->child_class = host_child_class;
+}
+
+HR_API hr_status hr_context_create(hr_context **out)
+{
+    if (!out) return HR_ERROR_INVALID_ARGUMENT;
+    *out = hri_context_new();
+    if (!*out) return HR_ERROR_OUT_OF_MEMORY;
+    host_services_init(&(*out)->host);
+    return HR_OK;
 }

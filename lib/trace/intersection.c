@@ -6,7 +6,7 @@
 
 #include "trace/trace_context.h"
 
-hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity)
+hr_status hri_intersection_reserve(hr_intersection *list, int32_t capacity)
 {
     if (capacity <= list->capacity) return HR_OK;
     int64_t cap = list->capacity > 0 ? list->capacity : 16;

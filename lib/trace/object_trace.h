@@ -1,7 +1,7 @@
 /* Internal: tracing one object through its transform (Hill: the ray goes
  * into object space through M^-1 unnormalised, so t is the same in both
  * spaces; normals come back through the transpose of M^-1), as an
- * always-inline body. hr_object_trace (trace.c) is its out-of-line copy; the
+ * always-inline body. hri_object_trace (trace.c) is its out-of-line copy; the
  * scene walk and the host's child trace inline it, so that each gets a copy
  * specialised to its mode and pays no call per object and ray. */
 #ifndef HITRAY_LIB_TRACE_OBJECT_TRACE_H
@@ -13,10 +13,10 @@
 #include "geometry/transform_inline.h"
 #include "geometry/vec.h"
 
-/* hr_intersection_reserve for a list tracing may be handed: the one list
+/* hri_intersection_reserve for a list tracing may be handed: the one list
  * whose storage is borrowed from a caller's stack (tc->borrowed) moves to
  * the heap when it must grow, every other list is realloc'd (trace.c). */
-hr_status hr_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity);
+hr_status hri_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity);
 
 /* Order by t; equal t by object then surface, so sorting is deterministic. */
 static inline int hit_before(const hr_hit *a, const hr_hit *b)
@@ -26,7 +26,7 @@ static inline int hit_before(const hr_hit *a, const hr_hit *b)
     return a->surface < b->surface;
 }
 
-/* hr_object_trace's body, inline so that the scene walk (visit_object in
+/* hri_object_trace's body, inline so that the scene walk (visit_object in
  * trace.c) and a composite's every-hit child trace (host_trace_child in
  * host_services.c) get copies specialised to their modes. */
 static inline __attribute__((always_inline)) hr_status
@@ -36,15 +36,15 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
     const hr_shape_class *cls = obj->cls;
     hr_status st;
     if (out->capacity - out->count < HR_MIN_HIT_CAPACITY &&
-        (st = hr_trace_list_reserve(tc, out, out->count + HR_MIN_HIT_CAPACITY)))
+        (st = hri_trace_list_reserve(tc, out, out->count + HR_MIN_HIT_CAPACITY)))
         return tc->status = st;
     hr_hit_args args;
     args.shape = obj->shape;
     if (obj->identity) {
         args.ray = *ray;
     } else {
-        args.ray.origin = hr_xform_point_as(obj->inv, obj->diagonal, ray->origin);
-        args.ray.dir = hr_xform_vector_as(obj->inv, obj->diagonal, ray->dir);
+        args.ray.origin = hri_xform_point_as(obj->inv, obj->diagonal, ray->origin);
+        args.ray.dir = hri_xform_vector_as(obj->inv, obj->diagonal, ray->dir);
     }
     /* A direction whose squared length would under- or overflow (a sphere
      * scaled by 1e-300, a ray into an object scaled by 1e160) is brought near
@@ -120,11 +120,11 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
          * neither M^-T nor normalising overflows or underflows. */
         h.normal = v3_unit_exponent(h.normal);
         if (!obj->identity) {
-            /* hr_xform_error_as gives the full bound's bits for a finite
+            /* hri_xform_error_as gives the full bound's bits for a finite
              * point; a hit whose point is not finite is dropped below. */
-            h.error = hr_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h.point, h.error);
-            h.point = hr_xform_point_as(obj->m, obj->diagonal, h.point);
-            h.normal = hr_xform_normal_as(obj->inv, obj->diagonal, h.normal);
+            h.error = hri_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h.point, h.error);
+            h.point = hri_xform_point_as(obj->m, obj->diagonal, h.point);
+            h.normal = hri_xform_normal_as(obj->inv, obj->diagonal, h.normal);
             h.normal = v3_unit_exponent(h.normal);
             if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
         }

@@ -5,11 +5,11 @@
 
 static _Thread_local int32_t level;
 
-hr_status hr_query_enter(const hr_context *ctx, const char *what, int32_t **level_out)
+hr_status hri_query_enter(const hr_context *ctx, const char *what, int32_t **level_out)
 {
     int32_t *l = &level;
     if (*l >= HR_MAX_QUERY_NESTING)
-        return hr_error(ctx, HR_ERROR_STATE,
+        return hri_error(ctx, HR_ERROR_STATE,
                         "%s: scene queries nested more than %d deep (a shape's hit that queries "
                         "the scene it is part of calls itself without end)",
                         what, HR_MAX_QUERY_NESTING);

@@ -10,13 +10,13 @@
 
 /* One level deeper, or HR_ERROR_STATE (message naming `what`) past
  * HR_MAX_QUERY_NESTING, when the level stays as it was. On success *level
- * points at the calling thread's level, which hr_query_leave takes: in a
+ * points at the calling thread's level, which hri_query_leave takes: in a
  * library loaded by dlopen every look-up of a thread-local variable is a
  * call (__tls_get_addr), so a query looks it up once, not twice. */
-hr_status hr_query_enter(const hr_context *ctx, const char *what, int32_t **level);
+hr_status hri_query_enter(const hr_context *ctx, const char *what, int32_t **level);
 
-/* One level back up, with the pointer hr_query_enter gave this thread. */
-static inline void hr_query_leave(int32_t *level)
+/* One level back up, with the pointer hri_query_enter gave this thread. */
+static inline void hri_query_leave(int32_t *level)
 {
     if (*level > 0) (*level)--;
 }

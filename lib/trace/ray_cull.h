@@ -26,8 +26,8 @@
  * instructions for a shadow ray that never comes near the plane).
  *
  * It reads the ray as the shape would see it. Coordinate k of the origin
- * and of the direction in object space are hr_xform_point_row and
- * hr_xform_vector_row, the very operations object_trace's transform does
+ * and of the direction in object space are hri_xform_point_row and
+ * hri_xform_vector_row, the very operations object_trace's transform does
  * for that row, so they have its bits. object_trace then scales the
  * direction by a power of two (and the window with it) only when its
  * largest component is beyond 2^-200 or 2^200 (v3_rescale_exponent); every
@@ -53,8 +53,8 @@ static inline __attribute__((always_inline)) int unbounded_misses(const hr_objec
     uint32_t axes = o->slab_axes;
     do {
         const int k = __builtin_ctz(axes);
-        const double ok = o->identity ? (&ray->origin.x)[k] : hr_xform_point_row(o->inv, ray->origin, k);
-        const double dk = o->identity ? (&ray->dir.x)[k] : hr_xform_vector_row(o->inv, ray->dir, k);
+        const double ok = o->identity ? (&ray->origin.x)[k] : hri_xform_point_row(o->inv, ray->origin, k);
+        const double dk = o->identity ? (&ray->dir.x)[k] : hri_xform_vector_row(o->inv, ray->dir, k);
         if (!(fabs(ok) <= DBL_MAX)) return 0;
         if (!(fabs(dk) >= 0x1p-200)) {
             if (dk != 0.0) return 0; /* too small to say (or NaN) */

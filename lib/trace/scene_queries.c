@@ -15,24 +15,24 @@
 static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
-    if (!s->committed) return hr_error(s->ctx, HR_ERROR_STATE, "the scene is not committed (call hr_scene_commit)");
-    if (!ray) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: NULL");
+    if (!s->committed) return hri_error(s->ctx, HR_ERROR_STATE, "the scene is not committed (call hr_scene_commit)");
+    if (!ray) return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: NULL");
     if (!v3_pair_is_finite(ray->origin, ray->dir, 0.0))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: origin and direction must be finite");
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: origin and direction must be finite");
     if (ray->dir.x == 0 && ray->dir.y == 0 && ray->dir.z == 0)
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: direction is the zero vector");
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: direction is the zero vector");
     if (isnan(tmin) || isnan(tmax) || !(tmin <= tmax))
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: need tmin <= tmax (got %g, %g)", tmin, tmax);
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "ray: need tmin <= tmax (got %g, %g)", tmin, tmax);
     return HR_OK;
 }
 
-/* Ends a query begun with hr_query_enter, which gave `level`. */
+/* Ends a query begun with hri_query_enter, which gave `level`. */
 static hr_status finish_query(hr_trace_ctx *tc, int32_t *level)
 {
-    hr_query_leave(level);
+    hri_query_leave(level);
     hr_status st = tc->status;
-    hr_trace_ctx_release(tc);
-    if (st) return hr_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
+    hri_trace_ctx_release(tc);
+    if (st) return hri_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
     return HR_OK;
 }
 
@@ -41,17 +41,17 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
 {
     hr_status st = check_query(s, ray, tmin, tmax);
     if (st) return st;
-    if (!out || !found) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
+    if (!out || !found) return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "first hit: NULL output");
     int32_t *level;
-    if ((st = hr_query_enter(s->ctx, "first hit", &level))) return st;
+    if ((st = hri_query_enter(s->ctx, "first hit", &level))) return st;
     hr_trace_ctx tc;
-    hr_trace_ctx_init_tracing(&tc, s);
+    hri_trace_ctx_init_tracing(&tc, s);
     /* One ray: the list of candidate hits lives on the stack, so the query
-     * allocates nothing unless a shape asks for more room (hr_trace_list_reserve). */
+     * allocates nothing unless a shape asks for more room (hri_trace_list_reserve). */
     hr_hit room[4 * HR_MIN_HIT_CAPACITY];
     hr_intersection tmp = {room, 0, 4 * HR_MIN_HIT_CAPACITY};
     tc.borrowed = room;
-    *found = hr_scene_trace_nearest(&tc, ray, tmin, tmax, out, &tmp);
+    *found = hri_scene_trace_nearest(&tc, ray, tmin, tmax, out, &tmp);
     if (tmp.hits != room) free(tmp.hits);
     return finish_query(&tc, level);
 }
@@ -68,15 +68,15 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     hr_status st = check_query(s, ray, tmin, tmax);
     if (st) return st;
     if (!out || out->count < 0 || out->capacity < 0 || out->count > out->capacity)
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "intersection: NULL or not initialised");
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "intersection: NULL or not initialised");
     int32_t *level;
-    if ((st = hr_query_enter(s->ctx, "all hits", &level))) return st;
+    if ((st = hri_query_enter(s->ctx, "all hits", &level))) return st;
     out->count = 0;
     hr_trace_ctx tc;
-    hr_trace_ctx_init_tracing(&tc, s);
+    hri_trace_ctx_init_tracing(&tc, s);
     for (int64_t i = 0; i < s->object_count && tc.status == HR_OK; i++) {
         const hr_object *o = s->objects[i];
-        if (o->top_level) hr_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
+        if (o->top_level) hri_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
     }
     /* qsort's base must not be NULL, even for no elements (a scene with no
      * object never gave the list storage). */
@@ -89,20 +89,20 @@ HR_API hr_status hr_scene_shade(const hr_scene *s, const hr_ray *ray, int32_t ma
 {
     hr_status st = check_query(s, ray, 0, INFINITY);
     if (st) return st;
-    if (!out) return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: NULL output");
+    if (!out) return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: NULL output");
     if (max_depth > HR_MAX_RECURSION_DEPTH)
-        return hr_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
+        return hri_error(s->ctx, HR_ERROR_INVALID_ARGUMENT, "shade: depth %d must be at most %d",
                         (int)max_depth, HR_MAX_RECURSION_DEPTH);
     int32_t *level;
-    if ((st = hr_query_enter(s->ctx, "shade", &level))) return st;
+    if ((st = hri_query_enter(s->ctx, "shade", &level))) return st;
     hr_trace_ctx tc;
-    hr_trace_ctx_init(&tc, s);
-    hr_trace_ctx_set_bounds(&tc, 0, 0.0, 0); /* as a render's defaults */
+    hri_trace_ctx_init(&tc, s);
+    hri_trace_ctx_set_bounds(&tc, 0, 0.0, 0); /* as a render's defaults */
     int32_t depth = max_depth >= 0 ? max_depth : s->globals.max_recursion_depth;
     /* The colour does not depend on the direction's length, but shapes and
      * shade's normalising square it: bring it near 1 (exactly, by a power
      * of two) so any finite length works, as the header promises. */
     hr_ray r = {ray->origin, v3_unit_exponent(ray->dir)};
-    *out = hr_shade_ray(&tc, &r, 0, depth);
+    *out = hri_shade_ray(&tc, &r, 0, depth);
     return finish_query(&tc, level);
 }

@@ -45,7 +45,7 @@
  * is taken in shading_material). */
 static hr_color cook_torrance_term(const hr_material *mat, hr_vec3 m, hr_vec3 sdir, hr_vec3 to_eye)
 {
-    double r = hr_cook_torrance(m, sdir, to_eye, mat->surface_roughness, 1.0 / mat->speed_of_light);
+    double r = hri_cook_torrance(m, sdir, to_eye, mat->surface_roughness, 1.0 / mat->speed_of_light);
     return rgb_scale(mat->specular, mat->specular_fraction * r);
 }
 
@@ -61,7 +61,7 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
     hr_vec3 origin = hr_hit_spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
         const hr_light *L = &s->lights[i];
-        if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hr_light_adds_nothing(L, mat, flags))
+        if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hri_light_adds_nothing(L, mat, flags))
             continue;
         hr_vec3 to_light = v3_sub(L->position, origin);
         hr_vec3 sdir = v3_normalize(to_light);
@@ -72,7 +72,7 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
             tc->rays_shadow++;
             tc->effects_ran |= HR_EFFECT_SHADOWS;
             /* The light sits at t = 1 along this ray. */
-            if (hr_scene_trace_shadow(tc, &shadow, 0.0, 1.0, i)) continue;
+            if (hri_scene_trace_shadow(tc, &shadow, 0.0, 1.0, i)) continue;
         }
         if (!(lambert > 0.0)) continue;
         hr_color c = rgb(0, 0, 0);
@@ -142,7 +142,7 @@ static int worth_tracing(hr_trace_ctx *tc, path p, int forced)
 static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
                       int forced);
 
-hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
+hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
     path p = {1.0, tc->min_weight, tc->ray_budget > 0.0 ? tc->ray_budget : INFINITY};
     return shade(tc, ray, depth, max_depth, p, 0);
@@ -159,7 +159,7 @@ shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t
 {
     *buf = o->material;
     if (o->texture && (flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) {
-        hr_color t = hr_texture_color(o->texture, o->cls, o->shape, h);
+        hr_color t = hri_texture_color(o->texture, o->cls, o->shape, h);
         buf->ambient = rgb_mul(buf->ambient, t);
         buf->diffuse = rgb_mul(buf->diffuse, t);
         tc->effects_ran |= HR_EFFECT_TEXTURE;
@@ -183,7 +183,7 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
         if (tc->cancel_flag && __atomic_load_n(tc->cancel_flag, __ATOMIC_RELAXED)) return rgb(0, 0, 0);
     }
     hr_hit h;
-    if (!hr_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;
+    if (!hri_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;
     const hr_object *o = s->objects[h.object];
     const hr_material *mat = &o->material;
     uint32_t flags = o->mat_flags;

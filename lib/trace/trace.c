@@ -11,12 +11,12 @@
 #include "trace/trace_context.h"
 #include "geometry/vec.h"
 
-hr_status hr_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity)
+hr_status hri_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t capacity)
 {
     if (capacity <= list->capacity) return HR_OK;
-    if (!tc->borrowed || list->hits != tc->borrowed) return hr_intersection_reserve(list, capacity);
+    if (!tc->borrowed || list->hits != tc->borrowed) return hri_intersection_reserve(list, capacity);
     hr_intersection heap = {NULL, 0, 0};
-    hr_status st = hr_intersection_reserve(&heap, capacity);
+    hr_status st = hri_intersection_reserve(&heap, capacity);
     if (st) return st;
     memcpy(heap.hits, list->hits, (size_t)list->count * sizeof *heap.hits);
     list->hits = heap.hits;
@@ -24,7 +24,7 @@ hr_status hr_trace_list_reserve(hr_trace_ctx *tc, hr_intersection *list, int32_t
     return HR_OK;
 }
 
-hr_intersection *hr_trace_scratch_acquire(void *call)
+hr_intersection *hri_trace_scratch_acquire(void *call)
 {
     hr_trace_ctx *tc = call;
     if (tc->scratch_used >= HR_SCRATCH_MAX) return NULL;
@@ -33,13 +33,13 @@ hr_intersection *hr_trace_scratch_acquire(void *call)
         memset(list, 0, sizeof *list);
         tc->scratch_ready++;
     }
-    if (hr_intersection_reserve(list, 4 * HR_MIN_HIT_CAPACITY) != HR_OK) return NULL;
+    if (hri_intersection_reserve(list, 4 * HR_MIN_HIT_CAPACITY) != HR_OK) return NULL;
     tc->scratch_used++;
     list->count = 0;
     return list;
 }
 
-void hr_trace_scratch_release(void *call, hr_intersection *list)
+void hri_trace_scratch_release(void *call, hr_intersection *list)
 {
     hr_trace_ctx *tc = call;
     /* Lists are a stack: releasing one releases everything acquired after. */
@@ -47,7 +47,7 @@ void hr_trace_scratch_release(void *call, hr_intersection *list)
     if (i >= 0 && i < tc->scratch_used) tc->scratch_used = i;
 }
 
-hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
+hr_status hri_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
                           double tmin, double tmax, int32_t mode, int unit_normals,
                           hr_intersection *out)
 {
@@ -105,7 +105,7 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
  * object tested first kept the hit, so an unbounded object wins a tie with
  * the BVH's best (its window then ends just after it) and loses one with an
  * unbounded object before it. */
-int hr_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
+int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
                            hr_intersection *tmp)
 {
     first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL};
@@ -124,7 +124,7 @@ int hr_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, dou
     return fs.found;
 }
 
-/* hr_trace_scratch_acquire for the scene walks, which take a list for
+/* hri_trace_scratch_acquire for the scene walks, which take a list for
  * every ray: the list at the top of the stack was set up and given its room
  * by an earlier ray nearly always, and then taking it is a few instructions
  * inline instead of a call that checks and reserves again. */
@@ -138,18 +138,18 @@ static inline __attribute__((always_inline)) hr_intersection *scratch_acquire(hr
             return list;
         }
     }
-    return hr_trace_scratch_acquire(tc);
+    return hri_trace_scratch_acquire(tc);
 }
 
-int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
+int hri_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out)
 {
     hr_intersection *tmp = scratch_acquire(tc);
     if (!tmp) {
         tc->status = HR_ERROR_OUT_OF_MEMORY;
         return 0;
     }
-    int found = hr_scene_trace_nearest(tc, ray, tmin, tmax, out, tmp);
-    hr_trace_scratch_release(tc, tmp);
+    int found = hri_scene_trace_nearest(tc, ray, tmin, tmax, out, tmp);
+    hri_trace_scratch_release(tc, tmp);
     return found;
 }
 
@@ -169,7 +169,7 @@ static inline __attribute__((always_inline)) int shadow_passes(const hr_object *
  * in any order: the ray is blocked if any object has a hit in (tmin, tmax).
  * A ray that the culls leave nothing to ask (most shadow rays over a floor)
  * takes no scratch list. */
-int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                           int32_t light)
 {
     const hr_scene *s = tc->scene;
@@ -180,8 +180,8 @@ int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doub
             tc->status = HR_ERROR_OUT_OF_MEMORY;
             return 0;
         }
-        if (hr_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK && tmp->count > 0) {
-            hr_trace_scratch_release(tc, tmp);
+        if (hri_object_trace(tc, *slot, ray, tmin, tmax, HR_TRACE_ANY, 0, tmp) == HR_OK && tmp->count > 0) {
+            hri_trace_scratch_release(tc, tmp);
             return 1;
         }
         tmp->count = 0;
@@ -201,6 +201,6 @@ int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, doub
         if (!fs.found && walk) accel_bvh4_walk_any(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
     }
     *slot = fs.hit_object;
-    if (tmp) hr_trace_scratch_release(tc, tmp);
+    if (tmp) hri_trace_scratch_release(tc, tmp);
     return fs.found;
 }

@@ -18,8 +18,8 @@
 #define HR_SCRATCH_MAX 64
 #define HR_OCCLUDER_SLOTS 8
 typedef struct hr_trace_ctx {
-    /* What tracing reads (hr_object_trace and the host services a shape's
-     * hit calls); hr_trace_ctx_init_tracing sets only these. */
+    /* What tracing reads (hri_object_trace and the host services a shape's
+     * hit calls); hri_trace_ctx_init_tracing sets only these. */
     const hr_scene *scene;
     const hr_hit *borrowed;     /* storage of a list on a caller's stack (one
                                    public query's): growing that list copies
@@ -57,7 +57,7 @@ typedef struct hr_trace_ctx {
     uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
     /* The object that blocked the last shadow ray towards each light (by
      * light index modulo the slots; NULL: it was not blocked), asked first
-     * by the next one (hr_scene_trace_shadow). Per thread, so no two
+     * by the next one (hri_scene_trace_shadow). Per thread, so no two
      * threads share them; they change how fast a shadow ray is answered,
      * never the answer. */
     const hr_object *occluder[HR_OCCLUDER_SLOTS];
@@ -70,15 +70,15 @@ typedef struct hr_trace_ctx {
 /* Everything but the scratch lists is zeroed; a list is set up when it is
  * first acquired (scratch_ready), so a query neither clears nor frees 64
  * lists it never touches. */
-static inline void hr_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
+static inline void hri_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
 {
     memset(tc, 0, offsetof(hr_trace_ctx, scratch));
     tc->scene = scene;
 }
-/* hr_trace_ctx_init's tracing part alone, for a query that never shades
+/* hri_trace_ctx_init's tracing part alone, for a query that never shades
  * (first hit, all hits): the shading fields are left unset, and nothing
  * such a query runs reads them. */
-static inline void hr_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *scene)
+static inline void hri_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *scene)
 {
     tc->scene = scene;
     tc->borrowed = NULL;
@@ -87,7 +87,7 @@ static inline void hr_trace_ctx_init_tracing(hr_trace_ctx *tc, const hr_scene *s
     tc->scratch_ready = 0;
 }
 /* Inline, as the query that ends with it mostly has nothing to free. */
-static inline void hr_trace_ctx_release(hr_trace_ctx *tc)
+static inline void hri_trace_ctx_release(hr_trace_ctx *tc)
 {
     for (int32_t i = 0; i < tc->scratch_ready; i++) {
         free(tc->scratch[i].hits);
@@ -102,44 +102,44 @@ static inline void hr_trace_ctx_release(hr_trace_ctx *tc)
  * HR_SCRATCH_MAX are taken or out of memory); release gives back `list`
  * and every list acquired after it. `call` is the hr_trace_ctx, as the
  * host services (hr_host) take it. */
-hr_intersection *hr_trace_scratch_acquire(void *call);
-void hr_trace_scratch_release(void *call, hr_intersection *list);
+hr_intersection *hri_trace_scratch_acquire(void *call);
+void hri_trace_scratch_release(void *call, hr_intersection *list);
 
 /* Grow a list to hold at least `capacity` hits (intersection.c). */
-hr_status hr_intersection_reserve(hr_intersection *list, int32_t capacity);
+hr_status hri_intersection_reserve(hr_intersection *list, int32_t capacity);
 
 /* Trace one object with a ray in its parent's space: hits come back in the
  * parent's space (unit normals only when `unit_normals`), appended to `out`
  * in t order, `object` naming the leaf. mode: HR_TRACE_*. */
-hr_status hr_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
+hr_status hri_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray,
                           double tmin, double tmax, int32_t mode, int unit_normals,
                           hr_intersection *out);
 
 /* Hill's getFirstHit over the scene; returns 1 on a hit. */
-int hr_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+int hri_scene_trace_first(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                          hr_hit *out);
 /* The same with the caller's list `tmp` for the candidate hits (a public
  * query's, on its stack) instead of a scratch list. */
-int hr_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
+int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
                            hr_intersection *tmp);
 /* Any hit in (tmin, tmax) of a shadow ray towards light number `light`
  * (>= 0); returns 1 on a hit. Asks first the object that blocked the last
  * shadow ray towards that light. */
-int hr_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
+int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
                           int32_t light);
 
 /* Hill's shade (lib/trace/shade.c). */
-hr_color hr_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
+hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
 /* 2^-HR_DEFAULT_MIN_WEIGHT_BITS: the cut-off renders and hr_scene_shade
  * apply unless told otherwise (render.h). */
-static inline double hr_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }
+static inline double hri_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }
 /* The cut-off and the ray budget a shading context applies: `exact` none,
  * else min_weight as a cut-off per ray, or (0) the default's 2^-24 shared
  * among the branches; ray_budget rays per camera ray (0: the default). */
-static inline void hr_trace_ctx_set_bounds(hr_trace_ctx *tc, int32_t exact, double min_weight,
+static inline void hri_trace_ctx_set_bounds(hr_trace_ctx *tc, int32_t exact, double min_weight,
                                            int64_t ray_budget)
 {
-    tc->min_weight = exact ? 0.0 : min_weight > 0.0 ? min_weight : hr_default_min_weight();
+    tc->min_weight = exact ? 0.0 : min_weight > 0.0 ? min_weight : hri_default_min_weight();
     tc->split_cut_off = !exact && !(min_weight > 0.0);
     tc->ray_budget = exact && ray_budget <= 0 ? 0.0 : ray_budget > 0 ? (double)ray_budget : HR_DEFAULT_RAY_BUDGET;
 }

@@ -24,7 +24,7 @@
 #define HR_COOK_TORRANCE_MAX HR_INPUT_BOUND
 
 /* A colour of a material, light or the globals within those bounds. */
-static inline int hr_color_in_range(hr_color c)
+static inline int hri_color_in_range(hr_color c)
 {
     return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && fabs(c.r) <= HR_MAX_COLOR &&
            fabs(c.g) <= HR_MAX_COLOR && fabs(c.b) <= HR_MAX_COLOR;

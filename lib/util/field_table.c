@@ -22,9 +22,9 @@
 static const hr_field material_fields[] = {HR_MATERIAL_FIELDS(MATERIAL_ROW)};
 static const hr_field globals_fields[] = {HR_SCENE_GLOBALS_FIELDS(GLOBALS_ROW)};
 
-const hr_field_table hr_material_field_table = {
+const hr_field_table hri_material_field_table = {
     material_fields, sizeof material_fields / sizeof material_fields[0]};
-const hr_field_table hr_globals_field_table = {
+const hr_field_table hri_globals_field_table = {
     globals_fields, sizeof globals_fields / sizeof globals_fields[0]};
 
 /* Every member of the structs has a row, but for struct_size, the material's
@@ -38,18 +38,18 @@ _Static_assert(sizeof(uint32_t) + 2 * sizeof(int32_t) HR_MATERIAL_FIELDS(MATERIA
 _Static_assert(sizeof(uint32_t) HR_SCENE_GLOBALS_FIELDS(GLOBALS_SIZE) == sizeof(hr_scene_globals),
                "a member of hr_scene_globals has no row in HR_SCENE_GLOBALS_FIELDS (scene_fields.h)");
 
-const hr_field *hr_field_find(const hr_field_table *table, const char *word)
+const hr_field *hri_field_find(const hr_field_table *table, const char *word)
 {
     for (size_t i = 0; i < table->count; i++)
         if (strcmp(table->fields[i].word, word) == 0) return &table->fields[i];
     return NULL;
 }
 
-void hr_fields_default(const hr_field_table *table, void *record)
+void hri_fields_default(const hr_field_table *table, void *record)
 {
     for (size_t i = 0; i < table->count; i++) {
         const hr_field *f = &table->fields[i];
-        void *at = hr_field_in(record, f);
+        void *at = hri_field_in(record, f);
         if (f->kind == HR_FIELD_COLOR) {
             hr_color c = {f->initial[0], f->initial[1], f->initial[2]};
             memcpy(at, &c, sizeof c);

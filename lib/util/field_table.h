@@ -27,19 +27,19 @@ typedef struct hr_field_table {
     size_t count;
 } hr_field_table;
 
-extern const hr_field_table hr_material_field_table; /* hr_material */
-extern const hr_field_table hr_globals_field_table;  /* hr_scene_globals */
+extern const hr_field_table hri_material_field_table; /* hr_material */
+extern const hr_field_table hri_globals_field_table;  /* hr_scene_globals */
 
 /* The field whose SDL keyword is `word`, NULL if none. */
-const hr_field *hr_field_find(const hr_field_table *table, const char *word);
+const hr_field *hri_field_find(const hr_field_table *table, const char *word);
 
 /* Where `field` lies in `record`, a struct of the table's type. */
-static inline void *hr_field_in(void *record, const hr_field *field)
+static inline void *hri_field_in(void *record, const hr_field *field)
 {
     return (char *)record + field->offset;
 }
 
 /* Set every field of `record`, zeroed before, to its default. */
-void hr_fields_default(const hr_field_table *table, void *record);
+void hri_fields_default(const hr_field_table *table, void *record);
 
 #endif

@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <string.h>
 
-static inline uint32_t hr_sized_common(uint32_t given, size_t full)
+static inline uint32_t hri_sized_common(uint32_t given, size_t full)
 {
     return given < full ? given : (uint32_t)full;
 }
@@ -19,14 +19,14 @@ static inline uint32_t hr_sized_common(uint32_t given, size_t full)
 /* Read the caller's *src over the defaulted full-size *dst. */
 #define HR_SIZED_COPY_IN(dst, src)                                             \
     do {                                                                       \
-        memcpy((dst), (src), hr_sized_common((src)->struct_size, sizeof *(dst))); \
+        memcpy((dst), (src), hri_sized_common((src)->struct_size, sizeof *(dst))); \
         (dst)->struct_size = (uint32_t)sizeof *(dst);                          \
     } while (0)
 
 /* Give the caller's *out as much of the full-size *full as it has room for. */
 #define HR_SIZED_COPY_OUT(out, full)                                           \
     do {                                                                       \
-        uint32_t sized_common_ = hr_sized_common((out)->struct_size, sizeof *(full)); \
+        uint32_t sized_common_ = hri_sized_common((out)->struct_size, sizeof *(full)); \
         memcpy((out), (full), sized_common_);                                  \
         (out)->struct_size = sized_common_;                                    \
     } while (0)

@@ -12,7 +12,7 @@
 
 #include <hitray/hitray.h>
 
-static inline void hr_solid_texture_list(char *buf, size_t size)
+static inline void hri_solid_texture_list(char *buf, size_t size)
 {
     size_t used = 0;
     buf[0] = '\0';

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-char *hr_strdup(const char *s)
+char *hri_strdup(const char *s)
 {
     if (!s) return NULL;
     size_t n = strlen(s) + 1;
@@ -13,7 +13,7 @@ char *hr_strdup(const char *s)
     return copy;
 }
 
-char *hr_path_join(const char *a, const char *b)
+char *hri_path_join(const char *a, const char *b)
 {
     size_t na = strlen(a), nb = strlen(b);
     int slash = na > 0 && a[na - 1] != '/';
@@ -25,11 +25,11 @@ char *hr_path_join(const char *a, const char *b)
     return p;
 }
 
-char *hr_path_dirname(const char *path)
+char *hri_path_dirname(const char *path)
 {
     const char *slash = strrchr(path, '/');
-    if (!slash) return hr_strdup(".");
-    if (slash == path) return hr_strdup("/");
+    if (!slash) return hri_strdup(".");
+    if (slash == path) return hri_strdup("/");
     size_t n = (size_t)(slash - path);
     char *d = malloc(n + 1);
     if (!d) return NULL;
@@ -38,13 +38,13 @@ char *hr_path_dirname(const char *path)
     return d;
 }
 
-int hr_str_ends_with(const char *s, const char *suffix)
+int hri_str_ends_with(const char *s, const char *suffix)
 {
     size_t ns = strlen(s), nx = strlen(suffix);
     return ns >= nx && memcmp(s + ns - nx, suffix, nx) == 0;
 }
 
-const char *hr_shortest(double v, char *buf)
+const char *hri_shortest(double v, char *buf)
 {
     for (int digits = 1; digits <= 17; digits++) {
         snprintf(buf, HR_SHORTEST_BYTES, "%.*g", digits, v);

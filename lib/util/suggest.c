@@ -55,7 +55,7 @@ static int32_t distance(const char *a, size_t n, const char *b, size_t m, int32_
     return prev[m];
 }
 
-void hr_suggester_init(hr_suggester *s, const char *word)
+void hri_suggester_init(hr_suggester *s, const char *word)
 {
     s->word = word ? word : "";
     s->length = strlen(s->word);
@@ -63,7 +63,7 @@ void hr_suggester_init(hr_suggester *s, const char *word)
     s->best_distance = 0;
 }
 
-void hr_suggester_offer(hr_suggester *s, const char *candidate)
+void hri_suggester_offer(hr_suggester *s, const char *candidate)
 {
     if (!candidate || s->length == 0 || s->length > SUGGEST_MAX_LENGTH) return;
     size_t m = strlen(candidate);
@@ -82,7 +82,7 @@ HR_API const char *hr_suggest(const char *word, const char *const *candidates, i
 {
     if (!word || !candidates) return NULL;
     hr_suggester s;
-    hr_suggester_init(&s, word);
-    for (int32_t i = 0; i < count; i++) hr_suggester_offer(&s, candidates[i]);
+    hri_suggester_init(&s, word);
+    for (int32_t i = 0; i < count; i++) hri_suggester_offer(&s, candidates[i]);
     return s.best;
 }

@@ -14,9 +14,9 @@ typedef struct hr_suggester {
     int32_t best_distance;
 } hr_suggester;
 
-void hr_suggester_init(hr_suggester *s, const char *word);
+void hri_suggester_init(hr_suggester *s, const char *word);
 /* Offer one candidate; the closest close-enough one is kept (the first of
  * equals). A candidate equal to the word is not a suggestion. */
-void hr_suggester_offer(hr_suggester *s, const char *candidate);
+void hri_suggester_offer(hr_suggester *s, const char *candidate);
 
 #endif

@@ -5,6 +5,7 @@
  * fails here; the verbs' use of the one parser is tested by
  * tests/python/test_cli_render_flags.py. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "hr_test.h"
@@ -92,20 +93,58 @@ static void check_defaults(void)
 }
 
 /* A verb's table: its own options first (one of them may take a flag's
- * name, as savings' --adaptive does), then the flags it asked for, once. */
+ * name, as savings' --adaptive does), then the flags it asked for, once;
+ * an entry with no text puts the shared flag there, and must name one the
+ * verb asked for. */
 static void check_table(void)
 {
-    static const cli_option own[] = {{"--output", "-o", 1}, {"--adaptive", NULL, 1}, {NULL, NULL, 0}};
+    static const cli_option own[] = {{"--output", "-o", 1, "FILE", "where"},
+                                     {"--adaptive", NULL, 1, "T[,T...]", "a list"},
+                                     {NULL, NULL, 0, NULL, NULL}};
     cli_option table[16];
     int n = cli_render_flags_table(own, CLI_RF_SPP | CLI_RF_ADAPTIVE | CLI_RF_EXACT, table, 16);
     CHECK(n == 4);
     CHECK(!strcmp(table[0].name, "--output") && !strcmp(table[1].name, "--adaptive"));
-    CHECK(!strcmp(table[2].name, "--spp") && table[2].takes_value);
-    CHECK(!strcmp(table[3].name, "--exact") && !table[3].takes_value);
+    CHECK(!strcmp(table[1].help, "a list"));
+    CHECK(!strcmp(table[2].name, "--spp") && table[2].takes_value && !strcmp(table[2].value, "N"));
+    CHECK(!strcmp(table[3].name, "--exact") && !table[3].takes_value && table[3].help);
     CHECK(table[4].name == NULL);
     CHECK(cli_render_flags_table(own, CLI_RF_SPP | CLI_RF_ADAPTIVE | CLI_RF_EXACT, table, 4) == -1);
+    static const cli_option ordered[] = {{"--exact", NULL, 0, NULL, NULL}, {"--output", "-o", 1, "FILE", "where"},
+                                         {NULL, NULL, 0, NULL, NULL}};
+    CHECK(cli_render_flags_table(ordered, CLI_RF_SPP | CLI_RF_EXACT, table, 16) == 3);
+    CHECK(!strcmp(table[0].name, "--exact") && table[0].help && !strcmp(table[2].name, "--spp"));
+    CHECK(cli_render_flags_table(ordered, CLI_RF_SPP, table, 16) == -1); /* --exact not asked for */
+    static const cli_option stray[] = {{"--output", "-o", 1, "FILE", NULL}, {NULL, NULL, 0, NULL, NULL}};
+    CHECK(cli_render_flags_table(stray, CLI_RF_SPP, table, 16) == -1); /* no text, no such flag */
     CHECK(cli_render_flag_bit("--threads") == CLI_RF_THREADS);
     CHECK(cli_render_flag_bit("--output") == 0);
+}
+
+/* --help's options block: the text from column 25, wrapped within 78
+ * columns, on the next line after an option too long for its column. */
+static void check_help(void)
+{
+    static const cli_option table[] = {
+        {"--output", "-o", 1, "FILE", "the image to write"},
+        {"--camera", NULL, 1, "EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE", "eye"},
+        {"--exact", NULL, 0, NULL,
+         "one two three four five six seven eight nine ten eleven twelve thirteen fourteen"},
+        {NULL, NULL, 0, NULL, NULL},
+    };
+    char *text = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&text, &size);
+    CHECK(f != NULL);
+    cli_print_options(f, table);
+    CHECK(fclose(f) == 0);
+    CHECK_MSG(text && !strcmp(text, "  -o, --output FILE     the image to write\n"
+                    "  --camera EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE\n"
+                    "                        eye\n"
+                    "  --exact               one two three four five six seven eight nine ten\n"
+                    "                        eleven twelve thirteen fourteen\n"),
+              "printed:\n%s", text ? text : "(nothing)");
+    free(text);
 }
 
 static void check_combinations(void)
@@ -155,6 +194,7 @@ int main(void)
     check_library_refuses();
     check_defaults();
     check_table();
+    check_help();
     check_combinations();
     cli_scene_free(&scene);
     return hr_test_end();

@@ -48,8 +48,8 @@ static double symmetric(double size) { return (2.0 * uniform() - 1.0) * size; }
 static int plane_hit(const hr_object *o, int axis, double c, const hr_ray *ray, double tmin,
                      double tmax, hr_vec3 *at)
 {
-    hr_vec3 org = o->identity ? ray->origin : hr_xform_point(o->inv, ray->origin);
-    hr_vec3 dir = o->identity ? ray->dir : hr_xform_vector(o->inv, ray->dir);
+    hr_vec3 org = o->identity ? ray->origin : hri_xform_point(o->inv, ray->origin);
+    hr_vec3 dir = o->identity ? ray->dir : hri_xform_vector(o->inv, ray->dir);
     const int t_exp = v3_rescale_exponent(dir);
     double lo = tmin, hi = tmax;
     if (t_exp) {
@@ -232,7 +232,7 @@ int main(void)
              * it a little or not at all, or anywhere. */
             const double *lo = &o.local_bounds.lo.x, *hi = &o.local_bounds.hi.x;
             const double face = isfinite(lo[2]) && uniform() < 0.5 ? lo[2] : hi[2];
-            const hr_vec3 on = hr_xform_point(o.m, (hr_vec3){symmetric(20), symmetric(20), face});
+            const hr_vec3 on = hri_xform_point(o.m, (hr_vec3){symmetric(20), symmetric(20), face});
             const double how = uniform();
             ray.origin = how < 0.4 ? on
                          : how < 0.7 ? (hr_vec3){on.x + symmetric(1e-12), on.y + symmetric(1e-12),
@@ -240,7 +240,7 @@ int main(void)
                                      : (hr_vec3){symmetric(30), symmetric(30), symmetric(30)};
             ray.dir = (hr_vec3){random_component(), random_component(), random_component()};
             if (uniform() < 0.1) { /* parallel to the plane in object space, or nearly */
-                hr_vec3 d = hr_xform_vector(o.m, (hr_vec3){symmetric(1), symmetric(1),
+                hr_vec3 d = hri_xform_vector(o.m, (hr_vec3){symmetric(1), symmetric(1),
                                                             uniform() < 0.5 ? 0.0 : symmetric(1e-300)});
                 ray.dir = d;
             }
@@ -249,7 +249,7 @@ int main(void)
             const double pick = uniform();
             if (pick < 0.5) {
                 /* The window ends at (or just around) the face's own t. */
-                hr_vec3 org = hr_xform_point(o.inv, ray.origin), dir = hr_xform_vector(o.inv, ray.dir);
+                hr_vec3 org = hri_xform_point(o.inv, ray.origin), dir = hri_xform_vector(o.inv, ray.dir);
                 const double tf = dir.z != 0.0 ? (face - org.z) / dir.z : 1.0;
                 const double choice = uniform();
                 tmax = choice < 0.3 ? tf : choice < 0.6 ? nextafter(tf, INFINITY) : nextafter(tf, -INFINITY);

@@ -1,5 +1,5 @@
 /* Shadow rays ask first the object that blocked the last shadow ray towards
- * the same light (lib/trace/trace.c, hr_scene_trace_shadow). That may change how
+ * the same light (lib/trace/trace.c, hri_scene_trace_shadow). That may change how
  * fast a pixel is answered, never its colour: a render (one thread, so the
  * cache stays warm from pixel to pixel) must give, for every pixel, the
  * colour hr_scene_shade gives its centre ray, which starts with an empty

@@ -1,4 +1,4 @@
-/* shade skips pow(phong, exponent) at or below hr_specular_cutoff
+/* shade skips pow(phong, exponent) at or below hri_specular_cutoff
  * (lib/scene/material_analysis.h), which is only right if pow is exactly 0 there: checked
  * for the exponents the SPD and Hill's scenes use and the extremes, on
  * 200,000 values each up to the cut-off (the cut-off itself among them),
@@ -16,7 +16,7 @@ int main(void)
     const double exponents[] = {0.5, 1.0, 3.0827, 4.81884, 50.0, 101.148, 200.0, 1e5, 1e6, 1e9};
     uint64_t state = 12345;
     for (size_t e = 0; e < sizeof exponents / sizeof *exponents; e++) {
-        const double n = exponents[e], cut = hr_specular_cutoff(n);
+        const double n = exponents[e], cut = hri_specular_cutoff(n);
         CHECK(cut >= 0 && cut < 1); /* 0 where 2^(-1100/n) underflows: no cut */
         long nonzero = 0;
         for (int i = 0; i < 200000; i++) {
@@ -32,6 +32,6 @@ int main(void)
         fprintf(stderr, "exponent %g: cut-off %.9g, pow nonzero from about %.9g\n", n, cut, first_nonzero);
         if (n >= 1e5) CHECK(cut > 0.99 * first_nonzero);
     }
-    CHECK(hr_specular_cutoff(0.0) == 0.0);
+    CHECK(hri_specular_cutoff(0.0) == 0.0);
     return hr_test_end();
 }

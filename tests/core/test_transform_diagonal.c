@@ -1,6 +1,6 @@
 /* The one-term forms of the affine products for a diagonal linear part
- * (lib/geometry/transform_inline.h: hr_xform_point_as, _vector_as, _normal_as,
- * hr_xform_error_as) against the full products, bit for bit. Tracing takes
+ * (lib/geometry/transform_inline.h: hri_xform_point_as, _vector_as, _normal_as,
+ * hri_xform_error_as) against the full products, bit for bit. Tracing takes
  * a translated and scaled object's rays and hits through them, so every
  * image depends on their giving the full products' bits, signed zeros
  * and NaN included, for every input: matrices with diagonal entries of
@@ -8,7 +8,7 @@
  * zero (either sign), tiny or huge; coordinates zero (either sign),
  * subnormal, huge, infinite and NaN. Both ways out of the one-term forms
  * (their result, and the full product they fall back to) must be taken
- * often. Then hr_xform_is_diagonal on the pairs hr_transform builds. */
+ * often. Then hri_xform_is_diagonal on the pairs hr_transform builds. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -87,22 +87,22 @@ static void test_products(void)
     for (long i = 0; i < cases; i++) {
         double m[16];
         random_diagonal(m);
-        CHECK(hr_xform_is_diagonal(m));
+        CHECK(hri_xform_is_diagonal(m));
         const int finite = next() % 2;
         const hr_vec3 p = {coordinate(finite), coordinate(finite), coordinate(finite)};
-        const hr_vec3 point = hr_xform_point_as(m, 1, p), vector = hr_xform_vector_as(m, 1, p),
-                      normal = hr_xform_normal_as(m, 1, p);
+        const hr_vec3 point = hri_xform_point_as(m, 1, p), vector = hri_xform_vector_as(m, 1, p),
+                      normal = hri_xform_normal_as(m, 1, p);
         const hr_vec3 one_term = {m[0] * p.x + m[3], m[5] * p.y + m[7], m[10] * p.z + m[11]};
-        if (hr_xform_nonzero_finite(one_term)) fast++;
+        if (hri_xform_nonzero_finite(one_term)) fast++;
         else full++;
-        int same = same_vec(point, hr_xform_point(m, p)) && same_vec(vector, hr_xform_vector(m, p)) &&
-                   same_vec(normal, hr_xform_normal(m, p));
+        int same = same_vec(point, hri_xform_point(m, p)) && same_vec(vector, hri_xform_vector(m, p)) &&
+                   same_vec(normal, hri_xform_normal(m, p));
         /* Not diagonal: always the full product. */
-        same &= same_vec(hr_xform_point_as(m, 0, p), hr_xform_point(m, p));
+        same &= same_vec(hri_xform_point_as(m, 0, p), hri_xform_point(m, p));
         if (isfinite(p.x) && isfinite(p.y) && isfinite(p.z)) {
-            const hr_xform_error_terms k = hr_xform_error_terms_of(m);
+            const hr_xform_error_terms k = hri_xform_error_terms_of(m);
             const double e = next() % 4 ? uniform() * 1e-10 : fabs(coordinate(1));
-            same &= same_double(hr_xform_error_as(m, &k, 1, p, e), hr_xform_error_with(m, &k, p, e));
+            same &= same_double(hri_xform_error_as(m, &k, 1, p, e), hri_xform_error_with(m, &k, p, e));
         }
         if (!same && mismatched++ < 5)
             CHECK_MSG(0, "m diag (%a %a %a) shift (%a %a %a), p (%a %a %a): the one-term form differs", m[0],
@@ -122,9 +122,9 @@ static void test_detection(void)
     hr_transform_translate(&t, 0.25, -3.0, 7.5);
     hr_transform_scale(&t, 0.1, 2.0, -4.0);
     hr_transform_translate(&t, 1.0, 0.0, -2.0);
-    CHECK(hr_xform_is_diagonal(t.m) && hr_xform_is_diagonal(t.inv));
+    CHECK(hri_xform_is_diagonal(t.m) && hri_xform_is_diagonal(t.inv));
     hr_transform_rotate(&t, 30.0, 0.0, 0.0, 1.0);
-    CHECK(!hr_xform_is_diagonal(t.m) && !hr_xform_is_diagonal(t.inv));
+    CHECK(!hri_xform_is_diagonal(t.m) && !hri_xform_is_diagonal(t.inv));
 }
 
 int main(void)

@@ -27,13 +27,13 @@ int main(void)
 #define SAME(v, srgb, max)                                                           \
     do {                                                                             \
         checked++;                                                                   \
-        if (hr_code_value((v), (srgb), (max)) != hr_code_value_by_formula((v), (srgb), (max))) \
+        if (hri_code_value((v), (srgb), (max)) != hri_code_value_by_formula((v), (srgb), (max))) \
             wrong++;                                                                 \
     } while (0)
     /* Around each step: walk the floats where the code changes. */
     uint32_t prev = 0;
     for (uint32_t b = 0; b <= 0x3f800000u; b += 0x400u) {
-        uint32_t code = hr_code_value_by_formula(bits_float(b), 1, 255);
+        uint32_t code = hri_code_value_by_formula(bits_float(b), 1, 255);
         if (code != prev) {
             uint32_t from = b > 0x800u ? b - 0x800u : 0;
             for (uint32_t k = from; k < b + 0x400u; k++) SAME(bits_float(k), 1, 255);
@@ -56,7 +56,7 @@ int main(void)
     for (size_t i = 0; i < sizeof extremes / sizeof *extremes; i++) SAME(extremes[i], 1, 255);
     CHECK_MSG(wrong == 0, "%ld of %ld code values differ from the formula", wrong, checked);
     CHECK(checked > 4000000);
-    CHECK(hr_code_value(1.0f, 1, 255) == 255 && hr_code_value(NAN, 1, 255) == 0);
+    CHECK(hri_code_value(1.0f, 1, 255) == 255 && hri_code_value(NAN, 1, 255) == 0);
     /* The public encoder (hr_srgb8_encode, what hitray view shows) is the
      * same table: the extremes, and a sweep of [0, 1] a step a code. */
     float sweep[256 + sizeof extremes / sizeof *extremes];
@@ -66,9 +66,9 @@ int main(void)
     hr_srgb8_encode(sweep, sizeof sweep / sizeof *sweep, codes);
     int differ = 0;
     for (size_t i = 0; i < sizeof sweep / sizeof *sweep; i++)
-        differ += codes[i] != hr_code_value_by_formula(sweep[i], 1, 255);
+        differ += codes[i] != hri_code_value_by_formula(sweep[i], 1, 255);
     CHECK_MSG(differ == 0, "%d codes of hr_srgb8_encode differ from the formula", differ);
-    /* The writers' row encoder (hr_srgb8_encode_rgb): the same codes, three
+    /* The writers' row encoder (hri_srgb8_encode_rgb): the same codes, three
      * a pixel, of RGB and of RGBA pixels whose alpha it must skip. */
     enum { PIXELS = sizeof sweep / sizeof *sweep / 3 };
     for (int32_t channels = 3; channels <= 4; channels++) {
@@ -77,10 +77,10 @@ int main(void)
             for (int c = 0; c < channels; c++) pixels[i * channels + c] = c < 3 ? sweep[i * 3 + c] : 0.5f;
         uint8_t rgb[PIXELS * 3 + 1];
         rgb[PIXELS * 3] = 0xa5; /* must stay: three bytes a pixel, no more */
-        hr_srgb8_encode_rgb(pixels, PIXELS, channels, rgb);
+        hri_srgb8_encode_rgb(pixels, PIXELS, channels, rgb);
         int off = 0;
-        for (int i = 0; i < PIXELS * 3; i++) off += rgb[i] != hr_code_value_by_formula(sweep[i], 1, 255);
-        CHECK_MSG(off == 0, "%d codes of hr_srgb8_encode_rgb (%d channels) differ from the formula", off,
+        for (int i = 0; i < PIXELS * 3; i++) off += rgb[i] != hri_code_value_by_formula(sweep[i], 1, 255);
+        CHECK_MSG(off == 0, "%d codes of hri_srgb8_encode_rgb (%d channels) differ from the formula", off,
                   (int)channels);
         CHECK(rgb[PIXELS * 3] == 0xa5);
     }

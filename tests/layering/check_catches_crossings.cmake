@@ -2,8 +2,10 @@
 # copy: an upward include, a bare one and a stale include guard (in a copy
 # of lib/'s sources), an upward call and a loop of calls (in a copy of the
 # manifest, with the trace layer's shade.c object filed in a lower layer),
-# and a tolerated crossing that no longer occurs.
-# Variables: LIB_DIR MANIFEST NM CHECK WORK_DIR
+# a tolerated crossing that no longer occurs, and the prefixes broken: a
+# static hr_ function (in the copy) and an hr_ symbol that is not exported
+# (an object compiled here, filed in util).
+# Variables: LIB_DIR MANIFEST NM CHECK WORK_DIR CC
 cmake_minimum_required(VERSION 3.18)
 
 # run_check(<lib dir> <manifest> <regex>...): the check fails, and its output
@@ -47,6 +49,12 @@ file(RENAME "${copy}/util/suggest.h" "${copy}/core/suggest.h")
 run_check("${copy}" "${MANIFEST}" "lib/core/suggest\\.h: its include guard is not HITRAY_LIB_CORE_SUGGEST_H")
 file(RENAME "${copy}/core/suggest.h" "${copy}/util/suggest.h")
 
+# A static function with the exported prefix.
+file(APPEND "${copy}/util/strutil.h" "static inline int hr_planted_inline(void) { return 0; }\n")
+run_check("${copy}" "${MANIFEST}"
+  "lib/util/strutil\\.h: static function hr_planted_inline: hr_ names what the library exports; internal is hri_planted_inline")
+file(COPY "${LIB_DIR}/util/strutil.h" DESTINATION "${copy}/util")
+
 include("${MANIFEST}")
 set(shade "")
 foreach(object IN LISTS HITRAY_LAYER_OBJECTS_trace)
@@ -59,14 +67,14 @@ if(NOT shade)
 endif()
 file(READ "${MANIFEST}" manifest)
 
-# shade.c (it calls hr_scene_trace_first) filed in util, which uses no trace.
+# shade.c (it calls hri_scene_trace_first) filed in util, which uses no trace.
 string(APPEND manifest "list(APPEND HITRAY_LAYER_OBJECTS_util \"${shade}\")\n")
 file(WRITE "${WORK_DIR}/upward_call.cmake" "${manifest}")
 run_check("${LIB_DIR}" "${WORK_DIR}/upward_call.cmake"
-  "util/shade\\.c\\.o calls hr_scene_trace_first, defined by layer trace, which is not below util")
+  "util/shade\\.c\\.o calls hri_scene_trace_first, defined by layer trace, which is not below util")
 
 # shade.c filed in texture too, allowed to use trace: texture calls trace
-# (hr_scene_trace_first), which calls texture (hr_texture_color).
+# (hri_scene_trace_first), which calls texture (hri_texture_color).
 file(READ "${MANIFEST}" manifest)
 string(APPEND manifest "list(APPEND HITRAY_LAYER_OBJECTS_texture \"${shade}\")\n"
                        "list(APPEND HITRAY_LAYER_USES_texture trace)\n")
@@ -81,3 +89,16 @@ string(APPEND manifest "list(APPEND HITRAY_LAYER_CROSSINGS geometry:render)\n")
 file(WRITE "${WORK_DIR}/stale_crossing.cmake" "${manifest}")
 run_check("${LIB_DIR}" "${WORK_DIR}/stale_crossing.cmake"
   "the crossing geometry:render listed by hitray_layer_crossing \\(lib/CMakeLists\\.txt\\) no longer occurs")
+
+# An hr_ function defined for other files but not exported.
+file(WRITE "${WORK_DIR}/planted.c" "int hr_planted_internal(void);\nint hr_planted_internal(void) { return 1; }\n")
+execute_process(COMMAND "${CC}" -c "${WORK_DIR}/planted.c" -o "${WORK_DIR}/planted.o"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${CC} could not compile the planted object: ${err}")
+endif()
+file(READ "${MANIFEST}" manifest)
+string(APPEND manifest "list(APPEND HITRAY_LAYER_OBJECTS_util \"${WORK_DIR}/planted.o\")\n")
+file(WRITE "${WORK_DIR}/unexported.cmake" "${manifest}")
+run_check("${LIB_DIR}" "${WORK_DIR}/unexported.cmake"
+  "util: hr_planted_internal is defined for other files but not exported: an internal name is hri_planted_internal")

@@ -7,7 +7,11 @@
 #   - a crossing listed by hitray_layer_crossing is tolerated, and one listed
 #     that no longer occurs is a problem (the list only shrinks);
 #   - neither the USES nor the calls between layers make a loop;
-#   - each header's include guard is named for its folder and file.
+#   - each header's include guard is named for its folder and file;
+#   - the prefixes tell exported from internal: a function or variable that
+#     lib/ defines for its other files is hri_*, a name the library exports
+#     is hr_* (and every hr_* it defines is exported), so no static
+#     function is hr_* (one in a header, shared by its includers, is hri_*).
 # Every problem is reported (file:line:col for includes), then the check fails.
 # Variables: LIB_DIR (the sources' lib/), MANIFEST (written by
 # tests/layering/CMakeLists.txt: HITRAY_LAYERS, HITRAY_LAYER_USES_<layer>,
@@ -43,6 +47,13 @@ foreach(layer IN LISTS HITRAY_LAYERS)
         problem("lib/${source}: its include guard is not ${guard}")
       endif()
     endif()
+    # A static (or static inline) function named as exported.
+    string(REGEX MATCHALL "\n[ \t]*static[^\n;=(]*[ *]hr_[A-Za-z0-9_]+\\(" statics "\n${text}")
+    foreach(definition IN LISTS statics)
+      string(REGEX MATCH "hr_[A-Za-z0-9_]+\\($" name "${definition}")
+      string(REGEX REPLACE "^hr_(.*)\\($" "\\1" bare "${name}")
+      problem("lib/${source}: static function hr_${bare}: hr_ names what the library exports; internal is hri_${bare}")
+    endforeach()
     # One list element per line: characters that CMake's lists treat
     # specially are dropped first (they never matter to an #include).
     string(REGEX REPLACE "[][;\\\\]" "" text "${text}")
@@ -80,6 +91,7 @@ endforeach()
 set(sym_count 0)
 foreach(layer IN LISTS HITRAY_LAYERS)
   set(undefined_${layer} "")
+  set(defined_names_${layer} "")
   if(NOT HITRAY_LAYER_OBJECTS_${layer})
     continue()
   endif()
@@ -101,6 +113,7 @@ foreach(layer IN LISTS HITRAY_LAYERS)
       list(APPEND undefined_${layer} "${object}|${name}")
     elseif(type MATCHES "^[A-TV-Z]$")
       set(defined_by_${name} "${layer}")
+      list(APPEND defined_names_${layer} "${name}")
       math(EXPR sym_count "${sym_count} + 1")
     endif()
   endforeach()
@@ -119,6 +132,17 @@ string(REGEX MATCHALL "(^|\n)hr_[A-Za-z0-9_]+" exported "${out}")
 foreach(name IN LISTS exported)
   string(STRIP "${name}" name)
   set(public_${name} TRUE)
+endforeach()
+
+# The prefixes: every hr_ symbol a layer defines is exported, every other
+# one it shares between files is internal and hri_ (the readers' own sdl_
+# and nff_ names are their layer's).
+foreach(layer IN LISTS HITRAY_LAYERS)
+  foreach(name IN LISTS defined_names_${layer})
+    if(name MATCHES "^hr_(.*)" AND NOT public_${name})
+      problem("${layer}: ${name} is defined for other files but not exported: an internal name is hri_${CMAKE_MATCH_1}")
+    endif()
+  endforeach()
 endforeach()
 
 set(crossings_seen "")
@@ -202,7 +226,7 @@ foreach(graph USES CALLS)
 endforeach()
 
 if(problems GREATER 0)
-  message(FATAL_ERROR "layering: ${problems} problem(s): a layer of lib/ reaches up (lib/CMakeLists.txt says what each uses)")
+  message(FATAL_ERROR "layering: ${problems} problem(s): a layer of lib/ reaches up (lib/CMakeLists.txt says what each uses) or a name's prefix is wrong")
 endif()
 list(LENGTH HITRAY_LAYERS layer_count)
-message(STATUS "layering: ${layer_count} layers, ${sym_count} symbols: no include or call reaches up, no loop")
+message(STATUS "layering: ${layer_count} layers, ${sym_count} symbols: no include or call reaches up, no loop, hr_ only what is exported")

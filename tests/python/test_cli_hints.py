@@ -36,6 +36,19 @@ def test_a_misspelt_sdl_keyword_gets_a_suggestion(tmp_path):
     assert "'camera' takes 10 numbers" in result.stderr and "found 9 before 'sphere'" in result.stderr
 
 
+def test_a_keyword_no_module_provides_says_where_modules_were_looked_for(tmp_path):
+    modules = tmp_path / "modules"
+    modules.mkdir()
+    scene = write_sdl(tmp_path, "s.sdl", "light 1 5 5 1 1 1\nzqxjkw 1.5\n")
+    result = run("render", scene, "-o", tmp_path / "x.png", env={"HITRAY_SHAPE_PATH": str(modules)})
+    assert result.returncode == 1 and len(result.stderr.splitlines()) == 1, result.stderr
+    line = result.stderr
+    assert line.startswith(f"hitray: {scene}:2:1: unknown keyword 'zqxjkw': no SDL command, and no shape "
+                           "module provides 'zqxjkw' (searched: "), line
+    assert str(modules) in line and "HITRAY_SHAPE_PATH" in line
+    assert not (tmp_path / "x.png").exists()
+
+
 def test_warnings_go_to_stderr_and_the_render_goes_on(tmp_path):
     glass = write_sdl(tmp_path, "glass.sdl",
                       "light 1 5 5 1 1 1\ntransparency 0.9 speedOfLight 0.7\nreflectivity 0.08\nsphere\n")

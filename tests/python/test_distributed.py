@@ -271,6 +271,23 @@ def test_distributed_animation_writes_skips_and_resumes(client, tmp_path):
     assert {p.name: p.read_bytes() for p in again.iterdir()} == first
 
 
+def test_distributed_frames_empty_file_or_folder_is_not_a_frame(client, tmp_path):
+    """A 0-byte file where a frame goes is not a finished frame (frames are
+    written whole, then renamed): it is rendered. A folder there is an error
+    before anything is rendered, not a frame skipped."""
+    pattern = str(tmp_path / "f%d.png")
+    (tmp_path / "f0.png").write_bytes(b"")
+    written = hd.render_frames(orbit, pattern, count=2, size=(16, 12), client=client, progress=False)
+    assert sorted(written) == [pattern % 0, pattern % 1]
+    scene, camera = orbit(0)
+    hitray.render(scene, camera, (16, 12), progress=False).save(tmp_path / "here.png")
+    assert (tmp_path / "f0.png").read_bytes() == (tmp_path / "here.png").read_bytes()
+    (tmp_path / "f2.png").mkdir()
+    with pytest.raises(IsADirectoryError, match=r"f2\.png: a directory is where frame 2 goes"):
+        hd.render_frames(orbit, pattern, count=3, size=(16, 12), client=client, progress=False)
+    assert tile_tasks(client) == []
+
+
 def tile_tasks(client):
     """Keys of hitray tiles the scheduler still knows."""
     def on_scheduler(dask_scheduler):

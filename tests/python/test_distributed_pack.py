@@ -105,3 +105,33 @@ def test_pack_refuses_more_than_the_limit(tmp_path, monkeypatch):
 def test_pack_sdl_words_are_the_lexers():
     text = b"mesh a.3vn{b}c!comment d\n\te\r\nf"
     assert [text[s:e] for s, e in _pack._sdl_words(text)] == [b"mesh", b"a.3vn", b"b", b"c", b"e", b"f"]
+
+
+def tampered(pack, **changes):
+    """The pack as an attacker could pickle it: its state with fields
+    replaced (files: the path -> bytes map; sdl_base: the scene's folder)."""
+    key, sdl, spans, ops, globals_, files = pack.__getstate__()
+    if "files" in changes:
+        files = changes["files"]
+    if "sdl_base" in changes:
+        sdl = (sdl[0], sdl[1], changes["sdl_base"], sdl[3])
+    out = hd.ScenePack.__new__(hd.ScenePack)
+    out.__setstate__((key, sdl, spans, ops, globals_, files))
+    return pickle.loads(pickle.dumps(out))
+
+
+def test_pack_refuses_paths_that_leave_its_folder(tmp_path):
+    """An unpickled pack whose paths climb out of its private folder ('..'
+    past the root) writes nothing there and raises; its scene folder may not
+    leave either. A path that climbs and comes back inside is fine."""
+    scene, camera = hitray.parse_sdl(TWO_SPHERES_SDL, base_dir=tmp_path)
+    pack = hd.ScenePack(scene)
+    outside = tmp_path / "planted"
+    climb = b"/" + b"../" * 40 + os.fsencode(outside)
+    with pytest.raises(hd.ShippingError, match=r"leaves its folder: refused"):
+        tampered(pack, files={climb: b"owned"}).scene()
+    assert not outside.exists()
+    with pytest.raises(hd.ShippingError, match=r"leaves its folder: refused"):
+        tampered(pack, sdl_base=b"/" + b"../" * 40 + os.fsencode(tmp_path)).scene()
+    inside = tampered(pack, files={b"/a/../b/c.txt": b"fine"}).scene()
+    assert np.array_equal(pixels(inside, camera), pixels(scene, camera))

@@ -259,6 +259,8 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         # cancelled by the next key writes nothing).
         viewer.line(f"wrote {shot}: ", ends=after_line)
         camera_arg = ",".join(after_line.split()[1:])
+        # Each camera line comes with its --camera option, the same numbers.
+        assert viewer.line("--camera ", nth=2) == f"--camera {camera_arg}"
         assert shot.read_bytes() == render(tmp_path, "ref.pfm", "--camera", camera_arg)
         # The line is one for the SDL file: the scene with it renders the same.
         moved = tmp_path / "moved.sdl"
@@ -273,6 +275,11 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         viewer.keys("p")
         assert viewer.line("saved ") == f"saved {saved}: {after_line}"
         assert saved.read_bytes() == render(tmp_path, "ref.exr", "--camera", camera_arg)
+        # P again saves beside it, numbered: the first picture stays.
+        viewer.keys("p")
+        second = tmp_path / "saved-2.exr"
+        assert viewer.line("saved ", nth=2) == f"saved {second}: {after_line}"
+        assert second.read_bytes() == saved.read_bytes()
         viewer.keys("Escape")
         assert viewer.proc.wait(timeout=WAIT) == 0
         assert viewer.proc.stderr.read() == ""

@@ -84,8 +84,13 @@ static void names(hr_context *ctx)
     r.struct_size = sizeof r;
     /* NULL name: "<string>". */
     CHECK(hr_sdl_load_string(ctx, "frob", NULL, NULL, &r) == HR_ERROR_SDL);
-    CHECK_MSG(strcmp(hr_context_last_error(ctx), "<string>:1:1: unknown keyword 'frob'") == 0,
-              "message: %s", hr_context_last_error(ctx));
+    /* A word no module provides either: the message goes on to say where
+     * modules were looked for. */
+    static const char frob[] = "<string>:1:1: unknown keyword 'frob': no SDL command, and no shape module "
+                               "provides 'frob' (searched: ";
+    CHECK_MSG(strncmp(hr_context_last_error(ctx), frob, sizeof frob - 1) == 0, "message: %s",
+              hr_context_last_error(ctx));
+    CHECK(strstr(hr_context_last_error(ctx), "HITRAY_SHAPE_PATH") != NULL);
     /* Success leaves a usable, uncommitted scene that commits. */
     CHECK_OK(hr_sdl_load_string(ctx, "light 0 5 5 1 1 1 sphere", "ok.dat", NULL, &r));
     CHECK(r.scene && !hr_scene_is_committed(r.scene));

@@ -70,14 +70,14 @@ static void test_term_against_formula(void)
                 for (int k = 0; k < 6; k++)
                     for (int e = 0; e < 4; e++) {
                         const long double want = lobe_l(l, v, ms[k], etas[e], 1);
-                        const double got = hr_cook_torrance(n, to_d(l), to_d(v), ms[k], etas[e]);
+                        const double got = hri_cook_torrance(n, to_d(l), to_d(v), ms[k], etas[e]);
                         if (want < 1e-250L) {
                             CHECK_MSG(got < 1e-240, "%.17g for %.3Lg", got, want);
                             continue;
                         }
                         CHECK_MSG(fabsl(got - want) <= 1e-10L * want, "v %d l %d phi %d m %g eta %g: %.17g, %.17Lg",
                                   a, b, p, ms[k], etas[e], got, want);
-                        const double lobe = hr_cook_torrance_lobe(n, to_d(l), to_d(v), ms[k]);
+                        const double lobe = hri_cook_torrance_lobe(n, to_d(l), to_d(v), ms[k]);
                         const long double want1 = lobe_l(l, v, ms[k], etas[e], 0);
                         CHECK(fabsl(lobe - want1) <= 1e-10L * want1);
                         compared++;
@@ -121,7 +121,7 @@ static long double albedo(long double theta_v, long double m, int panels, int li
                     if (!(vh > 0)) continue;
                     const vec_l l = {2 * vh * h.x - v.x, 2 * vh * h.y - v.y, 2 * vh * h.z - v.z};
                     if (!(l.z > 0)) continue;
-                    const long double f = lib ? (long double)hr_cook_torrance_lobe(n, to_d(l), to_d(v), (double)m)
+                    const long double f = lib ? (long double)hri_cook_torrance_lobe(n, to_d(l), to_d(v), (double)m)
                                               : lobe_l(l, v, m, 1, 0);
                     sum += 2 * f * 4 * vh * sinl(th) * dth * dph;
                 }

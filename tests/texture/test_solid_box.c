@@ -74,7 +74,7 @@ static void check_box(const hr_texture_kind *kind, hr_vec3 q, hr_vec3 h, int per
  * bit for bit. */
 static void test_wood(void)
 {
-    const hr_texture_kind *wood = hr_solid_texture_find(-2);
+    const hr_texture_kind *wood = hri_solid_texture_find(-2);
     CHECK(wood && wood->solid_box);
     if (!(wood && wood->solid_box)) return;
     const double boxes[][2] = {{0.33, 0.02}, {1.234, 0.07}, {2.5, 0.011}, {0.8, 0.3}};
@@ -105,7 +105,7 @@ static void test_wood(void)
 
 int main(void)
 {
-    const hr_texture_kind *kind = hr_solid_texture_find(-1);
+    const hr_texture_kind *kind = hri_solid_texture_find(-1);
     CHECK(kind && kind->solid && kind->solid_box);
     if (!(kind && kind->solid && kind->solid_box)) return hr_test_end();
 
@@ -143,6 +143,6 @@ int main(void)
                       "point (%g, %g, %g): %g, box %g, parity %d", p.x, p.y, p.z, a.r, b.r, odd);
         }
     test_wood();
-    CHECK(hr_solid_texture_find(-3)->solid_box == NULL);
+    CHECK(hri_solid_texture_find(-3)->solid_box == NULL);
     return hr_test_end();
 }

@@ -177,6 +177,58 @@ static void test_camera_line(void)
     for (int i = 0; i < 10; i++) CHECK_MSG(v[i] == want[i], "value %d read back as %.17g", i, v[i]);
 }
 
+/* The --camera form of a camera: the same ten numbers, read back exactly,
+ * comma-separated as the option takes them. */
+static void test_camera_option(void)
+{
+    hr_camera cam;
+    hr_camera_default(&cam);
+    cam.eye = (hr_vec3){0.1, -1.0 / 3.0, 1e-300}, cam.look = (hr_vec3){6.02e23, 0, -0.0};
+    cam.up = (hr_vec3){nextafter(1.0, 2.0), 2, 3}, cam.view_angle = 38.123456789012345;
+    char option[512];
+    view_camera_option(&cam, option, sizeof option);
+    double v[10];
+    CHECK(sscanf(option, "--camera %lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4],
+                 &v[5], &v[6], &v[7], &v[8], &v[9]) == 10);
+    CHECK(strchr(option, ' ') == strrchr(option, ' ')); /* one blank: a single shell word after the name */
+    const double want[10] = {cam.eye.x, cam.eye.y, cam.eye.z, cam.look.x, cam.look.y, cam.look.z,
+                             cam.up.x, cam.up.y, cam.up.z, cam.view_angle};
+    for (int i = 0; i < 10; i++) CHECK_MSG(v[i] == want[i], "value %d read back as %.17g", i, v[i]);
+}
+
+/* The names P saves to, against a set of names that "exist". */
+static int in_list(const char *path, void *user)
+{
+    for (const char *const *name = user; *name; name++)
+        if (!strcmp(*name, path)) return 1;
+    return 0;
+}
+
+static void check_save_path(const char *path, const char *const *taken, const char *want)
+{
+    char out[64];
+    int ok = view_save_path(path, in_list, (void *)taken, out, sizeof out);
+    if (!want) CHECK_MSG(!ok, "%s: gave %s", path, out);
+    else CHECK_MSG(ok && !strcmp(out, want), "%s: gave %s, not %s", path, ok ? out : "nothing", want);
+}
+
+static void test_save_path(void)
+{
+    static const char *const none[] = {NULL};
+    static const char *const first[] = {"hitray-view.png", NULL};
+    static const char *const three[] = {"out/shot.exr", "out/shot-2.exr", "out/shot-3.exr", NULL};
+    static const char *const bare[] = {"dir.x/picture", ".png", NULL};
+    check_save_path("hitray-view.png", none, "hitray-view.png");
+    check_save_path("hitray-view.png", first, "hitray-view-2.png");
+    check_save_path("out/shot.exr", three, "out/shot-4.exr");
+    check_save_path("dir.x/picture", bare, "dir.x/picture-2"); /* the directory's dot is no extension */
+    check_save_path(".png", bare, ".png-2");
+    /* A name that does not fit: no name, rather than a cut one. */
+    check_save_path("a-name-of-sixty-four-characters-or-more-is-longer-than-the-buffer.png", none, NULL);
+    static const char *const full[] = {"abcdefghijklmnopqrstuvwxyz-0123456789-abcdefghijklmnopqrstu.png", NULL};
+    check_save_path(full[0], full, NULL); /* 63 characters fit, the number does not */
+}
+
 static void test_status(void)
 {
     view_pass plan[VIEW_MAX_PASSES];
@@ -272,6 +324,8 @@ int main(void)
     test_plans();
     test_moves();
     test_camera_line();
+    test_camera_option();
+    test_save_path();
     test_status();
     test_pixels();
     return hr_test_end();

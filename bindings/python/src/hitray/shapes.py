@@ -241,7 +241,8 @@ class Plane(Shape):
 
 class TaperedCylinder(Shape):
     """Axis +z from z = 0 to 1, radius 1 at the base and `s` at the cap
-    (base and cap disks belong to the solid)."""
+    (base and cap disks belong to the solid). `s`'s default and range:
+    ``hitray shapes`` (or ``hitray.shape_classes()["taperedCylinder"]``)."""
 
     __slots__ = ()
 
@@ -279,10 +280,9 @@ class Cone(Shape):
 
 class Torus(Shape):
     """A ring of radius 1 in the xy-plane about the z axis with tube radius
-    `tube` (Hill's 0.2 if omitted). `solver` picks the quartic root solver:
-    "bracketing" (the default: never misses a root or a tangent),
-    "ferrari-newton" or "ferrari" (faster, less robust near tangents); see
-    ``hitray.shape_classes()["torus"]`` for what each costs."""
+    `tube`; `solver` picks the quartic root solver. The parameters' defaults,
+    ranges and the solvers: ``hitray shapes`` (or
+    ``hitray.shape_classes()["torus"]``)."""
 
     __slots__ = ()
 
@@ -414,8 +414,8 @@ class Buckyball(Shape):
 
 class Teapot(Shape):
     """Newell's teapot, tessellated from its 32 Bezier patches with smooth
-    normals: `tessellation` steps along each side of a patch (a whole number
-    from 2 to 128; 12 if omitted), 64 n² - 8 n triangles. The size of
+    normals: `tessellation` steps along each side of a patch, n, giving
+    64 n² - 8 n triangles (its default and range: ``hitray shapes``). The size of
     glutSolidTeapot(1.0), as Hill drew it: y up, the base at y = -0.75, the
     handle towards -x, the spout towards +x. An open surface, as Newell made
     it (the lid sits in the rim with a gap)."""

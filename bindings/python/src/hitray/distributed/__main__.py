@@ -15,12 +15,33 @@ import argparse
 import os
 import runpy
 import sys
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+import traceback
+from typing import Any, Dict, List, NoReturn, Optional, Sequence, Tuple
 
 from .. import Camera, Error, load_nff, load_sdl
 from ._client import SchedulerUnreachable, connect
 from ._pack import ShippingError
 from ._render import render, render_frames
+
+PROG = "python -m hitray.distributed"
+# Image.save's formats, by extension.
+_EXTENSIONS = (".png", ".exr", ".ppm", ".pfm")
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, its usage errors one line (the program, what is wrong and
+    where to look) and exit status 2, as the docs promise."""
+
+    def error(self, message: str) -> NoReturn:
+        sys.stderr.write(f"{PROG}: {message} (see {self.prog} --help)\n")
+        sys.exit(2)
+
+
+def _message(e: BaseException) -> str:
+    """An error's text without the prefix the package's own messages carry
+    (the command line puts its own in front)."""
+    text = str(e)
+    return text[len("hitray.distributed: "):] if text.startswith("hitray.distributed: ") else text
 
 
 def _size(text: str) -> Tuple[int, int]:
@@ -54,11 +75,12 @@ def _positive(text: str) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="python -m hitray.distributed",
+    p = _Parser(prog=PROG,
                                 description="Render scenes and animations on a Dask cluster, bit for bit "
                                             "the images `hitray render` gives.")
     verbs = p.add_subparsers(dest="verb", required=True)
-    common = argparse.ArgumentParser(add_help=False)
+    verbs._parser_class = _Parser  # type: ignore[attr-defined]  # the verbs' errors one line too
+    common = _Parser(add_help=False)
     where = common.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="a running Dask scheduler (tcp://host:8786); default: a local cluster")
@@ -111,10 +133,30 @@ def _load(path: str) -> Tuple[Any, Optional[Camera]]:
     return load_nff(path) if lower.endswith((".nff", ".nff.gz")) else load_sdl(path)
 
 
+class ScriptError(Exception):
+    """A frames script that failed: one line naming its file and line."""
+
+
+def _run_script(path: str) -> Dict[str, Any]:
+    """The names a frames script defines; its failure as one ScriptError
+    naming the script's line (the innermost frame in the script itself)."""
+    try:
+        return runpy.run_path(path, run_name="__hitray_frames__")
+    except SyntaxError as e:
+        raise ScriptError(f"{path}:{e.lineno}: {e.msg}") from None
+    except (KeyboardInterrupt, SystemExit):
+        raise
+    except BaseException as e:  # noqa: B902 - whatever the script raised, reported as one line
+        where = [f.lineno for f in traceback.extract_tb(e.__traceback__)
+                 if os.path.abspath(f.filename) == os.path.abspath(path)]
+        line = f":{where[-1]}" if where else ""
+        raise ScriptError(f"{path}{line}: {type(e).__name__}: {e}") from None
+
+
 def _script_frames(path: str) -> Tuple[Any, Optional[int]]:
     if not os.path.isfile(path):
         raise FileNotFoundError(f"{path}: no such script")
-    names = runpy.run_path(path, run_name="__hitray_frames__")
+    names = _run_script(path)
     if "frames" not in names:
         raise ValueError(f"{path}: the script defines no `frames`")
     frames, count = names["frames"], names.get("count")
@@ -123,14 +165,47 @@ def _script_frames(path: str) -> Tuple[Any, Optional[int]]:
     return frames, count
 
 
+def _check_output(path: str, what: str) -> None:
+    """Before any rendering: the output's format is known by its extension
+    and its folder is one this process may write in."""
+    if os.path.isdir(path):
+        raise IsADirectoryError(f"{path}: {what} is a directory")
+    if not path.lower().endswith(_EXTENSIONS):
+        raise ValueError(f"{path}: {what} must end in {', '.join(_EXTENSIONS)} (the format comes from it)")
+    folder = os.path.dirname(path) or "."
+    if not os.path.isdir(folder):
+        raise FileNotFoundError(f"{path}: no such directory {folder!r} to write {what} in")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise PermissionError(f"{path}: the directory {folder!r} is not writable")
+
+
+def _check_outputs(a: argparse.Namespace) -> None:
+    if a.verb == "render":
+        _check_output(a.output, "the output")
+        if a.exr:
+            _check_output(a.exr, "--exr")
+        return
+    try:
+        first = a.output % 0
+    except (TypeError, ValueError):
+        return  # render_frames says what is wrong with the pattern, before rendering
+    _check_output(first, "the output pattern")
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     a = _parser().parse_args(argv)
     opts = _options(a)
     save = {"bits": 16 if a.png16 else 8, "linear": a.linear_png, "half": a.exr_half}
     try:
+        # Everything that can be checked here is, before the cluster is
+        # asked for anything: the outputs, the scene or the frames script.
+        _check_outputs(a)
+        if a.verb == "render":
+            scene, camera = _load(a.scene)
+        else:
+            frames, count = _script_frames(a.script)
         with connect(a.scheduler, a.workers, a.timeout) as client:
             if a.verb == "render":
-                scene, camera = _load(a.scene)
                 image = render(scene, a.camera or camera, client=client, **opts)
                 image.save(a.output, **save)
                 if a.exr:
@@ -140,15 +215,15 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 print(f"{a.output}: {a.size[0]}x{a.size[1]}, {s.seconds:.2f} s, {s.rays} rays "
                       f"on {s.threads} worker threads")
             else:
-                frames, count = _script_frames(a.script)
                 written: List[str] = render_frames(frames, a.output, count, client=client,
                                                    frames_in_flight=a.frames_in_flight, **opts, **save)
                 print(f"{len(written)} frames written")
     except KeyboardInterrupt:
-        print("python -m hitray.distributed: interrupted", file=sys.stderr)
+        print(f"{PROG}: interrupted", file=sys.stderr)
         return 130
-    except (Error, SchedulerUnreachable, ShippingError, OSError, ValueError, TypeError, ImportError) as e:
-        print(f"python -m hitray.distributed: {e}", file=sys.stderr)
+    except (Error, SchedulerUnreachable, ShippingError, ScriptError, OSError, ValueError, TypeError,
+            ImportError) as e:
+        print(f"{PROG}: {_message(e)}", file=sys.stderr)
         return 1
     return 0
 

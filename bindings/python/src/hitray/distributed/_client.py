@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import contextlib
 import os
-from typing import Any, Iterator, Optional
+import socket
+import struct
+import time
+from typing import Any, Iterator, Optional, Tuple
 
-__all__ = ["SchedulerUnreachable", "dask_distributed", "connect", "local_cores"]
+__all__ = ["SchedulerUnreachable", "dask_distributed", "connect", "probe", "local_cores"]
 
 
 class SchedulerUnreachable(ConnectionError):
@@ -22,6 +25,70 @@ def dask_distributed() -> Any:
         raise ImportError("hitray.distributed needs Dask's distributed scheduler: "
                           "pip install 'hitray[distributed]' (or 'dask[distributed]')") from e
     return distributed
+
+
+# A Dask scheduler's first message on a new connection is its handshake: an
+# 8-byte little-endian length, then that many bytes of msgpack, a few hundred
+# (distributed/comm/tcp.py). A length past this is not Dask talking.
+_HANDSHAKE_MOST = 1 << 20
+
+
+def _host_port(address: str) -> Optional[Tuple[str, int]]:
+    """(host, port) of a tcp:// (or schemeless) address; None for the other
+    schemes (tls://, ws://, inproc://), which only Dask itself can speak."""
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address
+    if scheme != "tcp":
+        return None
+    host, colon, port = rest.rpartition(":")
+    if not colon or not port.isdigit():
+        raise ValueError("expected tcp://HOST:PORT")
+    return host.strip("[]") or "127.0.0.1", int(port)
+
+
+def probe(address: str, timeout: float) -> None:
+    """Check that a Dask scheduler answers at `address` within `timeout`
+    seconds in all: the TCP connect and its handshake's first bytes. A port
+    nobody listens on fails at once; a silent listener, or one speaking
+    another protocol (the dashboard's HTTP on 8787), fails by the deadline.
+    Dask's own connect bounds only the connect, not the handshake read
+    that follows, so it is not left to meet these. Raises
+    SchedulerUnreachable naming the address."""
+    def unreachable(why: str) -> SchedulerUnreachable:
+        return SchedulerUnreachable(f"hitray.distributed: no Dask scheduler answered at {address!r} "
+                                    f"within {timeout:g} s ({why})")
+
+    try:
+        where = _host_port(address)
+    except ValueError as e:
+        raise unreachable(str(e)) from None
+    if where is None:
+        return
+    deadline = time.monotonic() + timeout
+    header = b""
+    try:
+        with socket.create_connection(where, timeout=timeout) as s:
+            while len(header) < 8:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    break
+                s.settimeout(left)
+                got = s.recv(8 - len(header))
+                if not got:
+                    raise unreachable("the connection was closed before a handshake")
+                header += got
+    except socket.timeout:
+        pass
+    except SchedulerUnreachable:
+        raise
+    except OSError as e:
+        raise unreachable(e.strerror or str(e)) from None
+    if len(header) < 8:
+        raise unreachable("nothing there sent a Dask handshake")
+    (length,) = struct.unpack("<Q", header)
+    if not 0 < length <= _HANDSHAKE_MOST:
+        raise unreachable("the server there does not speak Dask's protocol")
 
 
 def local_cores() -> int:
@@ -56,9 +123,11 @@ def connect(client: Any = None, workers: Optional[int] = None, timeout: float = 
         if workers is not None:
             raise ValueError("hitray.distributed: workers starts a local cluster; a scheduler's workers "
                              "are started on their machines (dask worker ADDRESS)")
+        started = time.monotonic()
+        probe(client, timeout)
         try:
-            made = distributed.Client(client, timeout=timeout)
-        except (OSError, TimeoutError, ValueError) as e:
+            made = distributed.Client(client, timeout=max(0.1, timeout - (time.monotonic() - started)))
+        except Exception as e:  # noqa: BLE001 - any failure to connect is the one error the docs promise
             raise SchedulerUnreachable(f"hitray.distributed: no Dask scheduler answered at {client!r} "
                                        f"within {timeout:g} s ({e})") from None
         try:

@@ -238,14 +238,20 @@ class ScenePack:
             return self._scene
 
     def _rebuild(self) -> Scene:
-        root = os.fsencode(tempfile.mkdtemp(prefix="hitray-scene-"))
+        root = os.path.normpath(os.fsencode(tempfile.mkdtemp(prefix="hitray-scene-")))
         weakref.finalize(self, shutil.rmtree, root, True)
 
         def place(path: bytes) -> bytes:
-            return os.path.join(root, path.lstrip(b"/"))
+            # A pack is data from elsewhere: whatever its paths say, nothing
+            # is written or read outside its own folder ('..' climbing out).
+            target = os.path.normpath(os.path.join(root, path.lstrip(b"/")))
+            if not target.startswith(root + b"/") and target != root:
+                raise ShippingError(f"hitray.distributed: the shipped scene names {os.fsdecode(path)!r}, "
+                                    "which leaves its folder: refused")
+            return target
 
-        for path, data in self._files.items():
-            target = place(path)
+        targets = [(place(path), data) for path, data in self._files.items()]
+        for target, data in targets:
             os.makedirs(os.path.dirname(target), exist_ok=True)
             with open(target, "wb") as f:
                 f.write(data)

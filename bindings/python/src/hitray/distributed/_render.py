@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import collections
 import os
+import stat
 import time
 import uuid
 from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Set, Tuple, Union
@@ -356,6 +357,20 @@ def _frame_path(out_pattern: Any, index: int) -> str:
     return path
 
 
+def _finished(path: str, index: int) -> bool:
+    """Whether frame `index` is written already: a regular file with bytes in
+    it (frames are written whole, then renamed into place, so an empty file
+    is someone else's, not a frame). A directory there is an error: no frame
+    can be written at its path."""
+    try:
+        info = os.stat(path)
+    except FileNotFoundError:
+        return False
+    if stat.S_ISDIR(info.st_mode):
+        raise IsADirectoryError(f"render_frames: {path}: a directory is where frame {index} goes")
+    return stat.S_ISREG(info.st_mode) and info.st_size > 0
+
+
 def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = None,
                   size: Tuple[int, int] = (640, 480), spp: int = 1, threads: Optional[int] = None,
                   depth: Optional[int] = None, progress: Progress = True, *, block: Optional[int] = None,
@@ -401,7 +416,7 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
     options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
     tile_threads = _threads(threads)
     todo = [(i, path) for i, path in ((i, _frame_path(out_pattern, i)) for i in range(total))
-            if not os.path.exists(path)]
+            if not _finished(path, i)]
     for index, path in todo:
         folder = os.path.dirname(path) or "."
         if not os.path.isdir(folder):
