@@ -79,7 +79,7 @@ def _parser() -> argparse.ArgumentParser:
                                 description="Render scenes and animations on a Dask cluster, bit for bit "
                                             "the images `hitray render` gives.")
     verbs = p.add_subparsers(dest="verb", required=True)
-    verbs._parser_class = _Parser  # type: ignore[attr-defined]  # the verbs' errors one line too
+    verbs._parser_class = _Parser  # the verbs' errors one line too
     common = _Parser(add_help=False)
     where = common.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS",
