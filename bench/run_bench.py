@@ -304,8 +304,11 @@ def machine_line():
 
 
 def versions():
-    pov = subprocess.run(["povray", "--version"], capture_output=True, text=True)
-    m = re.search(r"POV-Ray (\S+)", pov.stdout + pov.stderr)
+    try:
+        pov = subprocess.run(["povray", "--version"], capture_output=True, text=True)
+        m = re.search(r"POV-Ray (\S+)", pov.stdout + pov.stderr)
+    except FileNotFoundError:  # --quick runs without the peers installed
+        m = None
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip() or "unknown"
     emb = "not found"
