@@ -253,3 +253,15 @@ def test_the_reading_of_the_savings_tables_is_what_they_show():
     assert demo["min-weight 0.01"][0] == demo["min-weight 0.05"][0]
     assert "does not shrink with the threshold" in reading
     assert len({r[4] for r in rows_of(demo, "adaptive")}) == 1
+
+
+def test_the_readmes_listing_of_lib_names_every_folder_there():
+    """README.md's listing of lib/ (a block not run) names each folder of
+    lib/ and no other."""
+    [listing] = [b for b in blocks("README.md") if b.not_run and "lib/'s folders" in b.not_run]
+    lines = listing.text.splitlines()
+    assert lines[0] == "lib/", lines[0]
+    named = {word.rstrip("/") for line in lines[1:] if line.startswith("  ") and not line.startswith("   ")
+             for word in line.split() if word.endswith("/") and len(word) > 1}
+    folders = {p.name for p in (ROOT / "lib").iterdir() if p.is_dir()}
+    assert named == folders, f"README.md's listing of lib/ names {sorted(named)}; lib/ holds {sorted(folders)}"
