@@ -44,7 +44,11 @@ def windows(size: Tuple[int, int], tile: int) -> List[Window]:
 def host_threads(client: Any) -> Dict[str, int]:
     """For each worker's address, the Dask threads of every worker on its
     machine together (a LocalCluster of 2 processes of 1 thread: 2 for each)."""
-    workers = client.scheduler_info().get("workers", {})
+    try:
+        info = client.scheduler_info(n_workers=-1)  # every worker (some Dask versions list 5 by default)
+    except TypeError:  # a Dask before n_workers, which lists them all
+        info = client.scheduler_info()
+    workers = info.get("workers", {})
     per_host: Dict[str, int] = collections.Counter()
     for info in workers.values():
         per_host[info.get("host")] += int(info.get("nthreads", 1))
