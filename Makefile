@@ -40,7 +40,7 @@ endif
 configure = mkdir -p $(1) && cmake --preset $(2) -B $(1) $(CMAKE_FLAGS) $(call stdout_to,$(1)/configure.log)
 
 .PHONY: all deps deps-test deps-wheel build build-all demo test test-c test-asan test-tsan test-fuzz \
-        test-python test-python-asan test-docs python-install test-memcheck test-wheel wheel install \
+        test-python test-python-asan test-docs docs python-install test-memcheck test-wheel wheel install \
         clean bench bench-accuracy \
         fuzz fuzz-long
 
@@ -166,7 +166,9 @@ test-python: python-install
 
 # Every fenced block of README.md and docs/*.md run as its page says, or
 # marked not run with the reason, and docs/effects.md's tables rerun
-# (tests/docs/test_docs.py says how each kind of block is run).
+# (tests/docs/test_docs.py says how each kind of block is run); every
+# picture rendered again by its caption's command and compared
+# (tests/docs/test_pictures.py).
 test-docs: python-install
 	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -rx -n $(JOBS) -p no:cacheprovider tests/docs
 
@@ -187,6 +189,14 @@ test-python-asan: build-all
 	    HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -p no:cacheprovider \
 	    tests/python --ignore=tests/python/test_cli.py --ignore=tests/python/test_view.py \
 	    -k "not stubs and not no_environment"
+
+# Every picture of README.md and docs/ remade by the command its caption
+# names (scripts/docs_pictures.py reads them from the captions), and
+# docs/effects.md's tables by bench/savings.sh; `make test-docs` checks that
+# both are what those commands make now.
+docs: python-install
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/docs_pictures.py --write
+	HITRAY=$(abspath $(BUILD))/bin/hitray bench/savings.sh --write docs/effects.md
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)

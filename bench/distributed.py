@@ -36,11 +36,18 @@ import time
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path = [p for p in sys.path if pathlib.Path(p or ".").resolve() != HERE]
 
-import numpy as np  # noqa: E402
+try:
+    import numpy as np
+    import distributed  # noqa: F401 - Dask's, checked here: the cluster is made in main
 
-import hitray  # noqa: E402
-import hitray.distributed as hd  # noqa: E402
-from hitray.distributed._client import local_cores  # noqa: E402
+    import hitray
+    import hitray.distributed as hd
+    from hitray.distributed._client import local_cores
+except ImportError as e:
+    # `make demo` builds the command only: the package and Dask are
+    # `make python-install`'s (into .venv, with scripts/requirements-test.txt).
+    sys.exit(f"bench/distributed.py: {e}: this needs the hitray package and Dask in {sys.executable}; "
+             f"`make python-install` puts both into .venv (then run .venv/bin/python bench/distributed.py)")
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -63,7 +70,6 @@ def main():
     p.add_argument("--workers", default="1,2")
     p.add_argument("--runs", type=int, default=3)
     a = p.parse_args()
-    import distributed  # Dask's
 
     size = tuple(int(v) for v in a.size.lower().split("x"))
     tiles = [int(t) for t in a.tiles.split(",")]
@@ -77,7 +83,7 @@ def main():
     pack = hd.ScenePack(scene)
     print(f"scene {os.path.relpath(a.scene, ROOT)}, {size[0]}x{size[1]}, spp {a.spp}, {cores} cores; "
           f"hitray.render: {one:.3f} s on 1 thread, {full:.3f} s on {cores}; the shipped scene "
-          f"carries {len(pack.files)} files ({pack.shipped_bytes} bytes)\n")
+          f"carries {len(pack.files)} file{'' if len(pack.files) == 1 else 's'} ({pack.shipped_bytes} bytes)\n")
     print("| workers | tile | tiles | wall (s) | speed-up | overhead/tile (ms) | ship (ms) |")
     print("|---:|---:|---:|---:|---:|---:|---:|")
     for workers in (int(w) for w in a.workers.split(",")):

@@ -19,7 +19,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Set,
 
 import numpy as np
 
-from .. import _convert
+from .. import _convert, _progress
 from ..camera import Camera
 from ..image import Image, RenderStats
 from ..render import render as _render_here
@@ -30,7 +30,7 @@ from ._pack import ScenePack
 __all__ = ["render", "render_frames"]
 
 Window = Tuple[int, int, int, int]
-Progress = Union[bool, Callable[[float], Any]]
+Progress = Union[None, bool, Callable[[float], Any]]
 FrameSource = Union[Sequence[Tuple[Scene, Optional[Camera]]], Callable[[int], Tuple[Scene, Optional[Camera]]]]
 
 
@@ -41,27 +41,46 @@ def windows(size: Tuple[int, int], tile: int) -> List[Window]:
     return [(x, y, min(tile, w - x), min(tile, h - y)) for y in range(0, h, tile) for x in range(0, w, tile)]
 
 
-def _tile_threads(threads: Optional[int]) -> int:
-    """Render threads for one task: `threads` if given, else this machine's
-    cores shared among the worker's task threads (a `dask worker --nthreads
-    4` on 16 cores renders 4 tiles at once on 4 threads each)."""
-    if threads is not None:
-        return threads
+def host_threads(client: Any) -> Dict[str, int]:
+    """For each worker's address, the Dask threads of every worker on its
+    machine together (a LocalCluster of 2 processes of 1 thread: 2 for each)."""
+    try:
+        info = client.scheduler_info(n_workers=-1)  # every worker (some Dask versions list 5 by default)
+    except TypeError:  # a Dask before n_workers, which lists them all
+        info = client.scheduler_info()
+    workers = info.get("workers", {})
+    per_host: Dict[str, int] = collections.Counter()
+    for info in workers.values():
+        per_host[info.get("host")] += int(info.get("nthreads", 1))
+    return {address: per_host[info.get("host")] for address, info in workers.items()}
+
+
+def _tile_threads(threads: Optional[int], sharing: Optional[Dict[str, int]] = None) -> Tuple[int, int]:
+    """Render threads for one task, and this worker's Dask threads: `threads`
+    if given, else this machine's cores shared among the Dask threads of
+    every worker on it (`sharing`, by worker address: a `dask worker
+    --nthreads 4` alone on 16 cores renders 4 tiles at once on 4 threads
+    each; two worker processes of 1 thread on 2 cores, 1 thread each)."""
     distributed = dask_distributed()
     try:
-        nthreads = int(distributed.get_worker().state.nthreads)
+        worker = distributed.get_worker()
+        nthreads, address = int(worker.state.nthreads), worker.address
     except ValueError:  # not on a worker (a client's local run)
-        nthreads = 1
-    return max(1, local_cores() // max(1, nthreads))
+        nthreads, address = 1, None
+    if threads is not None:
+        return threads, nthreads
+    on_machine = (sharing or {}).get(address, nthreads) if address else nthreads
+    return max(1, local_cores() // max(1, on_machine)), nthreads
 
 
 def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], options: Dict[str, Any],
-                  window: Window, threads: Optional[int] = None
+                  window: Window, threads: Optional[int] = None, sharing: Optional[Dict[str, int]] = None
                   ) -> Tuple[np.ndarray, Tuple[int, int, int, int, Tuple[str, ...]], str, int]:
     """The task: one window of the frame, on a worker. Returns its pixels,
     its rays (primary, shadow, reflected, refracted, effects), the worker
-    and the threads it rendered on."""
-    threads = _tile_threads(threads)
+    and the threads it renders on at once (its Dask threads, each rendering
+    a tile on the tile's threads)."""
+    threads, nthreads = _tile_threads(threads, sharing)
     image = _render_here(pack.scene(), camera, size, threads=threads, progress=False, window=window, **options)
     s = image.stats
     assert s is not None
@@ -70,7 +89,7 @@ def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], option
         where = dask_distributed().get_worker().address
     except ValueError:
         where = "local"
-    return np.array(image, copy=True), rays, where, threads
+    return np.array(image, copy=True), rays, where, threads * nthreads
 
 
 def _options(spp: int, depth: Optional[int], block: Optional[int], effects: str,
@@ -138,15 +157,16 @@ class _Bar:
         self._callback: Optional[Callable[[float], Any]] = None
         self._bar: Any = None
         self._done, self._total = 0, max(1, total)
-        if progress is True:
-            from tqdm.auto import tqdm  # type: ignore[import-untyped, unused-ignore]
-
-            self._bar = tqdm(total=total, unit="tile", desc=what, leave=False)
-        elif callable(progress):
+        if callable(progress):
             self._callback = progress
-        elif progress not in (False, None):
-            raise TypeError("hitray.distributed: progress must be True, False or a callable taking the "
-                            "fraction done")
+        elif progress is None or isinstance(progress, bool):
+            # None: a bar where someone watches (standard error a terminal,
+            # or a notebook), as hitray.render and the hitray command do.
+            if _progress.wanted(progress):
+                self._bar = _progress.tqdm_class()(total=total, unit="tile", desc=what, leave=False)
+        else:
+            raise TypeError("hitray.distributed: progress must be None (auto), True, False or a callable "
+                            "taking the fraction done")
 
     def tile(self) -> None:
         self._done += 1
@@ -227,6 +247,7 @@ class _Run:
         # One map, one message to the scheduler for the frame's tiles.
         futures = self.client.map(render_window, [shipped.future] * n, [camera] * n, [self.size] * n,
                                   [self.options] * n, self.windows, [self.threads] * n,
+                                  [host_threads(self.client)] * n,
                                   key=[f"hitray-tile-{self.run_id}-{index}-{x}-{y}" for x, y, _, _ in self.windows],
                                   pure=False, priority=-index)
         for future, window in zip(futures, self.windows):
@@ -295,7 +316,7 @@ def _tile_size(tile: Any, size: Tuple[int, int]) -> int:
 
 
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480), spp: int = 1,
-           threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = True, *,
+           threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = None, *,
            block: Optional[int] = None, effects: str = "auto", adaptive: Optional[float] = None,
            min_weight: Optional[float] = None, exact: bool = False, block_size: Optional[int] = None,
            all_effects: bool = False, client: Any = None, tile: int = 64, workers: Optional[int] = None,
@@ -314,10 +335,12 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
         tile: tile side in pixels: smaller tiles balance the workers' load,
             larger ones cost less scheduling per pixel (docs/distributed.md).
         threads: render threads per tile (None: the worker machine's cores
-            shared among its Dask threads). The image is the same whatever
-            the count.
-        progress: True shows a tqdm bar over tiles; a callable gets the
-            fraction of tiles done; False shows nothing.
+            shared among the Dask threads of every worker on it). The image
+            is the same whatever the count.
+        progress: None (the default) shows a tqdm bar over tiles where
+            someone watches (standard error a terminal, or a notebook), as
+            hitray.render does; True always; a callable gets the fraction
+            of tiles done; False shows nothing.
 
     The scene is shipped to every worker once, with every file it
     references (mesh files) inside it: workers need no shared file system,
@@ -373,7 +396,7 @@ def _finished(path: str, index: int) -> bool:
 
 def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = None,
                   size: Tuple[int, int] = (640, 480), spp: int = 1, threads: Optional[int] = None,
-                  depth: Optional[int] = None, progress: Progress = True, *, block: Optional[int] = None,
+                  depth: Optional[int] = None, progress: Progress = None, *, block: Optional[int] = None,
                   effects: str = "auto", adaptive: Optional[float] = None, min_weight: Optional[float] = None,
                   exact: bool = False, block_size: Optional[int] = None, all_effects: bool = False,
                   client: Any = None, tile: int = 64, workers: Optional[int] = None, timeout: float = 10.0,
