@@ -162,7 +162,7 @@ python-install: build-all
 	    -C build-dir=$(abspath $(PYTHON_BUILD)) .
 
 test-python: python-install
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python tests/cli tests/view
 
 # Every fenced block of README.md and docs/*.md run as its page says, or
 # marked not run with the reason, and docs/effects.md's tables rerun
@@ -174,9 +174,9 @@ test-docs: python-install
 # $(PYTHON_ASAN_BUILD)/site, its tests run by the venv's interpreter with the
 # sanitizer runtimes preloaded (Python itself is not instrumented, so leak
 # detection is off; the tests that start a bare interpreter or run mypy are
-# left out, and so are the command line's and the viewer's, which test the
-# plain build's programs, not the package). Not part of `make test`: it
-# builds everything again.
+# left out, and so are the command line's and the viewer's, tests/cli and
+# tests/view, which test the plain build's programs, not the package). Not
+# part of `make test`: it builds everything again.
 test-python-asan: build-all
 	.venv/bin/python -m pip install -q --no-build-isolation --no-deps --upgrade \
 	    --target $(abspath $(PYTHON_ASAN_BUILD))/site -C build-dir=$(abspath $(PYTHON_ASAN_BUILD))/cmake \
@@ -185,7 +185,7 @@ test-python-asan: build-all
 	    LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)" \
 	    ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -p no:cacheprovider \
-	    tests/python --ignore=tests/python/test_cli.py --ignore=tests/python/test_view.py \
+	    tests/python \
 	    -k "not stubs and not no_environment"
 
 install: build

@@ -12,7 +12,7 @@ bench/previews/<scene>.png (the two renders side by side, and the object masks
 with the disagreeing pixels in white).
 
 Scenes: each is an SDL file in bench/scenes/ (village: Hill's village.dat from
-tests/scenes/hill/, with a camera given on the command line, since Hill's
+tests/data/scenes/hill/, with a camera given on the command line, since Hill's
 file has none); its POV-Ray twin is made by bench/sdl2pov.py, which documents
 how materials, camera and depth map. Both renderers get the same image size,
 one sample per pixel, the same recursion depth and 1 or 2 threads, and write
@@ -69,7 +69,7 @@ SCENES = {
     "torus_csg": ("bench/scenes/torus_csg.sdl", None, ["torus", "union", "intersection", "difference"]),
     "sphere_grid": ("bench/scenes/sphere_grid.sdl", None, []),
     "terrain": ("bench/scenes/terrain.sdl", None, ["mesh"]),
-    "village": ("tests/scenes/hill/village.dat", "9,7,24,0,0,2,0,1,0,40", []),
+    "village": ("tests/data/scenes/hill/village.dat", "9,7,24,0,0,2,0,1,0,40", []),
 }
 # The SPD scenes: NFF (gzip) and their POV-Ray twins, beside the repository.
 SPD_DIR = os.path.join(os.path.dirname(ROOT), "shared", "scenes", "spd")

@@ -25,8 +25,8 @@ bin=${HITRAY:-build/bin/hitray}
 [ -x "$bin" ] || { echo "savings: build first (make build)" >&2; exit 1; }
 tables() {
     gap=
-    for scene in scenes/demo.sdl tests/scenes/hill/village.dat tests/scenes/hill/room.dat \
-                 tests/scenes/hill/chair.dat; do
+    for scene in scenes/demo.sdl tests/data/scenes/hill/village.dat tests/data/scenes/hill/room.dat \
+                 tests/data/scenes/hill/chair.dat; do
         [ -z "$gap" ] || echo
         gap=1
         "$bin" savings "$scene" --size "$size" --spp "$spp" --threads "${THREADS:-0}" \

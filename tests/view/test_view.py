@@ -25,7 +25,7 @@ import time
 
 import pytest
 
-from conftest import BUILD, ROOT
+from hitray_testing import BUILD, ROOT
 
 HITRAY = BUILD / "bin" / "hitray"
 VIEWER = BUILD / "bin" / "hitray-view"

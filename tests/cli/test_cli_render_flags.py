@@ -12,8 +12,8 @@ import subprocess
 
 import pytest
 
-from conftest import BUILD, ROOT
-from conftest import TWO_SPHERES_SDL as SCENE
+from hitray_testing import BUILD, ROOT
+from hitray_testing import TWO_SPHERES_SDL as SCENE
 
 HITRAY = BUILD / "bin" / "hitray"
 VIEWER = BUILD / "bin" / "hitray-view"

@@ -6,7 +6,7 @@ progress bar that never goes backwards and says how long is left, for
 import json
 import re
 
-from conftest import ROOT, TWO_SPHERES_SDL, require_classes
+from hitray_testing import ROOT, TWO_SPHERES_SDL, require_classes
 from test_cli import run, run_on_a_terminal, write_sdl
 
 

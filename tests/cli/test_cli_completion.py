@@ -8,7 +8,7 @@ import subprocess
 
 import pytest
 
-from conftest import TWO_SPHERES_SDL
+from hitray_testing import TWO_SPHERES_SDL
 from test_cli import HITRAY, run, write_sdl
 
 OPTION_LINE = re.compile(r"^  (?:(-[a-zA-Z]), )?(--[a-z0-9-]+)(?: (\S+))?", re.M)

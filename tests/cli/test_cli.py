@@ -21,8 +21,8 @@ import time
 
 import pytest
 
-from conftest import BUILD, ROOT, sigint_as_at_a_terminal
-from conftest import TWO_SPHERES_SDL as SCENE  # two spheres on a floor, one light
+from hitray_testing import BUILD, ROOT, sigint_as_at_a_terminal
+from hitray_testing import TWO_SPHERES_SDL as SCENE  # two spheres on a floor, one light
 
 HITRAY = BUILD / "bin" / "hitray"
 
