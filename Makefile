@@ -212,19 +212,20 @@ test-wheel: wheel deps-test
 	    --wheel $(abspath $(wildcard $(DIST)/wheelhouse/*.whl))
 
 # hitray against POV-Ray 3.7 and Embree 3, on the bench scenes and the SPD's
-# (bench/run_bench.py writes bench/RESULTS.md); never part of `make test`.
+# (bench/drivers/run_bench.py writes bench/results/RESULTS.md); never part of `make test`.
 # BENCH_FLAGS passes options (--runs, --scenes, --spd-size, --note, ...).
 BENCH_FLAGS ?=
 bench: build
 	@scripts/bootstrap.sh --bench
 	cmake -S . -B $(BUILD) -DHITRAY_BUILD_BENCH=ON >/dev/null
 	cmake --build $(BUILD) -j $(JOBS) $(NINJA_QUIET)
-	python3 bench/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
+	python3 bench/drivers/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
-# What accuracy costs in time (bench/accuracy): measures every accuracy knob
+# What accuracy costs in time (bench/programs/accuracy, driven by
+# bench/drivers/run_accuracy.py): measures every accuracy knob
 # on this machine and writes docs/accuracy.md with its tables and plots.
 bench-accuracy: build-all
-	.venv/bin/python bench/accuracy/run_accuracy.py --build $(BUILD)
+	.venv/bin/python bench/drivers/run_accuracy.py --build $(BUILD)
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) $(DIST) out

@@ -1081,10 +1081,10 @@ _MEASUREMENT = re.compile(r"\d\s*(ns|us|µs|ms)\b|\binstructions?\b|\bcycles?\b"
 def test_shape_help_quotes_no_measurement():
     """`hitray shapes` says what a choice does, not what it measured on some
     machine: timings and instruction counts go stale, so they live in
-    bench/RESULTS.md and the help points there (the torus's solver)."""
+    bench/results/RESULTS.md and the help points there (the torus's solver)."""
     r = run("shapes")
     assert r.returncode == 0, r.stderr
     bad = [line.strip() for line in r.stdout.splitlines() if _MEASUREMENT.search(line)]
     assert not bad, f"help that quotes a measurement: {bad}"
     solver = [line for line in r.stdout.splitlines() if line.strip().startswith("solver ")]
-    assert solver and "bench/RESULTS.md" in solver[0]
+    assert solver and "bench/results/RESULTS.md" in solver[0]

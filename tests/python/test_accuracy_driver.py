@@ -1,4 +1,4 @@
-"""bench/accuracy/run_accuracy.py --quick (the smoke run of `make
+"""bench/drivers/run_accuracy.py --quick (the smoke run of `make
 bench-accuracy`) into a temporary folder: it runs every program of the study
 and writes the document, the plots and the raw output, and the tables quote
 what the programs printed. A few seconds; needs the build's bench programs
@@ -12,7 +12,7 @@ import pytest
 
 from conftest import BUILD, ROOT
 
-DRIVER = ROOT / "bench" / "accuracy" / "run_accuracy.py"
+DRIVER = ROOT / "bench" / "drivers" / "run_accuracy.py"
 PROGRAMS = ["bench/torus_solvers", "bench/accuracy/quadric_forms",
             "bench/accuracy/spawn_offset", "bench/accuracy/torus_far", "bin/hitray"]
 

@@ -1,7 +1,7 @@
 """Tests of the benchmark's own tools (they decide whether the POV-Ray renders
-are the same scenes as hitray's): bench/sdl2pov.py, the SDL to POV-Ray
-translator, and bench/compare_images.py, the object-mask comparison, which need
-neither POV-Ray nor a build of hitray; and bench/run_bench.py --quick, every step
+are the same scenes as hitray's): bench/drivers/sdl2pov.py, the SDL to POV-Ray
+translator, and bench/drivers/compare_images.py, the object-mask comparison, which need
+neither POV-Ray nor a build of hitray; and bench/drivers/run_bench.py --quick, every step
 of the benchmark once (skipped without a build)."""
 
 import importlib.util
@@ -16,8 +16,8 @@ import sys
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SDL2POV = ROOT / "bench" / "sdl2pov.py"
-COMPARE = ROOT / "bench" / "compare_images.py"
+SDL2POV = ROOT / "bench" / "drivers" / "sdl2pov.py"
+COMPARE = ROOT / "bench" / "drivers" / "compare_images.py"
 
 
 def load(path):
@@ -167,14 +167,14 @@ def test_id_colours_survive_srgb(tmp_path):
 
 
 def test_run_bench_quick_runs_every_step(tmp_path):
-    # The whole benchmark once, tiny (bench/run_bench.py --quick): the SDL
+    # The whole benchmark once, tiny (bench/drivers/run_bench.py --quick): the SDL
     # scenes, the SPD scenes where shared/scenes/spd is beside the
     # repository, the raycast; without POV-Ray it runs hitray's side alone.
     build = pathlib.Path(os.environ.get("HITRAY_BUILD_DIR", ROOT / "build"))
     if not (build / "bin" / "hitray").exists():
         pytest.skip(f"no hitray build in {build}")
     out = tmp_path / "RESULTS.md"
-    result = subprocess.run([sys.executable, str(ROOT / "bench" / "run_bench.py"), "--quick",
+    result = subprocess.run([sys.executable, str(ROOT / "bench" / "drivers" / "run_bench.py"), "--quick",
                              "--build", str(build), "--output", str(out)],
                             capture_output=True, text=True, timeout=600)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]

@@ -20,8 +20,8 @@ wall time; it is marked. Each figure is the best of --runs (a busy machine
 disturbs some runs; the best is the least disturbed). Every distributed
 image is checked to be bit-identical to hitray.render's. Prints Markdown.
 
-  .venv/bin/python bench/distributed.py                     # scenes/demo.sdl, 640x480, spp 4
-  .venv/bin/python bench/distributed.py --size 640x480 --spp 16 --tiles 16,32,64,128
+  .venv/bin/python bench/drivers/distributed.py                     # scenes/demo.sdl, 640x480, spp 4
+  .venv/bin/python bench/drivers/distributed.py --size 640x480 --spp 16 --tiles 16,32,64,128
 """
 
 import argparse
@@ -42,7 +42,7 @@ import hitray  # noqa: E402
 import hitray.distributed as hd  # noqa: E402
 from hitray.distributed._client import local_cores  # noqa: E402
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def best(runs, fn):

@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
 """hitray against POV-Ray 3.7 (whole renders) and Embree 3 (raw first hits).
 
-    bench/run_bench.py [--runs 5] [--scaling-runs 3] [--build build]
+    bench/drivers/run_bench.py [--runs 5] [--scaling-runs 3] [--build build]
                        [--scenes spheres,torus_csg,sphere_grid,terrain,village,balls,...]
-                       [--size 1920x1080] [--spd-size 1024x1024] [--output bench/RESULTS.md]
-    bench/run_bench.py --quick --output FILE   (every step once, tiny: a test runs it)
+                       [--size 1920x1080] [--spd-size 1024x1024] [--output bench/results/RESULTS.md]
+    bench/drivers/run_bench.py --quick --output FILE   (every step once, tiny: a test runs it)
 
 Run by `make bench` (which builds hitray and bench/raycast and installs
-povray and libembree-dev first). Writes bench/RESULTS.md and
-bench/previews/<scene>.png (the two renders side by side, and the object masks
+povray and libembree-dev first). Writes bench/results/RESULTS.md and
+bench/results/previews/<scene>.png (the two renders side by side, and the object masks
 with the disagreeing pixels in white).
 
 Scenes: each is an SDL file in bench/scenes/ (village: Hill's village.dat from
 tests/data/scenes/hill/, with a camera given on the command line, since Hill's
-file has none); its POV-Ray twin is made by bench/sdl2pov.py, which documents
+file has none); its POV-Ray twin is made by bench/drivers/sdl2pov.py, which documents
 how materials, camera and depth map. Both renderers get the same image size,
 one sample per pixel, the same recursion depth and 1 or 2 threads, and write
 a binary PPM; the time is the whole process (parse + render + write), taken
@@ -25,7 +25,7 @@ round, so drift in the machine's speed hits both alike.
 
 Matching content: every scene is also rendered by both at 480x270 as a flat
 id-colour mask (sdl2pov.py --mask); the table gives the share of pixels whose
-object agrees (bench/compare_images.py).
+object agrees (bench/drivers/compare_images.py).
 
 SPD scenes: the seven Standard Procedural Databases of ../shared/scenes/spd
 (balls, gears, mount, rings, teapot, tetra, tree; skipped where that folder
@@ -59,7 +59,7 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH = os.path.join(ROOT, "bench")
 
 # scene name -> (SDL file relative to the repository, camera for both or None,
@@ -77,8 +77,8 @@ SPD_SCENES = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
 MASK_SIZE = "480x270"
 WORK = None  # build/bench-work: scenes, renders, logs
 HAVE_POV = True
-PREVIEWS = os.path.join(BENCH, "previews")
-README_BEGIN = "<!-- bench-results: written by bench/run_bench.py -->"
+PREVIEWS = os.path.join(BENCH, "results", "previews")
+README_BEGIN = "<!-- bench-results: written by bench/drivers/run_bench.py -->"
 README_END = "<!-- /bench-results -->"
 
 
@@ -155,9 +155,9 @@ def prepare_scene(name, work, hitray_known):
     sdl = os.path.join(d, name + ".sdl")
     shutil.copyfile(os.path.join(ROOT, sdl_rel), sdl)
     if name == "terrain":
-        subprocess.run([sys.executable, os.path.join(BENCH, "make_terrain.py"),
+        subprocess.run([sys.executable, os.path.join(BENCH, "drivers", "make_terrain.py"),
                         os.path.join(d, "terrain.3vn")], check=True)
-    conv = [sys.executable, os.path.join(BENCH, "sdl2pov.py"), sdl]
+    conv = [sys.executable, os.path.join(BENCH, "drivers", "sdl2pov.py"), sdl]
     cam = ["--camera", camera] if camera else []
     subprocess.run(conv + ["-o", os.path.join(d, name + ".pov"), "--size", ARGS.size] + cam, check=True)
     subprocess.run(conv + ["-o", os.path.join(d, name + ".mask.pov"), "--size", MASK_SIZE,
@@ -253,7 +253,7 @@ def mask_agreement(name, d, camera, hitray):
     run_measured(hitray_cmd(hitray, name + ".mask.sdl", "hitray.mask.ppm", MASK_SIZE, 2, None), d)
     run_measured(pov_cmd(name + ".mask.pov", "pov.mask.ppm", MASK_SIZE, 2), d)
     os.makedirs(PREVIEWS, exist_ok=True)
-    out = subprocess.run([sys.executable, os.path.join(BENCH, "compare_images.py"),
+    out = subprocess.run([sys.executable, os.path.join(BENCH, "drivers", "compare_images.py"),
                           "hitray.mask.ppm", "pov.mask.ppm", "hitray.ppm", "pov.ppm",
                           os.path.join(PREVIEWS, name + ".png")],
                          cwd=d, capture_output=True, text=True, check=True).stdout
@@ -329,15 +329,15 @@ def main():
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--size", default="1920x1080")
     ap.add_argument("--scaling", default="1000,10000,100000,1000000")
-    ap.add_argument("--output", default=os.path.join(BENCH, "RESULTS.md"))
+    ap.add_argument("--output", default=os.path.join(BENCH, "results", "RESULTS.md"))
     ap.add_argument("--note", default="", help="a line to add under the machine (e.g. other load)")
-    ap.add_argument("--no-profile", action="store_true", help="skip bench/profile.sh (callgrind)")
+    ap.add_argument("--no-profile", action="store_true", help="skip bench/drivers/profile.sh (callgrind)")
     ap.add_argument("--readme", default=os.path.join(ROOT, "README.md"),
                     help="README whose results block is replaced ('' leaves it alone)")
     ARGS = ap.parse_args()
     if ARGS.quick:
-        if ARGS.output == os.path.join(BENCH, "RESULTS.md"):
-            sys.exit("run_bench: --quick needs --output (it must not replace bench/RESULTS.md)")
+        if ARGS.output == os.path.join(BENCH, "results", "RESULTS.md"):
+            sys.exit("run_bench: --quick needs --output (it must not replace bench/results/RESULTS.md)")
         ARGS.runs, ARGS.scaling_runs, ARGS.threads = 1, 1, "1,2"
         ARGS.size, ARGS.spd_size, ARGS.scaling = "64x36", "32x32", "1000"
         ARGS.no_profile, ARGS.readme = True, ""
@@ -355,7 +355,7 @@ def main():
         sys.exit("run_bench: povray is not installed (make bench installs it)")
     work = WORK = os.path.join(ARGS.build, "bench-quick" if ARGS.quick else "bench-work")
     os.makedirs(work, exist_ok=True)
-    PREVIEWS = os.path.join(work, "previews") if ARGS.quick else os.path.join(BENCH, "previews")
+    PREVIEWS = os.path.join(work, "previews") if ARGS.quick else os.path.join(BENCH, "results", "previews")
     known = hitray_classes(hitray)
     load_before = os.getloadavg()
     started = datetime.datetime.now(datetime.timezone.utc)
@@ -416,12 +416,12 @@ def main():
     profile = ""
     if shutil.which("valgrind") and not ARGS.no_profile:
         print("profile: callgrind", flush=True)
-        profile = subprocess.run([os.path.join(BENCH, "profile.sh"), "spheres", "terrain"],
+        profile = subprocess.run([os.path.join(BENCH, "drivers", "profile.sh"), "spheres", "terrain"],
                                  capture_output=True, text=True,
                                  env=dict(os.environ, BUILD=ARGS.build)).stdout
 
     pov_version, emb_version, commit = versions()
-    cmdline = "bench/run_bench.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "make bench"
+    cmdline = "bench/drivers/run_bench.py " + shlex.join(sys.argv[1:]) if sys.argv[1:] else "make bench"
     L = []
     L.append("# hitray benchmark results")
     L.append("")
@@ -494,11 +494,11 @@ def main():
         cells.append(fmt_mem(max(x["peak_kb"] for x in h)))
         L.append(f"| {n:,} | " + " | ".join(cells) + " |")
     L.append("")
-    notes = os.path.join(BENCH, "profile_notes.md")
+    notes = os.path.join(BENCH, "results", "profile_notes.md")
     if profile and os.path.exists(notes):
         with open(notes) as f:
             L += f.read().rstrip("\n").split("\n")
-        L += ["", "```", "$ bench/profile.sh spheres terrain"] + profile.rstrip("\n").split("\n") + ["```", ""]
+        L += ["", "```", "$ bench/drivers/profile.sh spheres terrain"] + profile.rstrip("\n").split("\n") + ["```", ""]
     with open(ARGS.output, "w") as f:
         f.write("\n".join(L))
     print("\n".join(L))
@@ -518,7 +518,7 @@ def scenes_table(rows, skipped):
          "(hitray: its render statistics; POV-Ray: its Trace Time). whole = whole-process ratio, "
          "render = render-only ratio, hitray / POV-Ray (target: at most 0.5 for both). Memory is "
          "peak resident. Mask = pixels whose object agrees in the flat id-colour renders (see "
-         "bench/previews/).", "",
+         "bench/results/previews/).", "",
          SCENES_HEADER,
          "|---|---|---|---|---|---|---|---|---|"]
     for name, res, agree in rows:
@@ -626,7 +626,7 @@ def update_readme(lines, cmdline):
     machine = [x for x in lines if x.startswith("Machine:")]
     notes = [x for x in lines if x == ARGS.note and x]
     body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
-            "runs, is in [bench/RESULTS.md](bench/RESULTS.md).", ""] + machine + [""] + notes
+            "runs, is in [bench/results/RESULTS.md](bench/results/RESULTS.md).", ""] + machine + [""] + notes
     # The bench scenes, the raw intersection and the SPD scenes' times.
     wanted = (SCENES_HEADER, "| threads | hitray rays/s", SPD_HEADER)
     for head in wanted:

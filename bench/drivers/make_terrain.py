@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write the benchmark's terrain mesh in Hill's chapter-6 mesh format (.3vn).
 
-    bench/make_terrain.py OUT.3vn [--grid N]
+    bench/drivers/make_terrain.py OUT.3vn [--grid N]
 
 A height field over [-1, 1]^2 in the xz-plane (y up), heights a sum of a few
 sines (deterministic, so every run benchmarks the same mesh), N x N vertices

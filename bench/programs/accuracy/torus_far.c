@@ -20,7 +20,7 @@
  * - shade: pixels of the rendered 8-bit sRGB image that differ from the
  *   render with the bracketing solver. Bracketing is the reference image
  *   because it is the one solver that misses no root (torus_quartic.c), its t
- *   is within a few u * condition (bench/torus_solvers.c), and its own hitmiss
+ *   is within a few u * condition (bench/programs/torus_solvers.c), and its own hitmiss
  *   count against the quad reference is the first line this program prints
  *   for each view, so a reader can check it;
  * - seconds: the render's wall time at 1 spp, the best of `repeats`.

@@ -3,10 +3,10 @@
 # on a busy machine, unlike wall time): the raw first-hit query of
 # bench/raycast and a render of one benchmark scene, each with its top
 # functions (self cost).
-#   bench/profile.sh [SCENE...]  (SCENE: a bench/scenes/*.sdl name, default spheres;
+#   bench/drivers/profile.sh [SCENE...]  (SCENE: a bench/scenes/*.sdl name, default spheres;
 #                                 needs `make build-all`, which builds bench/raycast, and valgrind)
 set -eu
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 [ $# -gt 0 ] || set -- spheres
 build=${BUILD:-build}
 command -v valgrind >/dev/null || { echo "profile: valgrind is not installed" >&2; exit 1; }
@@ -34,7 +34,7 @@ fi
 for scene in "$@"; do
     echo "== hitray render bench/scenes/$scene.sdl at 480x270, 1 thread (whole process)"
     cp "bench/scenes/$scene.sdl" "$tmp/"
-    if [ "$scene" = terrain ]; then python3 bench/make_terrain.py "$tmp/terrain.3vn"; fi
+    if [ "$scene" = terrain ]; then python3 bench/drivers/make_terrain.py "$tmp/terrain.3vn"; fi
     valgrind --tool=callgrind --callgrind-out-file="$tmp/render.out" \
         "$build/bin/hitray" render "$tmp/$scene.sdl" -o "$tmp/out.ppm" --size 480x270 \
         --threads 1 >/dev/null 2>&1

@@ -1,5 +1,5 @@
-/* Helpers shared by the accuracy and cost benchmarks (bench/torus_solvers.c
- * and bench/accuracy/): a monotonic clock, percentiles and the ray sets'
+/* Helpers shared by the accuracy and cost benchmarks (bench/programs/torus_solvers.c
+ * and bench/programs/accuracy/): a monotonic clock, percentiles and the ray sets'
  * error bookkeeping, so each program prints its numbers the same way. */
 #ifndef HR_BENCH_UTIL_H
 #define HR_BENCH_UTIL_H

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Do two renders show the same objects in the same places?
 
-    bench/compare_images.py HITRAY_MASK.ppm POV_MASK.ppm HITRAY.ppm POV.ppm PREVIEW.png
+    bench/drivers/compare_images.py HITRAY_MASK.ppm POV_MASK.ppm HITRAY.ppm POV.ppm PREVIEW.png
 
-The masks are the flat id-colour renders bench/sdl2pov.py --mask sets up: every
+The masks are the flat id-colour renders bench/drivers/sdl2pov.py --mask sets up: every
 object shows one colour of a 63-colour palette (4 levels per channel), the
 background black. Each pixel is classified to the nearest palette colour
 (after sRGB decoding of the 8-bit value, so either file's encoding works);

@@ -3,16 +3,16 @@
 # by callgrind (stable on a busy machine, unlike wall time). Each shape is
 # rendered at two sizes and the counts subtracted, which cancels everything
 # but the rays: starting Python, importing cffi, reading the headers.
-#   bench/python_shape_instructions.sh [BUILD_DIR]   (default: build)
+#   bench/drivers/python_shape_instructions.sh [BUILD_DIR]   (default: build)
 set -eu
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 build=${1:-build}
 python=${PYTHON:-.venv/bin/python}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 count() { # shape size -> instructions of the whole process
     valgrind --tool=callgrind --callgrind-out-file="$tmp/out" -q \
-        "$python" bench/python_shape_cost.py --build-dir "$build" --render-once "$1" \
+        "$python" bench/drivers/python_shape_cost.py --build-dir "$build" --render-once "$1" \
         --size "$2" >/dev/null 2>&1
     callgrind_annotate "$tmp/out" 2>/dev/null | awk '/PROGRAM TOTALS/ { gsub(",", "", $1); print $1 }'
 }

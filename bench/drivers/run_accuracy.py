@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What each accuracy knob of hitray costs in time, measured on this machine.
 
-    bench/accuracy/run_accuracy.py [--build build] [--quick] [--docs docs]
+    bench/drivers/run_accuracy.py [--build build] [--quick] [--docs docs]
                                    [--cache DIR]
 
 Run by `make bench-accuracy` (which builds first and installs matplotlib
@@ -102,8 +102,8 @@ def style_axes(ax, xlabel, ylabel, title, logy=True, legend=8):
 
 
 def load_run_bench():
-    """bench/run_bench.py's machine description, shared by both studies."""
-    spec = importlib.util.spec_from_file_location("run_bench", ROOT / "bench" / "run_bench.py")
+    """bench/drivers/run_bench.py's machine description, shared by both studies."""
+    spec = importlib.util.spec_from_file_location("run_bench", ROOT / "bench" / "drivers" / "run_bench.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -191,7 +191,7 @@ class Study:
                "(the same roots polished by Newton steps on the accurate f) and `bracketing` "
                "(the default; it always polishes: its last steps are Newton on the accurate f, "
                "and it has no unpolished form a user can choose). Ray sets and columns are "
-               "those of `bench/torus_solvers.c`'s header: ns per solve for every root (ns all) "
+               "those of `bench/programs/torus_solvers.c`'s header: ns per solve for every root (ns all) "
                "and for the first hit after t = 0 (ns 1st), best of "
                f"{s['torus_repeats']} passes; |t error| against the __float128 Sturm "
                "reference, worst and 99th percentile, relative and in units of u·condition "
@@ -208,7 +208,7 @@ class Study:
                                     repeats=s["far_repeats"], images=self.work)
         far_cmd_shown = far_cmd[:-1] + ["--images=DIR"]
         md += ["### The far torus, rendered", "",
-               "`bench/accuracy/torus_far.c`: a torus 1e4 and 1e6 away from the eye, framed "
+               "`bench/programs/accuracy/torus_far.c`: a torus 1e4 and 1e6 away from the eye, framed "
                "tightly, one light, rendered at 1 sample per pixel with each solver. hit/miss: "
                "pixels whose primary ray hits where the __float128 Sturm reference (the world "
                "ray carried into object space in quad precision) misses, or the reverse; "
@@ -305,7 +305,7 @@ class Study:
         cmd, rows = self.program("bench/accuracy/quadric_forms", rays=s["quad_rays"],
                                  repeats=s["quad_repeats"])
         self.md += ["## Sphere and cylinder: the textbook quadratic against the stable forms", "",
-               "`bench/accuracy/quadric_forms.c`: the textbook quadratic (b² − ac, then "
+               "`bench/programs/accuracy/quadric_forms.c`: the textbook quadratic (b² − ac, then "
                "(−b ± √disc)/a; written in the benchmark as the baseline) against the sphere's "
                "and the cylinder wall's code in their modules (Lagrange's identity for the "
                "discriminant, compensated sums, the stable root pair), called through the "
@@ -366,7 +366,7 @@ class Study:
         shell = [(r, t) for r, t in rows if r["test"] == "shell"]
         methods = list(dict.fromkeys(r["method"] for r, _ in selfhit))
         md += ["## Spawned-ray offset", "",
-               "`bench/accuracy/spawn_offset.c`, through the library: a fixed epsilon along the "
+               "`bench/programs/accuracy/spawn_offset.c`, through the library: a fixed epsilon along the "
                "normal (1e-3, 1e-6 world units) against `hr_hit_spawn_origin` (the renderer's "
                "rule: the hit's own error bound). The scene is scaled by S and placed "
                "S·(3, −2, 5) from the origin, so only the offsets do not scale. At each hit of a "
@@ -742,7 +742,7 @@ class Study:
         load_after = os.getloadavg()
         elapsed = time.monotonic() - wall
         head = ["# Accuracy: what each knob costs in time", "",
-                "Written by `bench/accuracy/run_accuracy.py` (`make bench-accuracy`); every number "
+                "Written by `bench/drivers/run_accuracy.py` (`make bench-accuracy`); every number "
                 "below is what the quoted command printed in that run (the raw output of each "
                 "program, and the statistics of each render, are in `docs/accuracy/raw/`). "
                 "Rerun it to measure another machine.", "",

@@ -23,7 +23,7 @@
  *   computation may make);
  * - missed and spurious crossings against the reference, split into rays
  *   clear of any tangency or rim (reference margin > 1e-12) and the rest,
- *   as bench/torus_solvers.c does. */
+ *   as bench/programs/torus_solvers.c does. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

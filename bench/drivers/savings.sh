@@ -3,17 +3,17 @@
 # saves in rays and costs in error against the full render, and what the
 # effect analysis saves (the effects-all row), on the demo scene and on the
 # real Hill scene files: the tables of docs/effects.md.
-#   bench/savings.sh [--write PAGE] [SIZE [SPP]]
+#   bench/drivers/savings.sh [--write PAGE] [SIZE [SPP]]
 #                                      (default 320x240 and 16; needs `make build`)
 # --write PAGE puts the tables into PAGE between its two markers (the
-# comments naming bench/savings.sh), as docs/effects.md holds them:
-#   bench/savings.sh --write docs/effects.md
+# comments naming bench/drivers/savings.sh), as docs/effects.md holds them:
+#   bench/drivers/savings.sh --write docs/effects.md
 # Extra settings through the environment: ADAPTIVE and MIN_WEIGHT (comma
 # lists), THREADS, HITRAY (the command; default build/bin/hitray). Ray counts
 # and errors do not depend on the thread count or on the machine: the tables
 # are reproducible exactly (tests/docs/test_docs.py reruns them).
 set -eu
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 page=
 if [ "${1:-}" = --write ]; then
     page=${2:?savings: --write needs a page}
@@ -37,15 +37,15 @@ if [ -z "$page" ]; then
     tables
     exit 0
 fi
-grep -q '^<!-- not run: .*bench/savings.sh' "$page" && grep -q '^<!-- end of bench/savings.sh' "$page" ||
-    { echo "savings: $page has no bench/savings.sh markers" >&2; exit 1; }
+grep -q '^<!-- not run: .*bench/drivers/savings.sh' "$page" && grep -q '^<!-- end of bench/drivers/savings.sh' "$page" ||
+    { echo "savings: $page has no bench/drivers/savings.sh markers" >&2; exit 1; }
 out=$(mktemp) && trap 'rm -f "$out" "$out.page"' EXIT
 tables >"$out"
 # The page is replaced whole, and only once every table is made.
 awk -v out="$out" '
-    /^<!-- end of bench\/savings.sh/ { print "```"; skip = 0 }
+    /^<!-- end of bench\/drivers\/savings.sh/ { print "```"; skip = 0 }
     !skip { print }
-    /^<!-- not run: .*bench\/savings.sh/ {
+    /^<!-- not run: .*bench\/drivers\/savings.sh/ {
         print "```"
         while ((getline line < out) > 0) print line
         skip = 1

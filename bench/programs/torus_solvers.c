@@ -9,7 +9,7 @@
  *   (time_all) and first hit after t = 0 only (time_first, the query of a
  *   renderer's primary ray), the best of `repeats` passes (a busy machine
  *   only slows passes down: take the fastest). For numbers that do not
- *   depend on the machine's load, bench/torus_solvers_instructions.sh runs
+ *   depend on the machine's load, bench/drivers/torus_solvers_instructions.sh runs
  *   this under callgrind with --no-reference and divides the instructions
  *   of time_all and time_first by the solves;
  * - |t error| against roots computed in __float128 by Sturm sequences
@@ -25,7 +25,7 @@
  *   touch, a miss or a tiny chord; the reference can be wrong there too,
  *   e.g. for lines lying exactly in the tangent plane z = tube).
  * With --json each row is one JSON object on a line of its own instead (for
- * bench/accuracy/run_accuracy.py, which quotes them in docs/accuracy.md).
+ * bench/drivers/run_accuracy.py, which quotes them in docs/accuracy.md).
  * Ray sets: "near" (origins around the bounds, aimed into them, with zero
  * direction components and origins on faces mixed in), "far 1e4" and
  * "far 1e6" (from that far, aimed into the bounds), "grazing" (tangent to

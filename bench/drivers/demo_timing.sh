@@ -1,11 +1,11 @@
 #!/bin/sh
 # Median wall time and rays per second of the demo render, as `hitray render`
 # reports them, for a few sizes and thread counts. Prints a Markdown table.
-#   bench/demo_timing.sh [RUNS]        (default 5 runs per row; needs `make build`)
+#   bench/drivers/demo_timing.sh [RUNS]        (default 5 runs per row; needs `make build`)
 # Rows are interleaved (each round runs every row once), so a machine whose
 # speed drifts during the run shifts all rows alike.
 set -eu
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 runs=${1:-5}
 bin=build/bin/hitray
 [ -x "$bin" ] || { echo "demo_timing: build first (make build)" >&2; exit 1; }

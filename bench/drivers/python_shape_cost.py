@@ -14,8 +14,8 @@ same paths:
 Each timing is the best of --repeat runs (the machine may be busy; the best
 run is the one least disturbed). Prints a Markdown table.
 
-  python bench/python_shape_cost.py                       # the installed package
-  python bench/python_shape_cost.py --build-dir build     # a build tree
+  python bench/drivers/python_shape_cost.py                       # the installed package
+  python bench/drivers/python_shape_cost.py --build-dir build     # a build tree
 """
 
 import argparse
@@ -26,7 +26,7 @@ import sys
 import time
 import types
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def import_abi(build_dir):
@@ -91,7 +91,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=5, help="runs per timing; the best is kept")
     ap.add_argument("--render-once", choices=("sphere", "pysphere", "pynothing"),
                     help="only render once with this shape on 1 thread (for counting "
-                         "instructions, see bench/python_shape_instructions.sh)")
+                         "instructions, see bench/drivers/python_shape_instructions.sh)")
     args = ap.parse_args()
     abi = import_abi(args.build_dir)
     ffi, lib = abi.ffi, abi.lib

@@ -1,11 +1,11 @@
 #!/bin/sh
 # Instructions per torus solve, counted by callgrind, for each root solver
-# and ray set of bench/torus_solvers.c: unlike wall time, these do not move
+# and ray set of bench/programs/torus_solvers.c: unlike wall time, these do not move
 # with the machine's load. Each count is the instructions of the timing loop
 # (time_all: every hit; time_first: the first hit after t = 0) divided by
 # the rays, so the loop's own few instructions per ray are included.
 #
-# usage: bench/torus_solvers_instructions.sh [BUILD_DIR] [RAYS]
+# usage: bench/drivers/torus_solvers_instructions.sh [BUILD_DIR] [RAYS]
 # (BUILD_DIR defaults to build, RAYS to 2000; needs valgrind)
 set -eu
 build=${1:-build}
