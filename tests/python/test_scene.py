@@ -1,6 +1,8 @@
 """Building scenes in Python: shapes, transforms in Hill's order, materials
 as SDL keywords, lights, globals, and a Scene changed after it rendered."""
 
+import pathlib
+
 import numpy as np
 import pytest
 
@@ -230,3 +232,19 @@ def test_a_deep_boolean_chain_meets_the_library_depth_limit_not_pythons():
     scene = hitray.Scene()
     scene.add(within)
     assert scene.first_hit((0, 0, 5), (0, 0, -1)).t == 4.0
+
+
+def test_objects_say_the_parameters_they_were_made_with():
+    # What a class declares, defaults filled in; a boolean's operands are
+    # its objects; a mesh file as the scene wrote it.
+    require_classes("taperedCylinder", "torus", "union", "mesh")
+    scene, _ = hitray.parse_sdl("taperedCylinder 0.5\nunion sphere torus 0.3\n"
+                                "mesh ../data/meshes/cube.3vn\n", base_dir=pathlib.Path(__file__).parent)
+    cone, sphere, torus, union, mesh = scene.objects
+    assert cone.params["s"] == 0.5
+    assert torus.params == {"tube": 0.3, "solver": ""}  # "": the default solver
+    assert sphere.params == {}
+    assert union.params == {"a": sphere, "b": torus} and not torus.top_level
+    assert mesh.params == {"file": "../data/meshes/cube.3vn"}
+    made = hitray.Scene().add(hitray.Torus(solver="ferrari")).params
+    assert made == {"tube": 0.2, "solver": "ferrari"}  # the tube's default filled in

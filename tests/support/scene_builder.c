@@ -101,3 +101,12 @@ hr_camera tb_mirror_glass_view(int32_t width, int32_t height)
     c.look = (hr_vec3){0, 0.8, 0};
     return c;
 }
+
+hr_object_info tb_object_info(const hr_scene *s, int64_t index)
+{
+    hr_object_info o;
+    memset(&o, 0, sizeof o);
+    o.struct_size = sizeof o;
+    CHECK_OK(hr_scene_object_info(s, index, &o));
+    return o;
+}

@@ -22,5 +22,8 @@ void tb_add_mirror_glass_set(hr_scene *s, int with_mirror_and_glass);
 hr_scene *tb_mirror_glass_scene(hr_context *ctx);
 /* The camera that frames that set at the given size. */
 hr_camera tb_mirror_glass_view(int32_t width, int32_t height);
+/* hr_scene_object_info of object `index`, the whole struct (a failed
+ * check leaves it zeroed). */
+hr_object_info tb_object_info(const hr_scene *s, int64_t index);
 
 #endif
