@@ -215,11 +215,12 @@ test-wheel: wheel deps-test
 # (bench/drivers/run_bench.py writes bench/results/RESULTS.md); never part of `make test`.
 # BENCH_FLAGS passes options (--runs, --scenes, --spd-size, --note, ...).
 BENCH_FLAGS ?=
-bench: build
+# sdl2pov.py reads the scenes through the hitray package, so it runs in .venv.
+bench: python-install
 	@scripts/bootstrap.sh --bench
 	cmake -S . -B $(BUILD) -DHITRAY_BUILD_BENCH=ON >/dev/null
 	cmake --build $(BUILD) -j $(JOBS) $(NINJA_QUIET)
-	python3 bench/drivers/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
+	.venv/bin/python bench/drivers/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
 # What accuracy costs in time (bench/programs/accuracy, driven by
 # bench/drivers/run_accuracy.py): measures every accuracy knob

@@ -4,10 +4,13 @@
     bench/drivers/sdl2pov.py SCENE.sdl -o SCENE.pov [--camera EX,EY,EZ,LX,LY,LZ,UX,UY,UZ,ANGLE]
                      [--size WxH] [--mask MASK.sdl]
 
-The translation follows hitray's reading of the language (docs/sdl.md): macros
-are expanded, the transform stack is kept as 4x4 matrices (M <- M.T, the
-transform written last acts first), and every object is written with its full
-object-to-world matrix, so the geometry is exactly the same.
+The scene is read by hitray itself (hitray.load_sdl, so macros, the transform
+stack and every keyword mean what they mean to the renderer) and walked
+through the scene's introspection (Scene.objects: each object's class, the
+parameters it was made with, its matrix and its material): no SDL is parsed
+here. Every object is written with its own matrix (an operand's relative to
+its boolean's), so the geometry is exactly the same. Needs the hitray package
+(make python-install).
 
 Camera. Hill's camera is eye/look/up and a *vertical* view angle; hitray shoots
 through pixel centres of an image plane at distance 1. POV-Ray is left-handed
@@ -42,8 +45,10 @@ torus (torus 1, 0.2 turned from POV-Ray's xz-plane to Hill's xy-plane), mesh
 (Hill's .3vn file as a mesh2 with its vertex normals), union / intersection /
 difference (POV-Ray's CSG of the same names, each leaf with its own texture).
 
---mask MASK.sdl also writes a flat SDL scene (macros expanded, no lights, no
-materials but one `emissive` colour per object, black background) and makes
+--mask MASK.sdl also writes a flat SDL scene (no macros, no lights, no
+materials but one `emissive` colour per object, black background; each
+object's matrix written as translate, rotate, scale, rotate from its singular
+value decomposition) and makes
 the .pov the same: each leaf object shows only its id colour, so the two
 renders can be compared pixel by pixel for "the same objects in the same
 places" (bench/drivers/compare_images.py).
@@ -53,201 +58,15 @@ import math
 import os
 import sys
 
-OBJECT_WORDS = {"sphere", "cube", "square", "plane", "taperedCylinder", "cylinder", "cone",
-                "torus", "mesh", "union", "intersection", "difference"}
-MATERIAL_ARGS = {"ambient": 3, "diffuse": 3, "specular": 3, "emissive": 3,
-                 "specularExponent": 1, "reflectivity": 1, "transparency": 1,
-                 "speedOfLight": 1, "specularFraction": 1, "surfaceRoughness": 1, "texture": 1}
-GLOBAL_ARGS = {"background": 3, "globalAmbient": 3, "minReflectivity": 1,
-               "minTransparency": 1, "maxRecursionDepth": 1}
+import numpy as np
+
+import hitray
+
+BOOLEANS = {"union", "intersection", "difference"}
 
 
 class SdlError(Exception):
     pass
-
-
-def tokenize(text):
-    tokens = []
-    for line in text.splitlines():
-        line = line.split("!", 1)[0]
-        for word in line.replace("{", " { ").replace("}", " } ").split():
-            tokens.append(word)
-    return tokens
-
-
-def identity():
-    return [[1.0 if i == j else 0.0 for j in range(4)] for i in range(4)]
-
-
-def matmul(a, b):
-    return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
-
-
-def translation(dx, dy, dz):
-    m = identity()
-    m[0][3], m[1][3], m[2][3] = dx, dy, dz
-    return m
-
-
-def scaling(sx, sy, sz):
-    m = identity()
-    m[0][0], m[1][1], m[2][2] = sx, sy, sz
-    return m
-
-
-def rotation(angle, ux, uy, uz):
-    n = math.sqrt(ux * ux + uy * uy + uz * uz)
-    if n == 0:
-        raise SdlError("rotate: zero axis")
-    x, y, z = ux / n, uy / n, uz / n
-    a = math.radians(angle)
-    c, s, t = math.cos(a), math.sin(a), 1 - math.cos(a)
-    m = identity()
-    m[0][:3] = [t * x * x + c, t * x * y - s * z, t * x * z + s * y]
-    m[1][:3] = [t * x * y + s * z, t * y * y + c, t * y * z - s * x]
-    m[2][:3] = [t * x * z - s * y, t * y * z + s * x, t * z * z + c]
-    return m
-
-
-def default_material():
-    return {"ambient": [0.1] * 3, "diffuse": [0.8] * 3, "specular": [0.0] * 3,
-            "emissive": [0.0] * 3, "specularExponent": 1.0, "reflectivity": 0.0,
-            "transparency": 0.0, "speedOfLight": 1.0}
-
-
-class Scene:
-    def __init__(self):
-        self.globals = {"background": [0, 0, 0.6], "globalAmbient": [0.1] * 3,
-                        "minReflectivity": 0.5, "minTransparency": 0.5, "maxRecursionDepth": 3}
-        self.lights = []
-        self.camera = None
-        self.objects = []      # top-level objects, file order
-        self.flat = []         # the expanded token stream for the mask SDL
-        self.leaf_count = 0
-
-
-class Reader:
-    """Hill's SDL as hitray reads it, producing object records."""
-
-    def __init__(self, tokens, base_dir, scene):
-        self.tokens = list(reversed(tokens))  # a stack: pop() is the next token
-        self.base_dir = base_dir
-        self.scene = scene
-        self.defs = {}
-        self.stack = [identity()]
-        self.material = default_material()
-
-    def next(self):
-        if not self.tokens:
-            raise SdlError("unexpected end of the scene")
-        return self.tokens.pop()
-
-    def numbers(self, n):
-        return [float(self.next()) for _ in range(n)]
-
-    def emit(self, *words):
-        self.scene.flat.append(" ".join(str(w) for w in words))
-
-    def run(self):
-        while self.tokens:
-            obj = self.read_until_object(top=True)
-            if obj is not None:
-                self.scene.objects.append(obj)
-
-    def read_until_object(self, top=False):
-        """Process state commands up to the next object and read it."""
-        while self.tokens:
-            word = self.next()
-            if word in OBJECT_WORDS:
-                return self.read_object(word)
-            self.state_command(word)
-        if top:
-            return None
-        raise SdlError("a boolean operand is missing at the end of the scene")
-
-    def state_command(self, word):
-        top = self.stack[-1]
-        if word == "translate":
-            a = self.numbers(3)
-            self.stack[-1] = matmul(top, translation(*a))
-            self.emit(word, *a)
-        elif word == "scale":
-            a = self.numbers(3)
-            self.stack[-1] = matmul(top, scaling(*a))
-            self.emit(word, *a)
-        elif word == "rotate":
-            a = self.numbers(4)
-            self.stack[-1] = matmul(top, rotation(*a))
-            self.emit(word, *a)
-        elif word == "push":
-            self.stack.append([row[:] for row in top])
-            self.emit(word)
-        elif word == "pop":
-            if len(self.stack) == 1:
-                raise SdlError("pop of the last transform")
-            self.stack.pop()
-            self.emit(word)
-        elif word == "identityAffine":
-            self.stack[-1] = identity()
-            self.emit(word)
-        elif word in MATERIAL_ARGS:
-            a = self.numbers(MATERIAL_ARGS[word])
-            if word in self.material:
-                self.material[word] = a if len(a) == 3 else a[0]
-        elif word == "parameters":
-            n = int(float(self.next()))
-            self.numbers(n)
-        elif word == "defaultMaterials":
-            self.material = default_material()
-        elif word in GLOBAL_ARGS:
-            a = self.numbers(GLOBAL_ARGS[word])
-            self.scene.globals[word] = a if len(a) == 3 else a[0]
-        elif word == "light":
-            self.scene.lights.append(self.numbers(6))
-        elif word == "camera":
-            self.scene.camera = self.numbers(10)
-        elif word == "def":
-            name = self.next()
-            if self.next() != "{":
-                raise SdlError(f"def {name}: expected '{{'")
-            body = []
-            while True:
-                w = self.next()
-                if w == "}":
-                    break
-                body.append(w)
-            self.defs[name] = body
-        elif word == "use":
-            name = self.next()
-            if name not in self.defs:
-                raise SdlError(f"use of unknown macro '{name}'")
-            self.tokens.extend(reversed(self.defs[name]))
-        else:
-            raise SdlError(f"unknown word '{word}'")
-
-    def read_object(self, word):
-        if word in ("union", "intersection", "difference"):
-            self.emit(word)
-            a = self.read_until_object()
-            b = self.read_until_object()
-            return {"kind": word, "children": [a, b]}
-        obj = {"kind": word, "matrix": [row[:] for row in self.stack[-1]],
-               "material": {k: (v[:] if isinstance(v, list) else v)
-                            for k, v in self.material.items()}}
-        if word == "taperedCylinder":
-            obj["s"] = float(self.next())
-        elif word == "cylinder":
-            obj["kind"], obj["s"] = "taperedCylinder", 1.0
-        elif word == "cone":
-            obj["kind"], obj["s"] = "taperedCylinder", 0.0
-        elif word == "mesh":
-            obj["file"] = self.next()
-        self.scene.leaf_count += 1
-        obj["id"] = self.scene.leaf_count
-        self.emit("emissive", *id_colour(obj["id"]))
-        self.emit(word, *([obj["s"]] if word == "taperedCylinder" else
-                          [obj["file"]] if word == "mesh" else []))
-        return obj
 
 
 # 4 levels per channel (0, 1/3, 2/3, 1) minus black: 63 colours, far apart
@@ -268,15 +87,50 @@ def vec(v):
 def pov_matrix(m):
     # POV-Ray multiplies row vectors: p' = p M, so its 12 numbers are the
     # transpose of hitray's column-vector matrix, translation last.
-    cols = [[m[r][c] for r in range(3)] for c in range(4)]
-    return "matrix <" + ", ".join(num(x) for col in cols for x in col) + ">"
+    return "matrix <" + ", ".join(num(m[r][c]) for c in range(4) for r in range(3)) + ">"
+
+
+class Node:
+    """One object of the scene: a leaf, or a boolean with its two operands."""
+
+    def __init__(self, obj, children):
+        self.obj = obj
+        self.shape = obj.shape
+        self.params = obj.params
+        self.matrix = obj.matrix
+        self.material = obj.material
+        self.children = children
+        self.id = 0
+
+
+def tree(scene):
+    """The top-level objects in the order they were written, each with its
+    operands; leaves numbered 1, 2, ... in that order (their mask ids)."""
+    def node(obj):
+        kids = [node(v) for v in obj.params.values() if isinstance(v, hitray.SceneObject)]
+        return Node(obj, kids)
+    roots = [node(o) for o in scene.objects if o.top_level]
+    count = 0
+
+    def number(n):
+        nonlocal count
+        if n.children:
+            for c in n.children:
+                number(c)
+        else:
+            count += 1
+            n.id = count
+    for r in roots:
+        number(r)
+    return roots
 
 
 class PovWriter:
-    def __init__(self, scene, mask, out_dir):
+    def __init__(self, scene, mask, out_dir, scene_dir):
         self.scene = scene
         self.mask = mask
         self.out_dir = out_dir
+        self.scene_dir = scene_dir
         self.textures = {}
         self.meshes = {}
         self.decls = []
@@ -284,37 +138,37 @@ class PovWriter:
     def texture(self, mat, ident):
         if self.mask:
             return f"texture {{ pigment {{ rgb {vec(id_colour(ident))} }} finish {{ ambient 0 diffuse 0 emission 1 }} }}"
-        g = self.scene.globals
+        s = self.scene
         pig = [d if d > 0 else 1e-4 for d in mat["diffuse"]]
-        amb = [a * ga / p for a, ga, p in zip(mat["ambient"], g["globalAmbient"], pig)]
+        amb = [a * ga / p for a, ga, p in zip(mat["ambient"], s.global_ambient, pig)]
         emi = [e / p for e, p in zip(mat["emissive"], pig)]
         spec = sum(mat["specular"]) / 3.0
         finish = f"ambient rgb {vec(amb)} emission rgb {vec(emi)} diffuse 1"
         if spec > 0:
-            rough = min(1.0, max(1e-4, 1.0 / max(mat["specularExponent"], 1e-9)))
+            rough = min(1.0, max(1e-4, 1.0 / max(mat["specular_exponent"], 1e-9)))
             finish += f" specular {num(spec)} roughness {num(rough)}"
-        if mat["reflectivity"] >= g["minReflectivity"] and mat["reflectivity"] > 0:
+        if mat["reflectivity"] >= s.min_reflectivity and mat["reflectivity"] > 0:
             finish += f" reflection {{ rgb {num(mat['reflectivity'])} }}"
-        transmit = mat["transparency"] if (mat["transparency"] >= g["minTransparency"] and
+        transmit = mat["transparency"] if (mat["transparency"] >= s.min_transparency and
                                            mat["transparency"] > 0) else 0.0
         pigment = f"rgbt <{num(pig[0])}, {num(pig[1])}, {num(pig[2])}, {num(transmit)}>"
         text = f"texture {{ pigment {{ {pigment} }} finish {{ {finish} }} }}"
-        if transmit > 0:
-            text += f" interior {{ ior {num(1.0 / mat['speedOfLight'])} }}"
+        ior = num(1.0 / mat["speed_of_light"])
         name = self.textures.get(text)
         if name is None:
             name = f"T{len(self.textures) + 1}"
             self.textures[text] = name
-            self.decls.append(f"#declare {name}_tex = {text.split(' interior ')[0]}")
+            self.decls.append(f"#declare {name}_tex = {text}")
             if transmit > 0:
-                self.decls.append(f"#declare {name}_int = interior {{ ior {num(1.0 / mat['speedOfLight'])} }}")
+                self.decls.append(f"#declare {name}_int = interior {{ ior {ior} }}")
         return f"texture {{ {name}_tex }}" + (f" interior {{ {name}_int }}" if transmit > 0 else "")
 
     def mesh(self, file):
         if file in self.meshes:
             return self.meshes[file]
-        path = os.path.join(self.scene_dir, file)
-        with open(path) as f:
+        if file.lower().endswith(".obj"):
+            raise SdlError(f"mesh {file}: only Hill's format (.3vn) is translated")
+        with open(os.path.join(self.scene_dir, file)) as f:
             nums = f.read().split()
         pos = 0
 
@@ -353,11 +207,12 @@ class PovWriter:
         self.meshes[file] = name
         return name
 
-    def shape(self, obj):
-        kind = obj["kind"]
-        if kind in ("union", "intersection", "difference"):
-            a, b = (self.shape(c) for c in obj["children"])
-            return f"{kind} {{\n {a}\n {b}\n}}"
+    def shape(self, n):
+        kind, p = n.shape, n.params
+        if kind in BOOLEANS:
+            a, b = (self.shape(c) for c in n.children)
+            own = "" if np.array_equal(n.matrix, np.eye(4)) else f" {pov_matrix(n.matrix)}"
+            return f"{kind} {{\n {a}\n {b}{own}\n}}"
         if kind == "sphere":
             body = "sphere { <0, 0, 0>, 1"
         elif kind == "cube":
@@ -366,60 +221,121 @@ class PovWriter:
             body = "mesh { triangle { <-1, -1, 0>, <1, -1, 0>, <1, 1, 0> } triangle { <-1, -1, 0>, <1, 1, 0>, <-1, 1, 0> }"
         elif kind == "plane":
             body = "plane { z, 0"
-        elif kind == "taperedCylinder":
-            s = obj["s"]
+        elif kind in ("taperedCylinder", "cylinder", "cone"):
+            s = p["s"] if kind == "taperedCylinder" else 1.0 if kind == "cylinder" else 0.0
             body = ("cylinder { <0, 0, 0>, <0, 0, 1>, 1" if s == 1.0 else
                     f"cone {{ <0, 0, 0>, 1, <0, 0, 1>, {num(s)}")
         elif kind == "torus":
-            body = "torus { 1, 0.2 rotate 90*x"
+            body = f"torus {{ 1, {num(p['tube'])} rotate 90*x"
         elif kind == "mesh":
-            body = f"object {{ {self.mesh(obj['file'])}"
+            body = f"object {{ {self.mesh(p['file'])}"
         else:
             raise SdlError(f"no POV-Ray shape for '{kind}'")
-        return f"{body} {self.texture(obj['material'], obj['id'])} {pov_matrix(obj['matrix'])} }}"
+        return f"{body} {self.texture(n.material, n.id)} {pov_matrix(n.matrix)} }}"
 
-    def write(self, path, width, height):
+    def write(self, path, roots, camera, width, height):
         s = self.scene
-        g = s.globals
-        eye, look, up, angle = s.camera[0:3], s.camera[3:6], s.camera[6:9], s.camera[9]
         aspect = width / height
-        hfov = math.degrees(2 * math.atan(math.tan(math.radians(angle) / 2) * aspect))
-        body = [self.shape(o) for o in s.objects]
+        hfov = math.degrees(2 * math.atan(math.tan(math.radians(camera.angle) / 2) * aspect))
+        body = [self.shape(r) for r in roots]
         out = ["#version 3.7;",
                "// generated by bench/drivers/sdl2pov.py: see its header for the mapping",
                "global_settings {",
                " assumed_gamma 1.0",
-               f" max_trace_level {int(g['maxRecursionDepth']) + 1}",
+               f" max_trace_level {int(s.max_recursion_depth) + 1}",
                " adc_bailout 0",
                " ambient_light rgb <1, 1, 1>",
                "}",
-               f"background {{ rgb {vec([0, 0, 0] if self.mask else g['background'])} }}",
+               f"background {{ rgb {vec([0, 0, 0] if self.mask else s.background)} }}",
                "camera {",
                " perspective",
-               f" location {vec(eye)}",
-               f" sky {vec(up)}",
+               f" location {vec(camera.eye)}",
+               f" sky {vec(camera.up)}",
                f" up y right -x*{num(aspect)}",
                f" angle {num(hfov)}",
-               f" look_at {vec(look)}",
+               f" look_at {vec(camera.look)}",
                "}"]
         if not self.mask:
-            for x, y, z, r, gg, b in s.lights:
-                out.append(f"light_source {{ {vec([x, y, z])} color rgb {vec([r, gg, b])} }}")
+            for light in s.lights:
+                out.append(f"light_source {{ {vec(light.position)} color rgb {vec(light.color)} }}")
         out += self.decls
         out += body
         with open(path, "w") as f:
             f.write("\n".join(out) + "\n")
 
 
-def write_mask_sdl(scene, path):
-    g = scene.globals
-    cam = " ".join(f"{num(x)}" for x in scene.camera)
-    head = ["! flat id-colour version, generated by bench/drivers/sdl2pov.py --mask",
-            f"camera {cam}", "background 0 0 0", "globalAmbient 0 0 0",
-            f"maxRecursionDepth {int(g['maxRecursionDepth'])}",
-            "ambient 0 0 0 diffuse 0 0 0 specular 0 0 0"]
+def rotation_words(r):
+    """SDL's `rotate ANGLE X Y Z` for a rotation matrix (det +1); none for
+    the identity."""
+    cos = max(-1.0, min(1.0, (np.trace(r) - 1.0) / 2.0))
+    angle = math.acos(cos)
+    if angle < 1e-15:
+        return []
+    if math.pi - angle < 1e-6:  # near a half turn: the axis from R + I
+        axis = np.sqrt(np.maximum(np.diag(r) + 1.0, 0.0) / 2.0)
+        k = int(np.argmax(axis))
+        for j in range(3):
+            if j != k:
+                axis[j] = (r[k][j] + r[j][k]) / (4.0 * axis[k])
+    else:
+        axis = np.array([r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]])
+    return ["rotate", num(math.degrees(angle)), *(num(x) for x in axis)]
+
+
+def transform_words(m):
+    """SDL transforms whose product is the 4x4 matrix m (to rounding):
+    translate, then the linear part's SVD U S V^T as rotate U, scale S,
+    rotate V^T (the transform written last acts first)."""
+    words = []
+    if any(m[i][3] != 0 for i in range(3)):
+        words += ["translate", *(num(m[i][3]) for i in range(3))]
+    lin = np.array(m, dtype=np.float64)[:3, :3]
+    if np.count_nonzero(lin - np.diag(np.diag(lin))) == 0:
+        if not np.array_equal(lin, np.eye(3)):
+            words += ["scale", *(num(x) for x in np.diag(lin))]
+        return words
+    u, sv, vt = np.linalg.svd(lin)
+    if np.linalg.det(lin) > 0 and sv[0] - sv[2] <= 1e-12 * sv[0]:
+        # A rotation and one scale: the SVD's two turns are one.
+        return words + rotation_words(u @ vt) + (["scale", *[num(sv[0])] * 3] if sv[0] != 1.0 else [])
+    if np.linalg.det(u) < 0:
+        u[:, 2], sv[2] = -u[:, 2], -sv[2]
+    if np.linalg.det(vt) < 0:
+        vt[2, :], sv[2] = -vt[2, :], -sv[2]
+    scale = [] if np.array_equal(sv, np.ones(3)) else ["scale", *(num(x) for x in sv)]
+    return words + rotation_words(u) + scale + rotation_words(vt)
+
+
+def write_mask_sdl(scene, roots, camera, path):
+    """The scene flat: each leaf alone under its own transform with its id
+    colour, each boolean with its operands, no lights and no shading."""
+    lines = ["! flat id-colour version, generated by bench/drivers/sdl2pov.py --mask",
+             "camera " + " ".join(num(x) for x in (*camera.eye, *camera.look, *camera.up, camera.angle)),
+             "background 0 0 0", "globalAmbient 0 0 0",
+             f"maxRecursionDepth {int(scene.max_recursion_depth)}",
+             "ambient 0 0 0 diffuse 0 0 0 specular 0 0 0"]
+
+    def leaf_lines(n, above):
+        """A boolean's line and its operands', or a leaf's three: its
+        transform, its id colour and its keyword, the pop."""
+        world = above @ n.matrix
+        if n.children:
+            return [n.shape] + [line for c in n.children for line in leaf_lines(c, world)]
+        args = []
+        for value in n.params.values():
+            if isinstance(value, str):
+                if value:  # an empty string is the parameter left out (the torus's solver)
+                    args.append(value)
+            elif isinstance(value, float):
+                args.append(num(value))
+            else:
+                raise SdlError(f"'{n.shape}': an array parameter has no SDL word")
+        return [" ".join(["push", "identityAffine", *transform_words(world)]),
+                " ".join(["emissive", *(num(c) for c in id_colour(n.id)), n.shape, *args]), "pop"]
+    for r in roots:
+        lines += leaf_lines(r, np.eye(4))
     with open(path, "w") as f:
-        f.write("\n".join(head + scene.flat) + "\n")
+        f.write("\n".join(lines) + "\n")
 
 
 def main(argv=None):
@@ -431,22 +347,22 @@ def main(argv=None):
     ap.add_argument("--mask", help="also write the flat id-colour SDL here; the .pov is flat too")
     args = ap.parse_args(argv)
     width, height = (int(x) for x in args.size.split("x"))
-    with open(args.scene) as f:
-        tokens = tokenize(f.read())
-    scene = Scene()
     try:
-        Reader(tokens, os.path.dirname(args.scene), scene).run()
+        scene, camera = hitray.load_sdl(args.scene)
         if args.camera:
-            scene.camera = [float(x) for x in args.camera.split(",")]
-        if scene.camera is None or len(scene.camera) != 10:
+            c = [float(x) for x in args.camera.split(",")]
+            if len(c) != 10:
+                raise SdlError("--camera takes 10 numbers")
+            camera = hitray.Camera(c[0:3], c[3:6], c[6:9], c[9])
+        if camera is None:
             raise SdlError("the scene has no camera: give --camera")
-        writer = PovWriter(scene, args.mask is not None,
-                           os.path.dirname(os.path.abspath(args.output)))
-        writer.scene_dir = os.path.dirname(os.path.abspath(args.scene))
-        writer.write(args.output, width, height)
+        roots = tree(scene)
+        writer = PovWriter(scene, args.mask is not None, os.path.dirname(os.path.abspath(args.output)),
+                           os.path.dirname(os.path.abspath(args.scene)))
+        writer.write(args.output, roots, camera, width, height)
         if args.mask:
-            write_mask_sdl(scene, args.mask)
-    except (SdlError, ValueError, OSError) as e:
+            write_mask_sdl(scene, roots, camera, args.mask)
+    except (hitray.Error, SdlError, ValueError, OSError) as e:
         print(f"sdl2pov: {args.scene}: {e}", file=sys.stderr)
         return 1
     return 0

@@ -80,6 +80,19 @@ def test_macros_push_pop_and_booleans(tmp_path):
     assert not re.search(r"^(def|use|light) ", mask, re.M)
 
 
+@pytest.mark.parametrize("transforms", ["translate 1 2 3", "scale 2 -3 4", "rotate 90 1 0 0 scale 2 2 2",
+                                        "rotate 30 1 2 3 scale 1 2 3 rotate -70 0 1 1 translate 4 5 6",
+                                        "rotate 180 0 1 0", "scale -1 1 1 rotate 45 0 0 1"])
+def test_mask_transforms_rebuild_the_matrix(transforms):
+    # The flat SDL writes each matrix as translate, rotate, scale, rotate:
+    # hitray reads those words back to the same matrix, to rounding.
+    hitray = pytest.importorskip("hitray")
+    scene, _ = hitray.parse_sdl(transforms + " sphere\n")
+    m = scene.objects[0].matrix
+    again, _ = hitray.parse_sdl(" ".join(sdl2pov.transform_words(m)) + " sphere\n")
+    assert abs(again.objects[0].matrix - m).max() < 1e-13
+
+
 def test_camera_angle_is_horizontal_for_pov(tmp_path):
     _, pov = translate(tmp_path, CAMERA + "sphere\n", "--size", "1920x1080")
     angle = float(re.search(r"angle ([0-9.e+-]+)", pov).group(1))
