@@ -304,8 +304,10 @@ def machine_line():
 
 
 def versions():
-    pov = subprocess.run(["povray", "--version"], capture_output=True, text=True)
-    m = re.search(r"POV-Ray (\S+)", pov.stdout + pov.stderr)
+    m = None
+    if HAVE_POV:  # --quick runs without it
+        pov = subprocess.run(["povray", "--version"], capture_output=True, text=True)
+        m = re.search(r"POV-Ray (\S+)", pov.stdout + pov.stderr)
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip() or "unknown"
     emb = "not found"
@@ -313,7 +315,7 @@ def versions():
         if line.startswith("embree_DIR:"):
             m2 = re.search(r"embree-([0-9.]+)", line)
             emb = m2.group(1) if m2 else "found"
-    return (m.group(1) if m else "unknown"), emb, commit
+    return (m.group(1) if m else "unknown" if HAVE_POV else "not installed"), emb, commit
 
 
 def main():
