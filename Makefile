@@ -162,7 +162,7 @@ python-install: build-all
 	    -C build-dir=$(abspath $(PYTHON_BUILD)) .
 
 test-python: python-install
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python tests/cli tests/view
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python tests/cli tests/view tests/bench
 
 # Every fenced block of README.md and docs/*.md run as its page says, or
 # marked not run with the reason, and docs/effects.md's tables rerun

@@ -40,7 +40,7 @@ mask: the twins come from the SPD, not from sdl2pov.py.
 profile, the raycast with 1,000 spheres), writes to --output and to a
 previews folder in the work directory, and leaves README.md alone; without
 POV-Ray (or bench/raycast) it runs hitray's side and says what it left
-out. tests/python/test_bench_tools.py runs it, so the script cannot rot.
+out. tests/bench/test_bench_tools.py runs it, so the script cannot rot.
 
 Raw intersection: bench/raycast (see its header) with 100,000 random spheres
 and 1M primary rays, hitray's hr_scene_first_hit against Embree's native

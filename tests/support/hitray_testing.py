@@ -1,6 +1,7 @@
 """Helpers shared by the pytest files: the Python package's (tests/python),
-the command line's (tests/cli) and the viewer's (tests/view): pytest finds it
-through pyproject.toml's [tool.pytest.ini_options] pythonpath.
+the command line's (tests/cli), the viewer's (tests/view) and the benchmark
+drivers' (tests/bench); pytest finds this file through pyproject.toml's
+[tool.pytest.ini_options] pythonpath.
 
 The package under test is the one installed into the running interpreter
 (`make test-python` installs it from the repository's root first); it is never

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from conftest import BUILD, ROOT
+from hitray_testing import BUILD, ROOT
 
 DRIVER = ROOT / "bench" / "drivers" / "run_accuracy.py"
 PROGRAMS = ["bench/torus_solvers", "bench/accuracy/quadric_forms",
