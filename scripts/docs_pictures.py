@@ -40,8 +40,8 @@ PICTURE = re.compile(r"!\[[^\]]*\]\((?P<file>[^)\s]+)\)")
 CODE = re.compile(r"`([^`]+)`")
 IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".svg", ".gif", ".webp")
 # Pages a measuring program writes whole, plots included: what writes them.
-MEASURED = {"docs/accuracy.md": "bench/accuracy/run_accuracy.py (make bench-accuracy); "
-                                "tests/python/test_accuracy_driver.py runs it small"}
+MEASURED = {"docs/accuracy.md": "bench/drivers/run_accuracy.py (make bench-accuracy); "
+                                "tests/bench/test_accuracy_driver.py runs it small"}
 TIMEOUT = 600
 
 

@@ -183,18 +183,18 @@ def test_the_checker_reads_marks_and_wildcards(tmp_path):
 
 def test_the_savings_tables_are_what_bench_savings_sh_prints():
     """docs/effects.md's tables, rerun (ray counts and errors are exact on
-    any machine and thread count); `bench/savings.sh --write docs/effects.md`
+    any machine and thread count); `bench/drivers/savings.sh --write docs/effects.md`
     writes them."""
-    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/savings.sh" in b.not_run]
+    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/drivers/savings.sh" in b.not_run]
     env = dict(environment(), HITRAY=str(BUILD / "bin" / "hitray"))
-    done = subprocess.run([str(ROOT / "bench" / "savings.sh")], env=env, stdout=subprocess.PIPE, text=True,
+    done = subprocess.run([str(ROOT / "bench" / "drivers" / "savings.sh")], env=env, stdout=subprocess.PIPE, text=True,
                           timeout=TIMEOUT, check=True)
-    assert done.stdout == table.text, (f"{table.where}: the tables are not what bench/savings.sh prints "
-                                       f"now; run `bench/savings.sh --write docs/effects.md`")
+    assert done.stdout == table.text, (f"{table.where}: the tables are not what bench/drivers/savings.sh prints "
+                                       f"now; run `bench/drivers/savings.sh --write docs/effects.md`")
 
 
 def savings_rows(table: str) -> dict[str, dict[str, list[float]]]:
-    """bench/savings.sh's tables: scene -> render name -> [rays, saved, saved%,
+    """bench/drivers/savings.sh's tables: scene -> render name -> [rays, saved, saved%,
     rmse, max, differing]."""
     scenes: dict[str, dict[str, list[float]]] = {}
     for part in table.strip().split("\n\n"):
@@ -210,9 +210,9 @@ def savings_rows(table: str) -> dict[str, dict[str, list[float]]]:
 def test_the_reading_of_the_savings_tables_is_what_they_show():
     """The sentences under docs/effects.md's tables quote them: each
     number here is worked out from the committed tables (which the test
-    above keeps what bench/savings.sh prints), so a rerun that moves them
+    above keeps what bench/drivers/savings.sh prints), so a rerun that moves them
     fails until the prose is read again."""
-    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/savings.sh" in b.not_run]
+    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/drivers/savings.sh" in b.not_run]
     scenes = savings_rows(table.text)
     demo = scenes.pop("scenes/demo.sdl")
     hill = list(scenes.values())

@@ -28,7 +28,7 @@ hd = pytest.importorskip("hitray.distributed")
 from hitray.distributed._client import local_cores  # noqa: E402
 
 HITRAY = BUILD / "bin" / "hitray"
-MESH_SCENE = ROOT / "tests" / "scenes" / "mesh_solids.sdl"
+MESH_SCENE = ROOT / "tests" / "data" / "scenes" / "mesh_solids.sdl"
 CUBE_3VN = ROOT / "tests" / "data" / "meshes" / "cube.3vn"
 
 # ((A | B) - bite) on a mirror floor: booleans nested, shadows and
