@@ -19,8 +19,14 @@ export ZIG_GLOBAL_CACHE_DIR="$deps/zig-cache" ZIG_LOCAL_CACHE_DIR="$deps/zig-cac
 # prefix alone, CMake there first, and each library is named outright.
 export PKG_CONFIG_LIBDIR="$prefix/lib/pkgconfig" PKG_CONFIG_PATH=""
 export CMAKE_PREFIX_PATH="$prefix"
+# pip from a venv of this Python, brought up to date once: an older pip
+# (3.10's) takes no -C (--config-settings).
+if [ ! -x "$work/venv/bin/python" ]; then
+    "$python" -m venv "$work/venv"
+    "$work/venv/bin/python" -m pip install -q --disable-pip-version-check --upgrade pip
+fi
 rm -rf "$work/raw"
-"$python" -m pip wheel -q --no-deps --disable-pip-version-check -w "$work/raw" \
+"$work/venv/bin/python" -m pip wheel -q --no-deps --disable-pip-version-check -w "$work/raw" \
     -C build-dir="$work/cmake" \
     -C cmake.define.CMAKE_TOOLCHAIN_FILE="$here/zig-toolchain.cmake" \
     -C cmake.define.ZLIB_ROOT="$prefix" -C cmake.define.ZLIB_LIBRARY="$prefix/lib/libz.a" \
