@@ -26,6 +26,9 @@ if [ ! -x "$work/venv/bin/python" ]; then
     "$work/venv/bin/python" -m pip install -q --disable-pip-version-check --upgrade pip
 fi
 rm -rf "$work/raw"
+# pip unpacks an sdist into a new folder each time, which a CMake tree
+# made for another source folder refuses: an sdist's build starts afresh.
+[ -d "$source" ] || rm -rf "$work/cmake"
 "$work/venv/bin/python" -m pip wheel -q --no-deps --disable-pip-version-check -w "$work/raw" \
     -C build-dir="$work/cmake" \
     -C cmake.define.CMAKE_TOOLCHAIN_FILE="$here/zig-toolchain.cmake" \

@@ -119,7 +119,9 @@ def test_loads_its_libraries_from_the_wheel(venv, rendered, wheel):
     # was mapped from the wheel, or is one the manylinux policy leaves to
     # the system (libc, libm, ...). Python's own modules may map others
     # (libffi, liblzma): those are the interpreter's business, not the wheel's.
-    allowed = set(manylinux_policy(wheel)["lib_whitelist"])
+    # The dynamic loader is the system's by definition (auditwheel's
+    # policies leave it out of their lists).
+    allowed = set(manylinux_policy(wheel)["lib_whitelist"]) | {"ld-linux-x86-64.so.2"}
     needed = set()
     for path in shipped_elf_files(venv["site"]):
         dynamic = subprocess.run(["readelf", "-d", str(path)], capture_output=True, text=True, check=True).stdout
@@ -214,3 +216,19 @@ def test_hitray_view_says_in_one_line_how_to_get_the_window(venv):
     assert result.returncode == 1 and result.stdout == ""
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and "libsdl2-dev" in lines[0] and "pip's wheels leave it out" in lines[0], lines
+
+
+def test_the_readme_lists_the_wheel_and_what_it_bundles(venv, wheel):
+    # README.md's table of the wheels names this one, its glibc floor, and
+    # each library auditwheel copied into hitray.libs/.
+    readme = (HERE.parents[1] / "README.md").read_text()
+    rows = [line for line in readme.splitlines() if line.startswith(f"| `{wheel.name}` |")]
+    assert len(rows) == 1, f"README.md has no row for {wheel.name}"
+    floor = ".".join(re.search(r"[-.]manylinux_(\d+)_(\d+)_", wheel.name).groups())
+    assert f"| {floor} |" in rows[0]
+    bundled = sorted(p.name for p in (venv["site"] / "hitray.libs").iterdir())
+    names = {"libpng16": "libpng", "libOpenEXRCore": "OpenEXRCore", "libstb": "stb"}
+    assert len(bundled) == len(names), bundled
+    for stem, shown in names.items():
+        assert any(b.startswith(stem) for b in bundled), bundled
+        assert shown in rows[0], rows[0]
