@@ -41,6 +41,7 @@ configure = mkdir -p $(1) && cmake --preset $(2) -B $(1) $(CMAKE_FLAGS) $(call s
 
 .PHONY: all deps deps-test deps-wheel build build-all demo test test-c test-asan test-tsan test-fuzz \
         test-python test-python-asan test-docs docs python-install test-memcheck test-wheel wheel install \
+        wheel-deps wheels test-wheels \
         clean bench bench-accuracy \
         fuzz fuzz-long
 
@@ -192,34 +193,76 @@ test-python-asan: build-all
 
 # Every picture of README.md and docs/ remade by the command its caption
 # names (scripts/docs_pictures.py reads them from the captions), and
-# docs/effects.md's tables by bench/savings.sh; `make test-docs` checks that
+# docs/effects.md's tables by bench/drivers/savings.sh; `make test-docs` checks that
 # both are what those commands make now.
 docs: python-install
 	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/docs_pictures.py --write
-	HITRAY=$(abspath $(BUILD))/bin/hitray bench/savings.sh --write docs/effects.md
+	HITRAY=$(abspath $(BUILD))/bin/hitray bench/drivers/savings.sh --write docs/effects.md
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-# The sdist, a wheel built from it (so the sdist is known to be complete),
-# and that wheel made a manylinux one by auditwheel (libpng, OpenEXRCore and
-# libstb copied into hitray.libs/, RPATHs rewritten with patchelf; zlib is
-# the system's, which the manylinux policy allows):
-# $(DIST)/hitray-*.tar.gz and $(DIST)/wheelhouse/hitray-*manylinux*.whl.
-# The files are the working tree's (.gitignore leaves out the build trees).
-wheel: deps-wheel
-	rm -rf $(DIST)
-	@$(call quietly,$(DIST)/build.log,.venv/bin/python -m build --no-isolation --outdir $(DIST) .)
-	@$(call quietly,$(DIST)/repair.log,PATH=$(abspath .venv/bin):$$PATH \
-	    .venv/bin/auditwheel repair -w $(DIST)/wheelhouse $(DIST)/*.whl)
-	.venv/bin/auditwheel show $(DIST)/wheelhouse/*.whl
-	@ls $(DIST)/*.tar.gz $(DIST)/wheelhouse/*.whl
+# The manylinux2014 wheels (scripts/wheels/): compiled with zig's clang for
+# glibc 2.17 (PyPI's ziglang), against zlib, libpng, OpenEXRCore and stb
+# built the same way from Debian's source packages, pinned by version and
+# sha256 in scripts/wheels/sources.txt, fetched through apt once and built
+# once into $(WHEEL_WORK)/deps (a rerun reuses both); then made
+# manylinux_2_17_x86_64 wheels by auditwheel, which copies libpng,
+# OpenEXRCore and stb into hitray.libs/ (zlib is linked in statically).
+WHEEL_WORK ?= build-wheels
+WHEEL_PYTHONS ?= 3.10 3.11 3.12 3.13
+WHEELHOUSE := $(DIST)/wheelhouse
+ZIG = $(abspath .venv)/lib/python3*/site-packages/ziglang/zig
+wheel-deps: deps-wheel
+	@scripts/wheels/fetch_sources.sh $(WHEEL_WORK)/deps >/dev/null
+	@JOBS=$(JOBS) scripts/wheels/build_deps.sh $(WHEEL_WORK)/deps $$(ls $(ZIG))
 
-# The manylinux wheel installed into a fresh venv and used there with no
-# library search path (tests/wheel/test_wheel.py).
+# $(call build_wheel,PYTHON,SOURCE,NAME): one wheel for PYTHON from SOURCE
+# (the sdist, or the tree) in $(WHEEL_WORK)/NAME, into $(WHEELHOUSE).
+build_wheel = $(call quietly,$(WHEEL_WORK)/$(3).log,scripts/wheels/build_wheel.sh $(1) $(2) \
+    $(WHEEL_WORK)/deps $(WHEEL_WORK)/$(3) $(WHEELHOUSE) $(abspath .venv/bin/auditwheel))
+
+# The sdist (tracked files only, pyproject.toml's list), and one
+# manylinux2014 wheel built from it, for the repository venv's Python:
+# $(DIST)/hitray-*.tar.gz and $(WHEELHOUSE)/hitray-*manylinux_2_17*.whl.
+wheel: wheel-deps
+	rm -rf $(DIST)
+	@$(call quietly,$(DIST)/build.log,.venv/bin/python -m build --sdist --no-isolation --outdir $(DIST) .)
+	@$(call build_wheel,$(abspath .venv/bin/python),$$(ls $(abspath $(DIST))/hitray-*.tar.gz),sdist)
+	.venv/bin/auditwheel show $(WHEELHOUSE)/*.whl
+	@ls $(DIST)/*.tar.gz $(WHEELHOUSE)/*.whl
+
+# One wheel for each CPython of WHEEL_PYTHONS (pyenv's builds, or pythonX.Y
+# on PATH; scripts/wheels/find_python.sh), from the working tree, each in a
+# CMake tree of its own under $(WHEEL_WORK) that a rerun reuses.
+wheels: wheel-deps
+	@mkdir -p $(WHEELHOUSE)
+	@for v in $(WHEEL_PYTHONS); do \
+	    py=$$(scripts/wheels/find_python.sh $$v) || exit 1; \
+	    tag=cp$$(echo $$v | tr -d .); \
+	    rm -f $(WHEELHOUSE)/hitray-*-$$tag-*.whl; \
+	    echo "wheel for Python $$v ($$py)"; \
+	    $(call build_wheel,$$py,.,$$tag) || exit 1; \
+	done
+	@ls -l $(WHEELHOUSE)/*.whl
+
+# Each wheel installed into a fresh venv of its own Python with no library
+# search path and tried there (tests/wheel/test_wheel.py: a render, a numpy
+# mesh, a Python shape class, the hitray command, every shared object the
+# process maps taken from the wheel, and no file needing a glibc newer than
+# the wheel's tag, by objdump -T); test-wheel does the same for make
+# wheel's one wheel, and checks the sdist (tests/wheel/test_sdist.py).
+WHEEL_TESTS = .venv/bin/python -m pytest -q -rs -p no:cacheprovider
+test-wheels: wheels deps-test
+	@for v in $(WHEEL_PYTHONS); do \
+	    py=$$(scripts/wheels/find_python.sh $$v) || exit 1; \
+	    whl=$$(ls $(WHEELHOUSE)/hitray-*-cp$$(echo $$v | tr -d .)-*.whl) || exit 1; \
+	    echo "Python $$v: $$whl"; \
+	    $(WHEEL_TESTS) tests/wheel/test_wheel.py --wheel $(abspath .)/$$whl --python $$py || exit 1; \
+	done
+
 test-wheel: wheel deps-test
-	.venv/bin/python -m pytest -q -rs -p no:cacheprovider tests/wheel \
-	    --wheel $(abspath $(wildcard $(DIST)/wheelhouse/*.whl))
+	$(WHEEL_TESTS) tests/wheel --wheel $(abspath $(wildcard $(WHEELHOUSE)/*.whl))
 
 # hitray against POV-Ray 3.7 and Embree 3, on the bench scenes and the SPD's
 # (bench/drivers/run_bench.py writes bench/results/RESULTS.md); never part of `make test`.
@@ -239,4 +282,5 @@ bench-accuracy: build-all
 	.venv/bin/python bench/drivers/run_accuracy.py --build $(BUILD)
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) $(DIST) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) $(DIST) out \
+	    $(WHEEL_WORK)

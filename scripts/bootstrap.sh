@@ -7,8 +7,9 @@
 #   bootstrap.sh --test    and the tests (make test): the sanitizers' and
 #                          the fuzzers' clang, valgrind, groff (the man page's
 #                          check), Python and every scripts/requirements-*.txt
-#   bootstrap.sh --wheel   and the wheel (make wheel): Python, the build and
-#                          repair tools (requirements-python.txt, -wheel.txt)
+#   bootstrap.sh --wheel   and the wheels (make wheel, make wheels): Python,
+#                          dpkg-dev, the build and repair tools and zig
+#                          (requirements-python.txt, -wheel.txt)
 #   bootstrap.sh --bench   and what `make bench` compares against
 set -eu
 cd "$(dirname "$0")/.."
@@ -24,7 +25,9 @@ case "${1:-}" in
     # a display and key presses.
     --test) need="$need $python_pkgs clang libclang-rt-14-dev llvm valgrind groff-base xvfb xdotool"
             venv_reqs=$(ls scripts/requirements-*.txt) ;;
-    --wheel) need="$need $python_pkgs"
+    # dpkg-dev unpacks the Debian source packages the wheels' libraries
+    # are built from (scripts/wheels/fetch_sources.sh: dpkg-source).
+    --wheel) need="$need $python_pkgs dpkg-dev"
              venv_reqs="scripts/requirements-python.txt scripts/requirements-wheel.txt" ;;
     --bench) need="$need python3 povray libembree-dev" ;;
     *) echo "bootstrap.sh: unknown option '$1' (--test, --wheel or --bench)" >&2; exit 2 ;;

@@ -409,10 +409,10 @@ def test_distributed_cli_on_a_local_cluster_quiet_off_a_terminal(tmp_path):
 
 
 def test_bench_distributed_runs_and_ships_what_the_docs_say():
-    """bench/distributed.py (docs/distributed.md's costs) on one small frame:
+    """bench/drivers/distributed.py (docs/distributed.md's costs) on one small frame:
     every image checked against hitray.render's by the bench itself, and
     the files it ships for the demo scene what the page says."""
-    done = subprocess.run([sys.executable, str(ROOT / "bench" / "distributed.py"), "--runs", "1", "--tiles", "32",
+    done = subprocess.run([sys.executable, str(ROOT / "bench" / "drivers" / "distributed.py"), "--runs", "1", "--tiles", "32",
                            "--workers", "1", "--size", "64x48"], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     ships = re.search(r"the shipped scene carries \d+ files? \(\d+ bytes\)", done.stdout)
@@ -425,7 +425,7 @@ def test_bench_distributed_runs_and_ships_what_the_docs_say():
 def test_bench_distributed_without_the_package_says_what_to_install(tmp_path):
     """After `make demo` alone .venv holds no hitray: the bench says so and
     what installs it, in one line."""
-    done = subprocess.run([sys.executable, "-I", "-S", str(ROOT / "bench" / "distributed.py")], capture_output=True,
+    done = subprocess.run([sys.executable, "-I", "-S", str(ROOT / "bench" / "drivers" / "distributed.py")], capture_output=True,
                           text=True, timeout=60, cwd=tmp_path)
     assert done.returncode == 1 and "make python-install" in done.stderr, done.stderr
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
