@@ -52,6 +52,7 @@
 
 #include <hitray/common.h>
 #include <hitray/shape_kit_box.h>
+#include <hitray/shape_kit_cpu.h>
 
 #include "float_bounds.h"
 
@@ -771,8 +772,8 @@ accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
 {
     return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
 }
-/* Reads the CPU model libgcc filled in at load: a load and a test. */
-static inline int accel_walk_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
+/* A load and a test after the first call (shape_kit_cpu.h). */
+static inline int accel_walk_avx2_usable(void) { return shape_cpu_has_avx2(); }
 #else
 #define ACCEL_WALK_AVX2 0
 #endif

@@ -35,6 +35,11 @@
  * - SHAPE_DEFINE_HIT_MODES(prefix, trace): the vtable's hit, first_hit and
  *   any_hit from one trace(args, mode) function.
  *
+ * shape_kit_cpu.h, what the CPU runs: shape_cpu_has_avx2(),
+ *   shape_cpu_has_fma() (CPUID and XGETBV read once, not the compiler
+ *   runtime's CPU model, which some toolchains leave empty), for a module
+ *   that keeps a faster path beside the baseline one.
+ *
  * shape_kit_box.h, the slab test: shape_box_misses(box, ray, tmin, tmax)
  * never says "misses" for a ray that touches the box in (tmin, tmax); its
  * widening (2^-20 relative, 2^-1022 absolute) is far above pbrt's
@@ -58,6 +63,7 @@
 #define HITRAY_SHAPE_KIT_H
 
 #include "shape_kit_box.h"
+#include "shape_kit_cpu.h"
 #include "shape_kit_hits.h"
 #include "shape_kit_instance.h"
 #include "shape_kit_math.h"

@@ -37,6 +37,7 @@
 #include <string.h>
 
 #include <hitray/common.h>
+#include <hitray/shape_kit_cpu.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -429,8 +430,8 @@ mesh_triangle_quad_fails(const mesh_ray *r, const hr_vec3 *v, const uint32_t *co
 {
     MESH_FILTER_BODY(MESH_AVX2_)
 }
-/* Reads the CPU model libgcc filled in at load: a load and a test. */
-static inline int mesh_filter_avx2_usable(void) { return __builtin_cpu_supports("avx2"); }
+/* A load and a test after the first call (shape_kit_cpu.h). */
+static inline int mesh_filter_avx2_usable(void) { return shape_cpu_has_avx2(); }
 #else
 #define MESH_FILTER_AVX2 0
 #endif

@@ -10,6 +10,7 @@
 #ifndef HITRAY_SHAPES_SPHERE_COEFFICIENTS_H
 #define HITRAY_SHAPES_SPHERE_COEFFICIENTS_H
 
+#include <hitray/shape_kit_cpu.h>
 #include <hitray/shape_kit_math.h>
 
 
@@ -38,9 +39,9 @@ sphere_coefficients_scalar(const hr_ray *ray)
 #define SPHERE_COEFFICIENT_LANES 1
 #include <immintrin.h>
 
-/* Whether this CPU runs sphere_coefficients_lanes (libgcc reports FMA only
- * where the OS also keeps AVX state). */
-static inline int sphere_coefficient_lanes_usable(void) { return __builtin_cpu_supports("fma"); }
+/* Whether this CPU runs sphere_coefficients_lanes (FMA only where the OS
+ * also keeps AVX state: shape_kit_cpu.h). */
+static inline int sphere_coefficient_lanes_usable(void) { return shape_cpu_has_fma(); }
 
 /* Lane 0 sums d_i d_i, lane 1 o_i d_i, lane 2 o_i o_i (from -1); lane 3,
  * d_i d_i again, is not read. shape_sum_add_product's operations in its
