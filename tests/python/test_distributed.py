@@ -92,11 +92,12 @@ CASES = {
 }
 
 
-@pytest.mark.parametrize("tile", [17, 64])
+@pytest.mark.parametrize("tile", [None, 17, 64])
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_distributed_frame_identity(client, tmp_path, case, tile):
-    """Tiles of 17 (cutting blocks of 3 and adaptive corners) and 64 (one
-    tile in a row, another cut by the edge) give the single render's EXR."""
+    """Bands sized by measurement (None), tiles of 17 (cutting blocks of 3
+    and adaptive corners) and 64 (one tile in a row, another cut by the
+    edge) give the single render's EXR."""
     kind, options = CASES[case]
     scene, camera = scene_of(kind)
     size = (70, 45)
@@ -128,6 +129,20 @@ def test_distributed_windows_cover_the_frame():
     assert (covered == 1).all() and len(tiles) == 5 * 3
 
 
+def killer(client):
+    """A progress callback that kills (SIGKILL) one worker the first time
+    it is called; the list of fractions it was called at; the pid killed."""
+    pids = client.run(os.getpid)
+    victim = pids[sorted(pids)[0]]
+    killed = []
+
+    def kill_once(fraction):
+        if not killed:
+            os.kill(victim, signal.SIGKILL)
+            killed.append(fraction)
+    return kill_once, killed, victim
+
+
 def test_distributed_worker_killed_mid_frame(client, tmp_path):
     """One worker is killed (SIGKILL) once the first tile is back: its tiles
     run again on the other and on the worker its nanny restarts, and the
@@ -135,14 +150,7 @@ def test_distributed_worker_killed_mid_frame(client, tmp_path):
     scene, camera = two_spheres()
     size, options = (64, 48), {"spp": 24}
     here = hitray.render(scene, camera, size, progress=False, **options)
-    pids = client.run(os.getpid)
-    victim = sorted(pids)[0]
-    killed = []
-
-    def kill_once(fraction):
-        if not killed:
-            os.kill(pids[victim], signal.SIGKILL)
-            killed.append(fraction)
+    kill_once, killed, victim = killer(client)
 
     # Fetching a finished tile from the dead worker, before the scheduler
     # knows it is dead, is retried for the connect timeout (30 s by default):
@@ -152,7 +160,56 @@ def test_distributed_worker_killed_mid_frame(client, tmp_path):
     assert killed and killed[0] < 1.0
     assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
     client.wait_for_workers(2, timeout=120)
-    assert pids[victim] not in client.run(os.getpid).values()
+    assert victim not in client.run(os.getpid).values()
+
+
+def test_distributed_worker_killed_mid_frame_bands(client, tmp_path):
+    """The same with bands sized by measurement: the killed worker's bands
+    are given back and handed on, and the frame is the same bits."""
+    scene, camera = two_spheres()
+    size, options = (96, 64), {"spp": 32}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    client.wait_for_workers(2, timeout=120)
+    kill_once, killed, _ = killer(client)
+    report = hd.Report()
+    with dask.config.set({"distributed.comm.timeouts.connect": "3s"}):
+        there = hd.render(scene, camera, size, client=client, progress=kill_once, report=report, **options)
+    assert killed and killed[0] < 1.0
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert report.pixels >= 96 * 64  # a band may have been rendered twice, never missed
+    client.wait_for_workers(2, timeout=120)
+
+
+def test_distributed_report(client):
+    """What each worker did, added up: every band's pixels once, rays as
+    the frame's, the balance and overhead share in their ranges."""
+    scene, camera = two_spheres()
+    size = (80, 60)
+    client.wait_for_workers(2, timeout=120)
+    report = hd.Report()
+    image = hd.render(scene, camera, size, spp=4, client=client, progress=False, report=report)
+    assert report.frames == 1 and report.pixels == 80 * 60
+    assert report.tasks == sum(w.tasks for w in report.workers.values()) >= 2
+    assert sum(w.rays for w in report.workers.values()) == image.stats.rays
+    assert set(report.workers) <= set(client.scheduler_info()["workers"])
+    assert all(w.threads == 1 and w.busy > 0 and w.rays_per_second > 0 for w in report.workers.values())
+    assert report.balance >= 1.0 and 0.0 <= report.overhead_share <= 1.0
+    assert report.wall > 0 and report.threads == len(report.workers)
+    assert any("balance" in line for line in report.lines())
+
+
+def test_distributed_band_on_all_of_a_workers_threads(tmp_path):
+    """A worker of 2 Dask threads renders a band on both: one band at a
+    time, 2 render threads each (the report says so), same bits."""
+    scene, camera = two_spheres()
+    here = hitray.render(scene, camera, (60, 40), spp=2, progress=False)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=True, host="127.0.0.1",
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        report = hd.Report()
+        there = hd.render(scene, camera, (60, 40), spp=2, client=c, progress=False, report=report)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    (worker,) = report.workers.values()
+    assert worker.threads == 2 and there.stats.threads == 2
 
 
 def test_distributed_mesh_only_on_the_client(client, tmp_path):
@@ -225,6 +282,23 @@ def orbit(i, count=12):
     return scene, hitray.Camera((8 * np.sin(angle), 2, 8 * np.cos(angle)), (0, 1, 0), (0, 1, 0), 40)
 
 
+def test_distributed_animation_bands_and_whole_frames(client, tmp_path):
+    """Bands sized by measurement: whole frames while there are more frames
+    than workers, bands at the end; every frame the bits of hitray.render,
+    the report counting every pixel of every frame once."""
+    pattern = str(tmp_path / "frame_%02d.exr")
+    size = (40, 30)
+    report = hd.Report()
+    written = hd.render_frames(orbit, pattern, count=7, size=size, spp=2, client=client, progress=False,
+                               report=report)
+    assert sorted(written) == [pattern % i for i in range(7)]
+    assert report.frames == 7 and report.pixels == 7 * 40 * 30
+    for i in range(7):
+        scene, camera = orbit(i)
+        here = exr_bytes(hitray.render(scene, camera, size, spp=2, progress=False), tmp_path / "here.exr")
+        assert here == pathlib.Path(pattern % i).read_bytes(), i
+
+
 def test_distributed_animation_writes_skips_and_resumes(client, tmp_path):
     pattern = str(tmp_path / "frame_%02d.png")
     size = (32, 24)
@@ -285,7 +359,7 @@ def test_distributed_frames_empty_file_or_folder_is_not_a_frame(client, tmp_path
     (tmp_path / "f2.png").mkdir()
     with pytest.raises(IsADirectoryError, match=r"f2\.png: a directory is where frame 2 goes"):
         hd.render_frames(orbit, pattern, count=3, size=(16, 12), client=client, progress=False)
-    assert tile_tasks(client) == []
+    assert no_tile_tasks(client)
 
 
 def tile_tasks(client):
@@ -293,6 +367,17 @@ def tile_tasks(client):
     def on_scheduler(dask_scheduler):
         return [k for k in dask_scheduler.tasks if str(k).startswith("hitray-tile-")]
     return client.run_on_scheduler(on_scheduler)
+
+
+def no_tile_tasks(client):
+    """Whether the scheduler forgets every hitray tile within 10 s: a band
+    cancelled (Ctrl-C, or taken from a worker by an idle one at the end of
+    a run) is forgotten soon after, not at once."""
+    for _ in range(200):
+        if not tile_tasks(client):
+            return True
+        time.sleep(0.05)
+    return False
 
 
 def test_distributed_interrupt_cancels_the_tiles(client):
@@ -316,7 +401,7 @@ def test_distributed_bad_input_raises_on_the_client(client, tmp_path):
     scene, camera = two_spheres()
     with pytest.raises(hitray.ArgumentError, match="adaptive supersampling needs samples per pixel >= 2"):
         hd.render(scene, camera, (20, 10), adaptive=0.1, client=client, progress=False)
-    with pytest.raises(ValueError, match="tile must be within 1..65536 pixels, not 0"):
+    with pytest.raises(ValueError, match=r"tile must be within 1..65536 pixels \(or None: .*\), not 0"):
         hd.render(scene, camera, (20, 10), tile=0, client=client, progress=False)
     with pytest.raises(ValueError, match="cut a 4000x3000 frame into 12000000 tiles, more than 100000"):
         hd.render(scene, camera, (4000, 3000), tile=1, client=client, progress=False)
@@ -328,7 +413,7 @@ def test_distributed_bad_input_raises_on_the_client(client, tmp_path):
         hd.render_frames(orbit, str(tmp_path / "f%d.png"), client=client, progress=False)
     with pytest.raises(TypeError, match="client must be a distributed.Client"):
         hd.render(scene, camera, (20, 10), client=42, progress=False)
-    assert tile_tasks(client) == []
+    assert no_tile_tasks(client)
 
 
 def unused_port():
@@ -374,6 +459,7 @@ def test_distributed_cli_render_matches_hitray_render(client, tmp_path):
                     "--scheduler", client.scheduler.address, "--tile", 17, "-q", *options)
     assert proc.returncode == 0, proc.stderr
     assert "there.png: 40x30" in proc.stdout
+    assert "balance" in proc.stdout and "tasks on" in proc.stdout  # the report
     here = hitray.render(*hitray.load_sdl(scene_file), (40, 30), spp=4, adaptive=0.05, depth=2, progress=False)
     assert (tmp_path / "there.exr").read_bytes() == exr_bytes(here, tmp_path / "here.exr")
     if HITRAY.is_file():
@@ -489,4 +575,4 @@ def test_distributed_render_takes_hitray_render_arguments():
     here = [p for p in inspect.signature(hitray.render).parameters if p != "window"]
     there = list(inspect.signature(hd.render).parameters)
     assert there[:len(here)] == here
-    assert there[len(here):] == ["client", "tile", "workers", "timeout"]
+    assert there[len(here):] == ["client", "tile", "workers", "timeout", "report"]
