@@ -7,9 +7,12 @@ one run, and the cost model of bigger clusters fed with what it measured.
 
 `measure`: warm LocalClusters of 2 workers x 1 thread and 1 worker x 2
 threads (on a machine of 2 cores; Dask's monitoring relaxed as
-hitray.distributed's own LocalClusters have it, _client.QUIET) render the frame, interleaved run by run
-with hitray.render on every core, so a busy moment disturbs all three
-alike; each figure is the best of --runs. Every image is checked to be
+hitray.distributed's own LocalClusters have it, _client.QUIET) render the
+frame, interleaved run by run with hitray.render on every core, so a busy
+moment disturbs all three alike. Each setup's best wall and best CPU time
+of --runs are given, and "paired": the median over runs of a run's wall
+over the hitray.render run just before it (less disturbed by a load that
+drifts than the ratio of the best walls). Every image is checked to be
 bit-identical to hitray.render's. Then it measures the model's costs and
 checks the model against 1, 2, 4 and 8 workers of 1 thread on this
 machine (time-sliced on its cores: that checks the overheads, not the
@@ -107,6 +110,7 @@ def measure(a):
     setups = {"2 workers x 1 thread": (2, 1), "1 worker x 2 threads": (1, 2)}
     clusters = {name: cluster(distributed, *shape) for name, shape in setups.items()}
     best = {}
+    paired = {}  # each run's wall over the hitray.render run just before it
     load = os.getloadavg()[0]
     try:
         for c, client in clusters.values():  # warm: the workers have imported hitray and run a task
@@ -124,6 +128,7 @@ def measure(a):
             cpu = time.process_time() - cpu0
             reference = np.asarray(image) if reference is None else reference
             keep(best, "hitray.render", t, cpu, None)
+            t_local = t
             for name, (c, client) in clusters.items():
                 report = hd.Report()
                 before = worker_cpu(client)
@@ -134,6 +139,7 @@ def measure(a):
                 if not np.array_equal(np.asarray(image), reference):
                     raise SystemExit(f"{name}: the image differs from hitray.render's")
                 keep(best, name, t, cpu, report)
+                paired.setdefault(name, []).append(t / t_local)
             print(f"run {run + 1}: " + ", ".join(f"{k} {v['wall'][0]:.3f} s ({v['cpu'][0]:.3f} s CPU)"
                                                  for k, v in best.items()), file=sys.stderr)
 
@@ -141,14 +147,17 @@ def measure(a):
         print(f"scene {os.path.relpath(a.scene, ROOT)}, {size[0]}x{size[1]}, spp {a.spp}, {cores} cores, "
               f"best of {a.runs} runs each, interleaved (load average before: {load:.1f}, after: "
               f"{os.getloadavg()[0]:.1f})\n")
-        print("| run | wall (s) | over hitray.render | CPU (s) | over hitray.render | tasks | extra core-ms "
+        print("| run | wall (s) | over hitray.render | paired | CPU (s) | over hitray.render | tasks | extra core-ms "
               "per task | overhead share | ms between tasks | balance |")
-        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-        print(f"| hitray.render, {cores} threads | {local:.3f} | 1.00 | {local_cpu:.3f} | 1.00 | | | | | |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        print(f"| hitray.render, {cores} threads | {local:.3f} | 1.00 | 1.00 | {local_cpu:.3f} | 1.00 | | | | | |")
         for name in setups:
             t, r = best[name]["wall"][0], best[name]["wall"][1]
             cpu, rc = best[name]["cpu"][0], best[name]["cpu"][1]
-            print(f"| hitray.distributed, {name} | {t:.3f} | {t / local:.2f} | {cpu:.3f} | {cpu / local_cpu:.2f} | "
+            ratios = sorted(paired[name])
+            median = (ratios[(len(ratios) - 1) // 2] + ratios[len(ratios) // 2]) / 2
+            print(f"| hitray.distributed, {name} | {t:.3f} | {t / local:.2f} | {median:.2f} | {cpu:.3f} | "
+                  f"{cpu / local_cpu:.2f} | "
                   f"{rc.tasks} | {1e3 * (cpu - local_cpu) / rc.tasks:.1f} | {100 * r.overhead_share:.1f}% | "
                   f"{1e3 * r.between_per_task:.1f} | {r.balance:.2f} |")
         print()

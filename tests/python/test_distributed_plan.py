@@ -177,3 +177,21 @@ def test_fixed_tiles_in_order():
     while (band := p.next_band()) is not None:
         tiles.append(band.window)
     assert len(tiles) == 15 and tiles[0] == (0, 0, 17, 17) and tiles[-1] == (68, 34, 2, 11)
+
+
+def test_row_costs_weigh_the_rows_by_their_rays():
+    """The weighing of a frame's rows (by the rays of a small render): one
+    cost a row, sky rows (a primary ray each) cheaper than rows through a
+    glass sphere and a mirror floor; the same answer every time."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._render import row_costs
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere().translate(0, -0.5, 0), diffuse=(0.1, 0.1, 0.1), transparency=0.8, speedOfLight=0.7)
+    scene.add(hitray.Plane().rotate(-90, 1, 0, 0).translate(0, -1.5, 0), diffuse=(0.5, 0.5, 0.5), reflectivity=0.5)
+    scene.light((5, 8, 6), (1, 1, 1))
+    camera = hitray.Camera((0, 0, 6), (0, 0, 0), (0, 1, 0), 40)
+    costs = row_costs(scene, camera, (480, 300), {"spp": 4, "depth": None})
+    assert len(costs) == 300 and min(costs) > 0
+    assert costs[0] < costs[200]  # the top row is sky; row 200 crosses the sphere and the floor
+    assert row_costs(scene, camera, (480, 300), {"spp": 4, "depth": None}) == costs

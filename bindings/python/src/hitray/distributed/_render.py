@@ -46,9 +46,9 @@ def windows(size: Tuple[int, int], tile: int) -> List[Window]:
     return [(x, y, min(tile, w - x), min(tile, h - y)) for y in range(0, h, tile) for x in range(0, w, tile)]
 
 
-# Render threads of the bands running now in this worker process, by the
-# lock each holds: a band renders on all the worker's threads, so a worker
-# with several Dask threads renders one band at a time.
+# One band at a time in a worker process: a band renders on all the
+# worker's threads, so while one renders, a band given to the worker's
+# other Dask threads waits here.
 _BAND_LOCK = threading.Lock()
 
 
