@@ -6,6 +6,7 @@ each worker holds two bands, renders them one after the other, and the
 planner hears back each band's render time."""
 
 import heapq
+import threading
 
 import numpy as np
 import pytest
@@ -195,3 +196,97 @@ def test_row_costs_weigh_the_rows_by_their_rays():
     assert len(costs) == 300 and min(costs) > 0
     assert costs[0] < costs[200]  # the top row is sky; row 200 crosses the sphere and the floor
     assert row_costs(scene, camera, (480, 300), {"spp": 4, "depth": None}) == costs
+
+
+class FakeFuture:
+    """A Dask future run at once (or never, for a worker that is gone)."""
+
+    def __init__(self, fn, args, worker):
+        self.fn, self.args, self.worker = fn, args, worker
+        self.value, self.finished, self.callbacks = None, False, []
+
+    def finish(self):
+        self.value = self.fn(*[a.value if isinstance(a, FakeFuture) else a for a in self.args])
+        self.finished = True
+        for callback in self.callbacks:
+            callback(self)
+
+    def add_done_callback(self, callback):
+        self.callbacks.append(callback)
+        if self.finished:
+            callback(self)
+
+    def done(self):
+        return self.finished
+
+    def result(self):
+        return self.value
+
+    def release(self):
+        pass
+
+
+class FakeClient:
+    """The Dask client as _Run uses it, its workers a set the test changes;
+    a band given to a worker not in `running` never comes back."""
+
+    def __init__(self, workers):
+        self.workers, self.running = set(workers), set(workers)
+        self.submitted, self.cancelled = [], []
+
+    def scheduler_info(self):
+        return {"workers": {w: {} for w in self.workers}}
+
+    def scatter(self, value, broadcast, hash):
+        future = FakeFuture(lambda: value, (), None)
+        future.finish()
+        return future
+
+    def submit(self, fn, *args, key, pure, priority, workers=None, allow_other_workers=False):
+        future = FakeFuture(fn, args, workers[0] if workers else None)
+        self.submitted.append(future)
+        if future.worker in self.running:
+            future.finish()
+        return future
+
+    def cancel(self, futures):
+        self.cancelled += futures
+
+
+def test_client_hands_a_lost_workers_bands_on(tmp_path):
+    """The client's loop (_Run) with a fake Dask: worker "b" stops answering
+    and then leaves the scheduler. Its bands are cancelled, given back and
+    rendered by "a", and the frame is the bits of hitray.render."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._render import _Bar, _Run
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
+    scene.light((4, 6, 5))
+    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    size, options = (40, 64), {"spp": 2}
+    client = FakeClient({"a", "b"})
+    client.running = {"a"}  # "b" takes bands and never returns them
+    seen = []
+
+    def progress(fraction):
+        if not seen:  # the first band back: "b" leaves the scheduler
+            client.workers = {"a"}
+            run.checked = 0.0
+        seen.append(fraction)
+
+    run = _Run(client, size, dict(options, depth=None), Planner(size, 1), None, _Bar(progress, 40 * 64, "t"),
+               lambda n: (0, None, scene, camera), None)
+    frames = []
+    # In a thread: without the bands handed on, the frame would wait for
+    # "b" for ever; the test fails instead of hanging.
+    worker = threading.Thread(target=lambda: frames.extend(run.frames_done()), daemon=True)
+    worker.start()
+    worker.join(60)
+    assert not worker.is_alive(), "the lost worker's bands were never handed on"
+    lost = [f for f in client.submitted if f.worker == "b"]
+    assert lost and all(not f.done() for f in lost)
+    assert set(client.cancelled) == set(lost)
+    assert len(frames) == 1 and seen[-1] == 1.0
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    assert np.array_equal(np.asarray(frames[0].image()), np.asarray(here))

@@ -225,17 +225,25 @@ class Planner:
         self.give_back(band)
         return best[1], band
 
-    def give_back(self, band: Band) -> None:
-        """A band whose worker was lost: back to the front of the work."""
+    def give_back(self, band: Band, forget: bool = False) -> None:
+        """A band whose worker was lost: back to the front of the work
+        (`forget`: and no longer held by the worker it was given to)."""
+        if forget:
+            self._release(band)
         bisect.insort(self._free.setdefault(band.frame, []), band.window, key=lambda v: (v[1], v[0]))
+
+    def _release(self, band: Band) -> None:
+        """The band is no longer held by the worker it was given to (it may
+        have run elsewhere)."""
+        for speed in self._speed.values():
+            if band in speed.held:
+                speed.held.remove(band)
+                return
 
     def done(self, band: Band, worker: Hashable, seconds: float) -> bool:
         """A band came back from `worker` after `seconds` of rendering;
         True when that was its frame's last."""
-        for holder in self._speed.values():  # it may have run elsewhere than given
-            if band in holder.held:
-                holder.held.remove(band)
-                break
+        self._release(band)
         speed = self._speed.get(worker)
         if speed is not None and seconds > 0:
             speed.work += self.work(band.frame, band.window)

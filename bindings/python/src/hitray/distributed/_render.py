@@ -62,16 +62,30 @@ def _worker() -> Tuple[str, int]:
     return w.address, int(w.state.nthreads)
 
 
+def _cancelled() -> bool:
+    """Whether the task running here was cancelled (a band taken by an idle
+    worker while it waited for the band lock): then it need not render."""
+    try:
+        w = dask_distributed().get_worker()
+        ts = w.state.tasks.get(w.get_current_task())
+    except (ValueError, AttributeError, KeyError):  # not on a worker, or Dask's internals moved
+        return False
+    return ts is not None and ts.state == "cancelled"
+
+
 def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], options: Dict[str, Any],
-                  window: Window, threads: Optional[int] = None) -> Tuple[Any, ...]:
+                  window: Window, threads: Optional[int] = None) -> Optional[Tuple[Any, ...]]:
     """The task: one window of the frame, on a worker, on `threads` threads
     (None: all the worker's). Returns its pixels, its rays (primary, shadow,
     reflected, refracted, effects), the worker, the threads it rendered on,
-    and the worker's clock (time.time) when rendering began and ended."""
+    and the worker's clock (time.time) when rendering began and ended; None
+    if it was cancelled before it began."""
     where, nthreads = _worker()
     threads = nthreads if threads is None else threads
     scene = pack.scene()
     with _BAND_LOCK if threads == nthreads else contextlib.nullcontext():
+        if _cancelled():
+            return None
         began = time.time()
         image = _render_here(scene, camera, size, threads=threads, progress=False, window=window, **options)
         ended = time.time()
@@ -361,6 +375,10 @@ class _Run:
             band = self.out.pop(future)
             del self.by_band[band]
             future.release()
+            if result is None:  # it saw itself cancelled, yet was still wanted: render it again
+                self.planner.give_back(band, forget=True)
+                self._fill()
+                continue
             pixels, rays, where, threads, began, ended = result
             frame = self.frames[band.frame]
             frame.place(band.window, result)
