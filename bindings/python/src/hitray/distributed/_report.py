@@ -42,8 +42,8 @@ class Report:
     fills `r` in).
 
     Attributes:
-        wall: seconds from the first task handed out (the scene shipped) to
-            the last pixels back.
+        wall: seconds from the run's start on the cluster (before the scene
+            is shipped and the rows weighed) to the last pixels back.
         tasks: tasks run (bands, or tiles with a fixed `tile`).
         frames: frames completed.
         workers: by address.
@@ -95,9 +95,10 @@ class Report:
         """The report as text, one line per worker then the totals."""
         out = []
         for w in sorted(self.workers.values(), key=lambda w: w.address):
-            out.append(f"  {w.address}: {w.tasks} tasks, {w.threads} threads, busy {w.busy:.2f} s, "
+            out.append(f"  {w.address}: {w.tasks} tasks, {w.threads} thread{'s' if w.threads != 1 else ''}, "
+                       f"busy {w.busy:.2f} s, "
                        f"{w.rays_per_second / 1e6:.2f} Mrays/s")
-        out.append(f"  {self.tasks} tasks on {len(self.workers)} workers ({self.threads} threads) in "
+        out.append(f"  {self.tasks} tasks on {len(self.workers)} workers ({self.threads} render threads) in "
                    f"{self.wall:.2f} s: overhead {100 * self.overhead_share:.1f}% of the core time "
                    f"({1e3 * self.overhead_per_task:.1f} core-ms per task, "
                    f"{1e3 * self.between_per_task:.1f} ms between tasks on a worker), "
