@@ -59,3 +59,10 @@ def test_the_docs_table_is_the_models_output():
     assert proc.returncode == 0, proc.stderr
     page = (ROOT / "docs" / "distributed.md").read_text()
     assert proc.stdout.strip() in page
+
+
+def test_frames_are_written_while_the_next_comes_in():
+    """The writer thread overlaps a frame's write with the next frame's
+    pixels coming in: as long as the longer of the two, not their sum."""
+    out = simulate(Costs(pixel=1e-9, hub_pixel=1e-3, save_pixel=1e-3), (10, 10), 20, 8, 1)
+    assert out.wall == pytest.approx(20 * 0.1 + 0.1, rel=0.1)

@@ -13,9 +13,12 @@ What is simulated (in simulated seconds, no clock):
   in, sending the pixels back);
 - the client and the scheduler are one serial "hub": each band costs it
   `hub` seconds plus `hub_pixel` per pixel coming back (unpickling and
-  placing them), and each finished frame of an animation `save_pixel` per
-  pixel to write it; a band is handed to a worker when the hub is done with
-  the band before it. Each worker holds two bands, as the client does.
+  placing them); a band is handed to a worker when the hub is done with the
+  band before it. Each worker holds two bands, as the client does;
+- an animation's frames are written by one writer thread, one at a time,
+  `save_pixel` seconds per pixel, while the hub goes on; when a frame is
+  complete the hub first waits for the last one's write (render_frames
+  does so).
 
 Efficiency is the rendering work (pixels x `pixel` seconds, summed over
 frames) over the cluster's core time (wall x workers x threads).
@@ -79,6 +82,7 @@ def simulate(costs: Costs, size: Tuple[int, int], frames: int, workers: int, thr
     busy = {n: 0.0 for n in names}
     events: List[Tuple[float, int, str, Band, float]] = []
     hub = ready
+    writer = ready  # when the writer thread is done with the last frame
     order = 0
     tasks = 0
 
@@ -119,9 +123,10 @@ def simulate(costs: Costs, size: Tuple[int, int], frames: int, workers: int, thr
         t, _, name, band, seconds = heapq.heappop(events)
         queue[name].pop(0)
         hub = max(hub, t) + costs.hub / 2 + band.pixels * costs.hub_pixel
-        if planner.done(band, name, seconds):
-            hub += w * h * costs.save_pixel if save else 0.0
-        end = max(end, hub)
+        if planner.done(band, name, seconds) and save:
+            hub = max(hub, writer)
+            writer = hub + w * h * costs.save_pixel
+        end = max(end, hub, writer)
         start(name)
         fill(name)
         for other in names:  # an idle worker may steal now

@@ -11,6 +11,7 @@ Dask runs its tasks again elsewhere and they give the same bits.
 from __future__ import annotations
 
 import collections
+import concurrent.futures
 import contextlib
 import queue
 import threading
@@ -558,13 +559,15 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
     frame number returning one (then `count` says how many frames). Frame
     `i` is written to ``out_pattern % i`` (``"frame_%04d.png"``; PNG or EXR
     by the extension, with `bits`, `linear` and `half` as Image.save takes
-    them), atomically, as soon as its last pixels are in. A frame whose file
-    exists already is skipped, so a rerun after an interruption renders only
-    what is missing. While there are more frames to do than workers, a task
+    them), atomically, as soon as its last pixels are in, on a thread of its
+    own while the next frame's bands come in (one frame at a time). A frame
+    whose file exists already is skipped, so a rerun after an interruption
+    renders only what is missing. While there are more frames to do than workers, a task
     is a whole frame; the last frames are cut into bands, so the animation
     ends with every worker busy. At most `frames_in_flight` frames are in
     progress at once (None: two per worker), which bounds the memory held
-    for them. `on_frame(i, path)` is called after each frame is written.
+    for them. `on_frame(i, path)` is called after each frame is written,
+    before the next one's write is started.
     Other arguments as :func:`render`; each frame's image is bit for bit
     what ``hitray.render`` gives it. Returns the paths written now.
     """
@@ -619,15 +622,36 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
         bar = _Bar(progress, len(todo) * size[0] * size[1], "hitray.distributed")
         run = _Run(c, size, options, Planner(size, len(todo), open_frames=in_flight, tile=tile), task_threads,
                    bar, opened, report)
+        # A frame is written on a thread of its own (Image.save releases the
+        # GIL) while the bands of the next come in: one write at a time, the
+        # next frame's started only once the last is written and on_frame
+        # has been told, so an on_frame that stops the run leaves no other
+        # frame half done.
+        writer = concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="hitray-frame-writer")
+        writing: Optional[Tuple["concurrent.futures.Future[None]", _Frame]] = None
+
+        def written_out() -> None:
+            nonlocal writing
+            if writing is None:
+                return
+            done, frame = writing
+            writing = None
+            done.result()  # a failed write raised here
+            assert frame.path is not None  # for mypy: every frame of render_frames has a path
+            written.append(frame.path)
+            bar.frame(len(written), len(todo))
+            if on_frame is not None:
+                on_frame(frame.index, frame.path)
+
         try:
             for frame in run.frames_done():
+                written_out()
                 assert frame.path is not None
-                frame.image().save(frame.path, bits=bits, linear=linear, half=half)
-                written.append(frame.path)
-                bar.frame(len(written), len(todo))
-                if on_frame is not None:
-                    on_frame(frame.index, frame.path)
+                writing = (writer.submit(frame.image().save, frame.path, bits=bits, linear=linear, half=half),
+                           frame)
+            written_out()
         finally:
+            writer.shutdown(wait=True)  # a write under way ends (whole: frames are written atomically)
             run.close()
             bar.close()
     return written
