@@ -40,7 +40,7 @@ endif
 configure = mkdir -p $(1) && cmake --preset $(2) -B $(1) $(CMAKE_FLAGS) $(call stdout_to,$(1)/configure.log)
 
 .PHONY: all deps deps-test deps-wheel build build-all demo test test-c test-asan test-tsan test-fuzz \
-        test-python test-python-asan test-docs python-install test-memcheck test-wheel wheel install \
+        test-python test-python-asan test-docs docs python-install test-memcheck test-wheel wheel install \
         clean bench bench-accuracy \
         fuzz fuzz-long
 
@@ -162,11 +162,13 @@ python-install: build-all
 	    -C build-dir=$(abspath $(PYTHON_BUILD)) .
 
 test-python: python-install
-	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -n $(JOBS) tests/python tests/cli tests/view tests/bench
 
 # Every fenced block of README.md and docs/*.md run as its page says, or
 # marked not run with the reason, and docs/effects.md's tables rerun
-# (tests/docs/test_docs.py says how each kind of block is run).
+# (tests/docs/test_docs.py says how each kind of block is run); every
+# picture rendered again by its caption's command and compared
+# (tests/docs/test_pictures.py).
 test-docs: python-install
 	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -rs -rx -n $(JOBS) -p no:cacheprovider tests/docs
 
@@ -174,9 +176,9 @@ test-docs: python-install
 # $(PYTHON_ASAN_BUILD)/site, its tests run by the venv's interpreter with the
 # sanitizer runtimes preloaded (Python itself is not instrumented, so leak
 # detection is off; the tests that start a bare interpreter or run mypy are
-# left out, and so are the command line's and the viewer's, which test the
-# plain build's programs, not the package). Not part of `make test`: it
-# builds everything again.
+# left out, and so are the command line's and the viewer's, tests/cli and
+# tests/view, which test the plain build's programs, not the package). Not
+# part of `make test`: it builds everything again.
 test-python-asan: build-all
 	.venv/bin/python -m pip install -q --no-build-isolation --no-deps --upgrade \
 	    --target $(abspath $(PYTHON_ASAN_BUILD))/site -C build-dir=$(abspath $(PYTHON_ASAN_BUILD))/cmake \
@@ -185,8 +187,16 @@ test-python-asan: build-all
 	    LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)" \
 	    ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	    HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python -m pytest -q -p no:cacheprovider \
-	    tests/python --ignore=tests/python/test_cli.py --ignore=tests/python/test_view.py \
+	    tests/python \
 	    -k "not stubs and not no_environment"
+
+# Every picture of README.md and docs/ remade by the command its caption
+# names (scripts/docs_pictures.py reads them from the captions), and
+# docs/effects.md's tables by bench/savings.sh; `make test-docs` checks that
+# both are what those commands make now.
+docs: python-install
+	HITRAY_BUILD_DIR=$(abspath $(BUILD)) .venv/bin/python scripts/docs_pictures.py --write
+	HITRAY=$(abspath $(BUILD))/bin/hitray bench/savings.sh --write docs/effects.md
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
@@ -212,19 +222,21 @@ test-wheel: wheel deps-test
 	    --wheel $(abspath $(wildcard $(DIST)/wheelhouse/*.whl))
 
 # hitray against POV-Ray 3.7 and Embree 3, on the bench scenes and the SPD's
-# (bench/run_bench.py writes bench/RESULTS.md); never part of `make test`.
+# (bench/drivers/run_bench.py writes bench/results/RESULTS.md); never part of `make test`.
 # BENCH_FLAGS passes options (--runs, --scenes, --spd-size, --note, ...).
 BENCH_FLAGS ?=
-bench: build
+# sdl2pov.py reads the scenes through the hitray package, so it runs in .venv.
+bench: python-install
 	@scripts/bootstrap.sh --bench
 	cmake -S . -B $(BUILD) -DHITRAY_BUILD_BENCH=ON >/dev/null
 	cmake --build $(BUILD) -j $(JOBS) $(NINJA_QUIET)
-	python3 bench/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
+	.venv/bin/python bench/drivers/run_bench.py --build $(BUILD) $(BENCH_FLAGS)
 
-# What accuracy costs in time (bench/accuracy): measures every accuracy knob
+# What accuracy costs in time (bench/programs/accuracy, driven by
+# bench/drivers/run_accuracy.py): measures every accuracy knob
 # on this machine and writes docs/accuracy.md with its tables and plots.
 bench-accuracy: build-all
-	.venv/bin/python bench/accuracy/run_accuracy.py --build $(BUILD)
+	.venv/bin/python bench/drivers/run_accuracy.py --build $(BUILD)
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD) $(PYTHON_BUILD) $(PYTHON_ASAN_BUILD) $(DIST) out

@@ -264,7 +264,7 @@ static inline void accel_ray4_flip(accel_ray4 *r)
  * ACCEL_CULL_RANGE (so float's range needs no clamp). Returns 0, having
  * written nothing, for any other ray. The arithmetic is
  * accel_ray4_init_any's, operation for operation, in SSE2 lanes that round
- * as the scalar operations do; tests/core/test_bvh4_ray_init.c compares
+ * as the scalar operations do; tests/accel/test_bvh4_ray_init.c compares
  * the two on rays around every one of these limits.
  *
  * flipped (a constant): the inverses come out negated, as accel_ray4_flip

@@ -1,6 +1,6 @@
 """A scene built in Python: Hill's shapes under transforms, a boolean, a
 torus, materials named as in SDL; rendered, saved, and queried.
-This is the README's Python example; tests/python/test_py_examples.py runs it.
+This is the README's Python example; tests/python/test_examples.py runs it.
 
     python examples/python/scene_in_code.py [OUTPUT.png]
 """

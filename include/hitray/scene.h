@@ -161,6 +161,15 @@ typedef struct hr_object_info {
     double transform[16];
     double inverse[16];
     hr_bounds world_bounds; /* infinities for unbounded objects */
+    /* Appended within ABI 1 (a caller's struct_size without them gets
+     * the fields before): the parameters the object was created with,
+     * one per parameter its class declares, in the class's order, the
+     * defaults filled in. Names and strings point into the scene; an
+     * HR_PARAM_OBJECT's `object` is the index of the operand (whose
+     * transform is relative to this object's); an HR_PARAM_NUMBERS keeps
+     * its count but not the array (numbers is NULL). */
+    const hr_param *params;
+    int32_t param_count;
 } hr_object_info;
 HR_API hr_status hr_scene_object_info(const hr_scene *scene, int64_t index,
                                       hr_object_info *out);

@@ -51,6 +51,7 @@ typedef struct hr_object {
     hr_bounds world_bounds;   /* parent space (the world for a top-level object) */
     const struct hr_object *parent; /* the composite that consumed it, or NULL */
     hr_texture *texture;       /* NULL: untextured */
+    hr_param *params;          /* as created, for introspection (hri_params_keep) */
 } hr_object;
 
 struct hr_scene {

@@ -37,6 +37,8 @@ HR_API hr_status hr_scene_object_info(const hr_scene *s, int64_t index, hr_objec
     memcpy(info.transform, o->m, sizeof info.transform);
     memcpy(info.inverse, o->inv, sizeof info.inverse);
     info.world_bounds = o->world_bounds;
+    info.params = o->params;
+    info.param_count = o->params ? o->cls->param_count : 0;
     HR_SIZED_COPY_OUT(out, &info);
     return HR_OK;
 }

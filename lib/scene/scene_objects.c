@@ -35,6 +35,7 @@ void hri_object_free(hr_object *o)
     if (o->shape) o->cls->destroy(o->shape);
     free(o->texture);
     free(o->params_copy);
+    free(o->params);
     free(o);
 }
 
@@ -260,6 +261,13 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     }
     if (st == HR_OK)
         st = hri_texture_bind(s->ctx, &o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
+    uint64_t kept_bytes = 0;
+    if (st == HR_OK && n > 0) {
+        o->params = hri_params_keep(full, n, &kept_bytes);
+        if (!o->params) st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
+        else st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, kept_bytes, what);
+        if (st) kept_bytes = 0;
+    }
     if (st == HR_OK) {
         for (int32_t i = 0; i < n; i++)
             if (children[i]) {
@@ -273,7 +281,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     }
     if (st) {
         hri_object_free(o);
-        s->budget.objects -= object_bytes;
+        s->budget.objects -= object_bytes + kept_bytes;
         return st;
     }
     cls->bounds(o->shape, &o->local_bounds);

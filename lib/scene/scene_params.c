@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <hitray/shape_kit_module.h>
@@ -196,4 +197,29 @@ hr_status hri_params_resolve(hr_scene *scene, const hr_shape_class *cls, const c
                             "shape '%s' (module '%s'): parameter '%s' is required", cls->name,
                             module_path, cls->params[i].name);
     return HR_OK;
+}
+
+hr_param *hri_params_keep(const hr_param *full, int32_t n, uint64_t *bytes)
+{
+    *bytes = 0;
+    if (n <= 0) return NULL;
+    size_t size = (size_t)n * sizeof(hr_param);
+    for (int32_t i = 0; i < n; i++)
+        if (full[i].type != HR_PARAM_NUMBERS && full[i].string) size += strlen(full[i].string) + 1;
+    hr_param *kept = malloc(size);
+    if (!kept) return NULL;
+    char *text = (char *)(kept + n);
+    for (int32_t i = 0; i < n; i++) {
+        kept[i] = full[i];
+        if (full[i].type == HR_PARAM_NUMBERS) {
+            kept[i].numbers = NULL;
+        } else if (full[i].string) {
+            const size_t length = strlen(full[i].string) + 1;
+            memcpy(text, full[i].string, length);
+            kept[i].string = text;
+            text += length;
+        }
+    }
+    *bytes = size;
+    return kept;
 }

@@ -196,6 +196,14 @@ static hr_status not_a_command(sdl_reader *r, sdl_located t)
         return sdl_error(r->src, HR_ERROR_SDL, t,
                          "unexpected %s: '%s' is a mesh file, not SDL (an SDL scene reads it with "
                          "'mesh %s'; 'hitray render' renders it as the scene)", found, file, file);
+    /* ... and by another name, its first word is an OBJ one. */
+    static const char *const obj_words[] = {"v", "vn", "vt", "mtllib", "usemtl"};
+    for (size_t i = 0; i < sizeof obj_words / sizeof obj_words[0]; i++)
+        if (t.token->kind == SDL_TOKEN_WORD && strcmp(t.token->text, obj_words[i]) == 0)
+            return sdl_error(r->src, HR_ERROR_SDL, t,
+                             "unknown keyword %s: this reads like an OBJ mesh file, not SDL (an SDL "
+                             "scene reads a mesh file with 'mesh FILE.obj'; 'hitray render FILE.obj' "
+                             "renders it as the scene)", found);
     if (t.token->kind == SDL_TOKEN_OPEN)
         return sdl_error(r->src, HR_ERROR_SDL, t,
                          "unexpected '{': only 'def NAME {' opens a block");

@@ -2,7 +2,7 @@
  * tracing it (lib/trace/trace.c): an unbounded object (a plane) by its
  * object-space bounds, and the whole BVH by the box around its objects,
  * from what commit prepared (lib/scene/cull_prepare.h). A header of their
- * own so that tests/core/test_ray_cull.c can check them on many rays. */
+ * own so that tests/trace/test_ray_cull.c can check them on many rays. */
 #ifndef HITRAY_LIB_TRACE_RAY_CULL_H
 #define HITRAY_LIB_TRACE_RAY_CULL_H
 

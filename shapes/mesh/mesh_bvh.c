@@ -16,7 +16,7 @@
 /* The cost of visiting a node, in triangle tests (the SAH's constant). A
  * node tests four boxes in about as many instructions as one watertight
  * triangle test, but nodes cost memory; 2 takes most of the speed of 1 for
- * less memory (measured: bench/RESULTS.md, "The mesh BVH's traversal
+ * less memory (measured: bench/results/RESULTS.md, "The mesh BVH's traversal
  * cost"). */
 #define TRAVERSAL_COST 2.0
 

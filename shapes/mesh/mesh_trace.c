@@ -526,7 +526,7 @@ static inline leaf_fn leaf_callback(void)
  * a closed mesh's (closed_any) is whether the first-hit search finds a
  * hit, which does not depend on the order either (closed_any_blocks): the
  * walk that skips sorting children. Out of line: inlined in walk, the
- * second walk cost the other queries' frame (measured: bench/RESULTS.md,
+ * second walk cost the other queries' frame (measured: bench/results/RESULTS.md,
  * "The mesh's any-hit walk in any order"). */
 static __attribute__((noinline)) void walk_any_order(query *q)
 {

@@ -213,7 +213,7 @@ typedef struct mesh_triangle_hit {
  * mesh does not find the triangle it starts on.
  * Always inlined: every triangle the ray crosses inside the interval needs
  * it, and GCC kept it a call from the six leaf loops of mesh_trace.c (what
- * the call cost: bench/RESULTS.md, "mesh_t_error always inlined"). */
+ * the call cost: bench/results/RESULTS.md, "mesh_t_error always inlined"). */
 static inline __attribute__((always_inline)) double mesh_t_error(const mesh_ray *r, const double A[3],
                                                                  const double B[3], const double C[3],
                                                                  double U, double V, double W,

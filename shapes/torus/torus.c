@@ -163,7 +163,7 @@ static void torus_destroy(void *shape)
 }
 
 /* What each solver costs and how accurate it is, measured, is in
- * bench/RESULTS.md ("Torus root solvers"). */
+ * bench/results/RESULTS.md ("Torus root solvers"). */
 static const hr_param_spec torus_params[] = {
     {"tube", HR_PARAM_NUMBER, 0, 0.2, TUBE_MIN, TUBE_MAX,
      "tube radius (the ring radius is 1); below 1: a tube of 1 or more would close the hole", 0},
@@ -171,7 +171,7 @@ static const hr_param_spec torus_params[] = {
      "root solver: 'bracketing' (default; derivative bracketing) finds every root and tangent; "
      "'ferrari-newton' (closed form + Newton) is as accurate where it finds the roots but may "
      "invent or lose a close pair; 'ferrari' (closed form) errs most near tangents; costs and "
-     "errors measured: bench/RESULTS.md", 0},
+     "errors measured: bench/results/RESULTS.md", 0},
 };
 
 /* (u, v): Hill's two angles as fractions of a turn: u about the z axis

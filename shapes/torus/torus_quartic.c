@@ -52,7 +52,7 @@
  *   error (torus_eval) is a tangent: a double root, reported as two
  *   crossings at one t. Nothing is missed; pieces wholly before tmin are not
  *   searched and a first-hit query stops at its first root.
- * The measured cost and accuracy of each: bench/RESULTS.md, "Torus root
+ * The measured cost and accuracy of each: bench/results/RESULTS.md, "Torus root
  * solvers". */
 #include "torus_quartic.h"
 

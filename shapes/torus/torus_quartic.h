@@ -1,6 +1,6 @@
 /* The torus's ray equation and its three root solvers.
  *
- * Kept apart from the module (torus.c) so that bench/torus_solvers.c can time
+ * Kept apart from the module (torus.c) so that bench/programs/torus_solvers.c can time
  * and check the solvers on their own. Everything here is reentrant and works
  * on the caller's stack.
  *

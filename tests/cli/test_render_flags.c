@@ -3,7 +3,7 @@
  * hr_render takes too, and one more is refused by both. So a limit changed
  * in the library and not in the command line (or the other way round)
  * fails here; the verbs' use of the one parser is tested by
- * tests/python/test_cli_render_flags.py. */
+ * tests/cli/test_cli_render_flags.py. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -94,6 +94,14 @@ PIN_OFF(hr_light, color, 32);
 PIN_SIZE(hr_scene_globals, 72);
 PIN_OFF(hr_scene_globals, background, 8);
 PIN_OFF(hr_scene_globals, min_reflectivity, 56);
+PIN_SIZE(hr_object_info, 512);
+PIN_OFF(hr_object_info, shape, 8);
+PIN_OFF(hr_object_info, material, 24);
+PIN_OFF(hr_object_info, transform, 192);
+PIN_OFF(hr_object_info, world_bounds, 448);
+/* Appended within ABI 1: the object's parameters. */
+PIN_OFF(hr_object_info, params, 496);
+PIN_OFF(hr_object_info, param_count, 504);
 PIN_SIZE(hr_object_desc, 56);
 PIN_OFF(hr_object_desc, shape, 8);
 PIN_OFF(hr_object_desc, transform, 32);

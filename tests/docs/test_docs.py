@@ -37,8 +37,6 @@ PAGES = ["README.md"] + sorted(f"docs/{p.name}" for p in (ROOT / "docs").glob("*
 RUNNERS = ("sh", "console", "python", "c", "sdl")
 NOT_RUN = re.compile(r"<!--\s*not run:\s*(?P<reason>\S.*?)\s*-->")
 FENCE = re.compile(r"^(?P<fence>```+|~~~+)\s*(?P<info>.*)$")
-# Blocks of this page are the lead's (issue 28's hitray.distributed items).
-PENDING = {"docs/distributed.md": "its blocks are being marked or fixed with hitray.distributed's own items"}
 TIMEOUT = 300
 
 
@@ -158,8 +156,6 @@ def run_block(block: Block, cwd: pathlib.Path) -> None:
 
 @pytest.mark.parametrize("page", PAGES)
 def test_every_block_runs_or_says_why_not(page, tmp_path):
-    if page in PENDING:
-        pytest.xfail(PENDING[page])
     cwd = scratch(tmp_path)
     for block in blocks(page):
         if block.not_run is None:
@@ -187,11 +183,85 @@ def test_the_checker_reads_marks_and_wildcards(tmp_path):
 
 def test_the_savings_tables_are_what_bench_savings_sh_prints():
     """docs/effects.md's tables, rerun (ray counts and errors are exact on
-    any machine and thread count); `bench/savings.sh --write docs/effects.md`
+    any machine and thread count); `bench/drivers/savings.sh --write docs/effects.md`
     writes them."""
-    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/savings.sh" in b.not_run]
+    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/drivers/savings.sh" in b.not_run]
     env = dict(environment(), HITRAY=str(BUILD / "bin" / "hitray"))
-    done = subprocess.run([str(ROOT / "bench" / "savings.sh")], env=env, stdout=subprocess.PIPE, text=True,
+    done = subprocess.run([str(ROOT / "bench" / "drivers" / "savings.sh")], env=env, stdout=subprocess.PIPE, text=True,
                           timeout=TIMEOUT, check=True)
-    assert done.stdout == table.text, (f"{table.where}: the tables are not what bench/savings.sh prints "
-                                       f"now; run `bench/savings.sh --write docs/effects.md`")
+    assert done.stdout == table.text, (f"{table.where}: the tables are not what bench/drivers/savings.sh prints "
+                                       f"now; run `bench/drivers/savings.sh --write docs/effects.md`")
+
+
+def savings_rows(table: str) -> dict[str, dict[str, list[float]]]:
+    """bench/drivers/savings.sh's tables: scene -> render name -> [rays, saved, saved%,
+    rmse, max, differing]."""
+    scenes: dict[str, dict[str, list[float]]] = {}
+    for part in table.strip().split("\n\n"):
+        head, _, *rows = part.splitlines()
+        scene = scenes[head.split(":")[0]] = {}
+        for row in rows:
+            *name, rays, saved, percent, rmse, worst, differing = row.split()
+            scene[" ".join(name)] = [float(rays), float(saved), float(percent.rstrip("%")), float(rmse),
+                                     float(worst), float(differing)]
+    return scenes
+
+
+def test_the_reading_of_the_savings_tables_is_what_they_show():
+    """The sentences under docs/effects.md's tables quote them: each
+    number here is worked out from the committed tables (which the test
+    above keeps what bench/drivers/savings.sh prints), so a rerun that moves them
+    fails until the prose is read again."""
+    [table] = [b for b in blocks("docs/effects.md") if b.not_run and "bench/drivers/savings.sh" in b.not_run]
+    scenes = savings_rows(table.text)
+    demo = scenes.pop("scenes/demo.sdl")
+    hill = list(scenes.values())
+    assert len(hill) == 3
+    page = (ROOT / "docs" / "effects.md").read_text(encoding="utf-8")
+    reading = " ".join(page.split("Reading them:", 1)[1].split("## Tests", 1)[0].split())
+
+    def ratio(rows):
+        return rows["effects-all"][0] / rows["full"][0]
+
+    def rows_of(rows, kind):
+        return [v for k, v in rows.items() if k.startswith(kind)]
+
+    def whole(x):
+        return int(x + 0.5)
+
+    adaptive_hill = [r for s in hill for r in rows_of(s, "adaptive")]
+    said = [
+        f"on the demo, {ratio(demo):.1f} times the rays",
+        f"no mirror or glass, {min(map(ratio, hill)):.1f} to {max(map(ratio, hill)):.1f} times",
+        f"saves {whole(min(r[2] for r in rows_of(demo, 'adaptive')))} to "
+        f"{whole(max(r[2] for r in rows_of(demo, 'adaptive')))} % of the rays on the demo",
+        f"{whole(min(r[2] for r in adaptive_hill))} to {whole(max(r[2] for r in adaptive_hill))} % on Hill's",
+        f"on the demo it is {min(r[3] for r in rows_of(demo, 'adaptive')):.3f} to "
+        f"{max(r[3] for r in rows_of(demo, 'adaptive')):.3f}",
+        f"the largest error, {max(r[4] for r in rows_of(demo, 'adaptive')):.2f}",
+        f"cut-off** saves {whole(min(r[2] for r in rows_of(demo, 'min-weight')))} to "
+        f"{whole(max(r[2] for r in rows_of(demo, 'min-weight')))} % on the demo",
+        f"RMSE of {demo['min-weight 0.01'][3]:.1g} for W = 0.01 rising to {demo['min-weight 0.2'][3]:.2g} for W = 0.2",
+    ]
+    missing = [s for s in said if s not in reading]
+    assert not missing, f"docs/effects.md's reading of its tables says otherwise than: {missing}"
+    # The claims without a number in them.
+    assert "RMSE stays below 0.001" in reading and max(r[3] for r in adaptive_hill) < 0.001
+    assert "nothing to cut, no error" in reading
+    assert all(r[1] == 0 and r[3] == 0 for s in hill for r in rows_of(s, "min-weight"))
+    assert "0.01 and 0.05 cut the same rays on the demo" in reading
+    assert demo["min-weight 0.01"][0] == demo["min-weight 0.05"][0]
+    assert "does not shrink with the threshold" in reading
+    assert len({r[4] for r in rows_of(demo, "adaptive")}) == 1
+
+
+def test_the_readmes_listing_of_lib_names_every_folder_there():
+    """README.md's listing of lib/ (a block not run) names each folder of
+    lib/ and no other."""
+    [listing] = [b for b in blocks("README.md") if b.not_run and "lib/'s folders" in b.not_run]
+    lines = listing.text.splitlines()
+    assert lines[0] == "lib/", lines[0]
+    named = {word.rstrip("/") for line in lines[1:] if line.startswith("  ") and not line.startswith("   ")
+             for word in line.split() if word.endswith("/") and len(word) > 1}
+    folders = {p.name for p in (ROOT / "lib").iterdir() if p.is_dir()}
+    assert named == folders, f"README.md's listing of lib/ names {sorted(named)}; lib/ holds {sorted(folders)}"

@@ -1,4 +1,4 @@
-/* Each NFF entity by hand (tests/scenes/nff/entities.nff): the camera, the
+/* Each NFF entity by hand (tests/data/scenes/nff/entities.nff): the camera, the
  * background, lights with and without a colour, the material's mapping, a
  * sphere, a cone and cylinders in both layouts of `c` (open: a ray along
  * the axis passes through), a truncated cone with its smaller end first,
@@ -15,7 +15,7 @@
 
 #include "hr_test.h"
 
-#define ENTITIES HR_TEST_SOURCE_DIR "/tests/scenes/nff/entities.nff"
+#define ENTITIES HR_TEST_SOURCE_DIR "/tests/data/scenes/nff/entities.nff"
 
 static hr_context *ctx;
 

@@ -150,12 +150,12 @@ static void test_arguments(void)
     tiny.struct_size = 4;
     CHECK(hr_nff_load_string(ctx, "", NULL, &tiny) == HR_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(hr_context_last_error(ctx), "NFF: the result is NULL") != NULL);
-    CHECK(hr_nff_load_file(ctx, HR_TEST_SOURCE_DIR "/tests/scenes/nff/missing.nff", &r) ==
+    CHECK(hr_nff_load_file(ctx, HR_TEST_SOURCE_DIR "/tests/data/scenes/nff/missing.nff", &r) ==
           HR_ERROR_IO);
     CHECK(strstr(hr_context_last_error(ctx), "missing.nff: cannot open the scene file") != NULL);
     CHECK(r.scene == NULL);
     /* A directory opens but cannot be read. */
-    CHECK(hr_nff_load_file(ctx, HR_TEST_SOURCE_DIR "/tests/scenes/nff", &r) == HR_ERROR_IO);
+    CHECK(hr_nff_load_file(ctx, HR_TEST_SOURCE_DIR "/tests/data/scenes/nff", &r) == HR_ERROR_IO);
     CHECK(r.scene == NULL);
 }
 

@@ -1,6 +1,6 @@
 """The cost model of docs/distributed.md (hitray.distributed._model): exact
 on cases worked out by hand, and the page's table is what its command
-prints from the costs measured and committed (bench/distributed_costs.json)."""
+prints from the costs measured and committed (bench/results/distributed_costs.json)."""
 
 import math
 import pathlib
@@ -53,8 +53,8 @@ def test_saving_frames_is_serial_on_the_client():
 
 
 def test_the_docs_table_is_the_models_output():
-    costs = ROOT / "bench" / "distributed_costs.json"
-    proc = subprocess.run([sys.executable, str(ROOT / "bench" / "distributed.py"), "model", str(costs)],
+    costs = ROOT / "bench" / "results" / "distributed_costs.json"
+    proc = subprocess.run([sys.executable, str(ROOT / "bench" / "drivers" / "distributed.py"), "model", str(costs)],
                           capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     page = (ROOT / "docs" / "distributed.md").read_text()

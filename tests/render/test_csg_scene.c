@@ -14,6 +14,7 @@
 #include <hitray/hitray.h>
 
 #include "hr_test.h"
+#include "scene_builder.h"
 
 static hr_scene *load(hr_context *ctx, const char *text)
 {
@@ -25,15 +26,6 @@ static hr_scene *load(hr_context *ctx, const char *text)
     }
     CHECK_OK(hr_scene_commit(r.scene));
     return r.scene;
-}
-
-static hr_object_info info(const hr_scene *s, int64_t index)
-{
-    hr_object_info o;
-    memset(&o, 0, sizeof o);
-    o.struct_size = sizeof o;
-    CHECK_OK(hr_scene_object_info(s, index, &o));
-    return o;
 }
 
 /* ((A | B) - bite) & slab: A the unit sphere (red, object 0), B a unit
@@ -58,7 +50,7 @@ static void test_nested(hr_context *ctx)
     static const char *const shapes[] = {"sphere", "sphere", "union", "sphere",
                                          "difference", "cube", "intersection"};
     for (int64_t i = 0; i < 7; i++) {
-        hr_object_info o = info(s, i);
+        hr_object_info o = tb_object_info(s, i);
         CHECK_MSG(strcmp(o.shape, shapes[i]) == 0, "object %lld is %s", (long long)i, o.shape);
         CHECK(o.top_level == (i == 6));
     }
@@ -92,7 +84,7 @@ static void test_nested(hr_context *ctx)
         CHECK_NEAR(first.t, 4.3, 1e-14);
         CHECK(first.object == 3 && first.entering == 1);
         CHECK_NEAR(first.normal.z, 1.0, 1e-15);
-        hr_object_info bite = info(s, first.object);
+        hr_object_info bite = tb_object_info(s, first.object);
         CHECK(bite.material.diffuse.b == 1 && bite.material.diffuse.r == 0);
         CHECK(list.hits[1].object == 0 && list.hits[1].entering == 0);
         CHECK_NEAR(list.hits[1].t, 6.0, 1e-14);

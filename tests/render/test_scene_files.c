@@ -1,6 +1,6 @@
 /* Every SDL scene the project ships or must read (the demo, the CSG scene,
  * the three real Hill files, and a scene per shape Hill names but the real
- * files do not use: tests/scenes/shapes/) renders end to end: finite pixels, something besides the
+ * files do not use: tests/data/scenes/shapes/) renders end to end: finite pixels, something besides the
  * background, and the same bits with 1, 2 and 4 threads and with
  * supersampling. */
 #include <string.h>
@@ -12,12 +12,12 @@
 static const char *const scenes[] = {
     HR_TEST_SOURCE_DIR "/scenes/demo.sdl",
     HR_TEST_SOURCE_DIR "/scenes/csg.sdl",
-    HR_TEST_SOURCE_DIR "/tests/scenes/hill/chair.dat",
-    HR_TEST_SOURCE_DIR "/tests/scenes/hill/village.dat",
-    HR_TEST_SOURCE_DIR "/tests/scenes/hill/room.dat",
-    HR_TEST_SOURCE_DIR "/tests/scenes/shapes/torus.sdl",
-    HR_TEST_SOURCE_DIR "/tests/scenes/shapes/teapot.sdl",
-    HR_TEST_SOURCE_DIR "/tests/scenes/shapes/buckyball.sdl",
+    HR_TEST_SOURCE_DIR "/tests/data/scenes/hill/chair.dat",
+    HR_TEST_SOURCE_DIR "/tests/data/scenes/hill/village.dat",
+    HR_TEST_SOURCE_DIR "/tests/data/scenes/hill/room.dat",
+    HR_TEST_SOURCE_DIR "/tests/data/scenes/shapes/torus.sdl",
+    HR_TEST_SOURCE_DIR "/tests/data/scenes/shapes/teapot.sdl",
+    HR_TEST_SOURCE_DIR "/tests/data/scenes/shapes/buckyball.sdl",
 };
 
 #define W 96

@@ -1,4 +1,4 @@
-/* The three real Hill scene files (tests/scenes/hill/, byte for byte as
+/* The three real Hill scene files (tests/data/scenes/hill/, byte for byte as
  * their authors wrote them) load, with counts, materials and transforms
  * worked out by hand from the files. Read with stub shapes always, and with
  * the real shape modules too when they exist. The book's own scene
@@ -15,7 +15,7 @@
 static hr_scene *load_hill(hr_context *ctx, const char *name, hr_sdl_result *r)
 {
     char path[1024];
-    snprintf(path, sizeof path, "%s/tests/scenes/hill/%s", HR_TEST_SOURCE_DIR, name);
+    snprintf(path, sizeof path, "%s/tests/data/scenes/hill/%s", HR_TEST_SOURCE_DIR, name);
     memset(r, 0, sizeof *r);
     r->struct_size = sizeof *r;
     hr_status st = hr_sdl_load_file(ctx, path, r);
@@ -215,7 +215,7 @@ static void room(hr_context *ctx)
 static void book_scene(hr_context *ctx)
 {
     char path[1024];
-    snprintf(path, sizeof path, "%s/tests/scenes/hill/bookScene.dat", HR_TEST_SOURCE_DIR);
+    snprintf(path, sizeof path, "%s/tests/data/scenes/hill/bookScene.dat", HR_TEST_SOURCE_DIR);
     hr_sdl_result r;
     memset(&r, 0, sizeof r);
     r.struct_size = sizeof r;

@@ -220,6 +220,18 @@ static void mesh_file_as_sdl(hr_context *ctx)
         CHECK_MSG(strstr(hr_context_last_error(ctx), want) != NULL, "%s", hr_context_last_error(ctx));
         CHECK(strstr(hr_context_last_error(ctx), "is a mesh file, not SDL") != NULL);
     }
+    /* By another name, an OBJ file's first word says what it is. */
+    const char *obj_texts[] = {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "! a comment\nmtllib m.mtl\nv 0 0 0\n"};
+    for (int i = 0; i < 2; i++) {
+        hr_sdl_result r;
+        memset(&r, 0, sizeof r);
+        r.struct_size = sizeof r;
+        CHECK(hr_sdl_load_string(ctx, obj_texts[i], "scene.sdl", NULL, &r) == HR_ERROR_SDL);
+        const char *msg = hr_context_last_error(ctx);
+        CHECK_MSG(strstr(msg, "reads like an OBJ mesh file, not SDL") != NULL && strstr(msg, "'mesh FILE.obj'"),
+                  "%s", msg);
+        CHECK_MSG(strstr(msg, "HITRAY_SHAPE_PATH") == NULL, "%s", msg);
+    }
 }
 
 int main(void)

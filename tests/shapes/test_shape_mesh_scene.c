@@ -1,4 +1,4 @@
-/* The mesh module through the library: tests/scenes/mesh_solids.sdl (the
+/* The mesh module through the library: tests/data/scenes/mesh_solids.sdl (the
  * regular solids, a .3vn and an OBJ file named relative to the scene, a
  * glass dodecahedron and a mirror) loads, renders with finite pixels that
  * show its objects, and gives the same bits with 1 and 3 threads. SDL
@@ -32,7 +32,7 @@ static void test_scene(hr_context *ctx)
     hr_sdl_result r;
     memset(&r, 0, sizeof r);
     r.struct_size = sizeof r;
-    if (hr_sdl_load_file(ctx, HR_TEST_SOURCE_DIR "/tests/scenes/mesh_solids.sdl", &r) != HR_OK) {
+    if (hr_sdl_load_file(ctx, HR_TEST_SOURCE_DIR "/tests/data/scenes/mesh_solids.sdl", &r) != HR_OK) {
         CHECK_MSG(0, "load: %s", hr_context_last_error(ctx));
         return;
     }

@@ -4,7 +4,8 @@ it renders with the library search path emptied, loads libpng, OpenEXRCore
 and every hitray library from the wheel itself, and each shared object it
 ships needs only what the wheel holds or the manylinux policy lets a wheel
 take from the system (checked with ldd against auditwheel's own policy
-file). `auditwheel show` must find the wheel consistent with its tag."""
+file). `auditwheel show` must find the wheel consistent with its tag, and
+the README names the libraries the wheel carries."""
 
 import json
 import os
@@ -172,3 +173,41 @@ def test_hitray_view_says_in_one_line_how_to_get_the_window(venv):
     assert result.returncode == 1 and result.stdout == ""
     lines = result.stderr.splitlines()
     assert len(lines) == 1 and "libsdl2-dev" in lines[0] and "pip's wheels leave it out" in lines[0], lines
+
+
+README = HERE.parents[1] / "README.md"
+
+
+def readme_vendored():
+    """The libraries the README says the wheel carries: the names in its
+    "(libpng, OpenEXRCore and libstb, ..., copied into `hitray.libs/`"."""
+    text = " ".join(README.read_text().split())
+    found = re.search(r"`auditwheel repair` \(([^)]*?) copied into `hitray\.libs/`", text)
+    assert found, "README.md no longer says which libraries `auditwheel repair` copies into hitray.libs/"
+    listed = re.split(r",\s*|\s+and\s+", found.group(1).split(", which")[0])
+    return {name.strip() for name in listed if name.strip()}, text
+
+
+def test_the_readme_names_the_libraries_the_wheel_carries(wheel):
+    """The README's sentence on the wheel's bundled libraries is what
+    auditwheel put in: each library it names is in hitray.libs/, each
+    library there is named, and zlib (the system's, which the manylinux
+    policy allows) is not there."""
+    import zipfile
+
+    with zipfile.ZipFile(wheel) as z:
+        vendored = sorted({pathlib.PurePosixPath(n).name for n in z.namelist()
+                           if n.startswith("hitray.libs/") and ".so" in n})
+    names, text = readme_vendored()
+    # auditwheel names its copies NAME-HASH.so.VERSION (libpng16-a1b2c3d4.so.16.39.0).
+    stems = {re.sub(r"-[0-9a-f]{8}\.so.*$", "", v) for v in vendored}
+
+    def carried(name):
+        return [s for s in stems if s.lower().startswith(name.lower()) or s.lower() == f"lib{name.lower()}"
+                or s.lower().startswith(f"lib{name.lower()}")]
+
+    assert all(carried(n) for n in names), f"README names {sorted(names)}; the wheel carries {vendored}"
+    unnamed = [s for s in stems if not any(s in carried(n) for n in names)]
+    assert not unnamed, f"the wheel carries {unnamed}, which README.md does not name"
+    assert not any(s.startswith("libz") for s in stems), vendored
+    assert "zlib is the system's" in text

@@ -77,10 +77,7 @@ py::dict param_spec_dict(const hr_param_spec &p)
 {
     py::dict d;
     d["name"] = text(p.name);
-    d["type"] = p.type == HR_PARAM_NUMBER    ? "number"
-                : p.type == HR_PARAM_STRING  ? "string"
-                : p.type == HR_PARAM_NUMBERS ? "numbers"
-                                             : "object";
+    d["type"] = param_type_name(p.type);
     d["required"] = p.required != 0;
     d["default"] = p.default_number;
     d["min"] = p.min;

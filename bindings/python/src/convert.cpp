@@ -40,4 +40,12 @@ py::tuple camera_tuple(const hr_camera &cam)
     return py::make_tuple(tuple_of(cam.eye), tuple_of(cam.look), tuple_of(cam.up), cam.view_angle);
 }
 
+const char *param_type_name(int32_t type)
+{
+    return type == HR_PARAM_NUMBER    ? "number"
+           : type == HR_PARAM_STRING  ? "string"
+           : type == HR_PARAM_NUMBERS ? "numbers"
+                                      : "object";
+}
+
 }  // namespace hitray_py

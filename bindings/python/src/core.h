@@ -47,6 +47,8 @@ inline void check(hr_status status)
 py::str text(const std::string &s);
 // A path as Python's os.fsdecode would give it.
 py::str path_text(const std::string &s);
+// "number", "string", "numbers" or "object": an HR_PARAM_* type by name.
+const char *param_type_name(int32_t type);
 
 using vec3 = std::array<double, 3>;
 inline hr_vec3 to_vec3(const vec3 &v) { return hr_vec3{v[0], v[1], v[2]}; }

@@ -172,6 +172,19 @@ py::dict object_info(const ScenePtr &s, int64_t index)
     d["transform"] = matrix_tuple(info.transform);
     d["inverse"] = matrix_tuple(info.inverse);
     d["bounds"] = bounds_value(info.world_bounds);
+    // (name, type as param_type_name says it, value): a number, a string,
+    // an operand's index, or an array's length (the scene keeps no copy).
+    py::list params;
+    for (int32_t i = 0; i < info.param_count; i++) {
+        const hr_param &p = info.params[i];
+        py::object value;
+        if (p.type == HR_PARAM_NUMBER) value = py::float_(p.number);
+        else if (p.type == HR_PARAM_STRING) value = path_text(p.string ? p.string : "");
+        else if (p.type == HR_PARAM_OBJECT) value = py::int_(p.object);
+        else value = py::int_(p.count);
+        params.append(py::make_tuple(text(p.name), param_type_name(p.type), value));
+    }
+    d["params"] = params;
     return d;
 }
 

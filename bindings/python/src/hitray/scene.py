@@ -479,6 +479,18 @@ class SceneObject:
         return self._info()["bounds"]  # type: ignore[no-any-return]
 
     @property
+    def params(self) -> Dict[str, Any]:
+        """The parameters the object was made with, by name, one for each
+        parameter its class declares (``hitray shapes`` lists them), the
+        defaults filled in: a float, a str, the operand (a SceneObject) of a
+        boolean, or for an array parameter (``triangleMesh``'s points) its
+        length, as the scene keeps no copy of the array."""
+        out: Dict[str, Any] = {}
+        for name, kind, value in self._info()["params"]:
+            out[name] = SceneObject(self._scene, value) if kind == "object" else value
+        return out
+
+    @property
     def top_level(self) -> bool:
         """False for an operand consumed by a boolean."""
         return self._info()["top_level"]  # type: ignore[no-any-return]

@@ -107,7 +107,8 @@ def _parser() -> argparse.ArgumentParser:
     common.add_argument("--png16", action="store_true", help="16-bit PNG")
     common.add_argument("--linear-png", action="store_true", help="PNG values linear, not sRGB-encoded")
     common.add_argument("--exr-half", action="store_true", help="EXR with 16-bit half floats")
-    common.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    common.add_argument("-q", "--quiet", action="store_true",
+                        help="no progress bar (there is one only when standard error is a terminal)")
     r = verbs.add_parser("render", parents=[common], help="render one scene file")
     r.add_argument("scene", metavar="SCENE", help="Hill's SDL, or NFF if it ends in .nff or .nff.gz")
     r.add_argument("-o", "--output", required=True, metavar="OUT", help=".png, .exr, .ppm or .pfm")
@@ -127,7 +128,7 @@ def _parser() -> argparse.ArgumentParser:
 def _options(a: argparse.Namespace) -> Dict[str, Any]:
     return {"size": a.size, "spp": a.spp, "depth": a.depth, "block_size": a.block,
             "all_effects": a.effects == "all", "adaptive": a.adaptive, "min_weight": a.min_weight,
-            "exact": a.exact, "tile": a.tile, "timeout": a.timeout, "progress": not a.quiet}
+            "exact": a.exact, "tile": a.tile, "timeout": a.timeout, "progress": False if a.quiet else None}
 
 
 def _load(path: str) -> Tuple[Any, Optional[Camera]]:

@@ -1,6 +1,6 @@
 """A cost model of a distributed run: hitray.distributed's own Planner
 played against simulated workers, with costs measured on a real run
-(bench/distributed.py measures them and prints the table of
+(bench/drivers/distributed.py measures them and prints the table of
 docs/distributed.md).
 
 What is simulated (in simulated seconds, no clock):

@@ -23,7 +23,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Set,
 
 import numpy as np
 
-from .. import _convert
+from .. import _convert, _progress
 from ..camera import Camera
 from ..image import Image, RenderStats
 from ..render import render as _render_here
@@ -36,7 +36,7 @@ from ._report import Report, WorkerReport
 __all__ = ["render", "render_frames"]
 
 Window = Tuple[int, int, int, int]
-Progress = Union[bool, Callable[[float], Any]]
+Progress = Union[None, bool, Callable[[float], Any]]
 FrameSource = Union[Sequence[Tuple[Scene, Optional[Camera]]], Callable[[int], Tuple[Scene, Optional[Camera]]]]
 
 
@@ -187,15 +187,17 @@ class _Bar:
         self._callback: Optional[Callable[[float], Any]] = None
         self._bar: Any = None
         self._done, self._total = 0, max(1, total)
-        if progress is True:
-            from tqdm.auto import tqdm  # type: ignore[import-untyped, unused-ignore]
-
-            self._bar = tqdm(total=total, unit="px", unit_scale=True, desc=what, leave=False)
-        elif callable(progress):
+        if callable(progress):
             self._callback = progress
-        elif progress not in (False, None):
-            raise TypeError("hitray.distributed: progress must be True, False or a callable taking the "
-                            "fraction done")
+        elif progress is None or isinstance(progress, bool):
+            # None: a bar where someone watches (standard error a terminal,
+            # or a notebook), as hitray.render and the hitray command do.
+            if _progress.wanted(progress):
+                self._bar = _progress.tqdm_class()(total=total, unit="px", unit_scale=True, desc=what,
+                                                   leave=False)
+        else:
+            raise TypeError("hitray.distributed: progress must be None (auto), True, False or a callable "
+                            "taking the fraction done")
 
     def pixels(self, n: int) -> None:
         self._done += n
@@ -461,7 +463,7 @@ def _tile_size(tile: Any, size: Tuple[int, int]) -> Optional[int]:
 
 
 def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] = (640, 480), spp: int = 1,
-           threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = True, *,
+           threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = None, *,
            block: Optional[int] = None, effects: str = "auto", adaptive: Optional[float] = None,
            min_weight: Optional[float] = None, exact: bool = False, block_size: Optional[int] = None,
            all_effects: bool = False, client: Any = None, tile: Optional[int] = None,
@@ -483,10 +485,13 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
             workers finish together); a number: fixed square tiles of that
             side, all handed to Dask at once.
         threads: render threads per task (None: all the worker's, its Dask
-            ``nthreads``; a worker then renders one band at a time). The
-            image is the same whatever the count.
-        progress: True shows a tqdm bar over pixels; a callable gets the
-            fraction of pixels done; False shows nothing.
+            ``nthreads``; a worker then renders one band at a time, so its
+            threads never render more than one band together). The image
+            is the same whatever the count.
+        progress: None (the default) shows a tqdm bar over pixels where
+            someone watches (standard error a terminal, or a notebook), as
+            hitray.render does; True always; a callable gets the fraction
+            of pixels done; False shows nothing.
         report: a :class:`Report` filled in with what each worker did (rays
             per second, the share of core time not spent rendering, the
             balance).
@@ -546,7 +551,7 @@ def _finished(path: str, index: int) -> bool:
 
 def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = None,
                   size: Tuple[int, int] = (640, 480), spp: int = 1, threads: Optional[int] = None,
-                  depth: Optional[int] = None, progress: Progress = True, *, block: Optional[int] = None,
+                  depth: Optional[int] = None, progress: Progress = None, *, block: Optional[int] = None,
                   effects: str = "auto", adaptive: Optional[float] = None, min_weight: Optional[float] = None,
                   exact: bool = False, block_size: Optional[int] = None, all_effects: bool = False,
                   client: Any = None, tile: Optional[int] = None, workers: Optional[int] = None,
