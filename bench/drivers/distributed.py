@@ -1,33 +1,38 @@
 #!/usr/bin/env python3
-"""hitray.distributed against hitray.render on this machine: 1 and 2 Dask
-workers, tiles of several sizes.
+"""hitray.distributed against hitray.render on this machine, side by side in
+one run, and the cost model of bigger clusters fed with what it measured.
 
-For each worker count a LocalCluster of that many worker processes (one
-Dask thread each, the machine's cores shared among them) renders the frame
-with each tile size. Reported per run:
+  .venv/bin/python bench/drivers/distributed.py measure [--size 1920x1080 --spp 4 --runs 3] [--costs FILE]
+  .venv/bin/python bench/drivers/distributed.py model bench/results/distributed_costs.json
 
-- wall: the best of --runs distributed renders (seconds);
-- speed-up: hitray.render on every core, divided by wall;
-- overhead/tile: what a tile costs beyond its rays, in milliseconds of one
-  core: (wall x cores - the single-thread render's time) / tiles. It holds
-  shipping the tile's task and its pixels, scheduling, gathering, and the
-  rays a tile casts twice (adaptive corners, Hill's blocks cut by a tile);
-- ship: scattering the scene (pickled with its files) to every worker once.
+`measure`: warm LocalClusters of 2 workers x 1 thread and 1 worker x 2
+threads (on a machine of 2 cores; Dask's monitoring relaxed as
+hitray.distributed's own LocalClusters have it, _client.QUIET) render the
+frame, interleaved run by run with hitray.render on every core, so a busy
+moment disturbs all three alike. Each setup's best wall and best CPU time
+of --runs are given, and "paired": the median over runs of a run's wall
+over the hitray.render run just before it (less disturbed by a load that
+drifts than the ratio of the best walls). Every image is checked to be
+bit-identical to hitray.render's. Then it measures the model's costs and
+checks the model against 1, 2, 4 and 8 workers of 1 thread (--check-workers) on this
+machine (time-sliced on its cores: that checks the overheads, not the
+speed-up), writes the costs to --costs (JSON) and prints everything as
+Markdown.
 
-The tile size that balances overhead (many small tiles) against idle
-workers at the end of the frame (few big ones) is the one with the least
-wall time; it is marked. Each figure is the best of --runs (a busy machine
-disturbs some runs; the best is the least disturbed). Every distributed
-image is checked to be bit-identical to hitray.render's. Prints Markdown.
-
-  .venv/bin/python bench/drivers/distributed.py                     # scenes/demo.sdl, 640x480, spp 4
-  .venv/bin/python bench/drivers/distributed.py --size 640x480 --spp 16 --tiles 16,32,64,128
+`model`: the table of docs/distributed.md, from a costs file: the
+predicted efficiency at 16, 64 and 256 workers of 16 cores, for a 4K frame
+at 16 spp and a 240-frame animation of such frames. Deterministic: the
+same file gives the same table (tests/python/test_distributed_model.py
+checks the page's table is this command's output).
 """
 
 import argparse
+import json
 import os
 import pathlib
+import pickle
 import sys
+import tempfile
 import time
 
 # This file is named distributed.py: its folder, first on sys.path, would
@@ -38,77 +43,267 @@ sys.path = [p for p in sys.path if pathlib.Path(p or ".").resolve() != HERE]
 
 try:
     import numpy as np
-    import distributed  # noqa: F401 - Dask's, checked here: the cluster is made in main
+    import distributed  # Dask's
 
     import hitray
     import hitray.distributed as hd
-    from hitray.distributed._client import local_cores
+    from hitray.distributed._client import QUIET, local_cores
+    from hitray.distributed._model import Costs, simulate
+    from hitray.distributed._render import row_costs
 except ImportError as e:
     # `make demo` builds the command only: the package and Dask are
     # `make python-install`'s (into .venv, with scripts/requirements-test.txt).
-    sys.exit(f"bench/distributed.py: {e}: this needs the hitray package and Dask in {sys.executable}; "
-             f"`make python-install` puts both into .venv (then run .venv/bin/python bench/distributed.py)")
+    sys.exit(f"bench/drivers/distributed.py: {e}: this needs the hitray package and Dask in {sys.executable}; "
+             f"`make python-install` puts both into .venv (then run .venv/bin/python bench/drivers/distributed.py)")
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+BIG = (3840, 2160)
+BIG_SPP = 16
+ANIMATION = 240
+CLUSTERS = (16, 64, 256)
+CORES_EACH = 16
 
 
-def best(runs, fn):
-    times, out = [], None
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
+def size_of(text):
+    w, h = (int(v) for v in text.lower().split("x"))
+    return w, h
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--scene", default=str(ROOT / "scenes" / "demo.sdl"))
-    p.add_argument("--size", default="640x480")
-    p.add_argument("--spp", type=int, default=4)
-    p.add_argument("--tiles", default="8,16,32,64,128")
-    p.add_argument("--workers", default="1,2")
-    p.add_argument("--runs", type=int, default=3)
-    a = p.parse_args()
+def timed(fn):
+    t0 = time.perf_counter()
+    out = fn()
+    return time.perf_counter() - t0, out
 
-    size = tuple(int(v) for v in a.size.lower().split("x"))
-    tiles = [int(t) for t in a.tiles.split(",")]
+
+def cluster(distributed, workers, threads):
+    c = distributed.LocalCluster(n_workers=workers, threads_per_worker=threads, processes=True,
+                                 dashboard_address=":0")
+    return c, distributed.Client(c)
+
+
+def cpu_of(fn):
+    """CPU seconds of this process (all its threads) running fn: unlike the
+    wall time, barely changed by other processes on a busy machine."""
+    t0 = time.process_time()
+    fn()
+    return time.process_time() - t0
+
+
+def worker_cpu(client):
+    """CPU seconds the workers' processes have used so far, summed."""
+    return sum(client.run(time.process_time).values())
+
+
+def keep(best, name, wall, cpu, report):
+    """The least wall time and the least CPU time of a setup's runs, each
+    with its run's report."""
+    mine = best.setdefault(name, {"wall": (float("inf"), None), "cpu": (float("inf"), None)})
+    if wall < mine["wall"][0]:
+        mine["wall"] = (wall, report)
+    if cpu < mine["cpu"][0]:
+        mine["cpu"] = (cpu, report)
+
+
+def measure(a):
+    size = size_of(a.size)
     cores = local_cores()
     scene, camera = hitray.load_sdl(a.scene)
     if camera is None:
         camera = scene.frame_camera(size)
-    one, _ = best(a.runs, lambda: hitray.render(scene, camera, size, spp=a.spp, threads=1, progress=False))
-    full, ref = best(a.runs, lambda: hitray.render(scene, camera, size, spp=a.spp, progress=False))
-    reference = np.asarray(ref)
-    pack = hd.ScenePack(scene)
-    print(f"scene {os.path.relpath(a.scene, ROOT)}, {size[0]}x{size[1]}, spp {a.spp}, {cores} cores; "
-          f"hitray.render: {one:.3f} s on 1 thread, {full:.3f} s on {cores}; the shipped scene "
-          f"carries {len(pack.files)} file{'' if len(pack.files) == 1 else 's'} ({pack.shipped_bytes} bytes)\n")
-    print("| workers | tile | tiles | wall (s) | speed-up | overhead/tile (ms) | ship (ms) |")
-    print("|---:|---:|---:|---:|---:|---:|---:|")
-    for workers in (int(w) for w in a.workers.split(",")):
-        with distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                      dashboard_address=":0") as cluster, distributed.Client(cluster) as client:
-            threads = max(1, cores // workers)
-
-            def ship():
-                future = client.scatter(pack, broadcast=True, hash=False)
-                future.release()
-            ship_time, _ = best(a.runs, ship)
-            rows = []
-            for tile in tiles:
-                wall, image = best(a.runs, lambda: hd.render(scene, camera, size, spp=a.spp, client=client,
-                                                             tile=tile, threads=threads, progress=False))
+    pixels = size[0] * size[1]
+    setups = {"2 workers x 1 thread": (2, 1), "1 worker x 2 threads": (1, 2)}
+    clusters = {name: cluster(distributed, *shape) for name, shape in setups.items()}
+    best = {}
+    paired = {}  # each run's wall over the hitray.render run just before it
+    load = os.getloadavg()[0]
+    try:
+        for c, client in clusters.values():  # warm: the workers have imported hitray and run a task
+            hd.render(scene, camera, (64, 32), spp=1, client=client, progress=False)
+        # The client process's CPU time while idle (the schedulers of the
+        # LocalClusters run in it, with their heartbeats), taken out of the
+        # CPU time of the runs below.
+        cpu0 = time.process_time()
+        time.sleep(2.0)
+        idle = (time.process_time() - cpu0) / 2.0
+        reference = None
+        for run in range(a.runs):
+            cpu0 = time.process_time()
+            t, image = timed(lambda: hitray.render(scene, camera, size, spp=a.spp, threads=cores, progress=False))
+            cpu = time.process_time() - cpu0
+            reference = np.asarray(image) if reference is None else reference
+            keep(best, "hitray.render", t, cpu, None)
+            t_local = t
+            for name, (c, client) in clusters.items():
+                report = hd.Report()
+                before = worker_cpu(client)
+                cpu0 = time.process_time()
+                t, image = timed(lambda: hd.render(scene, camera, size, spp=a.spp, client=client, progress=False,
+                                                   report=report))
+                cpu = time.process_time() - cpu0 - idle * t + worker_cpu(client) - before
                 if not np.array_equal(np.asarray(image), reference):
-                    raise SystemExit(f"workers {workers}, tile {tile}: the image differs from hitray.render's")
-                count = len(hd.windows(size, tile))
-                rows.append((wall, tile, count))
-            fastest = min(rows)[1]
-            for wall, tile, count in rows:
-                overhead = (wall * cores - one) / count * 1e3
-                mark = " **best**" if tile == fastest else ""
-                print(f"| {workers} | {tile}{mark} | {count} | {wall:.3f} | {full / wall:.2f} | {overhead:.2f} | "
-                      f"{ship_time * 1e3:.1f} |")
+                    raise SystemExit(f"{name}: the image differs from hitray.render's")
+                keep(best, name, t, cpu, report)
+                paired.setdefault(name, []).append(t / t_local)
+            print(f"run {run + 1}: " + ", ".join(f"{k} {v['wall'][0]:.3f} s ({v['cpu'][0]:.3f} s CPU)"
+                                                 for k, v in best.items()), file=sys.stderr)
+
+        local, local_cpu = best["hitray.render"]["wall"][0], best["hitray.render"]["cpu"][0]
+        print(f"scene {os.path.relpath(a.scene, ROOT)}, {size[0]}x{size[1]}, spp {a.spp}, {cores} cores, "
+              f"best of {a.runs} runs each, interleaved (load average before: {load:.1f}, after: "
+              f"{os.getloadavg()[0]:.1f})\n")
+        print("| run | wall (s) | over hitray.render | paired | CPU (s) | over hitray.render | tasks | extra core-ms "
+              "per task | overhead share | ms between tasks | balance |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        print(f"| hitray.render, {cores} threads | {local:.3f} | 1.00 | 1.00 | {local_cpu:.3f} | 1.00 | | | | | |")
+        for name in setups:
+            t, r = best[name]["wall"][0], best[name]["wall"][1]
+            cpu, rc = best[name]["cpu"][0], best[name]["cpu"][1]
+            ratios = sorted(paired[name])
+            median = (ratios[(len(ratios) - 1) // 2] + ratios[len(ratios) // 2]) / 2
+            print(f"| hitray.distributed, {name} | {t:.3f} | {t / local:.2f} | {median:.2f} | {cpu:.3f} | "
+                  f"{cpu / local_cpu:.2f} | "
+                  f"{rc.tasks} | {1e3 * (cpu - local_cpu) / rc.tasks:.1f} | {100 * r.overhead_share:.1f}% | "
+                  f"{1e3 * r.between_per_task:.1f} | {r.balance:.2f} |")
+        print()
+
+        # The model's costs.
+        one = min(cpu_of(lambda: hitray.render(scene, camera, size, spp=a.spp, threads=1, progress=False))
+                  for _ in range(2))
+        cpu2, r2 = best["2 workers x 1 thread"]["cpu"]
+        prepass, _ = timed(lambda: row_costs(scene, camera, size, {"spp": a.spp}))
+        blob = np.zeros((size[1], size[0], 3), dtype=np.float32)
+        back, _ = timed(lambda: np.copyto(blob, pickle.loads(pickle.dumps(blob, protocol=5))))
+        with tempfile.TemporaryDirectory() as tmp:
+            save, _ = timed(lambda: hitray.Image(blob).save(os.path.join(tmp, "f.png")))
+        c, client = clusters["2 workers x 1 thread"]
+        pack = hd.ScenePack(scene)
+        print(f"the shipped scene carries {len(pack.files)} file{'' if len(pack.files) == 1 else 's'} "
+              f"({pack.shipped_bytes} bytes)\n")
+        ship = min(timed(lambda: client.scatter(pack, broadcast=True, hash=False).release())[0] for _ in range(3))
+        # A worker rebuilds the scene from the pack before its first band.
+        build = min(cpu_of(lambda: pickle.loads(pickle.dumps(pack)).scene()) for _ in range(3))
+        # A worker's CPU while idle (heartbeats): counted in the check.
+        before = worker_cpu(client)
+        time.sleep(2.0)
+        worker_idle = (worker_cpu(client) - before) / 2.0 / 2
+        hub_pixel = back / pixels
+        costs = {
+            "scene": os.path.relpath(a.scene, ROOT), "size": list(size), "spp": a.spp,
+            "pixel": one / pixels,
+            "task": r2.between_per_task,
+            # What the run cost beyond the frame's rendering (one thread's
+            # CPU time) and the workers' own costs: the client's and the
+            # scheduler's, per task.
+            "hub": max(0.0, (cpu2 - one - r2.tasks * r2.between_per_task - prepass - hub_pixel * pixels)
+                       / r2.tasks),
+            "hub_pixel": hub_pixel,
+            "save_pixel": save / pixels,
+            "ship": ship / 2 + build,
+            "worker_idle": worker_idle,
+            "row_costs": row_costs(scene, camera, BIG, {"spp": 1}, bands=64)[::BIG[1] // 64],
+        }
+        print(f"costs (CPU time): {one:.3f} s for the frame on 1 thread ({1e9 * costs['pixel']:.0f} ns a pixel), "
+              f"{1e3 * costs['task']:.2f} ms per task on a worker, {1e3 * costs['hub']:.2f} ms per task on the "
+              f"client and scheduler, {1e9 * hub_pixel:.1f} ns a pixel back, {1e9 * costs['save_pixel']:.0f} ns "
+              f"a pixel written (PNG), {1e3 * ship:.1f} ms to ship the scene to 2 workers and {1e3 * build:.1f} ms "
+              f"to build it on one, {1e3 * prepass:.1f} ms to weigh the rows, {1e3 * worker_idle:.1f} ms a second "
+              f"for an idle worker\n")
+    finally:
+        for c, client in clusters.values():
+            client.close()
+            c.close()
+
+    # The check: 1, 2, 4, 8 workers of 1 thread time-sliced on this machine.
+    check = size_of(a.check_size)
+    model = Costs(**{k: costs[k] for k in ("pixel", "task", "hub", "hub_pixel", "save_pixel", "ship")})
+    ratio = (check[0] * check[1]) / pixels
+    check_workers = [int(n) for n in a.check_workers.split(",")]
+    n_text = ", ".join(map(str, check_workers))
+    print(f"model check at {check[0]}x{check[1]}, spp {a.spp}: {n_text} workers of 1 thread time-sliced on "
+          f"{cores} cores. CPU: the client's and the workers' CPU seconds for the render, against the "
+          f"model's core time (rendering plus every cost it counts); wall: the model's wall on {cores} "
+          f"cores the runs had to themselves (this machine's were shared, so its wall is longer):\n")
+    print("| workers | tasks (measured, model) | CPU (s) | model (s) | model / measured | wall (s) | model (s) |")
+    print("|---:|---|---:|---:|---:|---:|---:|")
+    rows = []
+    for n in check_workers:
+        c, client = cluster(distributed, n, 1)
+        try:
+            hd.render(scene, camera, (64, 32), spp=1, client=client, progress=False)
+            runs = []
+            for _ in range(a.runs):
+                report = hd.Report()
+                before = worker_cpu(client)
+                cpu0 = time.process_time()
+                wall = timed(lambda: hd.render(scene, camera, check, spp=a.spp, client=client, progress=False,
+                                               report=report))[0]
+                cpu = time.process_time() - cpu0 - idle * wall + worker_cpu(client) - before
+                runs.append((cpu, wall, report.tasks))
+        finally:
+            client.close()
+            c.close()
+        cpu, wall, tasks = min(runs)
+        wall = min(r[1] for r in runs)
+        predicted = simulate(model, check, 1, n, min(1.0, cores / n), row_costs=costs["row_costs"])
+        # The model's core time: rendering, the workers' and the hub's
+        # costs per task, pixels back, shipping and building the scene, the
+        # rows' weighing, and the idle workers' heartbeats.
+        core = (check[0] * check[1] * (model.pixel + model.hub_pixel) + predicted.tasks * (model.task + model.hub)
+                + n * model.ship + prepass * ratio + n * worker_idle * wall)
+        rows.append((n, cpu, core, wall, predicted.wall))
+        print(f"| {n} | {tasks}, {predicted.tasks} | {cpu:.3f} | {core:.3f} | {core / cpu:.2f} | "
+              f"{wall:.3f} | {predicted.wall:.3f} |")
+    costs["check"] = [list(r) for r in rows]
+    print()
+    if a.costs:
+        pathlib.Path(a.costs).write_text(json.dumps(costs, indent=1) + "\n")
+        print(f"costs written to {a.costs}\n")
+    print(model_table(costs))
+
+
+def model_table(costs):
+    """The predictions, as the Markdown table of docs/distributed.md."""
+    model = Costs(**{k: costs[k] for k in ("pixel", "task", "hub", "hub_pixel", "save_pixel", "ship")})
+    per_pixel = model.pixel * BIG_SPP / costs["spp"]  # a sample costs the same at any spp
+    big = Costs(per_pixel, model.task, model.hub, model.hub_pixel, model.save_pixel, model.ship)
+    lines = [f"| workers x {CORES_EACH} cores | 4K frame, {BIG_SPP} spp: wall (s) | efficiency | tasks "
+             f"| {ANIMATION} frames: wall (s) | efficiency | tasks |",
+             "|---:|---:|---:|---:|---:|---:|---:|"]
+    for n in CLUSTERS:
+        one = simulate(big, BIG, 1, n, CORES_EACH, row_costs=costs["row_costs"])
+        anim = simulate(big, BIG, ANIMATION, n, CORES_EACH, row_costs=costs["row_costs"])
+        lines.append(f"| {n} | {one.wall:.2f} | {100 * one.efficiency:.0f}% | {one.tasks} | {anim.wall:.1f} | "
+                     f"{100 * anim.efficiency:.0f}% | {anim.tasks} |")
+    frame = BIG[0] * BIG[1] * per_pixel
+    lines.append("")
+    lines.append(f"(One 4K frame at {BIG_SPP} spp is {frame:.0f} core-seconds of rendering, from "
+                 f"{costs['scene']} measured at {costs['size'][0]}x{costs['size'][1]}, spp {costs['spp']}.)")
+    return "\n".join(lines)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    verbs = p.add_subparsers(dest="verb", required=True)
+    m = verbs.add_parser("measure")
+    m.add_argument("--scene", default=str(ROOT / "scenes" / "demo.sdl"))
+    m.add_argument("--size", default="1920x1080")
+    m.add_argument("--spp", type=int, default=4)
+    m.add_argument("--runs", type=int, default=3)
+    m.add_argument("--check-size", default="960x540")
+    m.add_argument("--check-workers", default="1,2,4,8", help="the model check's clusters: workers of 1 thread")
+    m.add_argument("--costs", help="write the measured costs here (JSON)")
+    t = verbs.add_parser("model")
+    t.add_argument("costs")
+    a = p.parse_args()
+    if a.verb == "measure":
+        import dask
+
+        # The clusters as hitray.distributed makes them (client=None): with
+        # Dask's monitoring relaxed.
+        with dask.config.set(QUIET):
+            measure(a)
+    else:
+        print(model_table(json.loads(pathlib.Path(a.costs).read_text())))
 
 
 if __name__ == "__main__":

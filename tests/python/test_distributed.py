@@ -4,6 +4,7 @@ bytes compared) for every option and tile size, a worker killed mid-frame,
 a scene whose mesh file only the client can read, animations written,
 skipped and resumed, cancellation, and bad input."""
 
+import json
 import os
 import pathlib
 import re
@@ -26,6 +27,7 @@ distributed = pytest.importorskip("distributed", reason="dask[distributed] is no
 dask = pytest.importorskip("dask")
 hd = pytest.importorskip("hitray.distributed")
 from hitray.distributed._client import local_cores  # noqa: E402
+from hitray.distributed._render import render_window  # noqa: E402
 
 HITRAY = BUILD / "bin" / "hitray"
 MESH_SCENE = ROOT / "tests" / "data" / "scenes" / "mesh_solids.sdl"
@@ -94,11 +96,12 @@ CASES = {
 }
 
 
-@pytest.mark.parametrize("tile", [17, 64])
+@pytest.mark.parametrize("tile", [None, 17, 64])
 @pytest.mark.parametrize("case", sorted(CASES))
 def test_distributed_frame_identity(client, tmp_path, case, tile):
-    """Tiles of 17 (cutting blocks of 3 and adaptive corners) and 64 (one
-    tile in a row, another cut by the edge) give the single render's EXR."""
+    """Bands sized by measurement (None), tiles of 17 (cutting blocks of 3
+    and adaptive corners) and 64 (one tile in a row, another cut by the
+    edge) give the single render's EXR."""
     kind, options = CASES[case]
     scene, camera = scene_of(kind)
     size = (70, 45)
@@ -130,6 +133,20 @@ def test_distributed_windows_cover_the_frame():
     assert (covered == 1).all() and len(tiles) == 5 * 3
 
 
+def killer(client):
+    """A progress callback that kills (SIGKILL) one worker the first time
+    it is called; the list of fractions it was called at; the pid killed."""
+    pids = client.run(os.getpid)
+    victim = pids[sorted(pids)[0]]
+    killed = []
+
+    def kill_once(fraction):
+        if not killed:
+            os.kill(victim, signal.SIGKILL)
+            killed.append(fraction)
+    return kill_once, killed, victim
+
+
 def test_distributed_worker_killed_mid_frame(client, tmp_path):
     """One worker is killed (SIGKILL) once the first tile is back: its tiles
     run again on the other and on the worker its nanny restarts, and the
@@ -137,14 +154,7 @@ def test_distributed_worker_killed_mid_frame(client, tmp_path):
     scene, camera = two_spheres()
     size, options = (64, 48), {"spp": 24}
     here = hitray.render(scene, camera, size, progress=False, **options)
-    pids = client.run(os.getpid)
-    victim = sorted(pids)[0]
-    killed = []
-
-    def kill_once(fraction):
-        if not killed:
-            os.kill(pids[victim], signal.SIGKILL)
-            killed.append(fraction)
+    kill_once, killed, victim = killer(client)
 
     # Fetching a finished tile from the dead worker, before the scheduler
     # knows it is dead, is retried for the connect timeout (30 s by default):
@@ -154,7 +164,67 @@ def test_distributed_worker_killed_mid_frame(client, tmp_path):
     assert killed and killed[0] < 1.0
     assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
     client.wait_for_workers(2, timeout=120)
-    assert pids[victim] not in client.run(os.getpid).values()
+    assert victim not in client.run(os.getpid).values()
+
+
+def test_distributed_worker_killed_mid_frame_bands(client, tmp_path):
+    """The same with bands sized by measurement: the killed worker's bands
+    are given back and handed on, and the frame is the same bits."""
+    scene, camera = two_spheres()
+    size, options = (96, 64), {"spp": 32}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    client.wait_for_workers(2, timeout=120)
+    kill_once, killed, _ = killer(client)
+    report = hd.Report()
+    with dask.config.set({"distributed.comm.timeouts.connect": "3s"}):
+        there = hd.render(scene, camera, size, client=client, progress=kill_once, report=report, **options)
+    assert killed and killed[0] < 1.0
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert report.pixels >= 96 * 64  # a band may have been rendered twice, never missed
+    client.wait_for_workers(2, timeout=120)
+
+
+def test_distributed_report(client):
+    """What each worker did, added up: every band's pixels once, rays as
+    the frame's, the balance and overhead share in their ranges."""
+    scene, camera = two_spheres()
+    size = (80, 60)
+    client.wait_for_workers(2, timeout=120)
+    report = hd.Report()
+    image = hd.render(scene, camera, size, spp=4, client=client, progress=False, report=report)
+    assert report.frames == 1 and report.pixels == 80 * 60
+    assert report.tasks == sum(w.tasks for w in report.workers.values()) >= 2
+    assert sum(w.rays for w in report.workers.values()) == image.stats.rays
+    assert set(report.workers) <= set(client.scheduler_info()["workers"])
+    assert all(w.threads == 1 and w.busy > 0 and w.rays_per_second > 0 for w in report.workers.values())
+    assert report.balance >= 1.0 and 0.0 <= report.overhead_share <= 1.0
+    assert report.wall > 0 and report.threads == len(report.workers)
+    assert any("balance" in line for line in report.lines())
+
+
+def test_distributed_band_on_all_of_a_workers_threads(tmp_path):
+    """A worker of 2 Dask threads renders a band on both: one band at a
+    time, 2 render threads each (the report says so), same bits."""
+    scene, camera = two_spheres()
+    here = hitray.render(scene, camera, (60, 40), spp=2, progress=False)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=True, host="127.0.0.1",
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        report = hd.Report()
+        there = hd.render(scene, camera, (60, 40), spp=2, client=c, progress=False, report=report)
+        # Four bands handed to the worker at once: its two Dask threads each
+        # take one, yet they render one after the other, each on both
+        # threads, never two at once on 2 threads each (4 threads on 2
+        # cores). Each task says when it began and ended, on the worker's clock.
+        pack = hd.ScenePack(scene)
+        futures = [c.submit(render_window, pack, camera, (60, 40), {"spp": 16}, (0, y, 60, 10), pure=False)
+                   for y in range(0, 40, 10)]
+        results = c.gather(futures)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    (worker,) = report.workers.values()
+    assert worker.threads == 2 and there.stats.threads == 2
+    assert [r[3] for r in results] == [2, 2, 2, 2]
+    spans = sorted((r[4], r[5]) for r in results)
+    assert all(a[1] <= b[0] for a, b in zip(spans, spans[1:])), spans
 
 
 def test_distributed_mesh_only_on_the_client(client, tmp_path):
@@ -227,6 +297,23 @@ def orbit(i, count=12):
     return scene, hitray.Camera((8 * np.sin(angle), 2, 8 * np.cos(angle)), (0, 1, 0), (0, 1, 0), 40)
 
 
+def test_distributed_animation_bands_and_whole_frames(client, tmp_path):
+    """Bands sized by measurement: whole frames while there are more frames
+    than workers, bands at the end; every frame the bits of hitray.render,
+    the report counting every pixel of every frame once."""
+    pattern = str(tmp_path / "frame_%02d.exr")
+    size = (40, 30)
+    report = hd.Report()
+    written = hd.render_frames(orbit, pattern, count=7, size=size, spp=2, client=client, progress=False,
+                               report=report)
+    assert sorted(written) == [pattern % i for i in range(7)]
+    assert report.frames == 7 and report.pixels == 7 * 40 * 30
+    for i in range(7):
+        scene, camera = orbit(i)
+        here = exr_bytes(hitray.render(scene, camera, size, spp=2, progress=False), tmp_path / "here.exr")
+        assert here == pathlib.Path(pattern % i).read_bytes(), i
+
+
 def test_distributed_animation_writes_skips_and_resumes(client, tmp_path):
     pattern = str(tmp_path / "frame_%02d.png")
     size = (32, 24)
@@ -288,7 +375,7 @@ def test_distributed_frames_empty_file_or_folder_is_not_a_frame(client, tmp_path
     (tmp_path / "f2.png").mkdir()
     with pytest.raises(IsADirectoryError, match=r"f2\.png: a directory is where frame 2 goes"):
         hd.render_frames(orbit, pattern, count=3, size=(16, 12), client=client, progress=False)
-    assert tile_tasks(client) == []
+    assert settled_tile_tasks(client) == []
 
 
 def tile_tasks(client):
@@ -301,7 +388,8 @@ def tile_tasks(client):
 def settled_tile_tasks(client):
     """The tiles the scheduler still knows once it has had up to 10 s to
     forget released ones (it does so soon after the client lets go, not at
-    once)."""
+    once; a band cancelled by Ctrl-C, or taken from a worker by an idle one
+    at the end of a run, is forgotten soon after too)."""
     for _ in range(200):
         left = tile_tasks(client)
         if not left:
@@ -327,7 +415,7 @@ def test_distributed_bad_input_raises_on_the_client(client, tmp_path):
     scene, camera = two_spheres()
     with pytest.raises(hitray.ArgumentError, match="adaptive supersampling needs samples per pixel >= 2"):
         hd.render(scene, camera, (20, 10), adaptive=0.1, client=client, progress=False)
-    with pytest.raises(ValueError, match="tile must be within 1..65536 pixels, not 0"):
+    with pytest.raises(ValueError, match=r"tile must be within 1..65536 pixels \(or None: .*\), not 0"):
         hd.render(scene, camera, (20, 10), tile=0, client=client, progress=False)
     with pytest.raises(ValueError, match="cut a 4000x3000 frame into 12000000 tiles, more than 100000"):
         hd.render(scene, camera, (4000, 3000), tile=1, client=client, progress=False)
@@ -339,7 +427,7 @@ def test_distributed_bad_input_raises_on_the_client(client, tmp_path):
         hd.render_frames(orbit, str(tmp_path / "f%d.png"), client=client, progress=False)
     with pytest.raises(TypeError, match="client must be a distributed.Client"):
         hd.render(scene, camera, (20, 10), client=42, progress=False)
-    assert tile_tasks(client) == []
+    assert settled_tile_tasks(client) == []
 
 
 def unused_port():
@@ -385,6 +473,7 @@ def test_distributed_cli_render_matches_hitray_render(client, tmp_path):
                     "--scheduler", client.scheduler.address, "--tile", 17, "-q", *options)
     assert proc.returncode == 0, proc.stderr
     assert "there.png: 40x30" in proc.stdout
+    assert "balance" in proc.stdout and "tasks on" in proc.stdout  # the report
     here = hitray.render(*hitray.load_sdl(scene_file), (40, 30), spp=4, adaptive=0.05, depth=2, progress=False)
     assert (tmp_path / "there.exr").read_bytes() == exr_bytes(here, tmp_path / "here.exr")
     if HITRAY.is_file():
@@ -403,30 +492,36 @@ def test_distributed_cli_on_a_local_cluster_quiet_off_a_terminal(tmp_path):
     proc = dist_cli("render", scene_file, "-o", tmp_path / "x.png", "--workers", 2, "--size", "40x30",
                     "--tile", 8)
     assert proc.returncode == 0, proc.stderr
-    assert "\r" not in proc.stderr and "tile/s" not in proc.stderr, proc.stderr
+    assert "\r" not in proc.stderr and "px/s" not in proc.stderr, proc.stderr
     threads = int(proc.stdout.split(" rays on ")[1].split()[0])
     assert 2 <= threads <= max(2, local_cores()), proc.stdout
 
 
-def test_bench_distributed_runs_and_ships_what_the_docs_say():
-    """bench/drivers/distributed.py (docs/distributed.md's costs) on one small frame:
-    every image checked against hitray.render's by the bench itself, and
-    the files it ships for the demo scene what the page says."""
-    done = subprocess.run([sys.executable, str(ROOT / "bench" / "drivers" / "distributed.py"), "--runs", "1", "--tiles", "32",
-                           "--workers", "1", "--size", "64x48"], capture_output=True, text=True, timeout=300)
+def test_bench_distributed_runs_and_ships_what_the_docs_say(tmp_path):
+    """bench/drivers/distributed.py measure (docs/distributed.md's costs) on
+    one small frame and a model check of one worker: every image checked
+    against hitray.render's by the bench itself, the costs written, and the
+    files it ships for the demo scene what the page says."""
+    costs = tmp_path / "costs.json"
+    done = subprocess.run([sys.executable, str(ROOT / "bench" / "drivers" / "distributed.py"), "measure",
+                           "--runs", "1", "--size", "64x48", "--check-size", "32x24", "--check-workers", "1",
+                           "--costs", str(costs)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     ships = re.search(r"the shipped scene carries \d+ files? \(\d+ bytes\)", done.stdout)
     assert ships, done.stdout
     page = (ROOT / "docs" / "distributed.md").read_text()
-    assert f"it now ships one file, its pixmap: `{ships[0]}`" in page, ships[0]
-    assert "| 1 | 32 **best** | 4 |" in done.stdout
+    assert f"The demo scene ships one file, its pixmap: `{ships[0]}`" in page, ships[0]
+    assert "| hitray.distributed, 2 workers x 1 thread |" in done.stdout
+    assert "| workers x 16 cores |" in done.stdout  # the model's table, from what it measured
+    measured = json.loads(costs.read_text())
+    assert measured["size"] == [64, 48] and [row[0] for row in measured["check"]] == [1]
 
 
 def test_bench_distributed_without_the_package_says_what_to_install(tmp_path):
     """After `make demo` alone .venv holds no hitray: the bench says so and
     what installs it, in one line."""
-    done = subprocess.run([sys.executable, "-I", "-S", str(ROOT / "bench" / "drivers" / "distributed.py")], capture_output=True,
-                          text=True, timeout=60, cwd=tmp_path)
+    done = subprocess.run([sys.executable, "-I", "-S", str(ROOT / "bench" / "drivers" / "distributed.py")],
+                          capture_output=True, text=True, timeout=60, cwd=tmp_path)
     assert done.returncode == 1 and "make python-install" in done.stderr, done.stderr
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
 
@@ -510,9 +605,10 @@ def test_distributed_local_cluster_when_no_client(tmp_path):
     here = hitray.render(scene, camera, (30, 20), spp=2, progress=False)
     there = hd.render(scene, camera, (30, 20), spp=2, workers=2, tile=16, progress=False)
     assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
-    # Both workers rendered, on the machine's cores shared among them: a
-    # tile of each renders on its share, not on every core (2 workers of 1
-    # Dask thread on 2 cores once rendered on 2 threads each, 4 in all).
+    # Both workers rendered, on the machine's cores shared among them: each
+    # worker process has its share as Dask threads and a tile renders on
+    # them, one tile at a time, not on every core (2 workers on 2 cores
+    # once rendered on 2 threads each, 4 in all).
     cores = local_cores()
     assert 2 <= there.stats.threads <= max(2, cores), (there.stats.threads, cores)
 
@@ -552,4 +648,4 @@ def test_distributed_render_takes_hitray_render_arguments():
     here = [p for p in inspect.signature(hitray.render).parameters if p != "window"]
     there = list(inspect.signature(hd.render).parameters)
     assert there[:len(here)] == here
-    assert there[len(here):] == ["client", "tile", "workers", "timeout"]
+    assert there[len(here):] == ["client", "tile", "workers", "timeout", "report"]

@@ -22,6 +22,7 @@ from .. import Camera, Error, load_nff, load_sdl
 from ._client import SchedulerUnreachable, connect
 from ._pack import ShippingError
 from ._render import render, render_frames
+from ._report import Report
 
 PROG = "python -m hitray.distributed"
 # Image.save's formats, by extension.
@@ -88,7 +89,8 @@ def _parser() -> argparse.ArgumentParser:
                        help="worker processes of the local cluster (default 1)")
     common.add_argument("--timeout", type=float, default=10.0, metavar="SECONDS",
                         help="how long to wait for the scheduler to answer (default 10)")
-    common.add_argument("--tile", type=_positive, default=64, metavar="N", help="tile side in pixels (default 64)")
+    common.add_argument("--tile", type=_positive, metavar="N",
+                        help="fixed square tiles of N pixels (default: bands sized by the workers' speed)")
     common.add_argument("--size", type=_size, default=(640, 480), metavar="WxH",
                         help="image size in pixels (default 640x480)")
     common.add_argument("--spp", type=_positive, default=1, metavar="N", help="samples per pixel (default 1)")
@@ -118,8 +120,8 @@ def _parser() -> argparse.ArgumentParser:
                    help="defines `frames`: (scene, camera) pairs, or a function of the frame number with `count`")
     f.add_argument("-o", "--output", required=True, metavar="PATTERN",
                    help="one file per frame: 'frame_%%04d.png'; frames already written are skipped")
-    f.add_argument("--frames-in-flight", type=_positive, default=4, metavar="N",
-                   help="frames whose tiles are scheduled together (default 4)")
+    f.add_argument("--frames-in-flight", type=_positive, metavar="N",
+                   help="frames in progress at once (default: two per worker)")
     return p
 
 
@@ -206,8 +208,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         else:
             frames, count = _script_frames(a.script)
         with connect(a.scheduler, a.workers, a.timeout) as client:
+            report = Report()
             if a.verb == "render":
-                image = render(scene, a.camera or camera, client=client, **opts)
+                image = render(scene, a.camera or camera, client=client, report=report, **opts)
                 image.save(a.output, **save)
                 if a.exr:
                     image.save(a.exr, half=a.exr_half)
@@ -217,8 +220,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                       f"on {s.threads} worker threads")
             else:
                 written: List[str] = render_frames(frames, a.output, count, client=client,
-                                                   frames_in_flight=a.frames_in_flight, **opts, **save)
+                                                   frames_in_flight=a.frames_in_flight, report=report,
+                                                   **opts, **save)
                 print(f"{len(written)} frames written")
+            if report.tasks:
+                print("\n".join(report.lines()))
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted", file=sys.stderr)
         return 130

@@ -10,7 +10,18 @@ import struct
 import time
 from typing import Any, Iterator, Optional, Tuple
 
-__all__ = ["SchedulerUnreachable", "dask_distributed", "connect", "probe", "local_cores"]
+__all__ = ["SchedulerUnreachable", "dask_distributed", "connect", "probe", "local_cores", "QUIET"]
+
+# Dask's own monitoring, relaxed for a cluster that renders. By default
+# every worker and scheduler wakes 50 times a second (the event loop's
+# tick), measures its memory 10 times a second and samples its threads'
+# stacks 100 times a second: 20-30 ms of CPU a second per process on the
+# development machine, a few percent of its cores taken from rendering.
+# These settings bring that under 7 ms (docs/distributed.md); the
+# LocalClusters made here use them, and a cluster's workers can be given
+# them as DASK_DISTRIBUTED__... environment variables.
+QUIET = {"distributed.admin.tick.interval": "500ms", "distributed.admin.system-monitor.interval": "2s",
+         "distributed.worker.memory.monitor-interval": "1s", "distributed.worker.profile.enabled": False}
 
 
 class SchedulerUnreachable(ConnectionError):
@@ -136,15 +147,18 @@ def connect(client: Any = None, workers: Optional[int] = None, timeout: float = 
             made.close()
         return
     n = 1 if workers is None else workers
-    # ":0": the scheduler's HTTP server (health checks, and the dashboard
-    # where bokeh is installed) on a free port, so clusters never collide.
-    cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=max(1, local_cores() // n),
-                                       processes=True, dashboard_address=":0")
-    try:
-        made = distributed.Client(cluster)
+    import dask
+
+    with dask.config.set(QUIET):
+        # ":0": the scheduler's HTTP server (health checks, and the dashboard
+        # where bokeh is installed) on a free port, so clusters never collide.
+        cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=max(1, local_cores() // n),
+                                           processes=True, dashboard_address=":0")
         try:
-            yield made
+            made = distributed.Client(cluster)
+            try:
+                yield made
+            finally:
+                made.close()
         finally:
-            made.close()
-    finally:
-        cluster.close()
+            cluster.close()

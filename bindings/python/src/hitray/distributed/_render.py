@@ -11,6 +11,10 @@ Dask runs its tasks again elsewhere and they give the same bits.
 from __future__ import annotations
 
 import collections
+import concurrent.futures
+import contextlib
+import queue
+import threading
 import os
 import stat
 import time
@@ -26,6 +30,8 @@ from ..render import render as _render_here
 from ..scene import Scene
 from ._client import connect, dask_distributed, local_cores
 from ._pack import ScenePack
+from ._plan import Band, Planner
+from ._report import Report, WorkerReport
 
 __all__ = ["render", "render_frames"]
 
@@ -41,55 +47,79 @@ def windows(size: Tuple[int, int], tile: int) -> List[Window]:
     return [(x, y, min(tile, w - x), min(tile, h - y)) for y in range(0, h, tile) for x in range(0, w, tile)]
 
 
-def host_threads(client: Any) -> Dict[str, int]:
-    """For each worker's address, the Dask threads of every worker on its
-    machine together (a LocalCluster of 2 processes of 1 thread: 2 for each)."""
-    try:
-        info = client.scheduler_info(n_workers=-1)  # every worker (some Dask versions list 5 by default)
-    except TypeError:  # a Dask before n_workers, which lists them all
-        info = client.scheduler_info()
-    workers = info.get("workers", {})
-    per_host: Dict[str, int] = collections.Counter()
-    for info in workers.values():
-        per_host[info.get("host")] += int(info.get("nthreads", 1))
-    return {address: per_host[info.get("host")] for address, info in workers.items()}
+# One band at a time in a worker process: a band renders on all the
+# worker's threads, so while one renders, a band given to the worker's
+# other Dask threads waits here.
+_BAND_LOCK = threading.Lock()
 
 
-def _tile_threads(threads: Optional[int], sharing: Optional[Dict[str, int]] = None) -> Tuple[int, int]:
-    """Render threads for one task, and this worker's Dask threads: `threads`
-    if given, else this machine's cores shared among the Dask threads of
-    every worker on it (`sharing`, by worker address: a `dask worker
-    --nthreads 4` alone on 16 cores renders 4 tiles at once on 4 threads
-    each; two worker processes of 1 thread on 2 cores, 1 thread each)."""
-    distributed = dask_distributed()
+def _worker() -> Tuple[str, int]:
+    """This worker's address and Dask threads (on a client's local run:
+    "local" and this machine's cores)."""
     try:
-        worker = distributed.get_worker()
-        nthreads, address = int(worker.state.nthreads), worker.address
-    except ValueError:  # not on a worker (a client's local run)
-        nthreads, address = 1, None
-    if threads is not None:
-        return threads, nthreads
-    on_machine = (sharing or {}).get(address, nthreads) if address else nthreads
-    return max(1, local_cores() // max(1, on_machine)), nthreads
+        w = dask_distributed().get_worker()
+    except ValueError:
+        return "local", local_cores()
+    return w.address, int(w.state.nthreads)
+
+
+def _cancelled() -> bool:
+    """Whether the task running here was cancelled (a band taken by an idle
+    worker while it waited for the band lock): then it need not render."""
+    try:
+        w = dask_distributed().get_worker()
+        ts = w.state.tasks.get(w.get_current_task())
+    except (ValueError, AttributeError, KeyError):  # not on a worker, or Dask's internals moved
+        return False
+    return ts is not None and ts.state == "cancelled"
 
 
 def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], options: Dict[str, Any],
-                  window: Window, threads: Optional[int] = None, sharing: Optional[Dict[str, int]] = None
-                  ) -> Tuple[np.ndarray, Tuple[int, int, int, int, Tuple[str, ...]], str, int]:
-    """The task: one window of the frame, on a worker. Returns its pixels,
-    its rays (primary, shadow, reflected, refracted, effects), the worker
-    and the threads it renders on at once (its Dask threads, each rendering
-    a tile on the tile's threads)."""
-    threads, nthreads = _tile_threads(threads, sharing)
-    image = _render_here(pack.scene(), camera, size, threads=threads, progress=False, window=window, **options)
+                  window: Window, threads: Optional[int] = None) -> Optional[Tuple[Any, ...]]:
+    """The task: one window of the frame, on a worker, on `threads` threads
+    (None: all the worker's). Returns its pixels, its rays (primary, shadow,
+    reflected, refracted, effects), the worker, the threads it rendered on,
+    and the worker's clock (time.time) when rendering began and ended; None
+    if it was cancelled before it began."""
+    where, nthreads = _worker()
+    threads = nthreads if threads is None else threads
+    scene = pack.scene()
+    with _BAND_LOCK if threads == nthreads else contextlib.nullcontext():
+        if _cancelled():
+            return None
+        began = time.time()
+        image = _render_here(scene, camera, size, threads=threads, progress=False, window=window, **options)
+        ended = time.time()
     s = image.stats
     assert s is not None
     rays = (s.primary, s.shadow, s.reflected, s.refracted, tuple(sorted(s.effects)))
-    try:
-        where = dask_distributed().get_worker().address
-    except ValueError:
-        where = "local"
-    return np.array(image, copy=True), rays, where, threads * nthreads
+    return np.asarray(image), rays, where, threads, began, ended
+
+
+def row_costs(scene: Scene, camera: Camera, size: Tuple[int, int], options: Dict[str, Any],
+              width: int = 240, bands: int = 32) -> List[float]:
+    """Each row's relative cost in a frame of `size`: the rays cast by the
+    rows of a small render of it (about `width` pixels wide, 1 sample per
+    pixel, one thread), in `bands` windows. Rays, not seconds: the same
+    answer on any machine, however busy. Costs a few hundredths of the
+    frame at 1 spp."""
+    w, h = size
+    k = max(1, w // width)
+    sw, sh = max(1, w // k), max(1, h // k)
+    cheap = dict(options, spp=1, adaptive=None, block_size=None, block=None)
+    n = min(bands, sh)
+    edges = [round(i * sh / n) for i in range(n + 1)]
+    density = []
+    for y0, y1 in zip(edges, edges[1:]):
+        s = _render_here(scene, camera, (sw, sh), threads=1, progress=False, window=(0, y0, sw, y1 - y0),
+                         **cheap).stats
+        assert s is not None
+        density.append(max(1, s.rays) / (y1 - y0))
+    # Row y of the frame lies in row y * sh // h of the small render.
+    band_of = [0] * sh
+    for i, (y0, y1) in enumerate(zip(edges, edges[1:])):
+        band_of[y0:y1] = [i] * (y1 - y0)
+    return [density[band_of[min(sh - 1, y * sh // h)]] for y in range(h)]
 
 
 def _options(spp: int, depth: Optional[int], block: Optional[int], effects: str,
@@ -118,19 +148,20 @@ def _check_here(scene: Scene, camera: Optional[Camera], size: Tuple[int, int],
 
 
 class _Frame:
-    """One frame on its way: its tiles' futures and the pixels come back."""
+    """One frame on its way: its pixels as they come back."""
 
-    def __init__(self, index: int, path: Optional[str], size: Tuple[int, int], pack_key: str) -> None:
-        self.index, self.path, self.pack_key = index, path, pack_key
+    def __init__(self, index: int, path: Optional[str], size: Tuple[int, int], pack_key: str,
+                 camera: Camera) -> None:
+        self.index, self.path, self.pack_key, self.camera = index, path, pack_key, camera
         self.pixels = np.empty((size[1], size[0], 3), dtype=np.float32)
-        self.pending = 0
         self.rays = [0, 0, 0, 0]
         self.effects: Set[str] = set()
         self.workers: Dict[str, int] = {}
         self.started = time.monotonic()
+        self.scene: Optional[Scene] = None
 
     def place(self, window: Window, result: Tuple[Any, ...]) -> None:
-        pixels, rays, where, threads = result
+        pixels, rays, where, threads = result[:4]
         x, y, w, h = window
         if pixels.shape != (h, w, 3):
             raise RuntimeError(f"hitray.distributed: a worker returned {pixels.shape} pixels for the "
@@ -140,7 +171,6 @@ class _Frame:
             self.rays[i] += rays[i]
         self.effects.update(rays[4])
         self.workers[where] = max(self.workers.get(where, 0), threads)
-        self.pending -= 1
 
     def image(self) -> Image:
         image = Image(self.pixels)
@@ -150,7 +180,7 @@ class _Frame:
 
 
 class _Bar:
-    """Progress over tiles: a tqdm bar, a callable given the fraction done,
+    """Progress over pixels: a tqdm bar, a callable given the fraction done,
     or nothing."""
 
     def __init__(self, progress: Progress, total: int, what: str) -> None:
@@ -163,15 +193,16 @@ class _Bar:
             # None: a bar where someone watches (standard error a terminal,
             # or a notebook), as hitray.render and the hitray command do.
             if _progress.wanted(progress):
-                self._bar = _progress.tqdm_class()(total=total, unit="tile", desc=what, leave=False)
+                self._bar = _progress.tqdm_class()(total=total, unit="px", unit_scale=True, desc=what,
+                                                   leave=False)
         else:
             raise TypeError("hitray.distributed: progress must be None (auto), True, False or a callable "
                             "taking the fraction done")
 
-    def tile(self) -> None:
-        self._done += 1
+    def pixels(self, n: int) -> None:
+        self._done += n
         if self._bar is not None:
-            self._bar.update(1)
+            self._bar.update(n)
         elif self._callback is not None:
             self._callback(self._done / self._total)
 
@@ -202,30 +233,48 @@ def _same_description(a: Tuple[Any, List[Any], Dict[str, Any]], b: Tuple[Any, Li
 
 
 class _Run:
-    """Tiles of frames on a client: scenes shipped once each (scattered to
-    every worker), tiles submitted with earlier frames first, frames handed
-    back as they complete."""
+    """Bands of frames on a client (the Planner says which): each worker
+    holds `DEPTH` bands (one rendering, the next waiting, so it never waits
+    on the client), scenes shipped once each (scattered to every worker),
+    frames handed back as they complete. A worker that leaves has its bands
+    not yet back given back to the planner, which hands them on cut to size.
+    With a fixed tile size, every tile of the open frames is submitted at
+    once and Dask places them."""
 
     # Scenes no frame in flight uses stay on the workers, this many of the
     # latest, for the next frames (an animation of one scene ships it once);
     # older ones are dropped, so a run of many scenes holds few at a time.
     KEEP_IDLE = 2
+    # Bands held by a worker at once.
+    DEPTH = 2
+    # How often, waiting for bands, the client asks the scheduler which
+    # workers there are (seconds).
+    CHECK_WORKERS = 0.5
 
-    def __init__(self, client: Any, size: Tuple[int, int], options: Dict[str, Any], tile: int,
-                 threads: Optional[int], bar: _Bar) -> None:
-        distributed = dask_distributed()
+    def __init__(self, client: Any, size: Tuple[int, int], options: Dict[str, Any], planner: Planner,
+                 threads: Optional[int], bar: _Bar, frame_at: Callable[[int], Tuple[int, Optional[str], Scene,
+                                                                            Camera]],
+                 report: Optional[Report]) -> None:
         self.client, self.size, self.options, self.bar = client, size, options, bar
-        self.threads = threads
-        self.windows = windows(size, tile)
+        self.planner, self.threads, self.frame_at = planner, threads, frame_at
+        self.report = report if report is not None else Report()
         self.run_id = uuid.uuid4().hex
-        self.tiles: Dict[Any, Tuple[_Frame, Window]] = {}
+        self.sized = planner.tile is None
+        self.frames: Dict[int, _Frame] = {}
+        # The tasks out: future -> band, and band -> future.
+        self.out: Dict[Any, Band] = {}
+        self.by_band: Dict[Band, Any] = {}
+        self.submitted = 0
+        self.done: "queue.Queue[Any]" = queue.Queue()
         self.shipped: "collections.OrderedDict[str, _Shipped]" = collections.OrderedDict()
         # id(scene) -> (the scene, kept so the id stays its own; its
         # description when packed; the pack).
         self.by_scene: Dict[int, Tuple[Scene, Any, ScenePack]] = {}
-        # with_results: each tile's pixels are fetched as soon as it is done,
-        # in the client's event loop, not by one round trip per tile here.
-        self.completed = distributed.as_completed(with_results=True)
+        self.known: Set[str] = set()
+        if self.sized and planner.row_costs is None:
+            planner.row_costs = self._row_costs
+        self.checked = 0.0
+        self.started = time.monotonic()
 
     def _pack(self, scene: Scene) -> ScenePack:
         """The scene's pack: made again only if the scene changed since."""
@@ -235,25 +284,134 @@ class _Run:
             known = self.by_scene[id(scene)] = (scene, description, ScenePack(scene))
         return known[2]
 
-    def submit(self, index: int, path: Optional[str], scene: Scene, camera: Camera) -> None:
-        pack = self._pack(scene)
-        shipped = self.shipped.get(pack.key)
-        if shipped is None:
-            shipped = self.shipped[pack.key] = _Shipped(self.client.scatter(pack, broadcast=True, hash=False))
-        self.shipped.move_to_end(pack.key)
-        shipped.users += 1
-        frame = _Frame(index, path, self.size, pack.key)
-        n = len(self.windows)
-        # One map, one message to the scheduler for the frame's tiles.
-        futures = self.client.map(render_window, [shipped.future] * n, [camera] * n, [self.size] * n,
-                                  [self.options] * n, self.windows, [self.threads] * n,
-                                  [host_threads(self.client)] * n,
-                                  key=[f"hitray-tile-{self.run_id}-{index}-{x}-{y}" for x, y, _, _ in self.windows],
-                                  pure=False, priority=-index)
-        for future, window in zip(futures, self.windows):
-            self.tiles[future] = (frame, window)
-        frame.pending = n
-        self.completed.update(futures)
+    def _frame(self, n: int) -> _Frame:
+        frame = self.frames.get(n)
+        if frame is None:
+            index, path, scene, camera = self.frame_at(n)
+            pack = self._pack(scene)
+            shipped = self.shipped.get(pack.key)
+            if shipped is None:
+                shipped = self.shipped[pack.key] = _Shipped(self.client.scatter(pack, broadcast=True, hash=False))
+            self.shipped.move_to_end(pack.key)
+            shipped.users += 1
+            frame = self.frames[n] = _Frame(index, path, self.size, pack.key, camera)
+            frame.scene = scene
+        return frame
+
+    def _row_costs(self, n: int) -> List[float]:
+        frame = self._frame(n)
+        assert frame.scene is not None
+        return row_costs(frame.scene, frame.camera, self.size, self.options)
+
+    def _submit(self, worker: Optional[str]) -> bool:
+        band = self.planner.next_band(worker)
+        if band is None and worker is not None and not self.planner.held(worker):
+            stolen = self.planner.steal(worker)  # nothing left: take a band waiting behind another's
+            if stolen is not None:
+                self._cancel([stolen[1]])
+                band = self.planner.next_band(worker)
+        if band is None:
+            return False
+        frame = self._frame(band.frame)
+        x, y, w, h = band.window
+        where = {} if worker is None else {"workers": [worker], "allow_other_workers": True}
+        self.submitted += 1
+        future = self.client.submit(render_window, self.shipped[frame.pack_key].future, frame.camera, self.size,
+                                    self.options, band.window, self.threads,
+                                    key=f"hitray-tile-{self.run_id}-{frame.index}-{x}-{y}-{w}-{h}-{self.submitted}",
+                                    pure=False, priority=-band.frame, **where)
+        self.out[future] = band
+        self.by_band[band] = future
+        future.add_done_callback(self.done.put)
+        return True
+
+    def _cancel(self, bands: List[Band]) -> None:
+        """Forget the tasks of bands given back (a result that comes anyway
+        is ignored: the band is rendered again elsewhere, to the same bits)."""
+        futures = [self.by_band.pop(b) for b in bands if b in self.by_band]
+        for future in futures:
+            self.out.pop(future, None)
+        if futures:
+            self.client.cancel(futures)
+
+    def _workers(self) -> None:
+        """Follow the scheduler's workers: new ones get bands, lost ones'
+        bands not back are handed on."""
+        self.checked = time.monotonic()
+        now = set(self.client.scheduler_info()["workers"])
+        for gone in self.known - now:
+            self._cancel(self.planner.remove_worker(gone))
+        for new in sorted(now - self.known):
+            self.planner.add_worker(new)
+        self.known = now
+
+    def _fill(self) -> None:
+        if not self.sized:
+            while self._submit(None):
+                pass
+            return
+        if not self.known or time.monotonic() - self.checked > self.CHECK_WORKERS:
+            self._workers()
+        for _ in range(self.DEPTH):  # round-robin: every worker's first band before anyone's second
+            for worker in sorted(self.known):
+                if self.planner.held(worker) < self.DEPTH:
+                    self._submit(worker)
+
+    def _next_done(self) -> Any:
+        while True:
+            try:
+                future = self.done.get(timeout=self.CHECK_WORKERS)
+            except queue.Empty:
+                if self.sized:
+                    self._workers()
+                    self._fill()
+                continue
+            if future in self.out:
+                return future
+
+    def frames_done(self) -> Iterator[_Frame]:
+        """Frames as their last band comes back (a worker's failure raised)."""
+        self._fill()
+        while not self.planner.finished():
+            future = self._next_done()
+            result = future.result()
+            band = self.out.pop(future)
+            del self.by_band[band]
+            future.release()
+            if result is None:  # it saw itself cancelled, yet was still wanted: render it again
+                self.planner.give_back(band, forget=True)
+                self._fill()
+                continue
+            pixels, rays, where, threads, began, ended = result
+            frame = self.frames[band.frame]
+            frame.place(band.window, result)
+            self._count(band, where, threads, rays, began, ended)
+            complete = self.planner.done(band, where, ended - began)
+            self._fill()
+            self.bar.pixels(band.pixels)
+            if complete:
+                del self.frames[band.frame]
+                self.shipped[frame.pack_key].users -= 1
+                self._drop_idle()
+                self.report.frames += 1
+                self.report.wall = time.monotonic() - self.started
+                yield frame
+                self._fill()
+
+    def _count(self, band: Band, where: str, threads: int, rays: Tuple[Any, ...], began: float,
+               ended: float) -> None:
+        r = self.report
+        w = r.workers.get(where)
+        if w is None:
+            w = r.workers[where] = WorkerReport(where)
+        w.threads = max(w.threads, threads)
+        w.tasks += 1
+        w.pixels += band.pixels
+        w.rays += sum(rays[:4])
+        w.busy += ended - began
+        w.first, w.last = min(w.first, began), max(w.last, ended)
+        r.tasks += 1
+        r.pixels += band.pixels
 
     def _drop_idle(self) -> None:
         idle = [key for key, s in self.shipped.items() if s.users == 0]
@@ -262,27 +420,13 @@ class _Run:
             for scene_id in [i for i, known in self.by_scene.items() if known[2].key == key]:
                 del self.by_scene[scene_id]
 
-    def frames(self) -> Iterator[_Frame]:
-        """Frames as their last tile comes back (a worker's failure raised)."""
-        for future, result in self.completed:
-            frame, window = self.tiles.pop(future)
-            frame.place(window, result)
-            future.release()
-            self.bar.tile()
-            if frame.pending == 0:
-                self.shipped[frame.pack_key].users -= 1
-                self._drop_idle()
-                yield frame
-
-    def in_flight(self) -> int:
-        return len({id(frame) for frame, _ in self.tiles.values()})
-
     def close(self) -> None:
-        """Cancel every tile still out (after Ctrl-C or a failure) and let
+        """Cancel every band still out (after Ctrl-C or a failure) and let
         the workers drop the scenes."""
-        if self.tiles:
-            self.client.cancel(list(self.tiles))
-        self.tiles.clear()
+        if self.out:
+            self.client.cancel(list(self.out))
+        self.out.clear()
+        self.by_band.clear()
         for shipped in self.shipped.values():
             shipped.future.release()
         self.shipped.clear()
@@ -304,10 +448,13 @@ def _threads(threads: Any) -> Optional[int]:
 MAX_TILES_PER_FRAME = 100_000
 
 
-def _tile_size(tile: Any, size: Tuple[int, int]) -> int:
+def _tile_size(tile: Any, size: Tuple[int, int]) -> Optional[int]:
+    if tile is None:
+        return None
     t = _convert.integer(tile, "tile")
     if not 1 <= t <= 65536:
-        raise ValueError(f"hitray.distributed: tile must be within 1..65536 pixels, not {t}")
+        raise ValueError(f"hitray.distributed: tile must be within 1..65536 pixels (or None: bands sized by "
+                         f"measurement), not {t}")
     count = -(-size[0] // t) * -(-size[1] // t)
     if count > MAX_TILES_PER_FRAME:
         raise ValueError(f"hitray.distributed: tiles of {t} pixels cut a {size[0]}x{size[1]} frame into {count} "
@@ -319,53 +466,61 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
            threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = None, *,
            block: Optional[int] = None, effects: str = "auto", adaptive: Optional[float] = None,
            min_weight: Optional[float] = None, exact: bool = False, block_size: Optional[int] = None,
-           all_effects: bool = False, client: Any = None, tile: int = 64, workers: Optional[int] = None,
-           timeout: float = 10.0) -> Image:
+           all_effects: bool = False, client: Any = None, tile: Optional[int] = None,
+           workers: Optional[int] = None, timeout: float = 10.0, report: Optional[Report] = None) -> Image:
     """Render `scene` through `camera` as :func:`hitray.render` does, on a
-    Dask cluster: the frame is cut into tiles of `tile` x `tile` pixels,
-    each rendered by a worker, and the Image put back together is bit for
-    bit the one ``hitray.render`` gives with the same options (its
-    arguments, in its order, plus the cluster's).
+    Dask cluster: the frame is cut into bands, each rendered by a worker on
+    all its threads, and the Image put back together is bit for bit the one
+    ``hitray.render`` gives with the same options (its arguments, in its
+    order, plus the cluster's).
 
     Args:
         client: a ``distributed.Client``; a scheduler address
             (``"tcp://host:8786"``, connected to within `timeout` seconds,
             else SchedulerUnreachable); None: a LocalCluster on this machine
-            of `workers` processes (None: one), closed afterwards.
-        tile: tile side in pixels: smaller tiles balance the workers' load,
-            larger ones cost less scheduling per pixel (docs/distributed.md).
-        threads: render threads per tile (None: the worker machine's cores
-            shared among the Dask threads of every worker on it). The image
+            of `workers` processes (None: one) sharing its cores, closed
+            afterwards.
+        tile: None: bands of rows sized by the workers' measured speed (the
+            first bands are small probes, the rest share out the work so the
+            workers finish together); a number: fixed square tiles of that
+            side, all handed to Dask at once.
+        threads: render threads per task (None: all the worker's, its Dask
+            ``nthreads``; a worker then renders one band at a time, so its
+            threads never render more than one band together). The image
             is the same whatever the count.
-        progress: None (the default) shows a tqdm bar over tiles where
+        progress: None (the default) shows a tqdm bar over pixels where
             someone watches (standard error a terminal, or a notebook), as
             hitray.render does; True always; a callable gets the fraction
-            of tiles done; False shows nothing.
+            of pixels done; False shows nothing.
+        report: a :class:`Report` filled in with what each worker did (rays
+            per second, the share of core time not spent rendering, the
+            balance).
 
     The scene is shipped to every worker once, with every file it
     references (mesh files) inside it: workers need no shared file system,
     only the same hitray installation (and any shape modules it loads).
     The options are checked here first, so a mistake raises before any task
-    runs. Ctrl-C cancels the tiles still out and raises KeyboardInterrupt;
-    a worker's failure is raised here. ``image.stats`` adds up the tiles'
-    rays (an adaptive corner on a tile border is cast by both tiles).
+    runs. Ctrl-C cancels the tasks still out and raises KeyboardInterrupt;
+    a worker's failure is raised here; a worker lost has its bands rendered
+    by the others. ``image.stats`` adds up the bands' rays (an adaptive
+    corner on a band border is cast by both bands).
     """
     size = _convert.size(size)
     tile = _tile_size(tile, size)
     options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
-    tile_threads = _threads(threads)
+    task_threads = _threads(threads)
     camera = _check_here(scene, camera, size, options)
     with connect(client, workers, timeout) as c:
-        bar = _Bar(progress, len(windows(size, tile)), "hitray.distributed")
-        run = _Run(c, size, options, tile, tile_threads, bar)
+        bar = _Bar(progress, size[0] * size[1], "hitray.distributed")
+        run = _Run(c, size, options, Planner(size, 1, open_frames=1, tile=tile), task_threads, bar,
+                   lambda n: (0, None, scene, camera), report)
         try:
-            run.submit(0, None, scene, camera)
-            for frame in run.frames():
+            for frame in run.frames_done():
                 return frame.image()
         finally:
             run.close()
             bar.close()
-    raise RuntimeError("hitray.distributed: the frame never completed")  # unreachable: frames() ends with it
+    raise RuntimeError("hitray.distributed: the frame never completed")  # unreachable: frames_done() ends with it
 
 
 def _frame_path(out_pattern: Any, index: int) -> str:
@@ -399,22 +554,27 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
                   depth: Optional[int] = None, progress: Progress = None, *, block: Optional[int] = None,
                   effects: str = "auto", adaptive: Optional[float] = None, min_weight: Optional[float] = None,
                   exact: bool = False, block_size: Optional[int] = None, all_effects: bool = False,
-                  client: Any = None, tile: int = 64, workers: Optional[int] = None, timeout: float = 10.0,
-                  frames_in_flight: int = 4, bits: int = 8, linear: bool = False, half: bool = False,
-                  on_frame: Optional[Callable[[int, str], Any]] = None) -> List[str]:
+                  client: Any = None, tile: Optional[int] = None, workers: Optional[int] = None,
+                  timeout: float = 10.0, frames_in_flight: Optional[int] = None, bits: int = 8,
+                  linear: bool = False, half: bool = False, on_frame: Optional[Callable[[int, str], Any]] = None,
+                  report: Optional[Report] = None) -> List[str]:
     """Render an animation on a Dask cluster, one file per frame.
 
     `frames` is a sequence of (scene, camera) pairs, or a function of the
     frame number returning one (then `count` says how many frames). Frame
     `i` is written to ``out_pattern % i`` (``"frame_%04d.png"``; PNG or EXR
     by the extension, with `bits`, `linear` and `half` as Image.save takes
-    them), atomically, as soon as its last tile is in. A frame whose file
-    exists already is skipped, so a rerun after an interruption renders only
-    what is missing. Tiles of up to `frames_in_flight` frames are scheduled
-    together (earlier frames first), which bounds the memory held for
-    frames in progress. `on_frame(i, path)` is called after each frame is
-    written. Other arguments as :func:`render`; each frame's image is bit
-    for bit what ``hitray.render`` gives it. Returns the paths written now.
+    them), atomically, as soon as its last pixels are in, on a thread of its
+    own while the next frame's bands come in (one frame at a time). A frame
+    whose file exists already is skipped, so a rerun after an interruption
+    renders only what is missing. While there are more frames to do than workers, a task
+    is a whole frame; the last frames are cut into bands, so the animation
+    ends with every worker busy. At most `frames_in_flight` frames are in
+    progress at once (None: two per worker), which bounds the memory held
+    for them. `on_frame(i, path)` is called after each frame is written,
+    before the next one's write is started.
+    Other arguments as :func:`render`; each frame's image is bit for bit
+    what ``hitray.render`` gives it. Returns the paths written now.
     """
     if callable(frames):
         if count is None:
@@ -433,11 +593,13 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
             return listed[i]
     size = _convert.size(size)
     tile = _tile_size(tile, size)
-    in_flight = _convert.integer(frames_in_flight, "frames_in_flight")
-    if in_flight < 1:
-        raise ValueError(f"render_frames: frames_in_flight must be at least 1, not {in_flight}")
+    in_flight: Optional[int] = None
+    if frames_in_flight is not None:
+        in_flight = _convert.integer(frames_in_flight, "frames_in_flight")
+        if in_flight < 1:
+            raise ValueError(f"render_frames: frames_in_flight must be at least 1, not {in_flight}")
     options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
-    tile_threads = _threads(threads)
+    task_threads = _threads(threads)
     todo = [(i, path) for i, path in ((i, _frame_path(out_pattern, i)) for i in range(total))
             if not _finished(path, i)]
     for index, path in todo:
@@ -448,35 +610,53 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
         return []
     written: List[str] = []
     checked = False
-    with connect(client, workers, timeout) as c:
-        bar = _Bar(progress, len(todo) * len(windows(size, tile)), "hitray.distributed")
-        run = _Run(c, size, options, tile, tile_threads, bar)
-        queue = iter(todo)
 
-        def top_up() -> None:
-            nonlocal checked
-            while run.in_flight() < in_flight:
-                item = next(queue, None)
-                if item is None:
-                    return
-                index, path = item
-                scene, camera = _frame_pair(frame_at(index), index)
-                if not checked or camera is None:
-                    camera = _check_here(scene, camera, size, options)
-                    checked = True
-                run.submit(index, path, scene, camera)
+    def opened(n: int) -> Tuple[int, Optional[str], Scene, Camera]:
+        """The n-th frame to do, asked for when the planner opens it."""
+        nonlocal checked
+        index, path = todo[n]
+        scene, camera = _frame_pair(frame_at(index), index)
+        if not checked or camera is None:
+            camera = _check_here(scene, camera, size, options)
+            checked = True
+        return index, path, scene, camera
+
+    with connect(client, workers, timeout) as c:
+        if in_flight is None:
+            in_flight = max(2, 2 * len(c.scheduler_info()["workers"]))
+        bar = _Bar(progress, len(todo) * size[0] * size[1], "hitray.distributed")
+        run = _Run(c, size, options, Planner(size, len(todo), open_frames=in_flight, tile=tile), task_threads,
+                   bar, opened, report)
+        # A frame is written on a thread of its own (Image.save releases the
+        # GIL) while the bands of the next come in: one write at a time, the
+        # next frame's started only once the last is written and on_frame
+        # has been told, so an on_frame that stops the run leaves no other
+        # frame half done.
+        writer = concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="hitray-frame-writer")
+        writing: Optional[Tuple["concurrent.futures.Future[None]", _Frame]] = None
+
+        def written_out() -> None:
+            nonlocal writing
+            if writing is None:
+                return
+            done, frame = writing
+            writing = None
+            done.result()  # a failed write raised here
+            assert frame.path is not None  # for mypy: every frame of render_frames has a path
+            written.append(frame.path)
+            bar.frame(len(written), len(todo))
+            if on_frame is not None:
+                on_frame(frame.index, frame.path)
 
         try:
-            top_up()
-            for frame in run.frames():
+            for frame in run.frames_done():
+                written_out()
                 assert frame.path is not None
-                frame.image().save(frame.path, bits=bits, linear=linear, half=half)
-                written.append(frame.path)
-                bar.frame(len(written), len(todo))
-                if on_frame is not None:
-                    on_frame(frame.index, frame.path)
-                top_up()
+                writing = (writer.submit(frame.image().save, frame.path, bits=bits, linear=linear, half=half),
+                           frame)
+            written_out()
         finally:
+            writer.shutdown(wait=True)  # a write under way ends (whole: frames are written atomically)
             run.close()
             bar.close()
     return written

@@ -1,0 +1,292 @@
+"""The scheduling logic of hitray.distributed (its Planner), alone and with
+made-up timings: no cluster, no clock, so every assertion is exact.
+
+A small event simulation plays workers of given speeds against the planner:
+each worker holds two bands, renders them one after the other, and the
+planner hears back each band's render time."""
+
+import heapq
+import threading
+
+import numpy as np
+import pytest
+
+plan = pytest.importorskip("hitray.distributed._plan")
+Planner, Band = plan.Planner, plan.Band
+
+
+def simulate(planner, speeds, cost=None, lose=None, depth=2):
+    """Play workers (name -> pixels per second) against `planner` until it
+    is finished, as the client does: each worker holds `depth` bands and
+    renders them in order; an idle worker with nothing left to hand out
+    steals the band waiting behind another's. `cost(frame, y)`: the
+    relative cost of a row (1 if None). `lose`: (worker, time): that worker
+    vanishes then, its bands given back. Returns every band done with its
+    worker and start/end times."""
+    cost = cost or (lambda f, y: 1.0)
+    held = {w: [] for w in speeds}  # bands, in order; the first is rendering
+    began = {}  # worker -> when its first band began
+    done = []
+    for w in speeds:
+        planner.add_worker(w)
+
+    def duration(w, band):
+        x, y, bw, bh = band.window
+        return sum(cost(band.frame, r) for r in range(y, y + bh)) * bw / speeds[w]
+
+    def fill(now):
+        for _ in range(depth):
+            for w in sorted(held):
+                if len(held[w]) < depth:
+                    band = planner.next_band(w)
+                    if band is None and not held[w]:
+                        stolen = planner.steal(w)
+                        if stolen is not None:
+                            held[stolen[0]].remove(stolen[1])
+                            band = planner.next_band(w)
+                    if band is None:
+                        continue
+                    if not held[w]:
+                        began[w] = now
+                    held[w].append(band)
+
+    now = 0.0
+    fill(now)
+    while any(held.values()):
+        w = min((w for w in held if held[w]), key=lambda w: (began[w] + duration(w, held[w][0]), w))
+        end = began[w] + duration(w, held[w][0])
+        if lose and w != lose[0] and lose[0] in held and end > lose[1]:
+            now = lose[1]
+            planner.remove_worker(lose[0])
+            del held[lose[0]]
+            fill(now)
+            continue
+        now = end
+        band = held[w].pop(0)
+        done.append((band, w, began[w], now))
+        began[w] = now
+        planner.done(band, w, now - done[-1][2])
+        fill(now)
+    assert planner.finished()
+    return done
+
+
+def coverage(done, frames, size):
+    covered = np.zeros((frames, size[1], size[0]), dtype=int)
+    for band, *_ in done:
+        x, y, w, h = band.window
+        covered[band.frame, y:y + h, x:x + w] += 1
+    return covered
+
+
+def test_bands_cover_the_frame_once_in_full_rows():
+    size = (300, 200)
+    done = simulate(Planner(size, 1), {"a": 1e5, "b": 1e5})
+    assert (coverage(done, 1, size) == 1).all()
+    assert all(b.window[0] == 0 and b.window[2] == 300 for b, *_ in done)
+
+
+def test_first_bands_are_probes():
+    """Before anything is measured, a band is a sixteenth of the work per
+    worker: a slow worker cannot hold the frame up."""
+    p = Planner((100, 160), 1)
+    p.add_worker("a")
+    p.add_worker("b")
+    assert p.next_band("a") == Band(0, (0, 0, 100, 5))
+    assert p.next_band("b") == Band(0, (0, 5, 100, 5))
+
+
+@pytest.mark.parametrize("speeds", [{"a": 1e5, "b": 1e5}, {"a": 3e5, "b": 1e5, "c": 5e4},
+                                    {f"w{i}": 1e5 * (1 + i % 3) for i in range(8)}])
+def test_workers_finish_within_one_band_of_each_other(speeds):
+    """Workers of different speeds, rows of different cost (a band of the
+    image costs 10 times the rest, as the planner is told by row_costs):
+    the last worker ends no later than one of its last bands after the
+    first ends, and the bands are few."""
+    size = (640, 480)
+
+    def cost(frame, y):
+        return 10.0 if 200 <= y < 300 else 1.0
+
+    planner = Planner(size, 1, min_seconds=0.01, row_costs=lambda f: [cost(f, y) for y in range(480)])
+    done = simulate(planner, {w: v * 3.63 for w, v in speeds.items()}, cost)
+    assert (coverage(done, 1, size) == 1).all()
+    ends = {w: max(t for _, v, _, t in done if v == w) for w in speeds}
+    last = {w: max((t - s for _, v, s, t in done if v == w and t == ends[w])) for w in speeds}
+    assert max(ends.values()) - min(ends.values()) <= max(last.values()) + 1e-9
+    # Guided self-scheduling: bands shrink geometrically (a third of the
+    # work left each), so their number grows with the log of the frame's
+    # time over the shortest band's.
+    assert len(done) <= 20 * len(speeds)
+
+
+def test_animation_whole_frames_then_bands():
+    """More frames to do than workers: a task is a whole frame; the last
+    frames are cut into bands so the animation ends with every worker busy."""
+    size, frames = (64, 48), 20
+    done = simulate(Planner(size, frames, open_frames=4, min_seconds=0.001), {"a": 1e4, "b": 1e4})
+    assert (coverage(done, frames, size) == 1).all()
+    whole = [b.frame for b, *_ in done if b.window == (0, 0, 64, 48)]
+    cut = {b.frame for b, *_ in done if b.window != (0, 0, 64, 48)}
+    # The first band of each worker is a probe (nothing is measured yet),
+    # cutting frames 0 and 1.
+    assert set(range(2, frames - 4)) <= set(whole)
+    assert cut - {0, 1} and min(cut - {0, 1}) >= frames - 4
+
+
+def test_open_frames_bound_what_is_in_progress():
+    """Two frames open at most: a third is opened only when one is back."""
+    p = Planner((10, 10), 5, open_frames=2, probe_share=1.0)
+    p.add_worker("a")
+    bands = [p.next_band("a") for _ in range(3)]
+    assert [b.frame for b in bands[:2]] == [0, 1] and bands[2] is None
+    assert p.done(bands[1], "a", 0.1)
+    assert p.next_band("a").frame == 2
+
+
+def test_a_lost_workers_bands_are_split_and_handed_on():
+    """Worker "c" vanishes mid-frame: its bands go back and are rendered,
+    cut into pieces, by the others; every pixel once."""
+    size = (200, 400)
+    speeds = {"a": 1e5, "b": 1e5, "c": 1e5}
+    done = simulate(Planner(size, 1, min_seconds=0.001), speeds, lose=("c", 0.2))
+    assert (coverage(done, 1, size) == 1).all()
+    assert any(w == "c" for _, w, *_ in done) and all(t <= 0.2 for _, w, _, t in done if w == "c")
+
+
+def test_given_back_band_is_cut_to_size():
+    """All the work handed out, then worker "c" is lost: its band goes back
+    and the next band given is the start of it, cut to a share of it."""
+    p = Planner((100, 1000), 1, min_seconds=0.001)
+    for w in "abc":
+        p.add_worker(w)
+    for w in "abc":
+        band = p.next_band(w)
+        p.done(band, w, band.pixels / 1e4)  # each renders 1e4 pixels a second
+    while [p.next_band(w) for w in "abc"] != [None] * 3:
+        pass
+    lost = p.remove_worker("c")
+    assert lost
+    again = p.next_band("a")
+    assert again.window[1] == lost[0].window[1] and again.window[3] < lost[0].window[3]
+    assert p.workers == ["a", "b"]
+
+
+def test_fixed_tiles_in_order():
+    p = Planner((70, 45), 1, tile=17)
+    tiles = []
+    while (band := p.next_band()) is not None:
+        tiles.append(band.window)
+    assert len(tiles) == 15 and tiles[0] == (0, 0, 17, 17) and tiles[-1] == (68, 34, 2, 11)
+
+
+def test_row_costs_weigh_the_rows_by_their_rays():
+    """The weighing of a frame's rows (by the rays of a small render): one
+    cost a row, sky rows (a primary ray each) cheaper than rows through a
+    glass sphere and a mirror floor; the same answer every time."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._render import row_costs
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere().translate(0, -0.5, 0), diffuse=(0.1, 0.1, 0.1), transparency=0.8, speedOfLight=0.7)
+    scene.add(hitray.Plane().rotate(-90, 1, 0, 0).translate(0, -1.5, 0), diffuse=(0.5, 0.5, 0.5), reflectivity=0.5)
+    scene.light((5, 8, 6), (1, 1, 1))
+    camera = hitray.Camera((0, 0, 6), (0, 0, 0), (0, 1, 0), 40)
+    costs = row_costs(scene, camera, (480, 300), {"spp": 4, "depth": None})
+    assert len(costs) == 300 and min(costs) > 0
+    assert costs[0] < costs[200]  # the top row is sky; row 200 crosses the sphere and the floor
+    assert row_costs(scene, camera, (480, 300), {"spp": 4, "depth": None}) == costs
+
+
+class FakeFuture:
+    """A Dask future run at once (or never, for a worker that is gone)."""
+
+    def __init__(self, fn, args, worker):
+        self.fn, self.args, self.worker = fn, args, worker
+        self.value, self.finished, self.callbacks = None, False, []
+
+    def finish(self):
+        self.value = self.fn(*[a.value if isinstance(a, FakeFuture) else a for a in self.args])
+        self.finished = True
+        for callback in self.callbacks:
+            callback(self)
+
+    def add_done_callback(self, callback):
+        self.callbacks.append(callback)
+        if self.finished:
+            callback(self)
+
+    def done(self):
+        return self.finished
+
+    def result(self):
+        return self.value
+
+    def release(self):
+        pass
+
+
+class FakeClient:
+    """The Dask client as _Run uses it, its workers a set the test changes;
+    a band given to a worker not in `running` never comes back."""
+
+    def __init__(self, workers):
+        self.workers, self.running = set(workers), set(workers)
+        self.submitted, self.cancelled = [], []
+
+    def scheduler_info(self):
+        return {"workers": {w: {} for w in self.workers}}
+
+    def scatter(self, value, broadcast, hash):
+        future = FakeFuture(lambda: value, (), None)
+        future.finish()
+        return future
+
+    def submit(self, fn, *args, key, pure, priority, workers=None, allow_other_workers=False):
+        future = FakeFuture(fn, args, workers[0] if workers else None)
+        self.submitted.append(future)
+        if future.worker in self.running:
+            future.finish()
+        return future
+
+    def cancel(self, futures):
+        self.cancelled += futures
+
+
+def test_client_hands_a_lost_workers_bands_on(tmp_path):
+    """The client's loop (_Run) with a fake Dask: worker "b" stops answering
+    and then leaves the scheduler. Its bands are cancelled, given back and
+    rendered by "a", and the frame is the bits of hitray.render."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._render import _Bar, _Run
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
+    scene.light((4, 6, 5))
+    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    size, options = (40, 64), {"spp": 2}
+    client = FakeClient({"a", "b"})
+    client.running = {"a"}  # "b" takes bands and never returns them
+    seen = []
+
+    def progress(fraction):
+        if not seen:  # the first band back: "b" leaves the scheduler
+            client.workers = {"a"}
+            run.checked = 0.0
+        seen.append(fraction)
+
+    run = _Run(client, size, dict(options, depth=None), Planner(size, 1), None, _Bar(progress, 40 * 64, "t"),
+               lambda n: (0, None, scene, camera), None)
+    frames = []
+    # In a thread: without the bands handed on, the frame would wait for
+    # "b" for ever; the test fails instead of hanging.
+    worker = threading.Thread(target=lambda: frames.extend(run.frames_done()), daemon=True)
+    worker.start()
+    worker.join(60)
+    assert not worker.is_alive(), "the lost worker's bands were never handed on"
+    lost = [f for f in client.submitted if f.worker == "b"]
+    assert lost and all(not f.done() for f in lost)
+    assert set(client.cancelled) == set(lost)
+    assert len(frames) == 1 and seen[-1] == 1.0
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    assert np.array_equal(np.asarray(frames[0].image()), np.asarray(here))
