@@ -131,14 +131,35 @@ static const hr_texture_param marble_params[] = {
     COLOR_PARAMS("colour A", 0.95, 0.94, 0.9),
     COLOR_PARAMS("colour B", 0.3, 0.3, 0.38),
 };
-static hr_color marble(const double *p, hr_vec3 q)
+/* The mean of sqrt|sin| over a period, (1/pi) int_0^pi sqrt(sin x) dx
+ * (to 30 digits by mpmath's quad). */
+#define MARBLE_MEAN 0.762759763501813188062325980964
+/* Filtered, the veins fade toward their mean where they are finer than
+ * the box: the phase's spread over the box is estimated as the vein
+ * term's, 2 pi f half_z, plus the turbulence's, its strength times the
+ * noise scale times octaves / 2 (each octave's slope, frequency times
+ * weight, is about the first's, and the sum of weights about 2) across the
+ * box's widest side; t fades linearly to the mean as that spread reaches
+ * pi, one period of |sin|. A band limit of the same kind as the wood's,
+ * not an exact average: the turbulence has no closed form. */
+static hr_color marble_box(const double *p, hr_vec3 q, hr_vec3 half)
 {
     const double turb = hri_turbulence(v3_scale(q, p[1]), (int32_t)p[3]);
     /* The phase overflows for z near double's range: a vein there (sin of
      * an infinite phase is NaN, which would reach the pixel). */
     const double phase = PI * p[0] * q.z + p[2] * turb;
-    const double t = isfinite(phase) ? sqrt(fabs(sin(phase))) : 0.0;
+    double t = isfinite(phase) ? sqrt(fabs(sin(phase))) : 0.0;
+    if (half.x > 0.0 || half.y > 0.0 || half.z > 0.0) {
+        const double widest = fmax(half.x, fmax(half.y, half.z));
+        const double spread = 2.0 * PI * fabs(p[0]) * half.z + fabs(p[2]) * p[1] * 0.5 * p[3] * 2.0 * widest;
+        const double fade = spread < PI ? spread / PI : 1.0;
+        t += fade * (MARBLE_MEAN - t);
+    }
     return blend(p, 4, t);
+}
+static hr_color marble(const double *p, hr_vec3 q)
+{
+    return marble_box(p, q, v3(0.0, 0.0, 0.0));
 }
 
 #define ROW(id, name, params, fn, box)                                                  \
@@ -147,7 +168,7 @@ static hr_color marble(const double *p, hr_vec3 q)
 static const hr_texture_kind solid_textures[] = {
     ROW(-1, "checkerboard", checker_params, checkerboard, checkerboard_box),
     ROW(-2, "wood", wood_params, wood, wood_box),
-    ROW(-3, "marble", marble_params, marble, NULL),
+    ROW(-3, "marble", marble_params, marble, marble_box),
 };
 #define SOLID_COUNT ((int32_t)(sizeof solid_textures / sizeof solid_textures[0]))
 
