@@ -98,8 +98,11 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
     return sum;
 }
 
-static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat,
-                             const hr_hit *h, hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+/* Inline into shade, as it was before shade had two copies (the compiler
+ * inlined it then of its own accord): each copy's Phong loop is its own. */
+static inline __attribute__((always_inline)) hr_color direct_light(hr_trace_ctx *tc, const hr_object *o,
+                                                                   const hr_material *mat, const hr_hit *h,
+                                                                   hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
 {
     return light_loop(tc, o, mat, h, m, to_eye, flags, 0);
 }
