@@ -145,6 +145,23 @@ hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const
     return hri_pixmap_sample(t->pixmap, st[0], st[1], t->params[HR_IMAGE_PARAM_NEAREST] != 0.0);
 }
 
+/* How many pieces to cut side b of the footprint (a parallelogram of
+ * sides a and b) into. Its box is much larger than it where b leans along
+ * a's main axis: with a along x and b = (b_x, 0, b_z), the box is
+ * (|a_x| + |b_x|) |b_z| for a parallelogram of |a_x| |b_z|, and b cut into
+ * n pieces, each with its own box, brings that to (1 + |b_x| / (n |a_x|))
+ * times the area. Cut so the excess is at most a quarter, up to FOOTPRINT_CUTS pieces
+ * in all (both sides together). */
+#define FOOTPRINT_CUTS 8
+static int footprint_cuts(hr_vec3 a, hr_vec3 b)
+{
+    const double ax[3] = {fabs(a.x), fabs(a.y), fabs(a.z)}, bx[3] = {fabs(b.x), fabs(b.y), fabs(b.z)};
+    const int main = ax[0] >= ax[1] && ax[0] >= ax[2] ? 0 : ax[1] >= ax[2] ? 1 : 2;
+    if (!(ax[main] > 0.0)) return 1;
+    const double lean = 4.0 * bx[main] / ax[main];
+    return lean < FOOTPRINT_CUTS - 1 ? 1 + (int)lean : FOOTPRINT_CUTS;
+}
+
 /* A difference of image coordinates across the tiles' seam: the nearer of
  * the two ways round. */
 static double seam_difference(double d) { return d - nearbyint(d); }
@@ -161,10 +178,24 @@ hr_color hri_texture_color_filtered(const hr_texture *t, const hr_shape_class *c
         const hr_vec3 q = solid_point(t, hit, p, n);
         if (!t->kind->solid_box) return t->kind->solid(t->params, q);
         /* The box around the pixel's footprint, a parallelogram of sides
-         * dq/dx and dq/dy centred on q. */
-        const hr_vec3 half = v3(0.5 * (fabs(dqx.x) + fabs(dqy.x)), 0.5 * (fabs(dqx.y) + fabs(dqy.y)),
-                                0.5 * (fabs(dqx.z) + fabs(dqy.z)));
-        return t->kind->solid_box(t->params, q, half);
+         * dq/dx and dq/dy centred on q: where a side leans along the other's
+         * axis (a floor's receding lines, off the image's centre), that box
+         * is much larger than the parallelogram and blurs what the pixel
+         * does not cover, so each side is cut into pieces (footprint_cuts),
+         * each piece filtered by its own box. */
+        int na = footprint_cuts(dqy, dqx), nb = footprint_cuts(dqx, dqy);
+        while (na * nb > FOOTPRINT_CUTS) na > nb ? na-- : nb--;
+        const hr_vec3 pa = v3_scale(dqx, 1.0 / na), pb = v3_scale(dqy, 1.0 / nb);
+        const hr_vec3 half = v3(0.5 * (fabs(pa.x) + fabs(pb.x)), 0.5 * (fabs(pa.y) + fabs(pb.y)),
+                                0.5 * (fabs(pa.z) + fabs(pb.z)));
+        if (na == 1 && nb == 1) return t->kind->solid_box(t->params, q, half);
+        hr_color sum = rgb(0.0, 0.0, 0.0);
+        for (int i = 0; i < na; i++)
+            for (int j = 0; j < nb; j++) {
+                const hr_vec3 c = v3_madd(v3_madd(q, pa, i + 0.5 - 0.5 * na), pb, j + 0.5 - 0.5 * nb);
+                sum = rgb_add(sum, t->kind->solid_box(t->params, c, half));
+            }
+        return rgb_scale(sum, 1.0 / (na * nb));
     }
     if (t->params[HR_IMAGE_PARAM_NEAREST] != 0.0) return hri_texture_color(t, cls, shape, hit);
     double st[2], sx[2], sy[2];
