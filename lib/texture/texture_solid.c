@@ -56,7 +56,8 @@ static double triangle_wave(double x)
 
 static double square_wave_mean(double x, double h)
 {
-    if (!(h > 0x1p-26 * fmax(1.0, fabs(x)))) return parity(x) ? -1.0 : 1.0;
+    const double size = fabs(x) > 1.0 ? fabs(x) : 1.0; /* fmax, without its call */
+    if (!(h > 0x1p-26 * size)) return parity(x) ? -1.0 : 1.0;
     return (triangle_wave(x + h) - triangle_wave(x - h)) / (2.0 * h);
 }
 
