@@ -45,6 +45,11 @@ static const render_flag flags[] = {
       "render only the W x H pixels whose top left is X,Y (from the image's top left); each is bit for bit "
       "that pixel of the full render"},
      CLI_RF_WINDOW},
+    {{"--texture-filter", NULL, 1, "footprint|none",
+      "footprint (default): in a scene with a texture, average each texture over the pixel's footprint "
+      "(ray differentials through mirrors and glass; mip-maps for pixmaps); none: point-sample it at "
+      "the hit"},
+     CLI_RF_TEXTURE_FILTER},
 };
 #define FLAG_COUNT (int)(sizeof flags / sizeof flags[0])
 
@@ -57,6 +62,7 @@ void cli_render_flags_init(cli_render_flags *f)
     f->spp = o.samples_per_pixel, f->threads = o.threads, f->depth = o.max_depth, f->block = o.block_size;
     f->effects = o.effects;
     f->adaptive = o.adaptive_threshold, f->min_weight = o.min_weight, f->exact = o.exact;
+    f->texture_filter = o.texture_filter;
 }
 
 static int named(const cli_option *table, const char *name)
@@ -109,6 +115,14 @@ static int parse_effects(const char *option, const char *text, int32_t *out)
     return 1;
 }
 
+static int parse_texture_filter(const char *option, const char *text, int32_t *out)
+{
+    if (!strcmp(text, "footprint")) *out = HR_TEXTURE_FILTER_FOOTPRINT;
+    else if (!strcmp(text, "none")) *out = HR_TEXTURE_FILTER_NONE;
+    else return !cli_usage_error("%s: '%s' is neither 'footprint' nor 'none'", option, text);
+    return 1;
+}
+
 /* X,Y,W,H: whole pixels, a corner at or right of and below the top left,
  * and at least one pixel (the library reads a side of 0 as "to the edge",
  * which a user writing a size would not mean). */
@@ -142,6 +156,7 @@ int cli_render_flags_parse(cli_render_flags *f, const char *name, const char *va
     case CLI_RF_MIN_WEIGHT: ok = cli_parse_fraction(name, value, &f->min_weight); break;
     case CLI_RF_EXACT: f->exact = 1; break;
     case CLI_RF_WINDOW: ok = parse_window(name, value, f->window); break;
+    case CLI_RF_TEXTURE_FILTER: ok = parse_texture_filter(name, value, &f->texture_filter); break;
     default: return !cli_usage_error("%s: not a render flag", name); /* a verb's mistake, not the user's */
     }
     if (ok) f->given |= bit;
@@ -183,6 +198,7 @@ void cli_render_flags_apply(const cli_render_flags *f, hr_render_options *o)
     o->window_y = f->window[1];
     o->window_width = f->window[2];
     o->window_height = f->window[3];
+    o->texture_filter = f->texture_filter;
 }
 
 hr_camera cli_render_flags_camera(const cli_render_flags *f, const cli_scene *s)

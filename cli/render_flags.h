@@ -24,6 +24,7 @@
 #define CLI_RF_MIN_WEIGHT (1u << 8) /* --min-weight W */
 #define CLI_RF_EXACT (1u << 9)      /* --exact */
 #define CLI_RF_WINDOW (1u << 10)    /* --window X,Y,W,H */
+#define CLI_RF_TEXTURE_FILTER (1u << 11) /* --texture-filter footprint|none */
 
 /* The render flags each verb takes. The viewer's passes set their own
  * block sizes and samples and keep every effect's analysis on
@@ -32,10 +33,10 @@
  * --min-weight, lists of values. */
 #define CLI_RENDER_FLAGS                                                                                     \
     (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_EFFECTS | \
-     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT | CLI_RF_WINDOW)
+     CLI_RF_ADAPTIVE | CLI_RF_MIN_WEIGHT | CLI_RF_EXACT | CLI_RF_WINDOW | CLI_RF_TEXTURE_FILTER)
 #define CLI_VIEW_FLAGS                                                                                       \
     (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_THREADS | CLI_RF_DEPTH | CLI_RF_BLOCK | CLI_RF_CAMERA | CLI_RF_MIN_WEIGHT | \
-     CLI_RF_EXACT)
+     CLI_RF_EXACT | CLI_RF_TEXTURE_FILTER)
 #define CLI_SAVINGS_FLAGS (CLI_RF_SIZE | CLI_RF_SPP | CLI_RF_DEPTH | CLI_RF_THREADS)
 
 typedef struct cli_render_flags {
@@ -47,6 +48,7 @@ typedef struct cli_render_flags {
     double adaptive, min_weight;
     int32_t exact;
     int32_t window[4]; /* x, y, width, height; all 0: the whole image */
+    int32_t texture_filter; /* HR_TEXTURE_FILTER_* */
 } cli_render_flags;
 
 /* The defaults: hr_render_options_default's (the scene's size and depth). */

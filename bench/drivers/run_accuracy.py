@@ -760,9 +760,22 @@ class Study:
                 "and counts do not depend on it.", "", "## In short", ""]
         head += [f"- **[{title}](#{anchor})**: {advice}" for title, anchor, advice in self.summary]
         head.append("")
-        (self.docs / "accuracy.md").write_text("\n".join(head + self.md).rstrip() + "\n")
+        # The texture-filtering section is texture_filter.py's: kept as it was.
+        target = self.docs / "accuracy.md"
+        kept = texture_section(target.read_text()) if target.exists() else ""
+        target.write_text("\n".join(head + self.md).rstrip() + "\n" + ("\n" + kept + "\n" if kept else ""))
         print(f"run_accuracy: wrote {rel(self.docs / 'accuracy.md')} in {elapsed:.0f} s",
               file=sys.stderr)
+
+
+def texture_section(text):
+    """The section bench/drivers/texture_filter.py wrote into `text`, with
+    its markers ("" if none)."""
+    spec = importlib.util.spec_from_file_location("texture_filter", pathlib.Path(__file__).with_name(
+        "texture_filter.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.kept_section(text)
 
 
 def setting_label(r):

@@ -150,7 +150,22 @@ typedef struct hr_render_options {
                            default): HR_DEFAULT_RAY_BUDGET, unless `exact`,
                            which has no budget; > 0: this budget (not with
                            `exact`). */
+    /* Added with texture filtering (issue 30). */
+    int32_t texture_filter; /* HR_TEXTURE_FILTER_FOOTPRINT (0, the default):
+                               in a scene with a texture, camera rays carry
+                               ray differentials through every reflection and
+                               refraction, and each texture is averaged over
+                               the hit's footprint (the solid textures in
+                               closed form or band-limited, pixmaps by their
+                               mip-maps); a scene without one traces none.
+                               HR_TEXTURE_FILTER_NONE: every texture
+                               point-sampled at the hit, as before. */
+    int32_t reserved3;
 } hr_render_options;
+
+/* hr_render_options.texture_filter */
+#define HR_TEXTURE_FILTER_FOOTPRINT 0
+#define HR_TEXTURE_FILTER_NONE 1
 
 /* The cut-off a render applies by default, 2^-24 of a camera sample in all:
  * POV-Ray's adc_bailout made small enough to be invisible, and made to

@@ -63,6 +63,8 @@ typedef struct render_job {
     /* 65536 x 65536 pixels in tiles of 1 is 2^32 tiles: past int32. */
     int64_t tiles_x, tiles_y, tile_count;
     int32_t max_depth;
+    int32_t differentials; /* camera rays carry ray differentials (the
+                              scene has a texture and filtering is on) */
     int32_t query_level; /* every render thread's query nesting (query_nesting.h) */
     atomic_int cancelled; /* written once, when the render stops early */
     _Alignas(HR_CACHE_LINE) atomic_llong next_tile;
@@ -141,12 +143,30 @@ static float *pixel_at(const render_job *job, int32_t x, int32_t y)
     return &job->pixels[3 * ((size_t)(y - job->win_y) * job->win_width + (size_t)(x - job->win_x))];
 }
 
-static hr_color trace_camera_ray(worker *w, double px, double py)
+/* A camera ray with its differentials (lib/trace/ray_diff.h), scaled by
+ * the share of a pixel its sample stands for (sx, sy pixels). The image
+ * plane's point moves by d(plane x)/d(px) = 2 half_width / width along u
+ * per pixel, and by -2 half_height / height along v. */
+static __attribute__((noinline)) hr_color trace_camera_ray_diff(worker *w, const hr_ray *ray, double px,
+                                                               double py, double sx, double sy)
+{
+    const hr_camera_frame *f = &w->job->frame;
+    const double x = hri_camera_frame_x(f, px), y = hri_camera_frame_y(f, py);
+    const hr_vec3 dir = v3_add(v3_add(v3_scale(f->u, x), v3_scale(f->v, y)), v3_neg(f->n));
+    hr_ray_diff rd = hri_ray_diff_camera(dir, v3_scale(f->u, 2.0 * f->half_width / f->width),
+                                         v3_scale(f->v, -2.0 * f->half_height / f->height));
+    rd = hri_ray_diff_scale(rd, sx, sy);
+    return hri_shade_ray_diff(&w->tc, ray, &rd, 0, w->job->max_depth);
+}
+
+/* The ray of a sample at (px, py) standing for sx x sy pixels. */
+static hr_color trace_camera_ray(worker *w, double px, double py, double sx, double sy)
 {
     render_job *job = w->job;
     hr_ray ray;
     hri_camera_frame_ray(&job->frame, px, py, &ray);
     w->primary++;
+    if (job->differentials) return trace_camera_ray_diff(w, &ray, px, py, sx, sy);
     return hri_shade_ray(&w->tc, &ray, 0, job->max_depth);
 }
 
@@ -166,11 +186,13 @@ static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, 
     int32_t spp = w->job->opt.samples_per_pixel;
     uint64_t over_before = w->tc.rays_over_budget;
     hr_color sum = rgb(0, 0, 0);
+    /* Each of n samples stands for 1 / sqrt(n) of the block's side. */
+    const double share = spp > 1 ? 1.0 / sqrt((double)spp) : 1.0;
     for (int32_t k = 0; k < spp; k++) {
         if (atomic_load_explicit(&w->job->cancelled, memory_order_relaxed) || caller_cancelled(w->job)) break;
         double dx, dy;
         sample_offset(k, spp, &dx, &dy);
-        sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh));
+        sum = rgb_add(sum, trace_camera_ray(w, bx + dx * bw, by + dy * bh, bw * share, bh * share));
     }
     px[0] = (float)(sum.r / spp), px[1] = (float)(sum.g / spp), px[2] = (float)(sum.b / spp);
     w->pixels_over_budget += w->tc.rays_over_budget != over_before;
@@ -234,7 +256,7 @@ static corner_sample sample_corner(worker *w, int32_t x, int32_t y)
 {
     corner_sample c;
     uint64_t over_before = w->tc.rays_over_budget;
-    c.linear = trace_camera_ray(w, x, y);
+    c.linear = trace_camera_ray(w, x, y, 1.0, 1.0);
     c.over_budget = w->tc.rays_over_budget != over_before;
     c.shown[0] = hri_srgb_encode(c.linear.r);
     c.shown[1] = hri_srgb_encode(c.linear.g);
@@ -443,6 +465,11 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: ray budget %lld must be positive (0: the default, %d rays per camera sample)",
                         (long long)o->ray_budget, HR_DEFAULT_RAY_BUDGET);
+    if (o->texture_filter != HR_TEXTURE_FILTER_FOOTPRINT && o->texture_filter != HR_TEXTURE_FILTER_NONE)
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "render: texture filter %d must be HR_TEXTURE_FILTER_FOOTPRINT (0) or "
+                        "HR_TEXTURE_FILTER_NONE (1)",
+                        (int)o->texture_filter);
     if (o->exact && o->ray_budget > 0)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: exact (trace every contribution) and a ray budget %lld exclude each other",
@@ -533,7 +560,10 @@ HR_API hr_status hr_render(const hr_scene *scene, const hr_camera *camera,
     worker *workers = aligned_alloc(HR_CACHE_LINE, (size_t)nthreads * sizeof *workers);
     if (workers) memset(workers, 0, (size_t)nthreads * sizeof *workers);
     int adaptive = job->opt.adaptive_threshold > 0.0;
-    int centres = !adaptive && job->opt.samples_per_pixel == 1 && job->opt.block_size == 1;
+    /* Differentials only where a texture is shaded: any other scene runs
+     * the shading it ran without them. */
+    job->differentials = (scene->effects & HR_EFFECT_TEXTURE) && job->opt.texture_filter == HR_TEXTURE_FILTER_FOOTPRINT;
+    int centres = !adaptive && job->opt.samples_per_pixel == 1 && job->opt.block_size == 1 && !job->differentials;
     int ready = workers != NULL;
     for (int32_t i = 0; ready && i < nthreads; i++) {
         worker *w = &workers[i];

@@ -100,24 +100,11 @@ hr_status hri_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape
     return HR_OK;
 }
 
-hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
-                          const hr_hit *hit)
+/* The image texture's (s, t) in [0, 1)^2 at object-space point p with
+ * normal n (world hit `hit`, moved into the object's space). */
+static void image_coords(const hr_texture *t, const hr_shape_class *cls, const void *shape, const hr_hit *hit,
+                         hr_vec3 p, hr_vec3 n, double st[2])
 {
-    hr_vec3 p = hri_xform_point(t->to_object, hit->point);
-    hr_vec3 n = hri_xform_normal(t->to_world, hit->normal);
-    if (t->kind->solid) {
-        /* A solid texture is looked up just inside the surface, past the
-         * point's error bound: a face lying on one of its own lattice
-         * planes (a floor at z = 0 under a checkerboard) would otherwise
-         * fall on either side from one pixel to the next. */
-        const double inset = 2.0 * hri_xform_error(t->to_object, hit->point, hit->error);
-        hr_vec3 inward = v3_normalize(n);
-        /* Near double's range the error bound is infinite: there the
-         * point is used as it is, never an infinite or NaN one. */
-        hr_vec3 inside = v3_madd(p, inward, -inset);
-        if (v3_is_finite(inside)) p = inside;
-        return t->kind->solid(t->params, p);
-    }
     hr_hit local = *hit;
     local.point = p;
     local.normal = n;
@@ -132,5 +119,90 @@ hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const
     r = isfinite(r) ? r - floor(r) : 0.0;
     if (!(s < 1.0)) s = 0.0;
     if (!(r < 1.0)) r = 0.0;
-    return hri_pixmap_sample(t->pixmap, s, r, q[HR_IMAGE_PARAM_NEAREST] != 0.0);
+    st[0] = s, st[1] = r;
+}
+
+/* A solid texture is looked up just inside the surface, past the point's
+ * error bound: a face lying on one of its own lattice planes (a floor at
+ * z = 0 under a checkerboard) would otherwise fall on either side from one
+ * pixel to the next. Near double's range the error bound is infinite:
+ * there the point is used as it is, never an infinite or NaN one. */
+static hr_vec3 solid_point(const hr_texture *t, const hr_hit *hit, hr_vec3 p, hr_vec3 n)
+{
+    const double inset = 2.0 * hri_xform_error(t->to_object, hit->point, hit->error);
+    hr_vec3 inside = v3_madd(p, v3_normalize(n), -inset);
+    return v3_is_finite(inside) ? inside : p;
+}
+
+hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+                          const hr_hit *hit)
+{
+    hr_vec3 p = hri_xform_point(t->to_object, hit->point);
+    hr_vec3 n = hri_xform_normal(t->to_world, hit->normal);
+    if (t->kind->solid) return t->kind->solid(t->params, solid_point(t, hit, p, n));
+    double st[2];
+    image_coords(t, cls, shape, hit, p, n, st);
+    return hri_pixmap_sample(t->pixmap, st[0], st[1], t->params[HR_IMAGE_PARAM_NEAREST] != 0.0);
+}
+
+/* How many pieces to cut side b of the footprint (a parallelogram of
+ * sides a and b) into. Its box is much larger than it where b leans along
+ * a's main axis: with a along x and b = (b_x, 0, b_z), the box is
+ * (|a_x| + |b_x|) |b_z| for a parallelogram of |a_x| |b_z|, and b cut into
+ * n pieces, each with its own box, brings that to (1 + |b_x| / (n |a_x|))
+ * times the area. Cut so the excess is at most a quarter, up to FOOTPRINT_CUTS pieces
+ * in all (both sides together). */
+#define FOOTPRINT_CUTS 8
+static int footprint_cuts(hr_vec3 a, hr_vec3 b)
+{
+    const double ax[3] = {fabs(a.x), fabs(a.y), fabs(a.z)}, bx[3] = {fabs(b.x), fabs(b.y), fabs(b.z)};
+    const int main = ax[0] >= ax[1] && ax[0] >= ax[2] ? 0 : ax[1] >= ax[2] ? 1 : 2;
+    if (!(ax[main] > 0.0)) return 1;
+    const double lean = 4.0 * bx[main] / ax[main];
+    return lean < FOOTPRINT_CUTS - 1 ? 1 + (int)lean : FOOTPRINT_CUTS;
+}
+
+/* A difference of image coordinates across the tiles' seam: the nearer of
+ * the two ways round. */
+static double seam_difference(double d) { return d - nearbyint(d); }
+
+hr_color hri_texture_color_filtered(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+                                   const hr_hit *hit, hr_vec3 dpdx, hr_vec3 dpdy)
+{
+    hr_vec3 p = hri_xform_point(t->to_object, hit->point);
+    hr_vec3 n = hri_xform_normal(t->to_world, hit->normal);
+    const hr_vec3 dqx = hri_xform_vector(t->to_object, dpdx);
+    const hr_vec3 dqy = hri_xform_vector(t->to_object, dpdy);
+    if (!v3_is_finite(dqx) || !v3_is_finite(dqy)) return hri_texture_color(t, cls, shape, hit);
+    if (t->kind->solid) {
+        const hr_vec3 q = solid_point(t, hit, p, n);
+        if (!t->kind->solid_box) return t->kind->solid(t->params, q);
+        /* The box around the pixel's footprint, a parallelogram of sides
+         * dq/dx and dq/dy centred on q: where a side leans along the other's
+         * axis (a floor's receding lines, off the image's centre), that box
+         * is much larger than the parallelogram and blurs what the pixel
+         * does not cover, so each side is cut into pieces (footprint_cuts),
+         * each piece filtered by its own box. */
+        int na = footprint_cuts(dqy, dqx), nb = footprint_cuts(dqx, dqy);
+        while (na * nb > FOOTPRINT_CUTS) na > nb ? na-- : nb--;
+        const hr_vec3 pa = v3_scale(dqx, 1.0 / na), pb = v3_scale(dqy, 1.0 / nb);
+        const hr_vec3 half = v3(0.5 * (fabs(pa.x) + fabs(pb.x)), 0.5 * (fabs(pa.y) + fabs(pb.y)),
+                                0.5 * (fabs(pa.z) + fabs(pb.z)));
+        if (na == 1 && nb == 1) return t->kind->solid_box(t->params, q, half);
+        hr_color sum = rgb(0.0, 0.0, 0.0);
+        for (int i = 0; i < na; i++)
+            for (int j = 0; j < nb; j++) {
+                const hr_vec3 c = v3_madd(v3_madd(q, pa, i + 0.5 - 0.5 * na), pb, j + 0.5 - 0.5 * nb);
+                sum = rgb_add(sum, t->kind->solid_box(t->params, c, half));
+            }
+        return rgb_scale(sum, 1.0 / (na * nb));
+    }
+    if (t->params[HR_IMAGE_PARAM_NEAREST] != 0.0) return hri_texture_color(t, cls, shape, hit);
+    double st[2], sx[2], sy[2];
+    image_coords(t, cls, shape, hit, p, n, st);
+    image_coords(t, cls, shape, hit, v3_add(p, dqx), n, sx);
+    image_coords(t, cls, shape, hit, v3_add(p, dqy), n, sy);
+    const double dst[4] = {seam_difference(sx[0] - st[0]), seam_difference(sx[1] - st[1]),
+                           seam_difference(sy[0] - st[0]), seam_difference(sy[1] - st[1])};
+    return hri_pixmap_sample_footprint(t->pixmap, st[0], st[1], dst);
 }

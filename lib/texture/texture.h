@@ -67,16 +67,33 @@ extern const hr_texture_kind hri_image_texture_kind;
 double hri_noise(hr_vec3 p);
 double hri_turbulence(hr_vec3 p, int32_t octaves);
 
-/* One of a scene's pixmaps (pixmap.c): linear RGB floats, rows from the top. */
+/* One of a scene's pixmaps (pixmap.c): linear RGB floats, rows from the top,
+ * and its mip-map, built when it is made: level 0 the image, each level
+ * after it half the one before in each direction (rounded up, down to
+ * 1 x 1), each texel the mean of the 2 x 2 texels it covers (the box
+ * filter of the level below; an odd side's last texel pairs with the
+ * first, as the texture tiles). */
+#define HR_PIXMAP_MAX_LEVELS 32
 typedef struct hr_pixmap {
     int32_t index;
     int32_t width, height;
-    float *rgb;
+    float *rgb; /* level 0: levels[0] */
+    int32_t level_count;
+    int32_t level_width[HR_PIXMAP_MAX_LEVELS], level_height[HR_PIXMAP_MAX_LEVELS];
+    float *levels[HR_PIXMAP_MAX_LEVELS];
 } hr_pixmap;
 /* The pixmap's colour at (s, t) in [0, 1) x [0, 1), s across from the left,
  * t up from the bottom: bilinear between the four nearest texel centres,
  * wrapping at the edges (a texture tiles), or the nearest texel. */
 hr_color hri_pixmap_sample(const hr_pixmap *pm, double s, double t, int nearest);
+/* Trilinear: the colour at (s, t) filtered by a footprint whose sides are
+ * (ds/dx, dt/dx) = d[0], d[1] and (ds/dy, dt/dy) = d[2], d[3]: bilinear in
+ * the two mip levels whose texels bracket the footprint's longer side,
+ * blended by the level's fraction (the image itself where the footprint is
+ * under a texel). */
+hr_color hri_pixmap_sample_footprint(const hr_pixmap *pm, double s, double t, const double d[4]);
+/* Bilinear in mip level `level` of pm (level 0: hri_pixmap_sample's). */
+hr_color hri_pixmap_sample_level(const hr_pixmap *pm, int32_t level, double s, double t);
 /* A scene's pixmaps (hr_scene.pixmaps), each on its own allocation, so
  * the textures that use one hold its address across later additions. */
 typedef struct hr_pixmap_set {
@@ -92,6 +109,8 @@ hr_status hri_pixmap_add(hr_context *ctx, hr_pixmap_set *set, int32_t index, con
 /* The bytes pixmap `index` of `image` keeps (its texels as RGB floats),
  * and its name for messages, "pixmap N (W x H texels)", into `what`. */
 uint64_t hri_pixmap_bytes(const hr_image *image, int32_t index, char *what, size_t what_size);
+/* The bytes a w x h pixmap's mip levels above level 0 take. */
+uint64_t hri_pixmap_mip_bytes(int32_t w, int32_t h);
 void hri_pixmap_set_free(hr_pixmap_set *set);
 
 /* What an object's texture needs at a hit. */
@@ -118,5 +137,13 @@ hr_status hri_texture_bind(hr_context *ctx, const hr_material *m, const hr_shape
  * (lib/scene/scene_effects.c). */
 hr_color hri_texture_color(const hr_texture *t, const hr_shape_class *cls, const void *shape,
                           const hr_hit *hit);
+/* The same colour averaged over the hit's footprint, the pixel's extent on
+ * the surface (world space: dp/dx and dp/dy, from ray differentials): a
+ * solid texture over the box bounding it in the object's space (its
+ * solid_box; point-sampled where it has none), an image texture by its
+ * mip-map over the footprint's extent in (s, t) (point-sampled where the
+ * material asks for the nearest texel). */
+hr_color hri_texture_color_filtered(const hr_texture *t, const hr_shape_class *cls, const void *shape,
+                                   const hr_hit *hit, hr_vec3 dpdx, hr_vec3 dpdy);
 
 #endif

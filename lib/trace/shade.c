@@ -36,6 +36,7 @@
 
 #include "trace/cook_torrance.h"
 #include "scene/material_analysis.h"
+#include "trace/ray_diff.h"
 #include "trace/trace_context.h"
 #include "texture/texture.h"
 #include "geometry/vec.h"
@@ -97,8 +98,11 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
     return sum;
 }
 
-static hr_color direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat,
-                             const hr_hit *h, hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+/* Inline into shade, as it was before shade had two copies (the compiler
+ * inlined it then of its own accord): each copy's Phong loop is its own. */
+static inline __attribute__((always_inline)) hr_color direct_light(hr_trace_ctx *tc, const hr_object *o,
+                                                                   const hr_material *mat, const hr_hit *h,
+                                                                   hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
 {
     return light_loop(tc, o, mat, h, m, to_eye, flags, 0);
 }
@@ -141,6 +145,8 @@ static int worth_tracing(hr_trace_ctx *tc, path p, int forced)
 
 static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
                       int forced);
+static hr_color shade_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
+                           int32_t max_depth, path p, int forced);
 
 hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
@@ -148,18 +154,62 @@ hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32
     return shade(tc, ray, depth, max_depth, p, 0);
 }
 
+hr_color hri_shade_ray_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
+                            int32_t max_depth)
+{
+    path p = {1.0, tc->min_weight, tc->ray_budget > 0.0 ? tc->ray_budget : INFINITY};
+    return shade_diff(tc, ray, rd, depth, max_depth, p, 0);
+}
+
+/* How the facing normal m turns along the footprint of hit h, for the
+ * bounces' differentials: the surface's own normal a fraction NEAR of the
+ * footprint away, found by tracing the ray offset by NEAR of each
+ * differential (shapes give no curvature; a plane gives 0 exactly). An
+ * offset ray that leaves the surface (a silhouette, another object, a far
+ * part of the same one) leaves that derivative 0, a plane's. Only textured
+ * scenes trace these; they count in no statistic and change no shadow
+ * cache, so a pixel's rays are the same whatever the threads. */
+#define NEAR 0.0625
+static __attribute__((noinline)) void normal_derivatives(hr_trace_ctx *tc, const hr_ray *ray,
+                                                         const hr_ray_diff *rd, const hr_hit *h,
+                                                         hr_vec3 dir, hr_vec3 m, hr_vec3 dpdx,
+                                                         hr_vec3 dpdy, hr_vec3 *dmdx, hr_vec3 *dmdy)
+{
+    const hr_vec3 dos[2] = {rd->dodx, rd->dody}, dds[2] = {rd->dddx, rd->dddy}, dps[2] = {dpdx, dpdy};
+    hr_vec3 *out[2] = {dmdx, dmdy};
+    const double sign = v3_dot(h->normal, m) > 0.0 ? 1.0 : -1.0;
+    for (int i = 0; i < 2; i++) {
+        *out[i] = v3(0.0, 0.0, 0.0);
+        hr_ray r = {v3_madd(ray->origin, dos[i], NEAR), v3_madd(dir, dds[i], NEAR)};
+        hr_hit near;
+        if (!hri_scene_trace_first(tc, &r, 0.0, INFINITY, &near)) continue;
+        /* The same surface, where the footprint says the hit moved. */
+        const hr_vec3 expect = v3_madd(h->point, dps[i], NEAR);
+        const double slack = 0.5 * NEAR * v3_length(dps[i]) + 4.0 * (h->error + near.error);
+        if (near.object != h->object || near.surface != h->surface ||
+            !(v3_length(v3_sub(near.point, expect)) <= slack))
+            continue;
+        *out[i] = v3_scale(v3_sub(v3_scale(near.normal, sign), m), 1.0 / NEAR);
+    }
+}
+#undef NEAR
+
 /* The material shading uses at hit h of an object whose material is
  * textured or Cook-Torrance's (HR_MAT_ADJUSTED): a copy in `buf` whose
  * ambient and diffuse colours are multiplied by the texture's (where the
  * texture has a term to modulate) and whose diffuse gives the specular
  * its fraction, (1 - f). Out of line, so shade's own code is the same for
- * every other object. */
+ * every other object. `footprint` (dp/dx, dp/dy; NULL: none) filters the
+ * texture over the pixel's extent on the surface. */
 static __attribute__((noinline)) const hr_material *
-shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t flags, hr_material *buf)
+shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, const hr_vec3 *footprint,
+                 uint32_t flags, hr_material *buf)
 {
     *buf = o->material;
     if (o->texture && (flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) {
-        hr_color t = hri_texture_color(o->texture, o->cls, o->shape, h);
+        hr_color t = footprint ? hri_texture_color_filtered(o->texture, o->cls, o->shape, h, footprint[0],
+                                                            footprint[1])
+                               : hri_texture_color(o->texture, o->cls, o->shape, h);
         buf->ambient = rgb_mul(buf->ambient, t);
         buf->diffuse = rgb_mul(buf->diffuse, t);
         tc->effects_ran |= HR_EFFECT_TEXTURE;
@@ -168,8 +218,13 @@ shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, uint32_t
     return buf;
 }
 
-static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
-                      int forced)
+/* shade's body, for the two callers below: `diff` (a constant in each) says
+ * whether the ray carries differentials (rd), so the shading of a scene
+ * without textures is the code it was, and a textured scene's filters each
+ * texture by its hit's footprint. */
+static inline __attribute__((always_inline)) hr_color
+shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth, int32_t max_depth,
+           path p, int forced, const int diff)
 {
     const hr_scene *s = tc->scene;
     const uint64_t cast_before = rays_cast(tc);
@@ -192,10 +247,12 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     /* A texture modulates the ambient and diffuse colours (Hill), nothing
      * else; Cook-Torrance takes its fraction from the diffuse. Any other
      * object pays this one test. */
-    hr_material adjusted;
-    if (flags & HR_MAT_ADJUSTED) mat = shading_material(tc, o, &h, flags, &adjusted);
-
     hr_vec3 dir = v3_normalize(ray->dir);
+    hr_vec3 footprint[2];
+    if (diff) hri_ray_diff_transfer(rd, dir, h.t * v3_length(ray->dir), h.normal, &footprint[0], &footprint[1]);
+    hr_material adjusted;
+    if (flags & HR_MAT_ADJUSTED) mat = shading_material(tc, o, &h, diff ? footprint : NULL, flags, &adjusted);
+
     hr_vec3 to_eye = v3_neg(dir);
     /* Hill's m: the normal on the side the ray arrives from. */
     hr_vec3 m = v3_dot(h.normal, dir) > 0.0 ? v3_neg(h.normal) : h.normal;
@@ -232,12 +289,22 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
     double rays = (p.rays - 1.0 - (double)(rays_cast(tc) - cast_before)) / bounces;
 
     double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
+    hr_vec3 dm[2]; /* m's derivatives (diff), worked out for the first bounce */
+    int have_dm = 0;
     path reflected = {p.weight * reflect_weight, allowance, rays};
     if ((flags & HR_MAT_REFLECTS) && worth_tracing(tc, reflected, forced || reflect_weight == 0.0)) {
         hr_ray r = {hr_hit_spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
         tc->effects_ran |= HR_EFFECT_REFLECTION;
-        hr_color seen = shade(tc, &r, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0);
+        hr_color seen;
+        if (diff) {
+            if (!have_dm) normal_derivatives(tc, ray, rd, &h, dir, m, footprint[0], footprint[1], &dm[0], &dm[1]);
+            have_dm = 1;
+            hr_ray_diff rr = hri_ray_diff_reflect(rd, dir, m, dm[0], dm[1], footprint[0], footprint[1]);
+            seen = shade_diff(tc, &r, &rr, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0);
+        } else {
+            seen = shade(tc, &r, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0);
+        }
         c = rgb_add(c, rgb_scale(seen, reflect_weight));
     }
     /* What the reflected subtree left, all of it. */
@@ -260,8 +327,31 @@ static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_
             tc->rays_refracted++;
         }
         tc->effects_ran |= HR_EFFECT_REFRACTION;
-        hr_color seen = shade(tc, &t, depth + 1, max_depth, refracted, forced || refract_weight == 0.0);
+        hr_color seen;
+        if (diff) {
+            if (!have_dm) normal_derivatives(tc, ray, rd, &h, dir, m, footprint[0], footprint[1], &dm[0], &dm[1]);
+            have_dm = 1;
+            hr_ray_diff tr = cos_t2 < 0.0
+                                 ? hri_ray_diff_reflect(rd, dir, m, dm[0], dm[1], footprint[0], footprint[1])
+                                 : hri_ray_diff_refract(rd, dir, m, dm[0], dm[1], footprint[0], footprint[1],
+                                                        ratio, sqrt(cos_t2));
+            seen = shade_diff(tc, &t, &tr, depth + 1, max_depth, refracted, forced || refract_weight == 0.0);
+        } else {
+            seen = shade(tc, &t, depth + 1, max_depth, refracted, forced || refract_weight == 0.0);
+        }
         c = rgb_add(c, rgb_scale(seen, refract_weight));
     }
     return c;
+}
+
+static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
+                      int forced)
+{
+    return shade_body(tc, ray, NULL, depth, max_depth, p, forced, 0);
+}
+
+static hr_color shade_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
+                           int32_t max_depth, path p, int forced)
+{
+    return shade_body(tc, ray, rd, depth, max_depth, p, forced, 1);
 }

@@ -12,6 +12,7 @@
 #include <hitray/hitray.h>
 
 #include "scene/scene_internal.h"
+#include "trace/ray_diff.h"
 
 /* Per-thread state of tracing: what hr_hit_args.call points to. Scratch
  * lists are reused across rays, so tracing allocates only while they grow. */
@@ -130,6 +131,10 @@ int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, dou
 
 /* Hill's shade (lib/trace/shade.c). */
 hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
+/* The same for a ray with differentials (lib/trace/ray_diff.h): every
+ * texture it and its bounces meet is filtered by the hit's footprint. */
+hr_color hri_shade_ray_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
+                            int32_t max_depth);
 /* 2^-HR_DEFAULT_MIN_WEIGHT_BITS: the cut-off renders and hr_scene_shade
  * apply unless told otherwise (render.h). */
 static inline double hri_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }

@@ -62,3 +62,46 @@ def test_tables_quote_what_the_programs_printed(quick_run):
     assert len(renders) == 2 * 4 + 1
     kept = [json.loads(line) for line in (raw / "renders.jsonl").read_text().splitlines()]
     assert [f"`{k['command']}`" in text for k in kept] == [True] * len(renders)
+
+
+TEXTURE_DRIVER = ROOT / "bench" / "drivers" / "texture_filter.py"
+
+
+def test_texture_filter_writes_its_section_and_keeps_the_rest(tmp_path):
+    """bench/drivers/texture_filter.py --quick writes the section "Texture
+    filtering" between its markers, leaves the rest of accuracy.md as it
+    was, replaces the section on a rerun, and run_accuracy.py carries the
+    section over when it rewrites the file."""
+    if not (BUILD / "bin" / "hitray").is_file():
+        pytest.skip("not built: bin/hitray")
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    before = "# Accuracy\n\nSome earlier section.\n"
+    (docs / "accuracy.md").write_text(before)
+
+    def run():
+        result = subprocess.run([sys.executable, str(TEXTURE_DRIVER), "--quick", "--build", str(BUILD),
+                                 "--docs", str(docs), "--cache", str(tmp_path / "cache")],
+                                capture_output=True, text=True, timeout=300)
+        assert result.returncode == 0, result.stderr
+        return (docs / "accuracy.md").read_text()
+
+    text = run()
+    assert text.startswith(before)
+    assert text.count("## Texture filtering") == 1
+    for name, scene in (("demo", "scenes/demo.sdl"), ("horizon", "bench/scenes/checker_horizon.sdl")):
+        assert f"### {name}: `{scene}`" in text
+    rows = [r for r in text.splitlines() if r.startswith("| ") and "hitray render" in r]
+    assert len(rows) == 2 * 2 * 2  # two scenes, spp 1 and 4, footprint and none
+    raw = (docs / "accuracy" / "raw" / "texture_filter.jsonl").read_text().splitlines()
+    assert [f"`{json.loads(line)['command']}`" in text for line in raw] == [True] * len(rows)
+    again = run()
+    assert again.count("## Texture filtering") == 1 and again.startswith(before)
+    sys.path.insert(0, str(TEXTURE_DRIVER.parent))
+    try:
+        import texture_filter
+    finally:
+        sys.path.pop(0)
+    kept = texture_filter.kept_section(again)
+    assert kept.startswith(texture_filter.BEGIN) and kept.endswith(texture_filter.END)
+    assert "## Texture filtering" in kept

@@ -160,6 +160,22 @@ static void check_combinations(void)
     CHECK(cli_render_flags_parse(&f, "--exact", NULL));
     CHECK(cli_render_flags_parse(&f, "--min-weight", "0.5"));
     CHECK(cli_render_flags_check(&f) != 0);
+    /* --texture-filter: footprint (the default) or none, into the
+     * library's field; anything else refused; the library refuses a
+     * filter it does not know. */
+    cli_render_flags_init(&f);
+    CHECK(f.texture_filter == HR_TEXTURE_FILTER_FOOTPRINT);
+    CHECK(cli_render_flags_parse(&f, "--texture-filter", "none"));
+    hr_render_options o;
+    hr_render_options_default(&o);
+    cli_render_flags_apply(&f, &o);
+    CHECK(o.texture_filter == HR_TEXTURE_FILTER_NONE);
+    CHECK(render_with(&f) == HR_OK);
+    CHECK(cli_render_flags_parse(&f, "--texture-filter", "footprint"));
+    CHECK(f.texture_filter == HR_TEXTURE_FILTER_FOOTPRINT);
+    CHECK(!cli_render_flags_parse(&f, "--texture-filter", "trilinear"));
+    f.texture_filter = 2;
+    CHECK(render_with(&f) == HR_ERROR_INVALID_ARGUMENT);
 }
 
 int main(void)

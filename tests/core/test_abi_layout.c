@@ -110,7 +110,7 @@ PIN_SIZE(hr_camera, 96);
 PIN_OFF(hr_camera, eye, 16);
 PIN_OFF(hr_camera, view_angle, 88);
 /* Both grew at their ends (older callers pass a smaller struct_size). */
-PIN_SIZE(hr_render_options, 128);
+PIN_SIZE(hr_render_options, 136);
 PIN_OFF(hr_render_options, progress, 40);
 PIN_OFF(hr_render_options, progress_user, 48);
 PIN_OFF(hr_render_options, adaptive_threshold, 56);
@@ -128,6 +128,9 @@ PIN_OFF(hr_render_options, tile_done, 104);
 PIN_OFF(hr_render_options, tile_user, 112);
 /* The ray budget (issue 29), appended after the tile callback. */
 PIN_OFF(hr_render_options, ray_budget, 120);
+/* The texture filter (issue 30), appended after the ray budget. */
+PIN_OFF(hr_render_options, texture_filter, 128);
+PIN_OFF(hr_render_options, reserved3, 132);
 PIN_SIZE(hr_render_stats, 96);
 PIN_OFF(hr_render_stats, primary, 8);
 PIN_OFF(hr_render_stats, seconds, 40);

@@ -43,6 +43,7 @@ def bounces():
     (["--exact"], dict(exact=True)),
     (["--effects", "all"], dict(effects="all")),
     (["--block", "3"], dict(block=3)),
+    (["--texture-filter", "none"], dict(texture_filter="none")),
 ])
 def test_render_options_match_the_command_s(bounces, tmp_path, flags, kwargs):
     """The same option through Python and through `hitray render` casts the

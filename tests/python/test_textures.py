@@ -85,3 +85,36 @@ def test_errors(tmp_path):
         scene.pixmap(3, tmp_path / "missing.png")
     with pytest.raises(hitray.ArgumentError, match="specularFraction 2 must be within"):
         scene.add(hitray.Sphere(), specularFraction=2)
+
+
+def horizon_floor(textured=True):
+    """A checkerboard floor (the plane z = 0) seen toward its horizon, and
+    the camera that looks across it."""
+    scene = flat_scene()
+    extra = dict(texture=-1, parameters=(0.25, 1, 1, 1, 0, 0, 0)) if textured else {}
+    scene.add(hitray.Plane(), **FLAT, **extra)
+    return scene, hitray.Camera((0, -6, 1), (0, 0, 0.2), (0, 0, 1), 40)
+
+
+def test_texture_filter_footprint_and_none():
+    """texture_filter="footprint" (the default) averages the squares over
+    each pixel's footprint: toward the horizon, where many squares fall in
+    a pixel, the pixels come near the mean grey instead of black or white
+    at random; "none" point-samples them (Hill's), as --texture-filter none
+    does. A scene without textures is the same either way."""
+    scene, camera = horizon_floor()
+    filtered = np.asarray(hitray.render(scene, camera, size=(64, 48), progress=False))
+    default = np.asarray(hitray.render(scene, camera, size=(64, 48), progress=False, texture_filter="footprint"))
+    point = np.asarray(hitray.render(scene, camera, size=(64, 48), progress=False, texture_filter="none"))
+    assert np.array_equal(filtered, default)
+    assert not np.array_equal(filtered, point)
+    # The rows just under the horizon (a pixel there spans many squares).
+    far = slice(20, 23)
+    assert np.all(np.abs(filtered[far, :, 0] - 0.5) < 0.2)
+    assert np.mean(np.abs(point[far, :, 0] - 0.5)) > 0.4
+    plain, camera = horizon_floor(textured=False)
+    a = np.asarray(hitray.render(plain, camera, size=(32, 24), progress=False))
+    b = np.asarray(hitray.render(plain, camera, size=(32, 24), progress=False, texture_filter="none"))
+    assert np.array_equal(a, b)
+    with pytest.raises(ValueError, match="'footprint' or 'none'"):
+        hitray.render(scene, camera, size=(8, 6), progress=False, texture_filter="mip")

@@ -32,15 +32,21 @@ hr_color tx_down(const hr_scene *s, double x, double y)
     return tx_shade(s, (hr_vec3){x, y, 10}, (hr_vec3){0, 0, -1});
 }
 
-hr_image *tx_render(hr_context *ctx, const hr_scene *s, const hr_camera *cam, int32_t w, int32_t h,
-                    int32_t threads)
+hr_image *tx_render_filtered(hr_context *ctx, const hr_scene *s, const hr_camera *cam, int32_t w, int32_t h,
+                             int32_t threads, int32_t filter)
 {
     hr_render_options o;
     hr_render_options_default(&o);
-    o.width = w, o.height = h, o.threads = threads, o.tile_size = 8;
+    o.width = w, o.height = h, o.threads = threads, o.tile_size = 8, o.texture_filter = filter;
     hr_image *img = NULL;
     CHECK_MSG(hr_render(s, cam, &o, &img, NULL) == HR_OK, "render: %s", hr_context_last_error(ctx));
     return img;
+}
+
+hr_image *tx_render(hr_context *ctx, const hr_scene *s, const hr_camera *cam, int32_t w, int32_t h,
+                    int32_t threads)
+{
+    return tx_render_filtered(ctx, s, cam, w, h, threads, HR_TEXTURE_FILTER_NONE);
 }
 
 uint32_t tx_effects_ran(const hr_scene *s, const hr_camera *cam)

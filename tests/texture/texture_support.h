@@ -11,7 +11,11 @@ hr_scene *tx_scene(hr_context *ctx, const char *text, const char *base_dir);
 hr_color tx_shade(const hr_scene *s, hr_vec3 origin, hr_vec3 dir);
 /* The colour seen looking straight down -z at (x, y) from z = 10. */
 hr_color tx_down(const hr_scene *s, double x, double y);
-/* Render at w x h with `threads` threads (the scene's camera). */
+/* Render at w x h with `threads` threads (the scene's camera), textures
+ * point-sampled (HR_TEXTURE_FILTER_NONE: Hill's formulas, as the
+ * references have them); tx_render_filtered with the given filter. */
+hr_image *tx_render_filtered(hr_context *ctx, const hr_scene *s, const hr_camera *cam, int32_t w, int32_t h,
+                             int32_t threads, int32_t filter);
 hr_image *tx_render(hr_context *ctx, const hr_scene *s, const hr_camera *cam, int32_t w, int32_t h,
                     int32_t threads);
 /* The effects an 8 x 6 render of the scene ran (hr_render_stats.effects). */

@@ -94,7 +94,7 @@ bool poll_python(const py::object &progress, double fraction, double &reported)
 py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_t height, int32_t spp,
                   int32_t threads, int32_t depth, int32_t block_size, bool all_effects,
                   double adaptive, double min_weight, bool exact, const std::array<int32_t, 4> &window,
-                  const py::object &progress)
+                  int32_t texture_filter, const py::object &progress)
 {
     auto run = std::make_unique<RenderRun>();
     run->scene = committed_scene(s);
@@ -116,6 +116,7 @@ py::object render(const ScenePtr &s, const py::tuple &cam, int32_t width, int32_
     run->options.window_y = window[1];
     run->options.window_width = window[2];
     run->options.window_height = window[3];
+    run->options.texture_filter = texture_filter;
     run->options.progress = on_progress;
     run->options.progress_user = run.get();
     run->options.cancel = &run->cancel_flag;
@@ -177,7 +178,7 @@ void bind_render(py::module_ &m)
     m.def("render", &render, py::arg("scene"), py::arg("camera"), py::arg("width"), py::arg("height"),
           py::arg("spp"), py::arg("threads"), py::arg("depth"), py::arg("block_size"),
           py::arg("all_effects"), py::arg("adaptive"), py::arg("min_weight"), py::arg("exact"),
-          py::arg("window"), py::arg("progress"));
+          py::arg("window"), py::arg("texture_filter"), py::arg("progress"));
 }
 
 }  // namespace hitray_py

@@ -55,7 +55,8 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
            adaptive: Optional[float] = None, min_weight: Optional[float] = None,
            exact: bool = False, block_size: Optional[int] = None,
            all_effects: bool = False,
-           window: Optional[Tuple[int, int, int, int]] = None) -> RenderedImage:
+           window: Optional[Tuple[int, int, int, int]] = None,
+           texture_filter: str = "footprint") -> RenderedImage:
     """Render `scene` through `camera` into a new :class:`Image` of `size`
     (width, height).
 
@@ -92,6 +93,12 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
             bit for bit those of the full render (so windows that tile the
             frame give it exactly; hitray.distributed renders that way).
             None: the whole image.
+        texture_filter: "footprint" (the default) averages each texture over
+            the pixel's footprint on the surface, carried by ray
+            differentials through mirrors and glass (pixmaps by their
+            mip-maps); "none" point-samples it at the hit
+            (``--texture-filter``). A scene without textures renders the
+            same either way.
 
     The GIL is released while the render runs, so other Python threads run
     and several renders can run at once. Ctrl-C (KeyboardInterrupt), or an
@@ -117,6 +124,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     threshold = 0.0 if adaptive is None else _convert.number(adaptive, "adaptive")
     weight = 0.0 if min_weight is None else _convert.number(min_weight, "min_weight")
     rect = (0, 0, w, h) if window is None else _window(window, w, h)
+    filter_code = _texture_filter(texture_filter)
     if camera is None:
         camera = scene.frame_camera((w, h))
     elif not isinstance(camera, Camera):
@@ -135,7 +143,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
                         "fraction done")
     try:
         core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, blocks,
-                                  all_paths, threshold, weight, bool(exact), rect, callback)
+                                  all_paths, threshold, weight, bool(exact), rect, filter_code, callback)
     finally:
         if bar is not None:
             bar.close()
@@ -152,6 +160,16 @@ def _block(block: Optional[int], block_size: Optional[int]) -> int:
     if value < 1:
         raise ValueError(f"render: block must be at least 1, not {value}")
     return value
+
+
+# hr_render_options.texture_filter's values (HR_TEXTURE_FILTER_*).
+_TEXTURE_FILTERS = {"footprint": 0, "none": 1}
+
+
+def _texture_filter(name: str) -> int:
+    if not isinstance(name, str) or name not in _TEXTURE_FILTERS:
+        raise ValueError(f"render: texture_filter must be 'footprint' or 'none', not {name!r}")
+    return _TEXTURE_FILTERS[name]
 
 
 def _effects(effects: str, all_effects: bool) -> bool:
