@@ -198,6 +198,24 @@ static void full_pixel(worker *w, int32_t bx, int32_t by, double bw, double bh, 
     w->pixels_over_budget += w->tc.rays_over_budget != over_before;
 }
 
+/* One row of render_tile_centres: n pixels from px on, the plane's x of
+ * each in w->columns. Only a `budgeted` row (one whose rays can reach the
+ * ray budget: tc.budget_free_levels) asks after each ray whether it did. */
+static inline __attribute__((always_inline)) void
+centres_row(worker *w, const hr_camera_frame *f, double plane_y, float *px, int32_t n, const int budgeted)
+{
+    const int32_t max_depth = w->job->max_depth;
+    for (int32_t i = 0; i < n; i++, px += 3) {
+        hr_ray ray;
+        hri_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
+        uint64_t over_before = budgeted ? w->tc.rays_over_budget : 0;
+        hr_color c = budgeted ? hri_shade_ray(&w->tc, &ray, 0, max_depth)
+                              : hri_shade_ray_unbudgeted(&w->tc, &ray, 0, max_depth);
+        if (budgeted) w->pixels_over_budget += w->tc.rays_over_budget != over_before;
+        px[0] = (float)(0.0 + c.r), px[1] = (float)(0.0 + c.g), px[2] = (float)(0.0 + c.b);
+    }
+}
+
 /* One ray through each pixel's centre (one sample a pixel, no blocks), the
  * common render: the bits full_pixel gives such a pixel (its one sample is
  * the centre, x + 0.5 * 1.0, and its sum +0 plus the colour, divided by 1),
@@ -208,18 +226,15 @@ static void render_tile_centres(worker *w, int32_t x0, int32_t y0, int32_t x1, i
 {
     render_job *job = w->job;
     const hr_camera_frame *f = &job->frame;
+    const int budgeted = job->max_depth > w->tc.budget_free_levels;
     for (int32_t x = x0; x < x1; x++) w->columns[x - x0] = hri_camera_frame_x(f, x + 0.5);
     for (int32_t y = y0; y < y1; y++) {
         const double plane_y = hri_camera_frame_y(f, y + 0.5);
         float *px = pixel_at(job, x0, y);
-        for (int32_t i = 0; i < x1 - x0; i++, px += 3) {
-            hr_ray ray;
-            hri_camera_frame_ray_xy(f, w->columns[i], plane_y, &ray);
-            uint64_t over_before = w->tc.rays_over_budget;
-            hr_color c = hri_shade_ray(&w->tc, &ray, 0, job->max_depth);
-            w->pixels_over_budget += w->tc.rays_over_budget != over_before;
-            px[0] = (float)(0.0 + c.r), px[1] = (float)(0.0 + c.g), px[2] = (float)(0.0 + c.b);
-        }
+        if (budgeted)
+            centres_row(w, f, plane_y, px, x1 - x0, 1);
+        else
+            centres_row(w, f, plane_y, px, x1 - x0, 0);
         w->primary += (uint64_t)(x1 - x0);
     }
 }

@@ -1,7 +1,9 @@
 /* The scene budget (scene_budget.h). */
 #include "scene/scene_budget.h"
 
+#include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -41,8 +43,11 @@ hr_status hri_scene_budget_init(hr_context *ctx, hr_scene_budget *b)
                         &b->limit);
 }
 
-static hr_status over(const hr_context *ctx, const hr_scene_budget *b, uint64_t bytes, const char *what)
+static hr_status over(const hr_context *ctx, const hr_scene_budget *b, uint64_t bytes, const char *what_format,
+                      va_list ap)
 {
+    char what[256];
+    vsnprintf(what, sizeof what, what_format, ap);
     return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY,
                     "%s needs %llu bytes more than the scene's memory budget of %llu bytes leaves (it holds "
                     "%llu bytes of objects, %llu of shape data, %llu of texels); set %s or "
@@ -55,16 +60,26 @@ static hr_status over(const hr_context *ctx, const hr_scene_budget *b, uint64_t 
 static uint64_t used(const hr_scene_budget *b) { return b->objects + b->shape_data + b->texels; }
 
 hr_status hri_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint64_t *kind, uint64_t bytes,
-                                 const char *what)
+                                 const char *what_format, ...)
 {
-    if (bytes > b->limit - used(b)) return over(ctx, b, bytes, what);
-    *kind += bytes;
-    return HR_OK;
+    if (bytes <= b->limit - used(b)) {
+        *kind += bytes;
+        return HR_OK;
+    }
+    va_list ap;
+    va_start(ap, what_format);
+    hr_status st = over(ctx, b, bytes, what_format, ap);
+    va_end(ap);
+    return st;
 }
 
-hr_status hri_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what)
+hr_status hri_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what_format, ...)
 {
-    return over(ctx, b, b->refused, what);
+    va_list ap;
+    va_start(ap, what_format);
+    hr_status st = over(ctx, b, b->refused, what_format, ap);
+    va_end(ap);
+    return st;
 }
 
 /* The bytes a block holds. Blocks stay plain calloc blocks, so a module

@@ -23,13 +23,15 @@ typedef struct hr_scene_budget {
  * of RLIMIT_AS and physical memory). */
 hr_status hri_scene_budget_init(hr_context *ctx, hr_scene_budget *b);
 /* Charges `bytes` of `kind` (one of the budget's counters), or refuses
- * with an HR_ERROR_OUT_OF_MEMORY naming `what`, the amounts and how to
- * raise the limit, charging nothing. */
+ * with an HR_ERROR_OUT_OF_MEMORY naming what was asked for (printf's
+ * `what_format` and the arguments after it, formatted only then), the
+ * amounts and how to raise the limit, charging nothing. */
 hr_status hri_scene_budget_charge(const hr_context *ctx, hr_scene_budget *b, uint64_t *kind, uint64_t bytes,
-                                 const char *what);
+                                 const char *what_format, ...) __attribute__((format(printf, 5, 6)));
 /* The refusal's message after a shape's create failed for want of budget
  * (b->refused set by the allocator). */
-hr_status hri_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what);
+hr_status hri_scene_budget_refused(const hr_context *ctx, const hr_scene_budget *b, const char *what_format, ...)
+    __attribute__((format(printf, 3, 4)));
 
 /* Shape data: hr_host.alloc and free. Between begin and end on this thread
  * (a shape's create) every allocation is charged to `b`, or refused past

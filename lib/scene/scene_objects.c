@@ -169,6 +169,10 @@ static hr_status set_composite_depth(hr_scene *s, hr_object *o, const void *cons
     return HR_OK;
 }
 
+/* An object as the scene budget's refusal names it, its index and class:
+ * formatted only when the budget refuses it, not for every object. */
+#define OBJECT_WHAT "object %lld (a '%s')"
+
 HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64_t *out_index)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
@@ -192,10 +196,10 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
 
     /* The object itself, its slot in the scene's lists and its share of the
      * scene's BVH; its shape data is charged as the shape allocates it. */
-    char what[160];
-    snprintf(what, sizeof what, "object %lld (a '%s')", (long long)s->object_count, cls->name);
+    const long long index = (long long)s->object_count; /* for OBJECT_WHAT */
     const uint64_t object_bytes = sizeof(hr_object) + 64;
-    if ((st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, what))) return st;
+    st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, OBJECT_WHAT, index, cls->name);
+    if (st) return st;
     hr_object *o = object_alloc();
     if (!o) {
         s->budget.objects -= object_bytes;
@@ -253,7 +257,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
             o->shape = NULL;
             if (st == HR_OK) st = HR_ERROR_MODULE;
             if (s->budget.refused) /* the shape's own message says only "out of memory" */
-                st = hri_scene_budget_refused(ctx, &s->budget, what);
+                st = hri_scene_budget_refused(ctx, &s->budget, OBJECT_WHAT, index, cls->name);
             else
                 st = hri_error(ctx, st, "shape '%s' (module '%s'): %s", cls->name, module_path,
                               message[0] ? message : "create failed without a message");
@@ -265,7 +269,9 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     if (st == HR_OK && n > 0) {
         o->params = hri_params_keep(full, n, &kept_bytes);
         if (!o->params) st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-        else st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, kept_bytes, what);
+        else
+            st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, kept_bytes, OBJECT_WHAT, index,
+                                        cls->name);
         if (st) kept_bytes = 0;
     }
     if (st == HR_OK) {

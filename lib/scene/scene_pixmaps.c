@@ -17,7 +17,7 @@ HR_API hr_status hr_scene_set_pixmap(hr_scene *s, int32_t index, const hr_image 
     if (!image) return hri_pixmap_add(s->ctx, &s->pixmaps, index, image);
     char what[64];
     const uint64_t bytes = hri_pixmap_bytes(image, index, what, sizeof what);
-    hr_status st = hri_scene_budget_charge(s->ctx, &s->budget, &s->budget.texels, bytes, what);
+    hr_status st = hri_scene_budget_charge(s->ctx, &s->budget, &s->budget.texels, bytes, "%s", what);
     if (st) return st;
     if ((st = hri_pixmap_add(s->ctx, &s->pixmaps, index, image))) s->budget.texels -= bytes;
     return st;

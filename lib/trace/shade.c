@@ -98,11 +98,11 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
     return sum;
 }
 
-/* Inline into shade, as it was before shade had two copies (the compiler
- * inlined it then of its own accord): each copy's Phong loop is its own. */
-static inline __attribute__((always_inline)) hr_color direct_light(hr_trace_ctx *tc, const hr_object *o,
-                                                                   const hr_material *mat, const hr_hit *h,
-                                                                   hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
+/* In shade's own code (both its copies), as the light loop of nearly every
+ * hit. */
+static inline __attribute__((always_inline)) hr_color
+direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const hr_hit *h, hr_vec3 m,
+             hr_vec3 to_eye, uint32_t flags)
 {
     return light_loop(tc, o, mat, h, m, to_eye, flags, 0);
 }
@@ -129,29 +129,52 @@ static inline uint64_t rays_cast(const hr_trace_ctx *tc)
 /* Whether a bounce of path `p` is traced. A forced bounce (one only
  * HR_EFFECTS_ALL traces, weight 0 throughout its subtree) passes the
  * cut-off: it contributes nothing either way, and it is there to be run;
- * the budget bounds it like any other. */
-static int worth_tracing(hr_trace_ctx *tc, path p, int forced)
+ * the budget bounds it like any other (where `budgeted`: elsewhere no
+ * bounce can reach it). */
+static inline int worth_tracing(hr_trace_ctx *tc, path p, int forced, const int budgeted)
 {
     if (!forced && p.weight < p.allowance) {
         tc->rays_cut++;
         return 0;
     }
-    if (!(p.rays >= 1.0 + (double)tc->scene->light_count)) {
+    if (budgeted && !(p.rays >= 1.0 + (double)tc->scene->light_count)) {
         tc->rays_over_budget++;
         return 0;
     }
     return 1;
 }
 
-static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
-                      int forced);
+/* shade in three copies: one that keeps the ray budget's accounts, one for
+ * the rays whose trees cannot reach the budget (a scene's usual depth and
+ * lights: tc->budget_free_levels), which pays nothing for it, and one for
+ * rays that carry differentials (a textured scene, lib/trace/ray_diff.h),
+ * which keeps the budget's accounts too. A ray's bounces have fewer levels
+ * below them than it has, so they stay in the copy it is in. The path goes
+ * in registers: its parts as arguments. */
+static hr_color shade_budgeted(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
+                               double weight, double allowance, double rays, int forced);
+static hr_color shade_unbudgeted(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth,
+                                 double weight, double allowance, int forced);
 static hr_color shade_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
                            int32_t max_depth, path p, int forced);
 
+static inline hr_color bounce(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
+                              int forced, const int budgeted)
+{
+    return budgeted ? shade_budgeted(tc, ray, depth, max_depth, p.weight, p.allowance, p.rays, forced)
+                    : shade_unbudgeted(tc, ray, depth, max_depth, p.weight, p.allowance, forced);
+}
+
 hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
 {
-    path p = {1.0, tc->min_weight, tc->ray_budget > 0.0 ? tc->ray_budget : INFINITY};
-    return shade(tc, ray, depth, max_depth, p, 0);
+    if (max_depth - depth <= tc->budget_free_levels)
+        return shade_unbudgeted(tc, ray, depth, max_depth, 1.0, tc->min_weight, 0);
+    return shade_budgeted(tc, ray, depth, max_depth, 1.0, tc->min_weight, tc->ray_budget, 0);
+}
+
+hr_color hri_shade_ray_unbudgeted(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth)
+{
+    return shade_unbudgeted(tc, ray, depth, max_depth, 1.0, tc->min_weight, 0);
 }
 
 hr_color hri_shade_ray_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
@@ -218,16 +241,17 @@ shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, const hr
     return buf;
 }
 
-/* shade's body, for the two callers below: `diff` (a constant in each) says
- * whether the ray carries differentials (rd), so the shading of a scene
+/* shade's body, for the three copies below: `diff` (a constant in each)
+ * says whether the ray carries differentials (rd), so the shading of a scene
  * without textures is the code it was, and a textured scene's filters each
- * texture by its hit's footprint. */
+ * texture by its hit's footprint; `budgeted` whether it keeps the ray
+ * budget's accounts. */
 static inline __attribute__((always_inline)) hr_color
 shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth, int32_t max_depth,
-           path p, int forced, const int diff)
+           path p, int forced, const int diff, const int budgeted)
 {
     const hr_scene *s = tc->scene;
-    const uint64_t cast_before = rays_cast(tc);
+    const uint64_t cast_before = budgeted ? rays_cast(tc) : 0;
     /* A shape failed: the render fails, so the rest of its rays are not
      * traced (a failing shape may be slow to fail: one that renders). */
     if (tc->status) return rgb(0, 0, 0);
@@ -286,13 +310,13 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
     int bounces = ((flags & HR_MAT_REFLECTS) != 0) + ((flags & HR_MAT_REFRACTS) != 0);
     if (bounces == 0) return c;
     double allowance = tc->split_cut_off && weighted == 2 ? 0.5 * p.allowance : p.allowance;
-    double rays = (p.rays - 1.0 - (double)(rays_cast(tc) - cast_before)) / bounces;
+    double rays = budgeted ? (p.rays - 1.0 - (double)(rays_cast(tc) - cast_before)) / bounces : INFINITY;
 
     double cos_i = -v3_dot(dir, m); /* > 0: angle of incidence */
     hr_vec3 dm[2]; /* m's derivatives (diff), worked out for the first bounce */
     int have_dm = 0;
     path reflected = {p.weight * reflect_weight, allowance, rays};
-    if ((flags & HR_MAT_REFLECTS) && worth_tracing(tc, reflected, forced || reflect_weight == 0.0)) {
+    if ((flags & HR_MAT_REFLECTS) && worth_tracing(tc, reflected, forced || reflect_weight == 0.0, budgeted)) {
         hr_ray r = {hr_hit_spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
         tc->effects_ran |= HR_EFFECT_REFLECTION;
@@ -303,13 +327,14 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
             hr_ray_diff rr = hri_ray_diff_reflect(rd, dir, m, dm[0], dm[1], footprint[0], footprint[1]);
             seen = shade_diff(tc, &r, &rr, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0);
         } else {
-            seen = shade(tc, &r, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0);
+            seen = bounce(tc, &r, depth + 1, max_depth, reflected, forced || reflect_weight == 0.0, budgeted);
         }
         c = rgb_add(c, rgb_scale(seen, reflect_weight));
     }
     /* What the reflected subtree left, all of it. */
-    path refracted = {p.weight * refract_weight, allowance, p.rays - 1.0 - (double)(rays_cast(tc) - cast_before)};
-    if ((flags & HR_MAT_REFRACTS) && worth_tracing(tc, refracted, forced || refract_weight == 0.0)) {
+    path refracted = {p.weight * refract_weight, allowance,
+                      budgeted ? p.rays - 1.0 - (double)(rays_cast(tc) - cast_before) : INFINITY};
+    if ((flags & HR_MAT_REFRACTS) && worth_tracing(tc, refracted, forced || refract_weight == 0.0, budgeted)) {
         /* Snell with Hill's speeds: sin(t) = (c2 / c1) sin(i). Entering goes
          * from the surrounding space (speed 1) into the material. */
         double c1 = h.entering ? 1.0 : mat->speed_of_light;
@@ -337,21 +362,29 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
                                                         ratio, sqrt(cos_t2));
             seen = shade_diff(tc, &t, &tr, depth + 1, max_depth, refracted, forced || refract_weight == 0.0);
         } else {
-            seen = shade(tc, &t, depth + 1, max_depth, refracted, forced || refract_weight == 0.0);
+            seen = bounce(tc, &t, depth + 1, max_depth, refracted, forced || refract_weight == 0.0, budgeted);
         }
         c = rgb_add(c, rgb_scale(seen, refract_weight));
     }
     return c;
 }
 
-static hr_color shade(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth, path p,
-                      int forced)
+static __attribute__((noinline)) hr_color shade_budgeted(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth,
+                                                         int32_t max_depth, double weight, double allowance,
+                                                         double rays, int forced)
 {
-    return shade_body(tc, ray, NULL, depth, max_depth, p, forced, 0);
+    return shade_body(tc, ray, NULL, depth, max_depth, (path){weight, allowance, rays}, forced, 0, 1);
+}
+
+static __attribute__((noinline)) hr_color shade_unbudgeted(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth,
+                                                           int32_t max_depth, double weight, double allowance,
+                                                           int forced)
+{
+    return shade_body(tc, ray, NULL, depth, max_depth, (path){weight, allowance, INFINITY}, forced, 0, 0);
 }
 
 static hr_color shade_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
                            int32_t max_depth, path p, int forced)
 {
-    return shade_body(tc, ray, rd, depth, max_depth, p, forced, 1);
+    return shade_body(tc, ray, rd, depth, max_depth, p, forced, 1, 1);
 }

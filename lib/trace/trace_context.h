@@ -4,6 +4,7 @@
 #ifndef HITRAY_LIB_TRACE_CONTEXT_H
 #define HITRAY_LIB_TRACE_CONTEXT_H
 
+#include <math.h>
 #include <stdatomic.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -54,6 +55,11 @@ typedef struct hr_trace_ctx {
     /* The ray budget (hr_render_options.ray_budget): the rays one camera
      * ray may cast, shared out among its bounces (shade.c); 0: none. */
     double ray_budget;
+    /* The most levels of bounces below a ray (max_depth - depth) whose
+     * whole tree, at two bounces a hit and a shadow ray a light, fits the
+     * budget: a ray with no more levels below it can never reach the
+     * budget, and shade skips its bookkeeping (INT32_MAX: no budget). */
+    int32_t budget_free_levels;
     uint64_t rays_over_budget;
     uint32_t effects_ran;       /* HR_EFFECT_* whose code ran */
     /* The object that blocked the last shadow ray towards each light (by
@@ -75,6 +81,7 @@ static inline void hri_trace_ctx_init(hr_trace_ctx *tc, const hr_scene *scene)
 {
     memset(tc, 0, offsetof(hr_trace_ctx, scratch));
     tc->scene = scene;
+    tc->budget_free_levels = INT32_MAX; /* ray_budget 0: none */
 }
 /* hri_trace_ctx_init's tracing part alone, for a query that never shades
  * (first hit, all hits): the shading fields are left unset, and nothing
@@ -135,6 +142,10 @@ hr_color hri_shade_ray(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32
  * texture it and its bounces meet is filtered by the hit's footprint. */
 hr_color hri_shade_ray_diff(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t depth,
                             int32_t max_depth);
+/* The same for a caller that knows the ray's tree cannot reach the ray
+ * budget (max_depth - depth <= tc->budget_free_levels), so that a render
+ * decides it once, not for every camera ray. */
+hr_color hri_shade_ray_unbudgeted(hr_trace_ctx *tc, const hr_ray *ray, int32_t depth, int32_t max_depth);
 /* 2^-HR_DEFAULT_MIN_WEIGHT_BITS: the cut-off renders and hr_scene_shade
  * apply unless told otherwise (render.h). */
 static inline double hri_default_min_weight(void) { return 1.0 / (double)(1L << HR_DEFAULT_MIN_WEIGHT_BITS); }
@@ -147,6 +158,15 @@ static inline void hri_trace_ctx_set_bounds(hr_trace_ctx *tc, int32_t exact, dou
     tc->min_weight = exact ? 0.0 : min_weight > 0.0 ? min_weight : hri_default_min_weight();
     tc->split_cut_off = !exact && !(min_weight > 0.0);
     tc->ray_budget = exact && ray_budget <= 0 ? 0.0 : ray_budget > 0 ? (double)ray_budget : HR_DEFAULT_RAY_BUDGET;
+    /* A tree of k levels below its root has 2^(k+1) - 1 rays, each casting
+     * at most one shadow ray a light. */
+    tc->budget_free_levels = INT32_MAX;
+    if (tc->ray_budget > 0.0) {
+        double per_ray = 1.0 + (double)tc->scene->light_count;
+        int32_t k = 0;
+        while (k < 60 && per_ray * (ldexp(1.0, k + 2) - 1.0) <= tc->ray_budget) k++;
+        tc->budget_free_levels = k;
+    }
 }
 
 #endif

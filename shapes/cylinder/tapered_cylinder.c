@@ -257,7 +257,8 @@ static double tube_cap_inner(const tapered_cylinder *shape)
  * included. A point whose rho~ rounded to r or below lies within
  * gamma(3) r outside, which that bound (at least gamma(5) r / sqrt(2))
  * covers. */
-static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *hit)
+static inline __attribute__((always_inline)) void disk_fill(const tapered_cylinder *shape, const hr_ray *ray,
+                                                            hr_hit *hit, const int tube)
 {
     const int cap = hit->surface == SURFACE_CAP;
     const double r = cap ? shape->s : 1.0;
@@ -271,11 +272,12 @@ static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *
     const hr_vec3 q = shape_vec3_ldexp(shape_vec3(x, y, 0.0), -exponent);
     const double rho = sqrt(q.x * q.x + q.y * q.y);
     /* The tube's annuli: a point inside the hole is moved out onto the
-     * inner rim the same way (the same bound with the inner radius). */
-    const double r_in = cap ? tube_cap_inner(shape) : shape->inner;
+     * inner rim the same way (the same bound with the inner radius). A
+     * cylinder's disks have no hole, and its copy no such test. */
     double rim;
     if (rho > shape_ldexp(r, -exponent)) rim = r;
-    else if (rho > 0.0 && rho < shape_ldexp(r_in, -exponent)) rim = r_in;
+    else if (tube && rho > 0.0 && rho < shape_ldexp(cap ? tube_cap_inner(shape) : shape->inner, -exponent))
+        rim = cap ? tube_cap_inner(shape) : shape->inner;
     else return;
     const double scale = rim / rho;
     hit->point.x = q.x * scale;
@@ -286,7 +288,7 @@ static void disk_fill(const tapered_cylinder *shape, const hr_ray *ray, hr_hit *
 static void tapered_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
 {
     if (hit->surface == SURFACE_WALL) wall_fill(shape, 1.0, ray, hit);
-    else disk_fill(shape, ray, hit);
+    else disk_fill(shape, ray, hit, 0);
 }
 
 static hr_status tapered_trace(const hr_hit_args *args, int32_t mode)
@@ -353,7 +355,7 @@ static void tube_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
         wall_fill(c, c->inner, ray, hit);
         hit->normal = shape_vec3(-hit->normal.x, -hit->normal.y, -hit->normal.z);
     } else {
-        disk_fill(c, ray, hit);
+        disk_fill(c, ray, hit, 1);
     }
 }
 

@@ -182,6 +182,58 @@ static void test_nested_glass(void)
     hr_scene_destroy(r.scene);
 }
 
+/* Concentric spheres of radius 1 to 4 about the camera and the light,
+ * glass of speed 1 (so nothing bends or is reflected whole): every ray up
+ * to depth 3 hits one, and splits in two. Under HR_EFFECTS_ALL each hit
+ * casts its shadow ray too, so a camera sample casts the largest tree
+ * depth 3 and one light allow, (1 + 1) * (2^4 - 1) = 30 rays. */
+static const char *full_tree =
+    "camera 0 0 0  0 0 -1  0 1 0  60\n"
+    "maxRecursionDepth 3 minReflectivity 0 minTransparency 0\n"
+    "light 0 0 0 1 1 1\n"
+    "reflectivity 0.5 transparency 0.5 speedOfLight 1 diffuse 0.3 0.3 0.3\n"
+    "sphere\n"
+    "push scale 2 2 2 sphere pop\n"
+    "push scale 3 3 3 sphere pop\n"
+    "push scale 4 4 4 sphere pop\n";
+
+/* A budget that covers the largest tree a scene's depth and lights allow
+ * is never reached, and shade skips its accounts (tc.budget_free_levels);
+ * one ray less and it is reached, so the accounts are kept exactly where
+ * they can matter. */
+static void test_full_tree_boundary(void)
+{
+    hr_sdl_result r = load(full_tree);
+    if (!r.scene) return;
+    hr_render_options o;
+    hr_render_stats st;
+    hr_status status;
+    hr_render_options_default(&o);
+    o.effects = HR_EFFECTS_ALL;
+    o.exact = 1;
+    hr_image *exact = render(&r, 1, 1, &o, &st, &status);
+    CHECK_OK(status);
+    CHECK_MSG(all_rays(&st) == 30, "%llu rays in the full tree", (unsigned long long)all_rays(&st));
+    o.exact = 0;
+    o.ray_budget = 30;
+    hr_image *covered = render(&r, 1, 1, &o, &st, &status);
+    CHECK_OK(status);
+    CHECK_MSG(all_rays(&st) == 30 && st.rays_over_budget == 0 && st.pixels_over_budget == 0,
+              "%llu rays, %llu over a budget of 30", (unsigned long long)all_rays(&st),
+              (unsigned long long)st.rays_over_budget);
+    if (exact && covered) CHECK(memcmp(hr_image_data(exact), hr_image_data(covered), 3 * sizeof(float)) == 0);
+    o.ray_budget = 29;
+    hr_image *short_one = render(&r, 1, 1, &o, &st, &status);
+    CHECK_OK(status);
+    CHECK_MSG(all_rays(&st) <= 29 && st.rays_over_budget > 0 && st.pixels_over_budget == 1,
+              "%llu rays, %llu over a budget of 29", (unsigned long long)all_rays(&st),
+              (unsigned long long)st.rays_over_budget);
+    hr_image_destroy(exact);
+    hr_image_destroy(covered);
+    hr_image_destroy(short_one);
+    hr_scene_destroy(r.scene);
+}
+
 static double largest_difference(hr_image *a, hr_image *b, int n)
 {
     const float *pa = hr_image_data(a), *pb = hr_image_data(b);
@@ -236,6 +288,7 @@ int main(void)
     CHECK_OK(hr_context_create(&ctx));
     test_nested_glass();
     test_faint_glass();
+    test_full_tree_boundary();
     hr_context_destroy(ctx);
     return hr_test_end();
 }

@@ -3,7 +3,9 @@
  * baseline being compared against) and the modules' stable forms
  * (shapes/sphere/sphere.c, shapes/cylinder/tapered_cylinder.c: Lagrange's
  * identity for the discriminant, compensated sums, the stable root pair),
- * called through the shape module ABI as the library calls them.
+ * called through the shape module ABI as the library calls them: libhitray
+ * finds and loads the module (hr_context_find_shape_class), and the shape
+ * is made by its class's create with the defaults of its parameters.
  *
  *   build/bench/accuracy/quadric_forms [--rays=N] [--repeats=N]
  *
@@ -23,20 +25,105 @@
  *   computation may make);
  * - missed and spurious crossings against the reference, split into rays
  *   clear of any tangency or rim (reference margin > 1e-12) and the rest,
- *   as bench/programs/torus_solvers.c does. */
+ *   as bench/programs/torus_solvers.c does.
+ * It exits non-zero if a module broke the hit contract (a count past the
+ * list's room, hits out of order or not finite). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <hitray/hitray.h>
+
 #include "bench_util.h"
-#include "hr_test.h"
-#include "module_harness.h"
 #include "quad_reference.h"
 #include "random_rays.h"
 
 #define CLEAR_MARGIN 1e-12
 #define SURFACE_WALL 0 /* the tapered cylinder's wall; the sphere's only surface */
+#define MAX_HITS 8
+
+/* One shape made by a class that libhitray loaded. */
+typedef struct module_shape {
+    const hr_shape_class *cls;
+    void *shape;
+} module_shape;
+
+static int contract_broken;
+
+/* The host services a sphere's or a cylinder's create and hit use: memory
+ * for the shape (neither reserves room or traces a child). */
+static void *host_alloc(size_t size) { return calloc(1, size); }
+static const hr_host host = {
+    .struct_size = sizeof(hr_host), .abi_version = HR_SHAPE_ABI_VERSION, .alloc = host_alloc, .free = free};
+
+/* The class `name` as libhitray finds it, made with its defaults. */
+static int shape_open(hr_context *ctx, const char *name, module_shape *out)
+{
+    out->shape = NULL;
+    if (hr_context_find_shape_class(ctx, name, &out->cls, NULL) != HR_OK) {
+        fprintf(stderr, "quadric_forms: %s\n", hr_context_last_error(ctx));
+        return 0;
+    }
+    hr_param params[16];
+    if (out->cls->param_count > 16) return 0;
+    memset(params, 0, sizeof params);
+    for (int32_t i = 0; i < out->cls->param_count; i++) {
+        params[i].name = out->cls->params[i].name;
+        params[i].type = out->cls->params[i].type;
+        params[i].number = out->cls->params[i].default_number;
+        params[i].string = "";
+        params[i].object = -1;
+    }
+    const void *objects[16] = {NULL};
+    char error[256] = "";
+    hr_create_args args = {.struct_size = sizeof args, .param_count = out->cls->param_count, .params = params,
+                           .objects = objects, .host = &host, .error = error, .error_size = sizeof error,
+                           .base_dir = ""};
+    if (out->cls->create(&args, &out->shape) != HR_OK || !out->shape) {
+        fprintf(stderr, "quadric_forms: create %s: %s\n", name, error);
+        return 0;
+    }
+    return 1;
+}
+
+static void shape_close(module_shape *s)
+{
+    if (s->shape) s->cls->destroy(s->shape);
+    s->shape = NULL;
+}
+
+/* A hit call's arguments for every hit over (0, inf) into `list`, as the
+ * library asks for them (the ray to be set). */
+static hr_hit_args every_hit(const module_shape *s, hr_intersection *list)
+{
+    hr_hit_args args;
+    memset(&args, 0, sizeof args);
+    args.shape = s->shape;
+    args.tmin = 0.0;
+    args.tmax = INFINITY;
+    args.out = list;
+    args.struct_size = (uint32_t)sizeof args;
+    return args;
+}
+
+/* Every hit of the ray, with the contract checked. */
+static int shape_hits(const module_shape *s, hr_ray ray, hr_hit hits[MAX_HITS])
+{
+    hr_intersection list = {hits, 0, MAX_HITS};
+    hr_hit_args args = every_hit(s, &list);
+    args.ray = ray;
+    if (s->cls->hit(&args) != HR_OK || list.count < 0 || list.count > MAX_HITS) {
+        contract_broken = 1;
+        return 0;
+    }
+    for (int k = 0; k < list.count; k++)
+        if (!(hits[k].t > 0.0 && isfinite(hits[k].t)) || (k && hits[k].t < hits[k - 1].t)) {
+            contract_broken = 1;
+            return 0;
+        }
+    return list.count;
+}
 
 /* The textbook quadratic for |o + t d|^2 = 1. Returns the roots in t[],
  * sorted. */
@@ -77,7 +164,6 @@ typedef int (*naive_fn)(const hr_ray *ray, double t[2]);
 
 typedef struct shape_case {
     const char *name;     /* the class, as the reference knows it */
-    const char *module;   /* its module file */
     naive_fn naive;
     hr_bounds bounds;
 } shape_case;
@@ -94,17 +180,12 @@ __attribute__((noinline)) static double time_naive(naive_fn fn, const hr_ray *ra
 
 /* The module's hit function (every hit, over (0, inf)) as the host calls
  * it, with the list emptied before each call. */
-__attribute__((noinline)) static double time_module(const harness_shape *shape,
+__attribute__((noinline)) static double time_module(const module_shape *shape,
                                                     const hr_ray *rays, int count)
 {
     hr_hit storage[HR_MIN_HIT_CAPACITY];
     hr_intersection list = {storage, 0, HR_MIN_HIT_CAPACITY};
-    hr_hit_args args;
-    memset(&args, 0, sizeof args);
-    args.shape = shape->shape;
-    args.tmin = 0.0;
-    args.tmax = INFINITY;
-    args.out = &list;
+    hr_hit_args args = every_hit(shape, &list);
     volatile int sink = 0;
     const double start = bench_now_ns();
     for (int i = 0; i < count; i++) {
@@ -158,10 +239,10 @@ static void print_row(const shape_case *sc, const char *form, double distance, i
     fflush(stdout);
 }
 
-static void run_case(const shape_case *sc, double distance, int count, int repeats)
+static void run_case(hr_context *ctx, const shape_case *sc, double distance, int count, int repeats)
 {
-    harness_shape shape;
-    if (!harness_open(&shape, sc->module, sc->name, NAN)) exit(1);
+    module_shape shape;
+    if (!shape_open(ctx, sc->name, &shape)) exit(1);
     ray_rng rng;
     rng_seed(&rng, UINT64_C(0x9ad71c) + (uint64_t)log10(distance));
     hr_ray *rays = bench_checked(malloc((size_t)count * sizeof *rays));
@@ -182,11 +263,11 @@ static void run_case(const shape_case *sc, double distance, int count, int repea
     bench_errors_init(&naive.errors, 2 * count);
     bench_errors_init(&stable.errors, 2 * count);
     for (int i = 0; i < count; i++) {
-        double t[HARNESS_MAX_HITS];
+        double t[MAX_HITS];
         int n = sc->naive(&rays[i], t);
         tally_ray(&naive, &refs[i], t, n);
-        hr_hit hits[HARNESS_MAX_HITS];
-        const int h = harness_hits(&shape, rays[i], hits);
+        hr_hit hits[MAX_HITS];
+        const int h = shape_hits(&shape, rays[i], hits);
         n = 0;
         for (int k = 0; k < h; k++)
             if (hits[k].surface == SURFACE_WALL) t[n++] = hits[k].t;
@@ -198,7 +279,7 @@ static void run_case(const shape_case *sc, double distance, int count, int repea
     bench_errors_free(&stable.errors);
     free(rays);
     free(refs);
-    harness_close(&shape);
+    shape_close(&shape);
 }
 
 int main(int argc, char **argv)
@@ -215,11 +296,15 @@ int main(int argc, char **argv)
         return 2;
     }
     static const shape_case cases[] = {
-        {"sphere", "sphere", naive_sphere, {{-1, -1, -1}, {1, 1, 1}}},
-        {"cylinder", "cylinder", naive_cylinder_wall, {{-1, -1, 0}, {1, 1, 1}}},
+        {"sphere", naive_sphere, {{-1, -1, -1}, {1, 1, 1}}},
+        {"cylinder", naive_cylinder_wall, {{-1, -1, 0}, {1, 1, 1}}},
     };
+    hr_context *ctx;
+    if (hr_context_create(&ctx) != HR_OK) return 1;
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
         for (double distance = 10; distance <= 1e6; distance *= 10)
-            run_case(&cases[c], distance, count, repeats);
-    return hr_test_end(); /* non-zero if a module broke its contract (harness_hits) */
+            run_case(ctx, &cases[c], distance, count, repeats);
+    hr_context_destroy(ctx);
+    if (contract_broken) fprintf(stderr, "quadric_forms: a module broke the hit contract\n");
+    return contract_broken;
 }
