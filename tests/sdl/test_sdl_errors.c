@@ -13,6 +13,11 @@ static void keywords_and_numbers(hr_context *ctx)
     EXPECT_ERROR(ctx, "Sphere", HR_ERROR_SDL, 1, 1, "unknown keyword 'Sphere'",
                  "case-sensitive", "'sphere'");
     EXPECT_ERROR(ctx, "pushh", HR_ERROR_SDL, 1, 1, "unknown keyword 'pushh'");
+    /* A word's bytes reach the message escaped, not as the escape sequence
+     * that would turn a terminal red (nor a UTF-8 byte a terminal could
+     * take for a C1 control). */
+    EXPECT_ERROR(ctx, "sph\x1b[31mere", HR_ERROR_SDL, 1, 1, "unknown keyword 'sph\\x1b[31mere'");
+    EXPECT_ERROR(ctx, "def \x9b" "2J { sphere }", HR_ERROR_SDL, 1, 5, "'\\x9b2J'");
     /* One number too many reads as a keyword. */
     EXPECT_ERROR(ctx, "scale 1 2 3 4 sphere", HR_ERROR_SDL, 1, 13,
                  "expected a keyword, found the number '4'");
