@@ -242,9 +242,20 @@ static size_t zigzag(const pt2 *p, size_t n, uint32_t *tris)
  * 0 if the polygon has no area. */
 static int project(const hr_vec3 *v, size_t n, pt2 *out)
 {
+    /* Everything on the coordinates scaled by a power of two that brings
+     * the largest near 1: exact, so the cuts are those of the coordinates
+     * as read, but neither the normal's products nor the clipper's
+     * overflow for a polygon near 1e308 (which came out as NaN and had the
+     * polygon dropped as having no area) or underflow near 1e-300. */
+    double big = 0.0;
+    for (size_t i = 0; i < n; i++)
+        big = fmax(big, fmax(fabs(v[i].x), fmax(fabs(v[i].y), fabs(v[i].z))));
+    const double scale = big > 0.0 && isfinite(big) ? ldexp(1.0, -ilogb(big)) : 1.0;
     double nx = 0, ny = 0, nz = 0;
     for (size_t i = 0; i < n; i++) {
-        const hr_vec3 a = v[i], b = v[(i + 1) % n];
+        const hr_vec3 p = v[i], q = v[(i + 1) % n];
+        const hr_vec3 a = {p.x * scale, p.y * scale, p.z * scale};
+        const hr_vec3 b = {q.x * scale, q.y * scale, q.z * scale};
         nx += (a.y - b.y) * (a.z + b.z);
         ny += (a.z - b.z) * (a.x + b.x);
         nz += (a.x - b.x) * (a.y + b.y);
@@ -254,9 +265,10 @@ static int project(const hr_vec3 *v, size_t n, pt2 *out)
     double area = 0.0;
     for (size_t i = 0; i < n; i++) {
         /* Keep the two coordinates across the dropped axis. */
-        if (az >= ax && az >= ay) out[i] = (pt2){v[i].x, v[i].y};
-        else if (ay >= ax) out[i] = (pt2){v[i].z, v[i].x};
-        else out[i] = (pt2){v[i].y, v[i].z};
+        const hr_vec3 a = {v[i].x * scale, v[i].y * scale, v[i].z * scale};
+        if (az >= ax && az >= ay) out[i] = (pt2){a.x, a.y};
+        else if (ay >= ax) out[i] = (pt2){a.z, a.x};
+        else out[i] = (pt2){a.y, a.z};
     }
     for (size_t i = 0; i < n; i++) {
         const pt2 a = out[i], b = out[(i + 1) % n];
