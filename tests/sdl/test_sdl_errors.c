@@ -61,6 +61,8 @@ static void keywords_and_numbers(hr_context *ctx)
                  "material: reflectivity 1.5 must be within [0, 1]");
     EXPECT_ERROR(ctx, "transparency -0.25 sphere", HR_ERROR_SDL, 1, 14,
                  "material: transparency -0.25 must be within [0, 1]");
+    EXPECT_ERROR(ctx, "reflectivity 1.0000001 sphere", HR_ERROR_SDL, 1, 14,
+                 "material: reflectivity 1.0000001 must be within [0, 1]");
     EXPECT_ERROR(ctx, "specularExponent -2", HR_ERROR_SDL, 1, 18,
                  "material: specularExponent -2 must be within [0, 1e+06]");
     EXPECT_ERROR(ctx, "emissive 1 2e6 3", HR_ERROR_SDL, 1, 1,
