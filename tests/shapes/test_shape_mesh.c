@@ -933,8 +933,12 @@ static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double s
 static void test_bvh_matches_brute_force(void)
 {
     soup_matches_brute_force(31, 3000, 3000, 1.0);
-    /* Tiny, huge, and past float's range (infinite float boxes). */
-    const double scales[] = {0x1p-70, 0x1p70, 0x1p130};
+    /* Tiny, huge, and past float's range (infinite float boxes); at the
+     * walk's culling range (2^64, ACCEL_CULL_RANGE), and coordinates near
+     * float's range, up to 10 * 2^124 (below FLT_MAX, 2^128) and across it
+     * at 10 * 2^125, where the boxes' float bounds round to FLT_MAX or
+     * infinity. */
+    const double scales[] = {0x1p-70, 0x1p70, 0x1p130, 0x1p61, 0x1p64, 0x1p124, 0x1p125};
     for (size_t k = 0; k < sizeof scales / sizeof *scales; k++)
         soup_matches_brute_force(77 + k, 1000, HR_TEST_SANITIZED ? 3000 : 30000, scales[k]);
 }
