@@ -582,6 +582,17 @@ static void test_many_hits(void)
     harness_close(&stack);
 }
 
+/* a, b, c, d with c d within a few ulps of a b, or exactly equal. */
+static void cancelling_products(ray_rng *rng, double *a, double *b, double *c, double *d)
+{
+    *a = rng_uniform(rng, -2, 2), *b = rng_uniform(rng, -2, 2);
+    *c = rng_uniform(rng, 0.5, 2) * (rng_chance(rng, 0.5) ? -1 : 1);
+    *d = *a * *b / *c; /* c d = a b within an ulp or two */
+    const int nudge = (int)(rng_next(rng) % 7) - 3;
+    for (int k = 0; k < abs(nudge); k++) *d = nextafter(*d, nudge > 0 ? INFINITY : -INFINITY);
+    if (rng_chance(rng, 0.1)) *c = *a, *d = *b; /* exactly zero */
+}
+
 /* The edge functions' signs are exact: a b - c d against __float128, where
  * both products are exact (106 bits < 113) and so is the sign of their
  * difference, on inputs built to cancel (c d within a few ulps of a b, and
@@ -592,12 +603,8 @@ static void test_exact_signs(void)
     rng_seed(&rng, 21);
     int wrong_plain = 0;
     for (int i = 0; i < 200000; i++) {
-        double a = rng_uniform(&rng, -2, 2), b = rng_uniform(&rng, -2, 2);
-        double c = rng_uniform(&rng, 0.5, 2) * (rng_chance(&rng, 0.5) ? -1 : 1);
-        double d = a * b / c; /* c d = a b within an ulp or two */
-        const int nudge = (int)(rng_next(&rng) % 7) - 3;
-        for (int k = 0; k < abs(nudge); k++) d = nextafter(d, nudge > 0 ? INFINITY : -INFINITY);
-        if (rng_chance(&rng, 0.1)) c = a, d = b; /* exactly zero */
+        double a, b, c, d;
+        cancelling_products(&rng, &a, &b, &c, &d);
         const quad exact = (quad)a * b - (quad)c * d;
         const int want = exact > 0 ? 1 : exact < 0 ? -1 : 0;
         const double got = mesh_edge_function(a, b, c, d);
@@ -623,12 +630,8 @@ static void test_exact_signs_at_any_scale(void)
     rng_seed(&rng, 22);
     int tiny_products = 0;
     for (int i = 0; i < 200000; i++) {
-        double a = rng_uniform(&rng, -2, 2), b = rng_uniform(&rng, -2, 2);
-        double c = rng_uniform(&rng, 0.5, 2) * (rng_chance(&rng, 0.5) ? -1 : 1);
-        double d = a * b / c;
-        const int nudge = (int)(rng_next(&rng) % 7) - 3;
-        for (int k = 0; k < abs(nudge); k++) d = nextafter(d, nudge > 0 ? INFINITY : -INFINITY);
-        if (rng_chance(&rng, 0.1)) c = a, d = b;
+        double a, b, c, d;
+        cancelling_products(&rng, &a, &b, &c, &d);
         if (rng_chance(&rng, 0.2)) { /* one product far smaller than the other */
             const double t = b;
             b = d, d = t;
