@@ -116,6 +116,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     # against min_weight) and says what is wrong: ArgumentError.
     threshold = 0.0 if adaptive is None else _convert.number(adaptive, "adaptive")
     weight = 0.0 if min_weight is None else _convert.number(min_weight, "min_weight")
+    exact_flag = _convert.flag(exact, "render: exact")
     rect = (0, 0, w, h) if window is None else _window(window, w, h)
     if camera is None:
         camera = scene.frame_camera((w, h))
@@ -135,7 +136,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
                         "fraction done")
     try:
         core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, blocks,
-                                  all_paths, threshold, weight, bool(exact), rect, callback)
+                                  all_paths, threshold, weight, exact_flag, rect, callback)
     finally:
         if bar is not None:
             bar.close()
@@ -157,5 +158,5 @@ def _block(block: Optional[int], block_size: Optional[int]) -> int:
 def _effects(effects: str, all_effects: bool) -> bool:
     if effects not in ("auto", "all"):
         raise ValueError(f"render: effects must be 'auto' or 'all', not {effects!r}")
-    return effects == "all" or bool(all_effects)
+    return effects == "all" or _convert.flag(all_effects, "render: all_effects")
 
