@@ -10,18 +10,35 @@
 
 static void report(const char *fmt, va_list ap)
 {
-    char message[2048];
-    vsnprintf(message, sizeof message, fmt, ap);
-    /* One line whatever the library said: scripts read stderr line by line. */
+    /* The whole message, however long (a 6,000-byte path must not push
+     * the reason off its end), in a buffer of its size. */
+    char small[2048], *message = small;
+    va_list again;
+    va_copy(again, ap);
+    const int n = vsnprintf(small, sizeof small, fmt, ap);
+    if (n >= (int)sizeof small) {
+        char *big = malloc((size_t)n + 1);
+        if (big) {
+            vsnprintf(big, (size_t)n + 1, fmt, again);
+            message = big;
+        }
+    }
+    va_end(again);
+    /* One line whatever the library said: scripts read stderr line by line;
+     * and no byte a terminal would act on (a path or a word may hold one). */
     fputs("hitray: ", stderr);
     for (const char *c = message; *c; c++) {
-        if (*c == '\n') {
+        const unsigned char b = (unsigned char)*c;
+        if (b == '\n') {
             if (c[1]) fputs("; ", stderr);
+        } else if (b < 0x20 || b == 0x7f) {
+            fprintf(stderr, "\\x%02x", b);
         } else {
             fputc(*c, stderr);
         }
     }
     fputc('\n', stderr);
+    if (message != small) free(message);
 }
 
 int cli_error(const char *fmt, ...)

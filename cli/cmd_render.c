@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -81,6 +82,19 @@ static int check_distinct(const char *option_a, const char *a, const char *optio
     return 0;
 }
 
+/* An output that is the scene file itself (by name, or the same file under
+ * another name) would be overwritten by the render of it. */
+static int check_not_scene(const char *option, const char *output, const char *scene)
+{
+    if (!output || !scene || !strcmp(output, "-")) return 0;
+    struct stat a, b;
+    if (strcmp(output, scene) == 0 ||
+        (stat(output, &a) == 0 && stat(scene, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino))
+        return cli_usage_error("render: %s '%s' is the scene file: the render would overwrite it",
+                               option, output);
+    return 0;
+}
+
 /* What parse_request found: go on, stop after printing the help, or stop
  * with the exit status of the error it reported (CLI_EXIT_USAGE for the
  * command line, CLI_EXIT_ERROR for an output that cannot be written). */
@@ -128,6 +142,10 @@ static int parse_request(int argc, char **argv, render_request *r)
     }
     if (!r->scene_path) return cli_usage_error("render: no scene file given (see 'hitray render --help')");
     if (!r->output) return cli_usage_error("render: no output file given (use -o OUT.png)");
+    if (check_not_scene("--output", r->output, r->scene_path) ||
+        check_not_scene("--exr", r->exr_output, r->scene_path) ||
+        check_not_scene("--stats-json", r->stats_json, r->scene_path))
+        return CLI_EXIT_USAGE;
     if (cli_render_flags_check(&r->flags)) return CLI_EXIT_USAGE;
     if (cli_output_format("--output", r->output, r->format_name, &r->format)) return CLI_EXIT_USAGE;
     if (r->jpeg_quality && r->format != HR_FORMAT_JPEG)

@@ -4,6 +4,7 @@
  * error and freed when the thread exits or the context is destroyed. */
 #include "util/sized_copy.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -32,6 +33,27 @@ static void keep(char *buffer, size_t size, const char *text)
     buffer[length] = '\0';
 }
 
+/* `text` into `buffer` (size bytes, at most HR_ERROR_MESSAGE_SIZE) with
+ * every control byte but the newline and the tab written as \xNN: a
+ * message quotes words of files from anywhere, and no caller's quoting can
+ * be missed on the way to a terminal. `text` may lie in `buffer`. */
+static void keep_escaped(char *buffer, size_t size, const char *text)
+{
+    char copy[HR_ERROR_MESSAGE_SIZE];
+    keep(copy, sizeof copy < size ? sizeof copy : size, text);
+    size_t k = 0;
+    for (const char *p = copy; *p && k + 1 < size; p++) {
+        const unsigned char c = (unsigned char)*p;
+        if ((c >= 0x20 && c != 0x7f) || c == '\n' || c == '\t') {
+            buffer[k++] = (char)c;
+        } else {
+            if (k + 5 >= size) break;
+            k += (size_t)snprintf(buffer + k, size - k, "\\x%02x", c);
+        }
+    }
+    buffer[k] = '\0';
+}
+
 HR_API hr_status hr_context_set_error(const hr_context *ctx, hr_status status, const char *file,
                                       int32_t line, int32_t column, const char *message)
 {
@@ -39,7 +61,7 @@ HR_API hr_status hr_context_set_error(const hr_context *ctx, hr_status status, c
     if (!message) message = "";
     hr_error_slot *slot = slot_of(ctx, 1);
     if (slot) {
-        keep(slot->message, sizeof slot->message, message);
+        keep_escaped(slot->message, sizeof slot->message, message);
         keep(slot->file, sizeof slot->file, file ? file : "");
         slot->status = status;
         slot->line = line;
@@ -81,7 +103,9 @@ HR_API void hr_context_warn(const hr_context *ctx, int32_t code, const char *fil
                             int32_t column, const char *message)
 {
     if (!ctx || !ctx->warning_fn) return;
-    hr_warning w = {sizeof w, code, message ? message : "", file ? file : "", line, column};
+    char escaped[HR_ERROR_MESSAGE_SIZE];
+    keep_escaped(escaped, sizeof escaped, message ? message : "");
+    hr_warning w = {sizeof w, code, escaped, file ? file : "", line, column};
     ctx->warning_fn(ctx->warning_user, &w);
 }
 

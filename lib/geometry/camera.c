@@ -22,17 +22,32 @@ HR_API void hr_camera_default(hr_camera *cam)
     *cam = c;
 }
 
+/* a, or where its length overflows or underflows, a divided by its
+ * largest component's magnitude: the length of (0, 0, 1e308) is not a
+ * double, its direction is. Cameras of ordinary sizes keep their axes to
+ * the bit. 0 for a zero or non-finite vector. */
+static int scaled_to_one(hr_vec3 a, hr_vec3 *out)
+{
+    const double big = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+    if (!(big > 0.0) || !isfinite(big)) return 0;
+    const double length = v3_length(a);
+    if (isfinite(length) && length > 1e-150) *out = a;
+    else *out = (hr_vec3){a.x / big, a.y / big, a.z / big};
+    return 1;
+}
+
 /* n = unit(eye - look), u = unit(up x n), v = n x u; 0 if degenerate. */
 static int camera_axes(const hr_camera *cam, hr_vec3 *u, hr_vec3 *v, hr_vec3 *n)
 {
-    *n = v3_sub(cam->eye, cam->look);
+    hr_vec3 up;
+    if (!scaled_to_one(v3_sub(cam->eye, cam->look), n) || !scaled_to_one(cam->up, &up)) return 0;
     double nlen = v3_length(*n);
     if (!(nlen > 0.0) || !isfinite(nlen)) return 0;
     *n = v3_scale(*n, 1.0 / nlen);
-    *u = v3_cross(cam->up, *n);
+    *u = v3_cross(up, *n);
     double ulen = v3_length(*u);
     /* Up within ~1e-6 rad of the view direction gives a meaningless roll. */
-    if (!(ulen > 1e-6 * v3_length(cam->up)) || !isfinite(ulen)) return 0;
+    if (!(ulen > 1e-6 * v3_length(up)) || !isfinite(ulen)) return 0;
     *u = v3_scale(*u, 1.0 / ulen);
     *v = v3_cross(*n, *u);
     return 1;
@@ -52,8 +67,15 @@ HR_API hr_status hr_camera_validate(hr_context *ctx, const hr_camera *cam)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "camera: view angle %g must be in (0, 180) degrees", cam->view_angle);
     hr_vec3 u, v, n;
-    if (v3_length(v3_sub(cam->eye, cam->look)) == 0.0)
+    const hr_vec3 view = v3_sub(cam->eye, cam->look);
+    if (view.x == 0.0 && view.y == 0.0 && view.z == 0.0)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: eye and look are the same point");
+    if (!v3_is_finite(view))
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
+                        "camera: eye and look are too far apart (their difference is not a "
+                        "finite double)");
+    if (!(cam->up.x != 0.0 || cam->up.y != 0.0 || cam->up.z != 0.0))
+        return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "camera: up vector is zero");
     if (!camera_axes(cam, &u, &v, &n))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "camera: up vector is zero or parallel to the view direction");

@@ -62,30 +62,36 @@ HR_API hr_status hr_nff_load_string(hr_context *ctx, const char *text, const cha
     return load_text(ctx, text, strlen(text), name ? name : "<string>", out);
 }
 
-/* The whole file, inflated if it is gzip, read in pieces. Only a regular
- * file is read (text_file.h: a device or a FIFO would never end), and the
- * inflated text is held to the scene size limit too, so a small gzip bomb
- * is refused rather than inflated into memory. */
-static hr_status read_file(hr_context *ctx, const char *path, char **text, size_t *length)
+/* The file's bytes as they are (a plain NFF file), or inflated where they
+ * start with gzip's magic bytes, every member in turn (as gzip -d reads
+ * concatenated members). zlib's inflate on the bytes in memory, not gzread:
+ * gzread ignores whatever follows the last member and names the file
+ * "<fd:3>" in its messages. Only a regular file is read (text_file.h: a
+ * device or a FIFO would never end), and the inflated text is held to the
+ * scene size limit too, so a small gzip bomb is refused rather than
+ * inflated into memory. Takes `raw` (size bytes, malloc'd). */
+static hr_status inflate_file(hr_context *ctx, const char *path, unsigned char *raw, size_t size,
+                              size_t limit, char **text, size_t *length)
 {
-    *text = NULL;
-    *length = 0;
-    int fd;
-    size_t file_size, limit;
-    hr_status st = hri_scene_file_open(ctx, path, "scene file", &fd, &file_size, &limit);
-    if (st) return st;
-    (void)file_size;
-    errno = 0;
-    gzFile f = gzdopen(fd, "rb");
-    if (!f) {
-        close(fd);
-        return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot open the scene file: %s",
-                           path, errno ? strerror(errno) : "out of memory");
+    if (size < 2 || raw[0] != 0x1f || raw[1] != 0x8b) {
+        *text = (char *)raw;
+        *length = size;
+        return HR_OK;
     }
-    size_t capacity = 0, used = 0;
+    z_stream zs;
+    memset(&zs, 0, sizeof zs);
+    if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) {
+        free(raw);
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+    }
+    zs.next_in = raw;
+    zs.avail_in = (uInt)size; /* at most the scene limit, 256 MiB by default */
+    size_t capacity = 0;
     char *data = NULL;
+    hr_status st = HR_OK;
     for (;;) {
-        if (used == capacity) {
+        const size_t used = capacity - zs.avail_out;
+        if (zs.avail_out == 0) {
             if (capacity > limit) {
                 st = hri_scene_file_too_large(ctx, path, "scene file", limit);
                 break;
@@ -99,26 +105,41 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
             }
             data = grown;
             capacity = grown_capacity;
+            zs.next_out = (Bytef *)data + used;
+            zs.avail_out = (uInt)(capacity - used);
         }
-        size_t want = capacity - used;
-        if (want > (1u << 30)) want = 1u << 30; /* gzread takes an unsigned count */
-        int n = gzread(f, data + used, (unsigned)want);
-        int code = Z_OK;
-        const char *why = n <= 0 ? gzerror(f, &code) : "";
-        /* A stream cut short reads as an end with Z_BUF_ERROR set. */
-        if (n < 0 || (code != Z_OK && code != Z_STREAM_END)) {
-            st = hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the scene file: %s",
-                             path, code == Z_ERRNO ? strerror(errno) : why);
+        const int code = inflate(&zs, Z_NO_FLUSH);
+        if (code == Z_STREAM_END) {
+            if (zs.avail_in == 0) break;
+            /* Another member, or bytes that are no gzip stream. */
+            if (zs.avail_in >= 2 && zs.next_in[0] == 0x1f && zs.next_in[1] == 0x8b &&
+                inflateReset(&zs) == Z_OK)
+                continue;
+            st = hri_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+                              "%s: cannot read the scene file: %u bytes after the end of the gzip "
+                              "stream (at byte %zu of %zu) are not a gzip member: a damaged or "
+                              "appended-to file",
+                              path, (unsigned)zs.avail_in, size - zs.avail_in, size);
             break;
         }
-        if (n == 0) break;
-        used += (size_t)n;
-        if (used > limit) {
-            st = hri_scene_file_too_large(ctx, path, "scene file", limit);
-            break;
-        }
+        if (code == Z_OK || (code == Z_BUF_ERROR && zs.avail_out == 0)) continue;
+        if (code == Z_BUF_ERROR) /* no input left, no end of stream */
+            st = hri_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+                              "%s: cannot read the scene file: the gzip stream is cut short (the file ends "
+                              "after %zu bytes)", path,
+                              size);
+        else if (code == Z_MEM_ERROR)
+            st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+        else
+            st = hri_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+                              "%s: cannot read the scene file: bad gzip data at byte %zu: %s", path,
+                              size - zs.avail_in, zs.msg ? zs.msg : "corrupt stream");
+        break;
     }
-    gzclose(f); /* closes fd */
+    const size_t used = capacity - zs.avail_out;
+    inflateEnd(&zs);
+    free(raw);
+    if (!st && used > limit) st = hri_scene_file_too_large(ctx, path, "scene file", limit);
     if (st) {
         free(data);
         return st;
@@ -126,6 +147,46 @@ static hr_status read_file(hr_context *ctx, const char *path, char **text, size_
     *text = data;
     *length = used;
     return HR_OK;
+}
+
+/* The whole file (inflate_file). */
+static hr_status read_file(hr_context *ctx, const char *path, char **text, size_t *length)
+{
+    *text = NULL;
+    *length = 0;
+    int fd;
+    size_t file_size, limit;
+    hr_status st = hri_scene_file_open(ctx, path, "scene file", &fd, &file_size, &limit);
+    if (st) return st;
+    /* The size stat saw (at most the limit), and one byte more to see the
+     * end; a file that grew past the limit meanwhile is refused. */
+    unsigned char *raw = malloc(file_size + 1);
+    if (!raw) {
+        close(fd);
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory reading '%s'", path);
+    }
+    size_t size = 0;
+    for (;;) {
+        ssize_t n = read(fd, raw + size, file_size + 1 - size);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const int err = errno;
+            close(fd);
+            free(raw);
+            return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0, "%s: cannot read the scene file: %s",
+                                path, strerror(err));
+        }
+        if (n == 0) break;
+        size += (size_t)n;
+        if (size > file_size) {
+            close(fd);
+            free(raw);
+            return hri_error_at(ctx, HR_ERROR_IO, path, 0, 0,
+                                "%s: the scene file grew while it was read", path);
+        }
+    }
+    close(fd);
+    return inflate_file(ctx, path, raw, size, limit, text, length);
 }
 
 HR_API hr_status hr_nff_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)

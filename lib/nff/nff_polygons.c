@@ -45,6 +45,12 @@
 #define NFF_MAX_MESH_VERTICES 4294967294.0
 #define NFF_BEST_EAR_VERTICES 1024
 #define NFF_MAX_CONCAVE_VERTICES 16384
+/* Steps of ear clipping (a corner tested against an ear, or scanned for
+ * the next cut) one file may take in all: a self-crossing polygon of 16384
+ * vertices takes about 10^8, so a file of hundreds of them (a few hundred
+ * MB of text) would take many minutes. 2^30 is a few seconds; no simple
+ * polygon comes near (the grid and the heap make its steps O(n log n)). */
+#define NFF_CLIP_WORK_BUDGET ((uint64_t)1 << 30)
 
 typedef ear_pt pt2;
 
@@ -69,6 +75,7 @@ typedef struct clipper {
      * never turns reflex), and which corners are still there. */
     const ear_grid *grid;
     const unsigned char *alive;
+    uint64_t *work; /* the file's steps (nff_reader.clip_work) */
 } clipper;
 
 static int in_ear(pt2 pa, pt2 pi, pt2 pb, pt2 q)
@@ -88,6 +95,7 @@ static int grid_blocks(const clipper *c, size_t a, size_t i, size_t b)
     for (size_t y = y0; y <= y1; y++)
         for (size_t x = x0; x <= x1; x++) {
             const size_t cell = y * c->grid->nx + x;
+            *c->work += c->grid->first[cell + 1] - c->grid->first[cell] + 1;
             for (size_t k = c->grid->first[cell]; k < c->grid->first[cell + 1]; k++) {
                 const size_t j = c->grid->items[k];
                 if (j != a && j != i && j != b && c->alive[j] && in_ear(pa, pi, pb, c->p[j])) return 1;
@@ -110,8 +118,10 @@ static double ear_quality(const clipper *c, size_t i)
     if (c->grid) {
         if (grid_blocks(c, a, i, b)) return -1.0;
     } else {
-        for (size_t j = c->next[b]; j != a; j = c->next[j])
+        for (size_t j = c->next[b]; j != a; j = c->next[j]) {
+            ++*c->work;
             if (in_ear(pa, pi, pb, c->p[j])) return -1.0;
+        }
     }
     return o / (dist2(pa, pi) + dist2(pi, pb) + dist2(pb, pa));
 }
@@ -128,17 +138,19 @@ static size_t choose(const clipper *c, size_t start)
         const double o = orient(c->p[c->prev[i]], c->p[i], c->p[c->next[i]]);
         if (o > 0.0 && o > convex_q) convex_q = o, convex = i;
         i = c->next[i];
+        ++*c->work;
     } while (i != start);
     return best_q >= 0.0 ? best : convex;
 }
 
 /* Triangles of the polygon p[0, n) (counter-clockwise) as index triples
- * into `tris`; returns how many (at most n - 2). `work_idx` holds 2 n
- * indices (the lists' links), `work_q` n qualities. */
+ * into `tris`; returns how many (at most n - 2), or SIZE_MAX once *work
+ * passes NFF_CLIP_WORK_BUDGET. `work_idx` holds 2 n indices (the lists'
+ * links), `work_q` n qualities. */
 static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx, double *work_q,
-                        const ear_grid *grid, unsigned char *alive, ear_heap *heap)
+                        const ear_grid *grid, unsigned char *alive, ear_heap *heap, uint64_t *work)
 {
-    clipper c = {p, work_idx, work_idx + n, work_q, grid, alive};
+    clipper c = {p, work_idx, work_idx + n, work_q, grid, alive, work};
     for (size_t i = 0; i < n; i++) {
         c.prev[i] = i ? i - 1 : n - 1;
         c.next[i] = i + 1 < n ? i + 1 : 0;
@@ -148,6 +160,7 @@ static size_t clip_ears(const pt2 *p, size_t n, uint32_t *tris, size_t *work_idx
         for (size_t i = 0; i < n; i++) ear_heap_update(heap, i);
     size_t left = n, count = 0, start = 0;
     while (left > 3) {
+        if (*work > NFF_CLIP_WORK_BUDGET) return SIZE_MAX;
         /* The heap's top is choose's best ear but for ties, which it breaks
          * by the lower number rather than the ring's order from `start`. */
         const size_t top = heap ? ear_heap_top(heap) : EAR_HEAP_NONE;
@@ -199,7 +212,7 @@ static hr_status clip_large(nff_reader *r, nff_word at, const pt2 *p, size_t n, 
         }
         ok = ear_grid_build(&grid, p, reflex, m);
     }
-    if (ok) *made = clip_ears(p, n, tris, work_idx, work_q, &grid, alive, &heap);
+    if (ok) *made = clip_ears(p, n, tris, work_idx, work_q, &grid, alive, &heap, &r->clip_work);
     ear_grid_free(&grid);
     ear_heap_free(&heap);
     free(alive);
@@ -242,9 +255,20 @@ static size_t zigzag(const pt2 *p, size_t n, uint32_t *tris)
  * 0 if the polygon has no area. */
 static int project(const hr_vec3 *v, size_t n, pt2 *out)
 {
+    /* Everything on the coordinates scaled by a power of two that brings
+     * the largest near 1: exact, so the cuts are those of the coordinates
+     * as read, but neither the normal's products nor the clipper's
+     * overflow for a polygon near 1e308 (which came out as NaN and had the
+     * polygon dropped as having no area) or underflow near 1e-300. */
+    double big = 0.0;
+    for (size_t i = 0; i < n; i++)
+        big = fmax(big, fmax(fabs(v[i].x), fmax(fabs(v[i].y), fabs(v[i].z))));
+    const double scale = big > 0.0 && isfinite(big) ? ldexp(1.0, -ilogb(big)) : 1.0;
     double nx = 0, ny = 0, nz = 0;
     for (size_t i = 0; i < n; i++) {
-        const hr_vec3 a = v[i], b = v[(i + 1) % n];
+        const hr_vec3 p = v[i], q = v[(i + 1) % n];
+        const hr_vec3 a = {p.x * scale, p.y * scale, p.z * scale};
+        const hr_vec3 b = {q.x * scale, q.y * scale, q.z * scale};
         nx += (a.y - b.y) * (a.z + b.z);
         ny += (a.z - b.z) * (a.x + b.x);
         nz += (a.x - b.x) * (a.y + b.y);
@@ -254,9 +278,10 @@ static int project(const hr_vec3 *v, size_t n, pt2 *out)
     double area = 0.0;
     for (size_t i = 0; i < n; i++) {
         /* Keep the two coordinates across the dropped axis. */
-        if (az >= ax && az >= ay) out[i] = (pt2){v[i].x, v[i].y};
-        else if (ay >= ax) out[i] = (pt2){v[i].z, v[i].x};
-        else out[i] = (pt2){v[i].y, v[i].z};
+        const hr_vec3 a = {v[i].x * scale, v[i].y * scale, v[i].z * scale};
+        if (az >= ax && az >= ay) out[i] = (pt2){a.x, a.y};
+        else if (ay >= ax) out[i] = (pt2){a.z, a.x};
+        else out[i] = (pt2){a.y, a.z};
     }
     for (size_t i = 0; i < n; i++) {
         const pt2 a = out[i], b = out[(i + 1) % n];
@@ -368,10 +393,19 @@ hr_status nff_read_polygon(nff_reader *r, nff_word p, int smooth)
         }
         size_t made = 0;
         if (strip) made = zigzag(plane, count, tris);
-        else if (count <= NFF_BEST_EAR_VERTICES) made = clip_ears(plane, count, tris, idx, quality, NULL, NULL, NULL);
+        else if (count <= NFF_BEST_EAR_VERTICES)
+            made = clip_ears(plane, count, tris, idx, quality, NULL, NULL, NULL, &r->clip_work);
         else if ((st = clip_large(r, p, plane, count, tris, idx, quality, &made))) {
             free(block);
             return st;
+        }
+        if (made == SIZE_MAX) {
+            free(block);
+            return nff_error(r, HR_ERROR_SDL, p,
+                             "'%.*s %zu': ear clipping this file's polygons passed its budget of %llu "
+                             "steps here (self-crossing concave polygons cost n^2 each): split them "
+                             "or make them simple",
+                             (int)p.length, p.text, count, (unsigned long long)NFF_CLIP_WORK_BUDGET);
         }
         if (made) st = append(r, p, smooth ? &r->smooth : &r->flat, v, normals, count, tris, made);
     }

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "util/errors.h"
+#include "util/strutil.h"
 #include "sdl/sdl_words.h"
 
 /* The longest word read as a number: far more digits than a double holds. */
@@ -58,8 +59,7 @@ const char *nff_describe(nff_word w, char *buf, size_t size)
     enum { SHOWN_CHARS = 40 };
     if (w.length == 0) snprintf(buf, size, "end of file");
     else if (w.nul) snprintf(buf, size, "a NUL byte (is this a text file?)");
-    else if (w.length > SHOWN_CHARS) snprintf(buf, size, "'%.*s...'", (int)SHOWN_CHARS, w.text);
-    else snprintf(buf, size, "'%.*s'", (int)w.length, w.text);
+    else hri_quote_word(w.text, w.length, SHOWN_CHARS, buf, size);
     return buf;
 }
 

@@ -48,6 +48,10 @@ typedef struct nff_reader {
     hr_scene_globals globals;
     int has_camera;
     hr_camera camera;
+
+    /* Steps the ear clipper has taken over the file's polygons (corners
+     * tested and scanned), held to NFF_CLIP_WORK_BUDGET (nff_polygons.c). */
+    uint64_t clip_work;
 } nff_reader;
 
 void nff_reader_init(nff_reader *r, hr_context *ctx, hr_scene *scene, const char *file,

@@ -25,6 +25,7 @@
 #include "util/sized_copy.h"
 #include "geometry/camera_frame.h"
 #include "util/errors.h"
+#include "util/strutil.h"
 #include "image/image_internal.h"
 #include "image/image_srgb.h"
 #include "trace/query_nesting.h"
@@ -433,6 +434,7 @@ static hr_status check_window(hr_context *ctx, hr_render_options *o)
 
 static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_camera *cam)
 {
+    char shown[HR_SHORTEST_BYTES]; /* a value in a message (hri_shortest) */
     if (o->width == 0) o->width = cam->width;
     if (o->height == 0) o->height = cam->height;
     if (o->samples_per_pixel == 0) o->samples_per_pixel = 1;
@@ -460,7 +462,7 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: effects must be HR_EFFECTS_AUTO or HR_EFFECTS_ALL");
     if (!(o->adaptive_threshold >= 0.0 && o->adaptive_threshold <= 1.0))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "render: adaptive threshold %g must be within 0..1 (0: off)", o->adaptive_threshold);
+                        "render: adaptive threshold %s must be within 0..1 (0: off)", hri_shortest(o->adaptive_threshold, shown));
     if (o->adaptive_threshold > 0.0 && o->samples_per_pixel < 2)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: adaptive supersampling needs samples per pixel >= 2 (the most a pixel gets)");
@@ -469,13 +471,13 @@ static hr_status check_options(hr_context *ctx, hr_render_options *o, const hr_c
                         "render: adaptive supersampling works on single pixels: block size must be 1");
     if (!(o->min_weight >= 0.0 && o->min_weight <= 1.0))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "render: minimum weight %g must be within 0..1 (0: the default, 2^-24)", o->min_weight);
+                        "render: minimum weight %s must be within 0..1 (0: the default, 2^-24)", hri_shortest(o->min_weight, shown));
     if (o->exact != 0 && o->exact != 1)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "render: exact must be 0 or 1, not %d", (int)o->exact);
     if (o->exact && o->min_weight > 0.0)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "render: exact (trace every contribution) and a minimum weight %g exclude each other",
-                        o->min_weight);
+                        "render: exact (trace every contribution) and a minimum weight %s exclude each other",
+                        hri_shortest(o->min_weight, shown));
     if (o->ray_budget < 0)
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "render: ray budget %lld must be positive (0: the default, %d rays per camera sample)",

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "util/errors.h"
+#include "util/strutil.h"
 #include "util/field_table.h"
 #include "scene/scene_internal.h"
 #include "util/sized_copy.h"
@@ -19,6 +20,7 @@ HR_API void hr_material_default(hr_material *m)
 
 hr_status hri_material_check(hr_context *ctx, const hr_material *m)
 {
+    char shown[HR_SHORTEST_BYTES]; /* a value in a message (hri_shortest) */
     const hr_field_table *t = &hri_material_field_table;
     for (size_t i = 0; i < t->count; i++) {
         if (t->fields[i].kind != HR_FIELD_COLOR) continue;
@@ -31,28 +33,28 @@ hr_status hri_material_check(hr_context *ctx, const hr_material *m)
     }
     if (!(m->specular_exponent >= 0 && m->specular_exponent <= HR_MAX_EXPONENT))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "material: specularExponent %g must be within [0, %g]",
-                        m->specular_exponent, HR_MAX_EXPONENT);
+                        "material: specularExponent %s must be within [0, %g]",
+                        hri_shortest(m->specular_exponent, shown), HR_MAX_EXPONENT);
     if (!(m->reflectivity >= 0 && m->reflectivity <= 1))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "material: reflectivity %g must be within [0, 1]", m->reflectivity);
+                        "material: reflectivity %s must be within [0, 1]", hri_shortest(m->reflectivity, shown));
     if (!(m->transparency >= 0 && m->transparency <= 1))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "material: transparency %g must be within [0, 1]", m->transparency);
+                        "material: transparency %s must be within [0, 1]", hri_shortest(m->transparency, shown));
     if (!isfinite(m->specular_fraction) || !isfinite(m->surface_roughness))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: specularFraction and surfaceRoughness must be finite");
     if (!(m->specular_fraction >= 0 && m->specular_fraction <= 1))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "material: specularFraction %g must be within [0, 1]", m->specular_fraction);
+                        "material: specularFraction %s must be within [0, 1]", hri_shortest(m->specular_fraction, shown));
     /* Beckmann's m: below 1e-3 the highlight is narrower than a pixel of any
      * view, and 1 / m^2 would let one term grow past what keeps a pixel
      * finite; past 100 it is flat. Only Cook-Torrance reads it. */
     if (m->specular_fraction > 0 && !(m->surface_roughness >= 1e-3 && m->surface_roughness <= 100))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
-                        "material: surfaceRoughness %g must be within [0.001, 100] where "
+                        "material: surfaceRoughness %s must be within [0.001, 100] where "
                         "specularFraction is above 0",
-                        m->surface_roughness);
+                        hri_shortest(m->surface_roughness, shown));
     if (!(m->speed_of_light > 0.0) || !isfinite(m->speed_of_light))
         return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT,
                         "material: speedOfLight must be positive and finite, not %g",

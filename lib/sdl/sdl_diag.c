@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "util/strutil.h"
+
 /* Messages are kept in a fixed slot (a few KiB): a long chain of macro
  * levels shows its outer and inner ends and says how many it left out. */
 #define SHOWN_OUTER_LEVELS 3
@@ -109,11 +111,7 @@ const char *sdl_describe_run_on(const sdl_source *src, sdl_located keyword, sdl_
 const char *sdl_describe(const sdl_token *token, char *buf, size_t size)
 {
     enum { SHOWN_CHARS = 40 };
-    if (token->kind == SDL_TOKEN_END)
-        snprintf(buf, size, "end of file");
-    else if (strlen(token->text) > SHOWN_CHARS)
-        snprintf(buf, size, "'%.*s...'", (int)SHOWN_CHARS, token->text);
-    else
-        snprintf(buf, size, "'%s'", token->text);
+    if (token->kind == SDL_TOKEN_END) snprintf(buf, size, "end of file");
+    else hri_quote_word(token->text, strlen(token->text), SHOWN_CHARS, buf, size);
     return buf;
 }

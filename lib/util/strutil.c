@@ -52,3 +52,23 @@ const char *hri_shortest(double v, char *buf)
     }
     return buf;
 }
+
+const char *hri_quote_word(const char *text, size_t length, size_t shown, char *buf, size_t size)
+{
+    if (size == 0) return buf;
+    size_t k = 0;
+    const size_t n = length < shown ? length : shown;
+    /* Room for the widest piece (\xNN), the closing quote, "..." and the
+     * terminator is kept at every step. */
+    if (k + 1 < size) buf[k++] = '\'';
+    size_t i = 0;
+    for (; i < n && k + 9 < size; i++) {
+        const unsigned char c = (unsigned char)text[i];
+        if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\') buf[k++] = (char)c;
+        else k += (size_t)snprintf(buf + k, size - k, "\\x%02x", c);
+    }
+    if (i < length && k + 4 < size) buf[k++] = '.', buf[k++] = '.', buf[k++] = '.';
+    if (k + 1 < size) buf[k++] = '\'';
+    buf[k] = '\0';
+    return buf;
+}

@@ -17,4 +17,12 @@ int hri_str_ends_with(const char *s, const char *suffix);
 #define HR_SHORTEST_BYTES 32
 const char *hri_shortest(double v, char *buf);
 
+/* A word of a file for a message: in single quotes, its first `shown`
+ * bytes (then "..."), anything but printable ASCII (and the quote and the
+ * backslash) as \xNN, so that a scene's bytes never reach a terminal that
+ * would act on them (an escape sequence, a title, a cleared screen).
+ * `buf` holds HR_QUOTED_BYTES(shown); the result is cut to `size`. */
+#define HR_QUOTED_BYTES(shown) (4 * (size_t)(shown) + 8)
+const char *hri_quote_word(const char *text, size_t length, size_t shown, char *buf, size_t size);
+
 #endif

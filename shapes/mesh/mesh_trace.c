@@ -279,6 +279,7 @@ typedef struct query {
     int any_order;   /* an any-hit search from tmin >= 0: leaves in any order (walk_any_order) */
     int needs_first; /* it met a hit it cannot decide on: ask the first-hit search */
     double tie_error;
+    double tie_end;    /* how far past the caller's tmax a closed mesh's first-hit search looks */
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
     int phase;         /* see walk: 0, or the sign of the t this walk keeps */
@@ -424,8 +425,10 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             } else {
                 q->seen_overflow = 1;
             }
-            /* The caller's interval, as mesh_triangle_test applies it. */
-            if (!(th.t > q->tmin && !(th.t - q->tmin <= th.t_error))) continue;
+            /* The caller's interval, as mesh_triangle_test applies it: the
+             * search runs past tmax too (see trace_query), for crossings
+             * that only the near-tie check may use. */
+            if (!(th.t > q->tmin && !(th.t - q->tmin <= th.t_error) && th.t < args->tmax)) continue;
         }
         if (q->closed_any) {
             if (closed_any_blocks(q, &th)) {
@@ -456,7 +459,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             q->best_error = point_error(m, i, th.b);
             const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
                                   16.0 * DBL_EPSILON * fabs(th.t);
-            tmax = fmin(args->tmax, mesh_next_up(th.t + window));
+            tmax = fmin(q->tie_end, mesh_next_up(th.t + window));
         }
         q->tmax = tmax;
     }
@@ -641,6 +644,17 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.whole_line = mode == HR_TRACE_ALL && m->closed;
     q.tmin = q.whole_line ? -INFINITY : args->tmin;
     q.tmax = q.whole_line ? INFINITY : args->tmax;
+    /* A near tie may lie past the caller's tmax: alternate_closed moves a
+     * crossing up from there to the place of one inside the interval (an
+     * entering crossing at t = tmax that rounding put just after an
+     * exiting one at tmax - 1 ulp: found by fuzzing). So the first-hit
+     * search sees crossings as far past tmax as the widest window of a
+     * best hit before it reaches (both error bounds at most tie_error),
+     * and takes none of them as its best. */
+    q.tie_end = args->tmax;
+    if (q.tie_check)
+        q.tmax = q.tie_end = mesh_next_up(args->tmax + 2.0 * q.tie_error / ray_speed(&args->ray) * 4.0 +
+                                          16.0 * DBL_EPSILON * fabs(args->tmax));
     q.start = args->out->count;
     walk(&q);
     if (q.status) return q.status;

@@ -15,8 +15,9 @@
  *   "exactly 0" case, widened to every case rounding could get wrong) it is
  *   recomputed exactly with error-free products and a four-term expansion
  *   (Shewchuk's), so its sign is the sign of the exact 2D determinant of
- *   the rounded corners (barring underflow: corners within about 1e-150 of
- *   the ray). Exact signs make the edges of a vertex fan agree with each
+ *   the rounded corners, at every scale: where products would underflow
+ *   (corners within about 1e-150 of the ray) or overflow, the factors are
+ *   first scaled by powers of two (mesh_exact_difference). Exact signs make the edges of a vertex fan agree with each
  *   other, not only pairwise.
  * - Ties broken by symbolic perturbation. An edge function that is exactly
  *   zero (the ray runs through the edge's line) takes the sign it would have
@@ -144,9 +145,46 @@ static inline double mesh_two_sum(double a, double b, double *error)
  * is the sign of the exact sum, and is zero only when that sum is. Kept
  * out of line: it is the rare path, and inlined it kept the common one
  * (mesh_edge_function) from being inlined into the triangle test. */
+/* x and y times the power of two that brings the larger magnitude into
+ * [1, 2): exact (a subnormal scaled up loses nothing), and the same factor
+ * for both keeps the sign of a b - c d when (x, y) is (a, c), (b, d), (a, d)
+ * or (b, c). Returns the exponent the pair was scaled by. */
+static inline int mesh_scale_pair(double *x, double *y)
+{
+    const double big = mesh_max(fabs(*x), fabs(*y));
+    if (!(big > 0.0) || !isfinite(big)) return 0;
+    const int e = ilogb(big);
+    *x = ldexp(*x, -e), *y = ldexp(*y, -e);
+    return e;
+}
+
 static __attribute__((noinline, unused)) double mesh_exact_difference(double a, double b,
                                                                       double c, double d)
 {
+    /* The products' error terms (FMA) are exact only where the products
+     * neither overflow nor come within 2^53 of the subnormals: corners
+     * within 1e-150 of the ray, or a mesh of 1e-300 sized triangles, made
+     * the signs of a closed mesh's edges disagree and a ray through it
+     * cross one face alone. There the factors are scaled by powers of two
+     * first: (a, c) and (b, d) into [1, 2), which leaves one product at
+     * least 1 unless a and d are large and b and c small (or the other way
+     * round), which (b, c) (or (a, d)) scaled the same way mends. The
+     * value returned then has the exact sign and the magnitude of the
+     * scaled difference taken back, or the smallest double of that sign
+     * where that underflows. */
+    const double tiny = 0x1p-900, huge = 0x1p+1000;
+    if (isfinite(a) && isfinite(b) && isfinite(c) && isfinite(d) &&
+        (!(fabs(a * b) < huge && fabs(c * d) < huge) || (fabs(a * b) < tiny && fabs(c * d) < tiny))) {
+        if (a * b == 0.0 && c * d == 0.0 && (a == 0.0 || b == 0.0) && (c == 0.0 || d == 0.0))
+            return 0.0;
+        int e = mesh_scale_pair(&a, &c) + mesh_scale_pair(&b, &d);
+        if (fabs(a * b) < tiny && fabs(c * d) < tiny)
+            e += fabs(a) >= 1.0 ? mesh_scale_pair(&b, &c) : mesh_scale_pair(&a, &d);
+        const double scaled = mesh_exact_difference(a, b, c, d);
+        if (scaled == 0.0) return 0.0;
+        const double back = ldexp(scaled, e);
+        return back != 0.0 ? back : copysign(DBL_TRUE_MIN, scaled);
+    }
     const double p1 = a * b, e1 = fma(a, b, -p1);
     const double p2 = c * d, e2 = fma(c, d, -p2);
     double h0, h1, h2, q;
@@ -172,7 +210,9 @@ static inline double mesh_edge_function(double a, double b, double c, double d)
 {
     const double ab = a * b, cd = c * d;
     const double e = ab - cd;
-    if (fabs(e) > MESH_GAMMA(3) * (fabs(ab) + fabs(cd))) return e;
+    /* The bound is relative: below 2^-960 a product may have lost bits to
+     * underflow that no relative bound covers, so the exact path decides. */
+    if (fabs(e) > MESH_GAMMA(3) * (fabs(ab) + fabs(cd)) && fabs(e) > 0x1p-960) return e;
     return mesh_exact_difference(a, b, c, d);
 }
 
@@ -248,6 +288,15 @@ mesh_triangle_finish(const mesh_ray *r, double A[3], double B[3], double C[3], d
     mesh_shear_z(r, A);
     mesh_shear_z(r, B);
     mesh_shear_z(r, C);
+    /* t and the weights depend on U, V, W only through their ratios: where
+     * all three are tiny (the exact path's smallest double of a sign, for a
+     * corner within 1e-150 of the ray) they are scaled up by one power of
+     * two first, so that T does not underflow to a t of 0. */
+    const double max_uvw = mesh_max(fabs(U), mesh_max(fabs(V), fabs(W)));
+    if (max_uvw < 0x1p-900 && max_uvw > 0.0) {
+        const int e = ilogb(max_uvw);
+        U = ldexp(U, -e), V = ldexp(V, -e), W = ldexp(W, -e);
+    }
     /* Same signs (zeros count as either): the sum is zero only when all
      * three are, a triangle seen edge on. */
     const double det = U + V + W;
@@ -315,7 +364,7 @@ static inline __attribute__((always_inline)) int mesh_filter_finish(const mesh_r
  * in its order (the shear of each corner, and the three edge functions'
  * products, difference and error bound; no FMA in any), so each lane
  * holds the scalar path's values bit for bit. A lane whose three
- * differences all exceed their bounds has them as mesh_edge_function's
+ * differences all exceed their bounds (and 2^-960) has them as mesh_edge_function's
  * results (no tie and no exact evaluation); then
  * - if their signs do not all agree, the scalar test returns 0 at the
  *   first edge that disagrees: bit k, certain to fail;
@@ -329,7 +378,7 @@ static inline __attribute__((always_inline)) int mesh_filter_finish(const mesh_r
  * test_shape_mesh compares both filters with the test, bit for bit.
  *
  * One body for both widths: MESH_FILTER_BODY(P), over the vector type
- * P##VT and its operations P##SET1, SUB, MUL, ADD, AND, ANDNOT, OR, XOR,
+ * P##VT and its operations P##SET1, SUB, MUL, ADD, MAX, AND, ANDNOT, OR, XOR,
  * GT, MASK, STORE and ABS_MASK, and P##LOAD(k, field), the field of corner
  * k of every lane: MESH_SSE2_ and MESH_AVX2_. */
 #define MESH_FILTER_BODY(P)                                                                         \
@@ -370,7 +419,8 @@ static inline __attribute__((always_inline)) int mesh_filter_finish(const mesh_r
     do {                                                                                           \
         const P##VT ab_ = P##MUL(a, b), cd_ = P##MUL(c, d);                                        \
         e_ = P##SUB(ab_, cd_);                                                                     \
-        const P##VT bound_ = P##MUL(gamma3_, P##ADD(P##AND(ab_, abs_), P##AND(cd_, abs_)));        \
+        const P##VT bound_ = P##MAX(P##SET1(0x1p-960),                                             \
+                                    P##MUL(gamma3_, P##ADD(P##AND(ab_, abs_), P##AND(cd_, abs_)))); \
         clean = P##GT(P##AND(e_, abs_), bound_);                                                   \
         positive = P##GT(e_, zero_);                                                               \
     } while (0)
@@ -381,6 +431,7 @@ static inline __attribute__((always_inline)) int mesh_filter_finish(const mesh_r
 #define MESH_SSE2_SUB _mm_sub_pd
 #define MESH_SSE2_MUL _mm_mul_pd
 #define MESH_SSE2_ADD _mm_add_pd
+#define MESH_SSE2_MAX _mm_max_pd
 #define MESH_SSE2_AND _mm_and_pd
 #define MESH_SSE2_ANDNOT _mm_andnot_pd
 #define MESH_SSE2_STORE _mm_storeu_pd
@@ -411,6 +462,7 @@ MESH_AXES_INLINE unsigned mesh_triangle_pair_fails(const mesh_ray *r, const hr_v
 #define MESH_AVX2_SUB _mm256_sub_pd
 #define MESH_AVX2_MUL _mm256_mul_pd
 #define MESH_AVX2_ADD _mm256_add_pd
+#define MESH_AVX2_MAX _mm256_max_pd
 #define MESH_AVX2_AND _mm256_and_pd
 #define MESH_AVX2_ANDNOT _mm256_andnot_pd
 #define MESH_AVX2_STORE _mm256_storeu_pd

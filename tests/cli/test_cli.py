@@ -1088,3 +1088,44 @@ def test_shape_help_quotes_no_measurement():
     assert not bad, f"help that quotes a measurement: {bad}"
     solver = [line for line in r.stdout.splitlines() if line.strip().startswith("solver ")]
     assert solver and "bench/results/RESULTS.md" in solver[0]
+
+
+def test_an_output_that_is_the_scene_file_is_refused(tmp_path):
+    """`hitray render scene.ppm -o scene.ppm` overwrote its own scene; so
+    would the same file under another name (a link) or as --exr or
+    --stats-json. Refused before any work, the scene left as it was."""
+    scene = tmp_path / "scene.ppm"  # an SDL file, whatever its name
+    scene.write_text(SCENE)
+    link = tmp_path / "same.png"
+    os.link(scene, link)
+    before = scene.read_bytes()
+    for args in (["-o", scene], ["-o", link], ["-o", tmp_path / "a.png", "--exr", scene],
+                 ["-o", tmp_path / "b.png", "--stats-json", scene]):
+        r = run("render", scene, *args, "--size", "8x6")
+        assert r.returncode == 2, r.stderr
+        assert r.stderr.count("\n") == 1 and "is the scene file" in r.stderr, r.stderr
+        assert scene.read_bytes() == before
+    assert not (tmp_path / "a.png").exists() and not (tmp_path / "b.png").exists()
+
+
+def test_a_very_long_output_path_keeps_its_reason(scene, tmp_path):
+    """A 6,000-byte -o path cut the message before its reason."""
+    folder = str(tmp_path / ("d" * 3000))
+    path = folder + "/" + "x" * 3000 + ".png"
+    r = run("render", scene, "-o", path, "--size", "8x6")
+    assert r.returncode == 1
+    assert r.stderr.count("\n") == 1, r.stderr[-200:]
+    assert r.stderr.endswith(f"': no directory '{folder}'\n"), r.stderr[-200:]
+
+
+def test_control_bytes_of_a_scene_reach_the_terminal_escaped(tmp_path):
+    """A scene's word, or a path, with an escape sequence in it is shown
+    with \\xNN, not passed to the terminal."""
+    path = tmp_path / "bad.sdl"
+    path.write_bytes(b"sph\x1b[31mere\n")
+    r = run("render", path, "-o", tmp_path / "out.png", "--size", "8x6")
+    assert r.returncode == 1
+    assert "\x1b" not in r.stderr and "unknown keyword 'sph\\x1b[31mere'" in r.stderr, r.stderr
+    odd = tmp_path / "t\x1b]0;x\x07.nff"
+    r = run("render", odd, "-o", tmp_path / "out.png")
+    assert r.returncode == 1 and "\x1b" not in r.stderr and "\x07" not in r.stderr, r.stderr

@@ -111,6 +111,27 @@ static void test_warning(hr_context *ctx)
     CHECK(strcmp(hr_context_last_error(ctx), "still here") == 0);
 }
 
+/* Control bytes (an escape sequence, a bell) are kept as \xNN, in errors
+ * and warnings alike, whoever built the message: a word of a scene file
+ * from elsewhere must not reach a terminal that would act on it. The
+ * newline and the tab stay. */
+static void test_escaped(hr_context *ctx)
+{
+    hr_context_set_error(ctx, HR_ERROR_SDL, "e.sdl", 1, 1, "e.sdl:1:1: 'sph\x1b[31mere'\x1b]0;t\x07\x7f\tx\ny");
+    CHECK_MSG(strcmp(hr_context_last_error(ctx), "e.sdl:1:1: 'sph\\x1b[31mere'\\x1b]0;t\\x07\\x7f\tx\ny") == 0,
+              "%s", hr_context_last_error(ctx));
+    CHECK(strcmp(error_message, hr_context_last_error(ctx)) == 0);
+    hr_context_warn(ctx, HR_WARNING_EMPTY_SCENE, NULL, 0, 0, "\x1b[2J");
+    CHECK_MSG(strcmp(warning_message, "\\x1b[2J") == 0, "%s", warning_message);
+    /* A message of control bytes that would be four times as long is cut
+     * whole escapes at a time, within the slot. */
+    static char bells[3000];
+    memset(bells, '\a', sizeof bells - 1);
+    hr_context_set_error(ctx, HR_ERROR_SDL, NULL, 0, 0, bells);
+    const char *kept = hr_context_last_error(ctx);
+    CHECK(strlen(kept) <= 2047 && strlen(kept) % 4 == 0 && strncmp(kept, "\\x07\\x07", 8) == 0);
+}
+
 int main(void)
 {
     /* No context: nothing recorded, the status still returned. */
@@ -124,6 +145,7 @@ int main(void)
     test_passed_on(ctx);
     test_cut(ctx);
     test_warning(ctx);
+    test_escaped(ctx);
     hr_context_destroy(ctx);
     return hr_test_end();
 }

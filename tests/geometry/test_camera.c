@@ -67,6 +67,26 @@ int main(void)
     bad.look = bad.eye;
     CHECK(hr_camera_validate(ctx, &bad) == HR_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(hr_context_last_error(ctx), "same point") != NULL);
+    /* An eye at 1e308: the length of eye - look is not a double, its
+     * direction is (it was called "up vector parallel"); the camera looks
+     * down -z as it does from 10. */
+    hr_camera far = c;
+    far.eye = (hr_vec3){0, 0, 1e308}, far.look = (hr_vec3){0, 0, 0};
+    CHECK_MSG(hr_camera_validate(ctx, &far) == HR_OK, "%s", hr_context_last_error(ctx));
+    CHECK_OK(hr_camera_ray(&far, 2.0, 1.0, &r));
+    CHECK(r.dir.x == 0.0 && r.dir.y == 0.0 && r.dir.z == -1.0);
+    far.up = (hr_vec3){0, 1e300, 0}; /* a huge up is a direction too */
+    CHECK_MSG(hr_camera_validate(ctx, &far) == HR_OK, "%s", hr_context_last_error(ctx));
+    far.up = (hr_vec3){0, 1e-300, 0}; /* and a tiny one */
+    CHECK_MSG(hr_camera_validate(ctx, &far) == HR_OK, "%s", hr_context_last_error(ctx));
+    /* eye - look overflowing is said as such. */
+    far.eye = (hr_vec3){0, 0, 1e308}, far.look = (hr_vec3){0, 0, -1e308}, far.up = c.up;
+    CHECK(hr_camera_validate(ctx, &far) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), "too far apart") != NULL, "%s", hr_context_last_error(ctx));
+    bad = c;
+    bad.up = (hr_vec3){0, 0, 0};
+    CHECK(hr_camera_validate(ctx, &bad) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(hr_context_last_error(ctx), "up vector is zero") != NULL);
     hr_context_destroy(ctx);
     return hr_test_end();
 }

@@ -349,6 +349,41 @@ static void test_large_concave_polygon(void)
     hr_scene_destroy(r.scene);
 }
 
+/* Self-crossing polygons of 16384 vertices (random points) have no ears
+ * to find in the grid: each cut scans the polygon, some 10^8 steps each,
+ * and a file of hundreds of them took many minutes. The file's clipping
+ * budget (2^30 steps) refuses the polygon that passes it, naming its line;
+ * the eight before it were cut. */
+static void test_clipping_budget(void)
+{
+    enum { N = 16384, POLYGONS = 9 };
+    char *text = malloc((size_t)POLYGONS * (16 + (size_t)N * 32));
+    if (!text) return;
+    size_t used = 0;
+    uint64_t state = 12345;
+    for (int k = 0; k < POLYGONS; k++) {
+        used += (size_t)sprintf(text + used, "p %d\n", N);
+        for (int i = 0; i < N; i++) {
+            double xy[2];
+            for (int c = 0; c < 2; c++) {
+                state = state * 6364136223846793005ull + 1442695040888963407ull;
+                xy[c] = (double)(state >> 11) * 0x1p-53;
+            }
+            used += (size_t)sprintf(text + used, "%.6f %.6f %d\n", xy[0], xy[1], k);
+        }
+    }
+    hr_sdl_result r = {0};
+    r.struct_size = sizeof r;
+    const hr_status st = hr_nff_load_string(ctx, text, "tangle.nff", &r);
+    free(text);
+    const char *msg = hr_context_last_error(ctx);
+    CHECK_MSG(st == HR_ERROR_SDL && r.scene == NULL, "status %d: %s", (int)st, msg);
+    char expected[64];
+    snprintf(expected, sizeof expected, "tangle.nff:%d:1: 'p 16384': ear clipping", 1 + 7 * (N + 1));
+    CHECK_MSG(strstr(msg, expected) == msg && strstr(msg, "budget of 1073741824 steps"), "%s", msg);
+    if (r.scene) hr_scene_destroy(r.scene);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -362,6 +397,7 @@ int main(void)
     test_no_view();
     test_large_convex_polygon();
     test_large_concave_polygon();
+    test_clipping_budget();
     hr_context_destroy(ctx);
     return hr_test_end();
 }

@@ -106,7 +106,15 @@ static const bad_case cases[] = {
      "5:5: expected 3 numbers after 'p' (x y z of each vertex), found 'q'"},
     /* Not text. */
     {"s 0 0 0 1\n\x01\x02", HR_ERROR_SDL,
-     "2:1: expected an NFF entity (v, b, l, f, c, s, p, pp or a # comment), found '\x01\x02'"},
+     "2:1: expected an NFF entity (v, b, l, f, c, s, p, pp or a # comment), found '\\x01\\x02'"},
+    /* A file's bytes reach the terminal escaped: here, an escape sequence
+     * that would turn the text red, and one that sets the window's title. */
+    {"s 0 0 0 1\nsph\x1b[31mere", HR_ERROR_SDL,
+     "2:1: expected an NFF entity (v, b, l, f, c, s, p, pp or a # comment), found "
+     "'sph\\x1b[31mere'"},
+    {"\x1b]0;owned\x07", HR_ERROR_SDL,
+     "1:1: expected an NFF entity (v, b, l, f, c, s, p, pp or a # comment), found "
+     "'\\x1b]0;owned\\x07'"},
 };
 
 static void check_case(const bad_case *c)
@@ -177,6 +185,84 @@ static void test_truncated_gzip(void)
     CHECK_MSG(strstr(hr_context_last_error(ctx), "cannot read the scene file") != NULL, "%s",
               hr_context_last_error(ctx));
     CHECK(r.scene == NULL);
+    remove(path);
+}
+
+/* A polygon at +-1e308: its Newell normal overflowed to NaN and it was
+ * dropped as having no area ("the scene has no objects", exit 0), where one
+ * at 1e300 was refused. Both now reach the mesh, which names the line. */
+static void test_polygon_near_double_max(void)
+{
+    const char *values[] = {"1e308", "1e300"};
+    for (int i = 0; i < 2; i++) {
+        char text[256];
+        snprintf(text, sizeof text, "s 0 0 0 1\np 3\n%s 0 0\n0 %s 0\n-%s -%s 0\n", values[i], values[i],
+                 values[i], values[i]);
+        hr_sdl_result r;
+        memset(&r, 0, sizeof r);
+        r.struct_size = sizeof r;
+        const hr_status st = hr_nff_load_string(ctx, text, "far.nff", &r);
+        const char *msg = hr_context_last_error(ctx);
+        CHECK_MSG(st == HR_ERROR_PARAMETER && strstr(msg, "far.nff:2:1: ") == msg &&
+                      strstr(msg, "beyond the coordinates a mesh takes"),
+                  "%s: status %d: %s", values[i], (int)st, msg);
+        if (r.scene) hr_scene_destroy(r.scene);
+    }
+}
+
+/* A whole gzip stream followed by bytes that are no gzip member (a file
+ * appended to, or damaged) is refused, naming the file and where the junk
+ * starts; two members are read as one text, as gzip -d does; zlib's own
+ * name for the stream ("<fd:3>") appears nowhere. */
+static void test_gzip_trailing_bytes(void)
+{
+    static const unsigned char member[] = {0x1f, 0x8b, 0x08, 0x00, 0x00, 0x00, 0x00, 0x00, 0x02,
+                                           0xff, 0x2b, 0x56, 0x30, 0x00, 0x43, 0x43, 0x2e, 0x00,
+                                           0xeb, 0xc6, 0x20, 0x1d, 0x0a, 0x00, 0x00, 0x00};
+    const char *path = HR_TEST_BINARY_DIR "/tests/trailing_nff.gz";
+    hr_sdl_result r;
+    memset(&r, 0, sizeof r);
+    r.struct_size = sizeof r;
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL);
+    if (!f) return;
+    fwrite(member, 1, sizeof member, f);
+    fwrite(member, 1, sizeof member, f);
+    fclose(f);
+    CHECK_MSG(hr_nff_load_file(ctx, path, &r) == HR_OK, "%s", hr_context_last_error(ctx));
+    int64_t objects = -1;
+    if (r.scene) {
+        objects = hr_scene_object_count(r.scene);
+        hr_scene_destroy(r.scene);
+    }
+    CHECK_MSG(objects == 2, "two members give %lld objects", (long long)objects);
+    f = fopen(path, "ab");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("junk", f);
+    fclose(f);
+    memset(&r, 0, sizeof r);
+    r.struct_size = sizeof r;
+    CHECK(hr_nff_load_file(ctx, path, &r) == HR_ERROR_IO);
+    const char *msg = hr_context_last_error(ctx);
+    CHECK_MSG(strstr(msg, "trailing_nff.gz: cannot read the scene file: 4 bytes after the end of the gzip "
+                          "stream (at byte 52 of 56)") != NULL,
+              "%s", msg);
+    CHECK(r.scene == NULL);
+    /* A corrupt member: zlib's reason, the file's name, no "<fd:". */
+    f = fopen(path, "wb");
+    CHECK(f != NULL);
+    if (!f) return;
+    unsigned char bad[sizeof member];
+    memcpy(bad, member, sizeof member);
+    bad[10] = 0xff; /* an invalid block type */
+    fwrite(bad, 1, sizeof bad, f);
+    fclose(f);
+    CHECK(hr_nff_load_file(ctx, path, &r) == HR_ERROR_IO);
+    msg = hr_context_last_error(ctx);
+    CHECK_MSG(strstr(msg, "trailing_nff.gz: cannot read the scene file: bad gzip data") != NULL &&
+                  !strstr(msg, "<fd:"),
+              "%s", msg);
     remove(path);
 }
 
@@ -256,6 +342,8 @@ int main(void)
     test_arguments();
     test_file_limits();
     test_truncated_gzip();
+    test_gzip_trailing_bytes();
+    test_polygon_near_double_max();
     test_huge_concave_polygon();
     hr_context_destroy(ctx);
     return hr_test_end();

@@ -129,16 +129,17 @@ def test_init_signature_declares_the_params(ctx):
 
 def test_surface_names_name_each_surface_id(ctx):
     class Named(Recorder):
+        params = {}
         surface_names = ("wall", "cap")
 
     abi.register_shape("named", Named, context=ctx)
     c, _ = spec_of(ctx, "named")
     assert c.surface_count == 2  # from the names
     assert [ffi.string(c.surface_names[i]) for i in range(2)] == [b"wall", b"cap"]
-    abi.register_shape("unnamed", Recorder, context=ctx)
+    abi.register_shape("unnamed", type("Unnamed", (Recorder,), {"params": {}}), context=ctx)
     assert spec_of(ctx, "unnamed")[0].surface_names == ffi.NULL
     for names, count in ((["a", "b"], 3), (["a", ""], 2), ("ab", 2), (["a", 1], 2)):
-        bad = type("B", (Recorder,), {"surface_names": names, "surface_count": count})
+        bad = type("B", (Recorder,), {"params": {}, "surface_names": names, "surface_count": count})
         with pytest.raises(ValueError, match="surface_names"):
             abi.register_shape("bad", bad, context=ctx)
 
@@ -210,6 +211,8 @@ def test_create_failures_carry_the_python_message(ctx):
 ])
 def test_bad_bounds_refuse_the_object(ctx, bounds, complaint):
     class BadBounds(Recorder):
+        params = {}
+
         def bounds(self):
             return bounds
 
@@ -220,6 +223,8 @@ def test_bad_bounds_refuse_the_object(ctx, bounds, complaint):
 
 def test_a_bounds_method_that_raises_refuses_the_object(ctx):
     class Raises(Recorder):
+        params = {}
+
         def bounds(self):
             raise RuntimeError("no idea")
 
@@ -273,7 +278,38 @@ def test_register_shape_refuses_what_cannot_be_a_shape(ctx):
     with pytest.raises(TypeError, match="context must be"):
         abi.register_shape("ok", Recorder, context=42)
     with pytest.raises(ValueError, match="surface_count"):
-        abi.register_shape("ok", type("S", (Recorder,), {"surface_count": 0}), context=ctx)
+        abi.register_shape("ok", type("S", (Recorder,), {"params": {}, "surface_count": 0}), context=ctx)
     with pytest.raises(ValueError, match="hit_relative_error"):
-        abi.register_shape("ok", type("E", (Recorder,), {"hit_relative_error": -1}),
+        abi.register_shape("ok", type("E", (Recorder,), {"params": {}, "hit_relative_error": -1}),
                            context=ctx)
+
+
+def test_an_init_of_only_var_keywords_is_refused_at_registration_with_the_fix(ctx):
+    """__init__(self, **params) declares no parameter the host can check: it
+    was accepted and then every scene line with a parameter refused as
+    "takes no parameters". Refused at register_shape, saying how to declare
+    them; with named parameters beside **rest, those are the parameters."""
+    class OnlyKeywords:
+        def __init__(self, **params):
+            self.params_given = params
+
+        def bounds(self):
+            return None
+
+        def hit(self, origin, direction, tmin, tmax):
+            return []
+
+    with pytest.raises(ValueError) as e:
+        abi.register_shape("onlykw", OnlyKeywords, context=ctx)
+    assert "OnlyKeywords" in str(e.value) and "**params" in str(e.value)
+    assert "params = {" in str(e.value)
+
+    class NamedAndRest(OnlyKeywords):
+        def __init__(self, radius=1.0, **rest):
+            super().__init__(radius=radius, **rest)
+
+    abi.register_shape("namedrest", NamedAndRest, context=ctx)
+    _, specs = spec_of(ctx, "namedrest")
+    assert [s[0] for s in specs] == ["radius"]
+    scene, _ = load_sdl(ctx, "namedrest 2\n")
+    destroy(scene)

@@ -231,6 +231,11 @@ def test_an_exception_in_the_progress_callable_cancels_and_is_raised(demo):
     (dict(adaptive=0.1), hitray.ArgumentError),  # needs spp >= 2
     (dict(adaptive=1.5, spp=4), hitray.ArgumentError),
     (dict(min_weight=0.1, exact=True), hitray.ArgumentError),
+    # A flag is a bool (or 0 or 1), not any object's truth: "no" was True.
+    (dict(exact="no"), TypeError),
+    (dict(exact=2), TypeError),
+    (dict(exact=None), TypeError),
+    (dict(all_effects="no"), TypeError),
 ])
 def test_bad_render_arguments_raise(demo, kwargs, error):
     scene, camera = demo

@@ -259,6 +259,12 @@ static void older_callers(void)
     CHECK(strstr(hr_context_last_error(ctx), "minimum weight") != NULL);
     o.min_weight = -0.5;
     CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    /* The value in the fewest digits that read back: %g made 1.0000001
+     * "1", beside its limit 1. */
+    o.min_weight = 1.0000001;
+    CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), "minimum weight 1.0000001 must be within 0..1") != NULL, "%s",
+              hr_context_last_error(ctx));
     o.min_weight = NAN;
     CHECK(hr_render(s, &c, &o, &img, NULL) == HR_ERROR_INVALID_ARGUMENT);
     hr_scene_destroy(s);

@@ -13,6 +13,11 @@ static void keywords_and_numbers(hr_context *ctx)
     EXPECT_ERROR(ctx, "Sphere", HR_ERROR_SDL, 1, 1, "unknown keyword 'Sphere'",
                  "case-sensitive", "'sphere'");
     EXPECT_ERROR(ctx, "pushh", HR_ERROR_SDL, 1, 1, "unknown keyword 'pushh'");
+    /* A word's bytes reach the message escaped, not as the escape sequence
+     * that would turn a terminal red (nor a UTF-8 byte a terminal could
+     * take for a C1 control). */
+    EXPECT_ERROR(ctx, "sph\x1b[31mere", HR_ERROR_SDL, 1, 1, "unknown keyword 'sph\\x1b[31mere'");
+    EXPECT_ERROR(ctx, "def \x9b" "2J { sphere }", HR_ERROR_SDL, 1, 5, "'\\x9b2J'");
     /* One number too many reads as a keyword. */
     EXPECT_ERROR(ctx, "scale 1 2 3 4 sphere", HR_ERROR_SDL, 1, 13,
                  "expected a keyword, found the number '4'");
@@ -56,6 +61,8 @@ static void keywords_and_numbers(hr_context *ctx)
                  "material: reflectivity 1.5 must be within [0, 1]");
     EXPECT_ERROR(ctx, "transparency -0.25 sphere", HR_ERROR_SDL, 1, 14,
                  "material: transparency -0.25 must be within [0, 1]");
+    EXPECT_ERROR(ctx, "reflectivity 1.0000001 sphere", HR_ERROR_SDL, 1, 14,
+                 "material: reflectivity 1.0000001 must be within [0, 1]");
     EXPECT_ERROR(ctx, "specularExponent -2", HR_ERROR_SDL, 1, 18,
                  "material: specularExponent -2 must be within [0, 1e+06]");
     EXPECT_ERROR(ctx, "emissive 1 2e6 3", HR_ERROR_SDL, 1, 1,

@@ -582,6 +582,17 @@ static void test_many_hits(void)
     harness_close(&stack);
 }
 
+/* a, b, c, d with c d within a few ulps of a b, or exactly equal. */
+static void cancelling_products(ray_rng *rng, double *a, double *b, double *c, double *d)
+{
+    *a = rng_uniform(rng, -2, 2), *b = rng_uniform(rng, -2, 2);
+    *c = rng_uniform(rng, 0.5, 2) * (rng_chance(rng, 0.5) ? -1 : 1);
+    *d = *a * *b / *c; /* c d = a b within an ulp or two */
+    const int nudge = (int)(rng_next(rng) % 7) - 3;
+    for (int k = 0; k < abs(nudge); k++) *d = nextafter(*d, nudge > 0 ? INFINITY : -INFINITY);
+    if (rng_chance(rng, 0.1)) *c = *a, *d = *b; /* exactly zero */
+}
+
 /* The edge functions' signs are exact: a b - c d against __float128, where
  * both products are exact (106 bits < 113) and so is the sign of their
  * difference, on inputs built to cancel (c d within a few ulps of a b, and
@@ -592,12 +603,8 @@ static void test_exact_signs(void)
     rng_seed(&rng, 21);
     int wrong_plain = 0;
     for (int i = 0; i < 200000; i++) {
-        double a = rng_uniform(&rng, -2, 2), b = rng_uniform(&rng, -2, 2);
-        double c = rng_uniform(&rng, 0.5, 2) * (rng_chance(&rng, 0.5) ? -1 : 1);
-        double d = a * b / c; /* c d = a b within an ulp or two */
-        const int nudge = (int)(rng_next(&rng) % 7) - 3;
-        for (int k = 0; k < abs(nudge); k++) d = nextafter(d, nudge > 0 ? INFINITY : -INFINITY);
-        if (rng_chance(&rng, 0.1)) c = a, d = b; /* exactly zero */
+        double a, b, c, d;
+        cancelling_products(&rng, &a, &b, &c, &d);
         const quad exact = (quad)a * b - (quad)c * d;
         const int want = exact > 0 ? 1 : exact < 0 ? -1 : 0;
         const double got = mesh_edge_function(a, b, c, d);
@@ -609,6 +616,42 @@ static void test_exact_signs(void)
     }
     /* The cases are hard ones: plain evaluation must get some wrong. */
     CHECK_MSG(wrong_plain > 1000, "only %d plain signs wrong: the inputs do not cancel", wrong_plain);
+}
+
+/* The same at every scale: the factors (a, c) and (b, d) scaled by powers
+ * of two from 2^-1074 to products near 2^1000, so that products underflow
+ * (corners within 1e-150 of the ray: a tetrahedron with vertices 1e-300
+ * apart crossed once, from outside, by the fuzzer's ray) or come near
+ * overflow. The sign wanted is the exact one of the scaled doubles (in
+ * __float128, whose exponent holds every product). */
+static void test_exact_signs_at_any_scale(void)
+{
+    ray_rng rng;
+    rng_seed(&rng, 22);
+    int tiny_products = 0;
+    for (int i = 0; i < 200000; i++) {
+        double a, b, c, d;
+        cancelling_products(&rng, &a, &b, &c, &d);
+        if (rng_chance(&rng, 0.2)) { /* one product far smaller than the other */
+            const double t = b;
+            b = d, d = t;
+        }
+        const int k1 = (int)(rng_next(&rng) % 2075) - 1074;
+        int k2 = (int)(rng_next(&rng) % 2075) - 1074;
+        if (k1 + k2 > 1000) k2 = 1000 - k1;
+        a = ldexp(a, k1), c = ldexp(c, k1), b = ldexp(b, k2), d = ldexp(d, k2);
+        if (rng_chance(&rng, 0.1)) { /* (b, c) small instead */
+            const double t = ldexp(1.0, -(int)(rng_next(&rng) % 600));
+            b *= t, c *= t;
+        }
+        const quad exact = (quad)a * b - (quad)c * d;
+        const int want = exact > 0 ? 1 : exact < 0 ? -1 : 0;
+        const double got = mesh_edge_function(a, b, c, d);
+        const int sign = got > 0 ? 1 : got < 0 ? -1 : 0;
+        CHECK_MSG(sign == want, "%a * %a - %a * %a: sign %d, exact %d", a, b, c, d, sign, want);
+        tiny_products += fabs(a * b) < 0x1p-960 && fabs(c * d) < 0x1p-960 && want != 0;
+    }
+    CHECK_MSG(tiny_products > 10000, "only %d cases with both products tiny", tiny_products);
 }
 
 /* mesh_next_up (the step a first-hit search narrows tmax by) is
@@ -893,8 +936,12 @@ static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double s
 static void test_bvh_matches_brute_force(void)
 {
     soup_matches_brute_force(31, 3000, 3000, 1.0);
-    /* Tiny, huge, and past float's range (infinite float boxes). */
-    const double scales[] = {0x1p-70, 0x1p70, 0x1p130};
+    /* Tiny, huge, and past float's range (infinite float boxes); at the
+     * walk's culling range (2^64, ACCEL_CULL_RANGE), and coordinates near
+     * float's range, up to 10 * 2^124 (below FLT_MAX, 2^128) and across it
+     * at 10 * 2^125, where the boxes' float bounds round to FLT_MAX or
+     * infinity. */
+    const double scales[] = {0x1p-70, 0x1p70, 0x1p130, 0x1p61, 0x1p64, 0x1p124, 0x1p125};
     for (size_t k = 0; k < sizeof scales / sizeof *scales; k++)
         soup_matches_brute_force(77 + k, 1000, HR_TEST_SANITIZED ? 3000 : 30000, scales[k]);
 }
@@ -1072,6 +1119,7 @@ int main(void)
         return hr_test_end() | 1;
     test_classes();
     test_exact_signs();
+    test_exact_signs_at_any_scale();
     test_next_up();
     test_pair_filter();
     test_cube_agrees();

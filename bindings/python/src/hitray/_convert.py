@@ -45,6 +45,16 @@ def number(value: Any, what: str) -> float:
     return as_float(value, what)
 
 
+def flag(value: Any, what: str) -> bool:
+    """A bool (numpy's too, and the integers 0 and 1): not any object's
+    truth, so that ``exact="no"`` is an error rather than True."""
+    if isinstance(value, bool):
+        return value
+    if type(value).__name__ == "bool_" or (isinstance(value, numbers.Integral) and int(value) in (0, 1)):
+        return bool(value)
+    raise TypeError(f"{what}: expected True or False, got {value!r}")
+
+
 INT32_MAX = 2**31 - 1
 
 

@@ -123,6 +123,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     # against min_weight) and says what is wrong: ArgumentError.
     threshold = 0.0 if adaptive is None else _convert.number(adaptive, "adaptive")
     weight = 0.0 if min_weight is None else _convert.number(min_weight, "min_weight")
+    exact_flag = _convert.flag(exact, "render: exact")
     rect = (0, 0, w, h) if window is None else _window(window, w, h)
     filter_code = _texture_filter(texture_filter)
     if camera is None:
@@ -143,7 +144,7 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
                         "fraction done")
     try:
         core_image = _core.render(core_scene, camera._as_core(), w, h, spp, nthreads, d, blocks,
-                                  all_paths, threshold, weight, bool(exact), rect, filter_code, callback)
+                                  all_paths, threshold, weight, exact_flag, rect, filter_code, callback)
     finally:
         if bar is not None:
             bar.close()
@@ -175,5 +176,5 @@ def _texture_filter(name: str) -> int:
 def _effects(effects: str, all_effects: bool) -> bool:
     if effects not in ("auto", "all"):
         raise ValueError(f"render: effects must be 'auto' or 'all', not {effects!r}")
-    return effects == "all" or bool(all_effects)
+    return effects == "all" or _convert.flag(all_effects, "render: all_effects")
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import threading
 from typing import Any, List, Optional
 
+from ..errors import _interrupt_behind
 from ._library import load
 
 
@@ -70,6 +71,11 @@ def check(context: Any, status: int) -> None:
     if not message:
         message = ffi.string(lib.hr_status_name(status)).decode("utf-8", "replace")
     cause = take_shape_error()
+    interrupt = _interrupt_behind(cause)
+    if interrupt is not None:
+        # Ctrl-C in a shape callback stops the call: it is raised as itself,
+        # never as a HitrayError that an `except HitrayError` would swallow.
+        raise interrupt
     if cause is not None and str(cause) not in message:
         message = f"{message}: {cause}"
     error = HitrayError(status, message)

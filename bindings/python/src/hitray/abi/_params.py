@@ -128,9 +128,12 @@ def class_params(cls: type) -> List[ParamSpec]:
     except (TypeError, ValueError):
         return []
     specs: List[ParamSpec] = []
+    var_keyword = ""
     for i, (name, p) in enumerate(signature.parameters.items()):
         if i == 0 and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD):
             continue  # self
+        if p.kind == p.VAR_KEYWORD:
+            var_keyword = name
         if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
             continue
         if p.kind == p.POSITIONAL_ONLY:
@@ -138,4 +141,12 @@ def class_params(cls: type) -> List[ParamSpec]:
                              "positional-only; cls(**params) passes keywords")
         declared_default = _REQUIRED if p.default is p.empty else p.default
         specs.append(_spec(owner, name, declared_default, p.annotation))
+    if var_keyword and not specs and getattr(cls, "__init__") is not object.__init__:
+        # The library checks every parameter a scene gives against the
+        # class's list, which **params leaves empty: refused here, with the
+        # fix, rather than at the first scene line as "takes no parameters".
+        raise ValueError(f"shape class {owner}: __init__ takes only **{var_keyword}, so the "
+                         "parameters a scene may give are unknown; declare them, as keyword "
+                         "parameters of __init__ (def __init__(self, radius=1.0)) or as a class "
+                         "attribute params = {\"radius\": 1.0}")
     return specs

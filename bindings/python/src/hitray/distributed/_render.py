@@ -127,8 +127,8 @@ def _options(spp: int, depth: Optional[int], block: Optional[int], effects: str,
              block_size: Optional[int], all_effects: bool) -> Dict[str, Any]:
     """hitray.render's keywords, passed on as given (it checks them)."""
     return {"spp": spp, "depth": depth, "block": block, "effects": effects, "adaptive": adaptive,
-            "min_weight": min_weight, "exact": bool(exact), "block_size": block_size,
-            "all_effects": bool(all_effects)}
+            "min_weight": min_weight, "exact": _convert.flag(exact, "render: exact"),
+            "block_size": block_size, "all_effects": _convert.flag(all_effects, "render: all_effects")}
 
 
 def _check_here(scene: Scene, camera: Optional[Camera], size: Tuple[int, int],
