@@ -98,6 +98,12 @@ __attribute__((target("avx2"), noinline)) static hr_color checkerboard_box_avx2(
 {
     return checkerboard_box_body(p, q, half);
 }
+/* A whole footprint in one call, its pieces' boxes inlined. */
+__attribute__((target("avx2"), noinline)) static hr_color
+checkerboard_footprint_avx2(const double *p, const hri_footprint_pieces *f)
+{
+    return hri_footprint_mean(checkerboard_box_body, p, f);
+}
 #endif
 static hr_color checkerboard_box(const double *p, hr_vec3 q, hr_vec3 half)
 {
@@ -105,6 +111,13 @@ static hr_color checkerboard_box(const double *p, hr_vec3 q, hr_vec3 half)
     if (shape_cpu_has_avx2()) return checkerboard_box_avx2(p, q, half);
 #endif
     return checkerboard_box_body(p, q, half);
+}
+static hr_color checkerboard_footprint(const double *p, const hri_footprint_pieces *f)
+{
+#ifdef CHECKER_AVX2
+    if (shape_cpu_has_avx2()) return checkerboard_footprint_avx2(p, f);
+#endif
+    return hri_footprint_mean(checkerboard_box_body, p, f);
 }
 static hr_color checkerboard(const double *p, hr_vec3 q)
 {
@@ -198,13 +211,13 @@ static hr_color marble(const double *p, hr_vec3 q)
     return marble_box(p, q, v3(0.0, 0.0, 0.0));
 }
 
-#define ROW(id, name, params, fn, box)                                                  \
-    {id, name, params, (int32_t)(sizeof params / sizeof params[0]), fn, box}
+#define ROW(id, name, params, fn, box, footprint)                                        \
+    {id, name, params, (int32_t)(sizeof params / sizeof params[0]), fn, box, footprint}
 /* Numbered from -1 down without gaps: hr_solid_texture_name promises it. */
 static const hr_texture_kind solid_textures[] = {
-    ROW(-1, "checkerboard", checker_params, checkerboard, checkerboard_box),
-    ROW(-2, "wood", wood_params, wood, wood_box),
-    ROW(-3, "marble", marble_params, marble, marble_box),
+    ROW(-1, "checkerboard", checker_params, checkerboard, checkerboard_box, checkerboard_footprint),
+    ROW(-2, "wood", wood_params, wood, wood_box, NULL),
+    ROW(-3, "marble", marble_params, marble, marble_box, NULL),
 };
 #define SOLID_COUNT ((int32_t)(sizeof solid_textures / sizeof solid_textures[0]))
 
@@ -230,4 +243,4 @@ static const hr_texture_param image_params[] = {
     {"v max", 1.0, HR_TEXTURE_PARAM_ANY, -1e300, 1e300},
     {"nearest", 0.0, HR_TEXTURE_PARAM_WHOLE, 0.0, 1.0},
 };
-const hr_texture_kind hri_image_texture_kind = ROW(1, "image", image_params, NULL, NULL);
+const hr_texture_kind hri_image_texture_kind = ROW(1, "image", image_params, NULL, NULL, NULL);
