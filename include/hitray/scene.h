@@ -216,7 +216,9 @@ HR_API void hr_intersection_release(hr_intersection *list);
 
 /* Hill's shade: the colour seen along `ray`, with reflections and
  * refractions down to the scene's maxRecursionDepth (or `max_depth` if
- * >= 0). The ray's direction need not be unit length. */
+ * >= 0). The ray's direction need not be unit length. A lone ray stands for
+ * no pixel, so it has no footprint: every texture is point-sampled at its
+ * hits, as hr_render's HR_TEXTURE_FILTER_NONE does. */
 HR_API hr_status hr_scene_shade(const hr_scene *scene, const hr_ray *ray,
                                 int32_t max_depth, hr_color *out);
 

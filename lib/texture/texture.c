@@ -186,16 +186,12 @@ hr_color hri_texture_color_filtered(const hr_texture *t, const hr_shape_class *c
         int na = footprint_cuts(dqy, dqx), nb = footprint_cuts(dqx, dqy);
         while (na * nb > FOOTPRINT_CUTS) na > nb ? na-- : nb--;
         const hr_vec3 pa = v3_scale(dqx, 1.0 / na), pb = v3_scale(dqy, 1.0 / nb);
-        const hr_vec3 half = v3(0.5 * (fabs(pa.x) + fabs(pb.x)), 0.5 * (fabs(pa.y) + fabs(pb.y)),
-                                0.5 * (fabs(pa.z) + fabs(pb.z)));
-        if (na == 1 && nb == 1) return t->kind->solid_box(t->params, q, half);
-        hr_color sum = rgb(0.0, 0.0, 0.0);
-        for (int i = 0; i < na; i++)
-            for (int j = 0; j < nb; j++) {
-                const hr_vec3 c = v3_madd(v3_madd(q, pa, i + 0.5 - 0.5 * na), pb, j + 0.5 - 0.5 * nb);
-                sum = rgb_add(sum, t->kind->solid_box(t->params, c, half));
-            }
-        return rgb_scale(sum, 1.0 / (na * nb));
+        const hri_footprint_pieces f = {q, pa, pb,
+                                        v3(0.5 * (fabs(pa.x) + fabs(pb.x)), 0.5 * (fabs(pa.y) + fabs(pb.y)),
+                                           0.5 * (fabs(pa.z) + fabs(pb.z))),
+                                        na, nb};
+        if (t->kind->solid_footprint) return t->kind->solid_footprint(t->params, &f);
+        return hri_footprint_mean(t->kind->solid_box, t->params, &f);
     }
     if (t->params[HR_IMAGE_PARAM_NEAREST] != 0.0) return hri_texture_color(t, cls, shape, hit);
     double st[2], sx[2], sy[2];

@@ -17,6 +17,8 @@
 
 #include <hitray/hitray.h>
 
+#include "geometry/vec.h"
+
 /* The most parameters a texture reads; a material giving more is refused. */
 #define HR_TEXTURE_MAX_PARAMS 16
 
@@ -32,6 +34,30 @@ typedef struct hr_texture_param {
     double min, max;
 } hr_texture_param;
 
+/* A hit's footprint as texture.c filters it: the parallelogram of sides
+ * na pa and nb pb centred on q, cut into na x nb pieces of sides pa and
+ * pb, each filtered by the box +- half around its centre. */
+typedef struct hri_footprint_pieces {
+    hr_vec3 q, pa, pb, half;
+    int na, nb;
+} hri_footprint_pieces;
+
+/* The mean of `box` (a kind's solid_box) over the pieces of f, in one
+ * order (so one value, bit for bit, wherever it is inlined). */
+static inline __attribute__((always_inline)) hr_color
+hri_footprint_mean(hr_color (*box)(const double *, hr_vec3, hr_vec3), const double *params,
+                   const hri_footprint_pieces *f)
+{
+    if (f->na == 1 && f->nb == 1) return box(params, f->q, f->half);
+    hr_color sum = rgb(0.0, 0.0, 0.0);
+    for (int i = 0; i < f->na; i++)
+        for (int j = 0; j < f->nb; j++) {
+            const hr_vec3 c = v3_madd(v3_madd(f->q, f->pa, i + 0.5 - 0.5 * f->na), f->pb, j + 0.5 - 0.5 * f->nb);
+            sum = rgb_add(sum, box(params, c, f->half));
+        }
+    return rgb_scale(sum, 1.0 / (f->na * f->nb));
+}
+
 /* One kind of texture: a solid texture (`solid` set), or the image texture
  * (`solid` NULL), whose parameters say how (u, v) map onto the pixmap. */
 typedef struct hr_texture_kind {
@@ -46,6 +72,10 @@ typedef struct hr_texture_kind {
      * >= 0), for filtering by a hit's footprint; with half = 0, solid's
      * colour bit for bit. NULL: the texture has no filtered form. */
     hr_color (*solid_box)(const double *params, hr_vec3 p, hr_vec3 half);
+    /* hri_footprint_mean of solid_box, the same bit for bit, for a kind
+     * that runs it faster in one call; NULL: texture.c runs
+     * hri_footprint_mean itself. */
+    hr_color (*solid_footprint)(const double *params, const hri_footprint_pieces *f);
 } hr_texture_kind;
 
 /* The solid texture numbered `id` (< 0), NULL if there is none; the

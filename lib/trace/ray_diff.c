@@ -6,20 +6,21 @@
 #include "trace/ray_diff.h"
 #include "geometry/vec.h"
 
-/* d(w / |w|) for a change dw of w: the part of dw across w, over |w|. */
-static hr_vec3 unit_derivative(hr_vec3 w, hr_vec3 dw)
+/* d(w / |w|) for a change dw of w: the part of dw across w, over |w|;
+ * d is w / |w| and inv 1 / |w|, worked out once for both of a ray's. */
+static hr_vec3 unit_derivative(hr_vec3 d, double inv, hr_vec3 dw)
 {
-    const double len = v3_length(w);
-    const hr_vec3 d = v3_scale(w, 1.0 / len);
-    return v3_scale(v3_madd(dw, d, -v3_dot(d, dw)), 1.0 / len);
+    return v3_scale(v3_madd(dw, d, -v3_dot(d, dw)), inv);
 }
 
 hr_ray_diff hri_ray_diff_camera(hr_vec3 w, hr_vec3 dwdx, hr_vec3 dwdy)
 {
+    const double inv = 1.0 / v3_length(w);
+    const hr_vec3 d = v3_scale(w, inv);
     hr_ray_diff rd;
     rd.dodx = rd.dody = v3(0.0, 0.0, 0.0);
-    rd.dddx = unit_derivative(w, dwdx);
-    rd.dddy = unit_derivative(w, dwdy);
+    rd.dddx = unit_derivative(d, inv, dwdx);
+    rd.dddy = unit_derivative(d, inv, dwdy);
     return rd;
 }
 

@@ -291,6 +291,33 @@ def test_distributed_textured_scenes(client, tmp_path):
     assert exr_bytes(there, tmp_path / "there2.exr") == exr_bytes(here, tmp_path / "here2.exr")
 
 
+def test_distributed_texture_filter_reaches_the_workers(client, tmp_path):
+    """texture_filter travels with the other options: a checkerboard floor
+    to the horizon, point-sampled (texture_filter="none") on the cluster,
+    is bit for bit hitray.render's point-sampled image, and not its
+    filtered one (the option changes this picture, so a worker that dropped
+    it would be caught)."""
+    require_classes("plane")
+    text = ("camera 0 1.5 0  0 -4.353 -12  0 1 0  50\nlight 5 20 10 1 1 1\n"
+            "push rotate -90 1 0 0 texture -1 plane pop\n")
+    scene, camera = hitray.parse_sdl(text, "floor.sdl")
+    size = (48, 36)
+    point = hitray.render(scene, camera, size, progress=False, texture_filter="none")
+    filtered = hitray.render(scene, camera, size, progress=False)
+    there = hd.render(scene, camera, size, client=client, tile=16, progress=False, texture_filter="none")
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(point, tmp_path / "point.exr")
+    assert exr_bytes(point, tmp_path / "point.exr") != exr_bytes(filtered, tmp_path / "filtered.exr")
+    out = tmp_path / "frame_%d.exr"
+    hd.render_frames([(scene, camera)], str(out), size=size, client=client, progress=False,
+                     texture_filter="none")
+    assert (tmp_path / "frame_0.exr").read_bytes() == (tmp_path / "point.exr").read_bytes()
+    (tmp_path / "floor.sdl").write_text(text)
+    proc = dist_cli("render", tmp_path / "floor.sdl", "-o", tmp_path / "cli.exr", "--size", "48x36",
+                    "--scheduler", client.scheduler.address, "-q", "--texture-filter", "none")
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "cli.exr").read_bytes() == (tmp_path / "point.exr").read_bytes()
+
+
 def orbit(i, count=12):
     scene, _ = two_spheres()
     angle = 2 * np.pi * i / count

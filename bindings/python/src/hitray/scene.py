@@ -418,7 +418,8 @@ class Scene:
               depth: Optional[int] = None) -> Vec3:
         """Hill's shade: the colour seen along the ray, with reflections and
         refractions down to `depth` bounces (None: the scene's
-        max_recursion_depth)."""
+        max_recursion_depth). A lone ray stands for no pixel, so textures
+        are point-sampled at its hits (as ``texture_filter="none"``)."""
         d = -1 if depth is None else _convert.integer(depth, "depth")
         if depth is not None and d < 0:
             raise ValueError("shade: depth must be at least 0")

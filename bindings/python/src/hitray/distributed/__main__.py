@@ -104,6 +104,9 @@ def _parser() -> argparse.ArgumentParser:
     common.add_argument("--min-weight", type=float, default=0.0, metavar="W",
                         help="contribution cut-off (default 2^-24)")
     common.add_argument("--exact", action="store_true", help="trace every contribution (no cut-off)")
+    common.add_argument("--texture-filter", choices=("footprint", "none"), default="footprint",
+                        help="footprint (default): average each texture over the pixel's footprint; "
+                             "none: point-sample it at the hit")
     common.add_argument("--png16", action="store_true", help="16-bit PNG")
     common.add_argument("--linear-png", action="store_true", help="PNG values linear, not sRGB-encoded")
     common.add_argument("--exr-half", action="store_true", help="EXR with 16-bit half floats")
@@ -128,7 +131,8 @@ def _parser() -> argparse.ArgumentParser:
 def _options(a: argparse.Namespace) -> Dict[str, Any]:
     return {"size": a.size, "spp": a.spp, "depth": a.depth, "block_size": a.block,
             "all_effects": a.effects == "all", "adaptive": a.adaptive, "min_weight": a.min_weight,
-            "exact": a.exact, "tile": a.tile, "timeout": a.timeout, "progress": False if a.quiet else None}
+            "exact": a.exact, "texture_filter": a.texture_filter, "tile": a.tile, "timeout": a.timeout,
+            "progress": False if a.quiet else None}
 
 
 def _load(path: str) -> Tuple[Any, Optional[Camera]]:

@@ -124,11 +124,12 @@ def row_costs(scene: Scene, camera: Camera, size: Tuple[int, int], options: Dict
 
 def _options(spp: int, depth: Optional[int], block: Optional[int], effects: str,
              adaptive: Optional[float], min_weight: Optional[float], exact: bool,
-             block_size: Optional[int], all_effects: bool) -> Dict[str, Any]:
+             block_size: Optional[int], all_effects: bool, texture_filter: str) -> Dict[str, Any]:
     """hitray.render's keywords, passed on as given (it checks them)."""
     return {"spp": spp, "depth": depth, "block": block, "effects": effects, "adaptive": adaptive,
             "min_weight": min_weight, "exact": _convert.flag(exact, "render: exact"),
-            "block_size": block_size, "all_effects": _convert.flag(all_effects, "render: all_effects")}
+            "block_size": block_size, "all_effects": _convert.flag(all_effects, "render: all_effects"),
+            "texture_filter": texture_filter}
 
 
 def _check_here(scene: Scene, camera: Optional[Camera], size: Tuple[int, int],
@@ -466,8 +467,9 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
            threads: Optional[int] = None, depth: Optional[int] = None, progress: Progress = None, *,
            block: Optional[int] = None, effects: str = "auto", adaptive: Optional[float] = None,
            min_weight: Optional[float] = None, exact: bool = False, block_size: Optional[int] = None,
-           all_effects: bool = False, client: Any = None, tile: Optional[int] = None,
-           workers: Optional[int] = None, timeout: float = 10.0, report: Optional[Report] = None) -> Image:
+           all_effects: bool = False, texture_filter: str = "footprint", client: Any = None,
+           tile: Optional[int] = None, workers: Optional[int] = None, timeout: float = 10.0,
+           report: Optional[Report] = None) -> Image:
     """Render `scene` through `camera` as :func:`hitray.render` does, on a
     Dask cluster: the frame is cut into bands, each rendered by a worker on
     all its threads, and the Image put back together is bit for bit the one
@@ -507,7 +509,8 @@ def render(scene: Scene, camera: Optional[Camera] = None, size: Tuple[int, int] 
     """
     size = _convert.size(size)
     tile = _tile_size(tile, size)
-    options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
+    options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects,
+                       texture_filter)
     task_threads = _threads(threads)
     camera = _check_here(scene, camera, size, options)
     with connect(client, workers, timeout) as c:
@@ -554,9 +557,10 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
                   depth: Optional[int] = None, progress: Progress = None, *, block: Optional[int] = None,
                   effects: str = "auto", adaptive: Optional[float] = None, min_weight: Optional[float] = None,
                   exact: bool = False, block_size: Optional[int] = None, all_effects: bool = False,
-                  client: Any = None, tile: Optional[int] = None, workers: Optional[int] = None,
-                  timeout: float = 10.0, frames_in_flight: Optional[int] = None, bits: int = 8,
-                  linear: bool = False, half: bool = False, on_frame: Optional[Callable[[int, str], Any]] = None,
+                  texture_filter: str = "footprint", client: Any = None, tile: Optional[int] = None,
+                  workers: Optional[int] = None, timeout: float = 10.0, frames_in_flight: Optional[int] = None,
+                  bits: int = 8, linear: bool = False, half: bool = False,
+                  on_frame: Optional[Callable[[int, str], Any]] = None,
                   report: Optional[Report] = None) -> List[str]:
     """Render an animation on a Dask cluster, one file per frame.
 
@@ -598,7 +602,8 @@ def render_frames(frames: FrameSource, out_pattern: Any, count: Optional[int] = 
         in_flight = _convert.integer(frames_in_flight, "frames_in_flight")
         if in_flight < 1:
             raise ValueError(f"render_frames: frames_in_flight must be at least 1, not {in_flight}")
-    options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects)
+    options = _options(spp, depth, block, effects, adaptive, min_weight, exact, block_size, all_effects,
+                       texture_filter)
     task_threads = _threads(threads)
     todo = [(i, path) for i, path in ((i, _frame_path(out_pattern, i)) for i in range(total))
             if not _finished(path, i)]
