@@ -335,8 +335,18 @@ def ppm_codes(data):
 def window_zoom(viewer, image_width, image_height):
     """The viewer's window id and how many screen pixels an image pixel
     takes (a small image is shown at a whole multiple of its size)."""
-    window = viewer.xdotool("search", "--sync", "--name", "^hitray view").split()[0]
-    geometry = dict(line.split("=") for line in viewer.xdotool("getwindowgeometry", "--shell", window).split())
+    # A window found by name can be gone by the next request while SDL is
+    # still setting the viewer up (BadWindow): then it is looked for again.
+    for attempt in range(10):
+        window = viewer.xdotool("search", "--sync", "--name", "^hitray view").split()[0]
+        try:
+            shell = viewer.xdotool("getwindowgeometry", "--shell", window)
+            break
+        except AssertionError:
+            if attempt == 9:
+                raise
+            time.sleep(0.2)
+    geometry = dict(line.split("=") for line in shell.split())
     width, height = int(geometry["WIDTH"]), int(geometry["HEIGHT"])
     zoom = width // image_width
     assert zoom >= 1 and (width, height) == (zoom * image_width, zoom * image_height)
