@@ -1,7 +1,8 @@
 #!/bin/sh
 # The zig-built hitray of a wheel against the gcc Release build, on the
-# benchmark scenes: median render time (800x600, 4 spp, 1 thread, rounds
-# interleaved, so a machine whose speed drifts shifts both builds alike),
+# benchmark scenes: median render time and CPU time of the process
+# (800x600, 4 spp, 1 thread, rounds interleaved, so a machine whose speed
+# drifts shifts both builds alike),
 # callgrind's instruction count of a smaller render (the same on a busy
 # machine), and whether the two builds write the same PFM, bit for bit, for
 # every benchmark scene and every scene of scenes/.
@@ -28,9 +29,9 @@ run() { # gcc|zig args...
     which=$1
     shift
     if [ "$which" = zig ]; then
-        LD_LIBRARY_PATH="$zig_libs" "$zig_bin" "$@"
+        LD_LIBRARY_PATH="$zig_libs" /usr/bin/time -f "cpu %U %S" "$zig_bin" "$@"
     else
-        "$gcc_bin" "$@"
+        /usr/bin/time -f "cpu %U %S" "$gcc_bin" "$@"
     fi
 }
 scene_file() {
@@ -42,9 +43,12 @@ while [ "$round" -lt "$rounds" ]; do
     for s in $scenes; do
         for which in gcc zig; do
             run $which render "$(scene_file "$s")" -o "$tmp/t.png" --size 800x600 --spp 4 \
-                --threads 1 -q --stats-json "$tmp/s.json"
+                --threads 1 -q --stats-json "$tmp/s.json" 2> "$tmp/time"
             tr -d '{}" ' < "$tmp/s.json" | tr ',' '\n' | awk -F: '$1 ~ /seconds/ {print $2}' \
                 >> "$tmp/$s.$which"
+            # CPU seconds of the whole process (user + system): less moved
+            # than the wall time where other jobs share the cores.
+            awk '/^cpu / {print $2 + $3}' "$tmp/time" >> "$tmp/$s.$which.cpu"
         done
     done
     round=$((round + 1))
@@ -62,21 +66,23 @@ instructions() { # gcc|zig scene
     fi
 }
 
-echo "| scene | gcc (s) | zig (s) | zig/gcc time | gcc instructions | zig instructions | zig/gcc instructions |"
-echo "| --- | --- | --- | --- | --- | --- | --- |"
+echo "| scene | gcc (s) | zig (s) | zig/gcc time | zig/gcc CPU time | gcc instructions | zig instructions | zig/gcc instructions |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
 for s in $scenes; do
     g=$(median "$tmp/$s.gcc") z=$(median "$tmp/$s.zig")
+    gc=$(median "$tmp/$s.gcc.cpu") zc=$(median "$tmp/$s.zig.cpu")
     if [ "${CALLGRIND:-1}" = 1 ]; then
         gi=$(instructions gcc "$s") zi=$(instructions zig "$s")
         ir=$([ "$gi" = n/a ] || [ "$zi" = n/a ] && echo - || echo "scale=3; $zi / $gi" | bc)
     else
         gi=- zi=- ir=-
     fi
-    printf '| %s | %.3f | %.3f | %.3f | %s | %s | %s |\n' "$s" "$g" "$z" "$(echo "scale=4; $z / $g" | bc)" \
-        "$gi" "$zi" "$ir"
+    printf '| %s | %.3f | %.3f | %.3f | %.3f | %s | %s | %s |\n' "$s" "$g" "$z" "$(echo "scale=4; $z / $g" | bc)" \
+        "$(echo "scale=4; $zc / $gc" | bc)" "$gi" "$zi" "$ir"
 done
 echo
-echo "(time: median of $rounds interleaved rounds, 800x600, 4 spp, 1 thread; instructions:"
+echo "(time: the render's own, median of $rounds interleaved rounds, 800x600, 4 spp, 1 thread;"
+echo "CPU time: user + system of the whole process, median; instructions:"
 echo "callgrind, 200x150, 4 spp, 1 thread, the whole process; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))"
 
 # The images: each scene's PFM from both builds (320x240, 2 spp); the
@@ -87,7 +93,8 @@ python3 bench/drivers/make_terrain.py "$tmp/terrain.3vn"
 all="$(ls bench/scenes/*.sdl scenes/*.sdl scenes/gallery/*.sdl | grep -v /terrain.sdl) $tmp/terrain.sdl"
 for f in $all; do
     for which in gcc zig; do
-        run $which render "$f" -o "$tmp/$which.pfm" --size 320x240 --spp 2 -q
+        run $which render "$f" -o "$tmp/$which.pfm" --size 320x240 --spp 2 -q 2>"$tmp/err" ||
+            { cat "$tmp/err" >&2; exit 1; }
     done
     if ! cmp -s "$tmp/gcc.pfm" "$tmp/zig.pfm"; then
         echo "DIFFERENT: $f"
