@@ -22,7 +22,8 @@
  *   shape_vec3_rescaled, exact, so a length squared neither overflows nor
  *   underflows;
  * - SHAPE_FMA_CLONES: builds a hot function for CPUs with and without FMA
- *   (same bits either way).
+ *   (same bits either way), with GCC's target_clones; SHAPE_FMA_DISPATCH
+ *   (shape_kit_cpu.h) does the same with any compiler.
  *
  * shape_kit_hits.h, from crossings to the hits the host gets:
  * - shape_span and shape_slab_span: a convex solid as the intersection of
@@ -38,7 +39,9 @@
  * shape_kit_cpu.h, what the CPU runs: shape_cpu_has_avx2(),
  *   shape_cpu_has_fma() (CPUID and XGETBV read once, not the compiler
  *   runtime's CPU model, which some toolchains leave empty), for a module
- *   that keeps a faster path beside the baseline one.
+ *   that keeps a faster path beside the baseline one; SHAPE_FMA_DISPATCH
+ *   and SHAPE_FMA_DISPATCH_VOID, a hot function built for CPUs with and
+ *   without FMA and picked per call (what the built-in shapes use).
  *
  * shape_kit_box.h, the slab test: shape_box_misses(box, ray, tmin, tmax)
  * never says "misses" for a ray that touches the box in (tmin, tmax); its

@@ -59,4 +59,45 @@ static inline unsigned shape_cpu_features(void)
 static inline int shape_cpu_has_avx2(void) { return (shape_cpu_features() & SHAPE_CPU_AVX2) != 0; }
 static inline int shape_cpu_has_fma(void) { return (shape_cpu_features() & SHAPE_CPU_FMA) != 0; }
 
+/* A hot function built twice, for CPUs with FMA (where fma() is one
+ * instruction) and for the rest (a call into libm), and picked per call by
+ * shape_cpu_has_fma(): with any compiler, unlike target_clones, whose
+ * resolver reads the compiler runtime's CPU model. Written before the body:
+ *
+ *   SHAPE_FMA_DISPATCH(int, crossings, (const hr_ray *ray, double t[2]), (ray, t))
+ *   {
+ *       ... the body, which makes `static int crossings(ray, t)` ...
+ *   }
+ *
+ * The body becomes an always-inline NAME_body, inlined into NAME_fma
+ * (target "fma") and NAME_baseline; NAME chooses between them. Both copies
+ * give the same bits where the build contracts no a * b + c
+ * (-ffp-contract=off: fma() is correctly rounded either way). A void
+ * function uses SHAPE_FMA_DISPATCH_VOID(NAME, PARAMS, ARGS). */
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define SHAPE_FMA_DISPATCH_COPIES_(ret, name, params, args, call)                                 \
+    static inline __attribute__((always_inline)) ret name##_body params;                          \
+    __attribute__((target("fma"))) static ret name##_fma params { call(name##_body args); }       \
+    static ret name##_baseline params { call(name##_body args); }
+#define SHAPE_FMA_RETURN_(expression) return expression
+#define SHAPE_FMA_STATEMENT_(expression) expression
+#define SHAPE_FMA_DISPATCH(ret, name, params, args)                                               \
+    SHAPE_FMA_DISPATCH_COPIES_(ret, name, params, args, SHAPE_FMA_RETURN_)                        \
+    static ret name params { return shape_cpu_has_fma() ? name##_fma args : name##_baseline args; } \
+    static inline __attribute__((always_inline)) ret name##_body params
+#define SHAPE_FMA_DISPATCH_VOID(name, params, args)                                               \
+    SHAPE_FMA_DISPATCH_COPIES_(void, name, params, args, SHAPE_FMA_STATEMENT_)                    \
+    static void name params                                                                       \
+    {                                                                                             \
+        if (shape_cpu_has_fma())                                                                  \
+            name##_fma args;                                                                      \
+        else                                                                                      \
+            name##_baseline args;                                                                 \
+    }                                                                                             \
+    static inline __attribute__((always_inline)) void name##_body params
+#else
+#define SHAPE_FMA_DISPATCH(ret, name, params, args) static ret name params
+#define SHAPE_FMA_DISPATCH_VOID(name, params, args) static void name params
+#endif
+
 #endif

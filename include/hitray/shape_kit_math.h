@@ -180,7 +180,10 @@ static inline double shape_ray_point_error(const hr_ray *ray, double t, int t_ro
  * GCC build it twice, once for CPUs with FMA (fma() becomes one instruction)
  * and once for the rest, and pick one when the module loads. fma() is
  * correctly rounded either way and the build is ISO C (no contraction of
- * a * b + c), so both copies give the same bits. */
+ * a * b + c), so both copies give the same bits. GCC only, and its choice
+ * reads the compiler runtime's CPU model, which zig's runtime leaves empty:
+ * SHAPE_FMA_DISPATCH (shape_kit_cpu.h), which the built-in shapes use,
+ * works with any compiler. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
     defined(__has_attribute)
 #if __has_attribute(target_clones)

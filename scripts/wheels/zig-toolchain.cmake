@@ -12,3 +12,8 @@ set(CMAKE_C_COMPILER "$ENV{HITRAY_ZIG_BIN}/clang")
 set(CMAKE_CXX_COMPILER "$ENV{HITRAY_ZIG_BIN}/clang++")
 set(CMAKE_AR "$ENV{HITRAY_ZIG_BIN}/ar" CACHE FILEPATH "")
 set(CMAKE_RANLIB "$ENV{HITRAY_ZIG_BIN}/ranlib" CACHE FILEPATH "")
+# zig cc keeps the frame pointer at every optimisation level
+# (-mframe-pointer=all), which takes a register from the hot loops that
+# GCC's -O2 and -O3 give them; the wheels omit it as the gcc build does.
+# A compile option (not CMAKE_C_FLAGS_INIT) so a kept build tree gets it too.
+add_compile_options(-fomit-frame-pointer)

@@ -106,8 +106,8 @@ typedef struct tapered_cylinder {
  * back. Both scalings are exact (barring overflow of a root, which then is
  * infinite and never reported), so every other ray gets the same bits as
  * before. */
-SHAPE_FMA_CLONES static shape_span wall_span(const tapered_cylinder *shape, double r0,
-                                             const hr_ray *ray)
+SHAPE_FMA_DISPATCH(shape_span, wall_span, (const tapered_cylinder *shape, double r0, const hr_ray *ray),
+                   (shape, r0, ray))
 {
     const hr_vec3 o = ray->origin;
     int exponent = 0;
@@ -204,8 +204,8 @@ static int open_crossings(const tapered_cylinder *shape, const hr_ray *ray,
 
 /* The wall of radius r0 + k z (see wall_span); the bound of the header's
  * analysis with R = r0 + |k| z. */
-SHAPE_FMA_CLONES static void wall_fill(const tapered_cylinder *shape, double r0, const hr_ray *ray,
-                                       hr_hit *hit)
+SHAPE_FMA_DISPATCH_VOID(wall_fill, (const tapered_cylinder *shape, double r0, const hr_ray *ray, hr_hit *hit),
+                        (shape, r0, ray, hit))
 {
     const double k = shape->slope;
     const hr_vec3 p = shape_ray_at(ray, hit->t);

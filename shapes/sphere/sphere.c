@@ -63,7 +63,9 @@ static inline __attribute__((always_inline)) int sphere_crossings_from(const hr_
     return shape_span_crossings(shape_span_make(roots[0], 0, roots[1], 0), out);
 }
 
-SHAPE_FMA_CLONES static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
+/* The scalar form, which runs where the CPU lacks FMA (the lanes run where it
+ * has it). */
+static int sphere_crossings(const hr_ray *ray, shape_crossing out[2])
 {
     return sphere_crossings_from(ray, sphere_coefficients_scalar(ray), out);
 }

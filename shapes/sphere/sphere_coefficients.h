@@ -35,7 +35,8 @@ sphere_coefficients_scalar(const hr_ray *ray)
     return k;
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+/* GCC and clang alike (the build turns off contraction: -ffp-contract=off). */
+#if defined(__GNUC__) && defined(__x86_64__)
 #define SPHERE_COEFFICIENT_LANES 1
 #include <immintrin.h>
 

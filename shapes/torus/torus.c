@@ -53,7 +53,7 @@ typedef struct torus_shape {
     int solver;
 } torus_shape;
 
-SHAPE_FMA_CLONES static void torus_fill(const void *shape, const hr_ray *ray, hr_hit *hit)
+SHAPE_FMA_DISPATCH_VOID(torus_fill, (const void *shape, const hr_ray *ray, hr_hit *hit), (shape, ray, hit))
 {
     const torus_shape *torus = shape;
     const double r = torus->geometry.r;

@@ -60,6 +60,7 @@
 #include <math.h>
 #include <string.h>
 
+#include <hitray/shape_kit_cpu.h>
 #include <hitray/shape_kit_math.h>
 
 static const char *const solver_names[TORUS_SOLVER_COUNT] = {"ferrari", "ferrari-newton",
@@ -131,9 +132,9 @@ static inline __attribute__((always_inline)) double g_of(const torus_geometry *g
 /* The frame of a ray, its quartic and its bracket; 0 when the line misses the
  * bounding sphere or slab (or the ray is unusable: zero, NaN, overflowing).
  * It and torus_eval, which run for every ray, are built with
- * SHAPE_FMA_CLONES, and the compensated sums they use are inlined into them,
+ * SHAPE_FMA_DISPATCH, and the compensated sums they use are inlined into them,
  * so that their fma() is one instruction where the CPU has FMA. */
-SHAPE_FMA_CLONES static int frame_make(const torus_geometry *g, const hr_ray *ray, torus_frame *fr)
+SHAPE_FMA_DISPATCH(int, frame_make, (const torus_geometry *g, const hr_ray *ray, torus_frame *fr), (g, ray, fr))
 {
     const hr_vec3 d = ray->dir;
     int k; /* max |d_i| = f 2^k, f in [0.5, 1) */
@@ -221,7 +222,8 @@ static double frame_t(const torus_frame *fr, double u)
  * f = G^2 + 4 W adds 2 |G| dG and u |f|. Summed and doubled for the
  * second-order terms and the bound's own rounding:
  *   E = 4 u (|G| (3 S + |o|^2 + 2 |G|) + 4 |Z| (|Z| + r) + 8 |W|). */
-SHAPE_FMA_CLONES static double torus_eval(const torus_frame *fr, double u, double *deriv, double *bound)
+SHAPE_FMA_DISPATCH(double, torus_eval, (const torus_frame *fr, double u, double *deriv, double *bound),
+                   (fr, u, deriv, bound))
 {
     const hr_vec3 o = fr->o, e = fr->e;
     const hr_vec3 p = shape_vec3(fma(u, e.x, o.x), fma(u, e.y, o.y), fma(u, e.z, o.z));

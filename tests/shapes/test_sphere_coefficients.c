@@ -70,7 +70,7 @@ int main(void)
     CHECK(mismatched == 0);
     CHECK(with_low > rays / 2);
 #else
-    printf("not x86-64 GCC: only the scalar coefficients exist\n");
+    printf("not x86-64 GCC or clang: only the scalar coefficients exist\n");
 #endif
     return hr_test_end();
 }
