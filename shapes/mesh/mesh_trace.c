@@ -283,6 +283,7 @@ typedef struct query {
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
     int phase;         /* see walk: 0, or the sign of the t this walk keeps */
+    int32_t back_end;  /* args->out's count after the walk of t < 0 (walk) */
     hr_status status;
     int found;
     mesh_triangle_hit best;
@@ -356,6 +357,32 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
     return x->t - reach > q->tmin;
 }
 
+/* Whether a walk of one half of the line (walk) keeps hit th of triangle
+ * tri. Away from t = 0, when t lies in its half: the other walk finds it
+ * too. Within its t error of 0 the t may have the wrong sign, and the walk
+ * of the half the crossing really lies in may be the only one to reach its
+ * triangle, the other culling the box by the exact geometry: a line
+ * entering the octahedron at t = -1.3e-18 through its edge x = 0,
+ * y + z = -1 from an origin at x = 1.3e-18 had the crossing given to the
+ * face x <= 0 at a t of 0, which the reversed walk left to the walk of
+ * t >= 0, and that walk never meets the face's box x <= 0. So either walk
+ * keeps such a hit, the second only when the first has not (the test is
+ * deterministic: the same triangle gives the same t, flag and point).
+ * For the first or any hit a copy changes nothing. */
+static int kept_in_phase(const query *q, uint32_t tri, const mesh_triangle_hit *th)
+{
+    if (!(fabs(th->t) <= th->t_error)) return (th->t < 0.0) == (q->phase < 0);
+    if (q->phase < 0 || q->mode != HR_TRACE_ALL) return 1;
+    hr_hit mine;
+    fill_point(q->m, tri, th, &mine);
+    const hr_hit *hits = q->args->out->hits;
+    for (int32_t k = q->start; k < q->back_end; k++)
+        if (hits[k].t == mine.t && hits[k].entering == mine.entering && hits[k].point.x == mine.point.x &&
+            hits[k].point.y == mine.point.y && hits[k].point.z == mine.point.z)
+            return 0;
+    return 1;
+}
+
 /* A filter of mesh_triangle.h: mesh_triangle_quad_fails, or none. */
 typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], mesh_lanes *out,
                               int kx, int ky, int kz);
@@ -401,7 +428,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
                                                                &vertices[c[2]], test_tmin, tmax, &th, kx, ky, kz))
             continue;
         /* A hit the walk of the other half of the line finds (walk). */
-        if (q->phase && (th.t < 0.0) != (q->phase < 0)) continue;
+        if (q->phase && !kept_in_phase(q, i, &th)) continue;
         if (q->mode == HR_TRACE_ALL) {
             hr_status st = make_room(args, m->host);
             if (st) {
@@ -574,6 +601,7 @@ static void walk(query *q)
         return;
     if (!(q->tmax >= 0.0)) return;
     q->phase = 1;
+    q->back_end = q->mode == HR_TRACE_ALL ? q->args->out->count : 0;
     accel_bvh4_walk(bvh, ray, 0.0, &q->tmax, leaf_of_cpu, q);
 }
 
@@ -601,6 +629,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.args = args;
     q.status = HR_OK;
     q.phase = 0;
+    q.back_end = 0;
     q.found = 0;
     q.best_tri = 0;
     q.best_error = 0.0;

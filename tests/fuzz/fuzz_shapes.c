@@ -28,8 +28,7 @@
  *   first, left last, and crossed an even number of times: the line starts
  *   and ends outside it (where the crossings' times fit in a double, see
  *   passage_representable, and for the mesh solids away from tiny
- *   origin coordinates and direction components, see
- *   direction_spans_past_double). */
+ *   direction components, see direction_spans_past_double). */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -156,19 +155,19 @@ static int passage_representable(const hr_ray *ray, const hr_bounds *b)
  * subnormal or lost, and so are a mesh solid's crossing depths and t; a
  * line grazing an edge may then find one crossing of its pair
  * (octahedron_edge_touch_direction_past_dbl_range: direction (DBL_MAX,
- * -1.5e-13, -2.3e14) through an edge point). Likewise an origin
- * coordinate that is not zero but below 1e-150: a ray from a subnormal
- * offset of a vertex through it still found one crossing
- * (octahedron_vertex_subnormal_origin) although the edge signs themselves
- * are exact at every scale (mesh_triangle.h); what else loses it there is
- * not yet known. */
+ * -1.5e-13, -2.3e14) through an edge point). A tiny origin
+ * coordinate is not exempt: a ray from a subnormal offset of a vertex
+ * through it found one crossing (octahedron_vertex_subnormal_origin), and
+ * so did a line crossing an edge at t = -1.3e-18
+ * (octahedron_edge_crossing_at_t0_culled_half), a crossing whose t
+ * rounded to 0 being lost between the mesh's walks of the two halves of
+ * the line (mesh_trace.c, kept_in_phase). */
 static int direction_spans_past_double(const hr_ray *ray)
 {
     const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
     const double largest = fmax(fabs(d[0]), fmax(fabs(d[1]), fabs(d[2])));
-    const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
     for (int k = 0; k < 3; k++)
-        if ((o[k] != 0 && fabs(o[k]) < 1e-150) || (d[k] != 0 && fabs(d[k]) < 1e-150 * largest)) return 1;
+        if (d[k] != 0 && fabs(d[k]) < 1e-150 * largest) return 1;
     return 0;
 }
 

@@ -254,6 +254,43 @@ static void test_vertices(void)
     harness_close(&ico);
 }
 
+/* Lines through the octahedron that cross an edge within about 1e-18 of
+ * t = 0 (a fuzz input: from (1.3e-18, -0.5, -0.5) along (1 + 2^-52, 3,
+ * 1.625), the line meets the edge x = 0, y + z = -1 at t = -1.3e-18).
+ * The edge's triangles agree exactly which of them it crosses, but that
+ * one is the face x <= 0, and its t rounds to 0: the mesh walks the line
+ * in two halves, t < 0 reversed and t >= 0, and the half from 0 culls the
+ * box x <= 0 (the ray is at x > 0 for every t >= 0) while the reversed
+ * half left a t of 0 to it. The entering crossing was lost: one hit over
+ * the whole line, leaving. Both directions, origins on either side of the
+ * edge's plane and a subnormal one: entered first, left last, once each,
+ * and the first hit is the list's first. */
+static void test_edge_crossing_at_zero(void)
+{
+    harness_shape octa;
+    if (!harness_open(&octa, "mesh", "octahedron", NAN)) return;
+    const double xs[4] = {0x1.312p-59, -0x1.312p-59, 0x1p-1074, -0x1p-1074};
+    for (int k = 0; k < 4; k++)
+        for (int back = 0; back < 2; back++) {
+            const double s = back ? -1.0 : 1.0;
+            hr_ray ray = harness_ray(xs[k], -0.5, -0.5, s * 0x1.0000000000001p+0, s * 3.0, s * 1.625);
+            hr_hit h[HARNESS_MAX_HITS], first[HARNESS_MAX_HITS];
+            const int n = harness_trace(&octa, ray, -INFINITY, INFINITY, HARNESS_ALL, h);
+            CHECK_MSG(n == 2 && h[0].entering == 1 && h[1].entering == 0,
+                      "edge crossing near t = 0, origin x %a, %s: %d hits", xs[k], back ? "back" : "ahead", n);
+            /* The crossing near 0 is within its error of t = -1.3e-18 (or
+             * 0), the other at |t| = 2 / 5.625. */
+            if (n == 2) {
+                const double near = back ? h[1].t : h[0].t, far = back ? h[0].t : h[1].t;
+                CHECK_NEAR(near, 0.0, 1e-15);
+                CHECK_NEAR(far, s * 2.0 / 5.625, 1e-15);
+                const int nf = harness_trace(&octa, ray, -INFINITY, INFINITY, HARNESS_FIRST, first);
+                CHECK(nf == 1 && first[0].t == h[0].t);
+            }
+        }
+    harness_close(&octa);
+}
+
 /* The same cube in Hill's format: four-corner faces fanned, normals from
  * the file (here equal to the geometric ones). */
 static void test_hill_cube(void)
@@ -1125,6 +1162,7 @@ int main(void)
     test_cube_agrees();
     test_edge_sweeps();
     test_vertices();
+    test_edge_crossing_at_zero();
     test_hill_cube();
     test_hill_tetrahedron();
     test_obj_normals();
