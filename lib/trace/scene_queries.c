@@ -9,6 +9,7 @@
 #include "util/errors.h"
 #include "trace/object_trace.h"
 #include "trace/query_nesting.h"
+#include "trace/ray_cull.h"
 #include "trace/trace_context.h"
 #include "geometry/vec.h"
 
@@ -74,9 +75,17 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     out->count = 0;
     hr_trace_ctx tc;
     hri_trace_ctx_init_tracing(&tc, s);
+    /* The bounded objects are traced only where the first-hit walk would
+     * look (hri_scene_trace_nearest): not when the exact ray misses the box
+     * around them. Only a hit that the rounding of an object's own copy of
+     * the ray made is skipped so: an eye 1e103 away is known to 1e87, and a
+     * cone's copy of a ray passing 5e32 from it met it, while the world ray
+     * missed the box and the first hit found nothing. */
+    const int in_box = !box_misses(&s->bvh_box, ray, tmin, tmax);
     for (int64_t i = 0; i < s->object_count && tc.status == HR_OK; i++) {
         const hr_object *o = s->objects[i];
-        if (o->top_level) hri_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
+        if (o->top_level && (in_box || !o->bounded))
+            hri_object_trace(&tc, o, ray, tmin, tmax, HR_TRACE_ALL, 1, out);
     }
     /* qsort's base must not be NULL, even for no elements (a scene with no
      * object never gave the list storage). */

@@ -1,7 +1,8 @@
 /* hr_scene_first_hit against the slow truth, through the paths tracing takes
  * for speed: the BVH walk (straight down to the nearer child, both children
  * tested at once) must find exactly the nearest of every hit along the ray
- * (hr_scene_all_hits, which visits every object without the BVH); planes,
+ * (hr_scene_all_hits, which visits every object without the BVH, the
+ * bounded ones where the ray meets the box around them); planes,
  * tested after the BVH within its best t, must give the answer of testing
  * them first, ties included; and a shape that asks for more room than the
  * query's on-stack list has (through host->reserve) must get it, with no hit
@@ -10,6 +11,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <hitray/nff.h>
 
 #include "hr_test.h"
 #include "scene_builder.h"
@@ -212,6 +215,41 @@ static void growing_list_keeps_every_hit(void)
     hr_scene_destroy(s);
 }
 
+/* A ray from 2e103 away (the nff fuzz input far_eye_cone_every_hit_box_culled.nff):
+ * the NFF cone's own copy of the ray, rounded by 1e87 in the transform,
+ * met the cone at t = 1.25, where the exact line is 5e32 from it. The
+ * first hit, whose walk begins by testing the box around the BVH's objects
+ * on the world ray, found nothing; the every-hit query, which traced each
+ * object with no box, listed that hit. Both must give the same answer:
+ * here none, the exact line's. */
+static void far_ray_every_hit_culls_as_the_walk(void)
+{
+    const char *text = "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\n"
+                       "resolution 8 8\nf 1 0.5 0.25 0.8 0.3 20 0.4 1.5\n"
+                       "c 1 0 -1 2 3 0 1 0\n";
+    hr_sdl_result r = {.struct_size = sizeof r};
+    CHECK_OK(hr_nff_load_string(ctx, text, "far_eye_cone.nff", &r));
+    CHECK_OK(hr_scene_commit(r.scene));
+    const hr_ray ray = {{0x1.3d7f1a771dd02p+343, 0x1.b6418d0c06e3cp+110, 1.0},
+                        {-0x1.fbfe90be9619dp+342, -0x1.b6418d0c06e3cp+110, -1.0}};
+    hr_hit first;
+    int32_t found = 1;
+    CHECK_OK(hr_scene_first_hit(r.scene, &ray, 0, INFINITY, &first, &found));
+    hr_intersection all;
+    hr_intersection_init(&all);
+    CHECK_OK(hr_scene_all_hits(r.scene, &ray, 0, INFINITY, &all));
+    CHECK_MSG(found == 0 && all.count == 0, "first hit found %d, all hits %d (expected none)",
+              (int)found, (int)all.count);
+    /* A ray into the cone from nearby is still seen by both. */
+    const hr_ray near = {{2, 0, 10}, {0, 0, -1}};
+    CHECK_OK(hr_scene_first_hit(r.scene, &near, 0, INFINITY, &first, &found));
+    CHECK_OK(hr_scene_all_hits(r.scene, &near, 0, INFINITY, &all));
+    CHECK_MSG(found == 1 && all.count == 1 && first.t == all.hits[0].t,
+              "near ray: first hit found %d, all hits %d", (int)found, (int)all.count);
+    hr_intersection_release(&all);
+    hr_scene_destroy(r.scene);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -219,6 +257,7 @@ int main(void)
     bvh_walk_matches_every_hit();
     planes_after_the_walk_answer_as_before();
     growing_list_keeps_every_hit();
+    far_ray_every_hit_culls_as_the_walk();
     hr_context_destroy(ctx);
     return hr_test_end();
 }
