@@ -75,16 +75,23 @@ static inline unsigned shape_cpu_allowed_by(const char *v)
  * racing on that first call store the same value; relaxed atomic accesses
  * (GCC's and clang's builtins, which C and C++ share) make that race well
  * defined and cost a plain load on x86. */
+/* The first call's work, out of line, so that the callers (a walk's every
+ * ray) inline only the load and the test. */
+#if defined(__GNUC__)
+__attribute__((noinline, cold, unused))
+#endif
+static unsigned shape_cpu_features_first(unsigned *known)
+{
+    const unsigned allowed = shape_cpu_allowed_by(getenv(SHAPE_CPU_ENV));
+    const unsigned features = shape_cpu_probe() & (allowed ? allowed : ~0u);
+    __atomic_store_n(known, features, __ATOMIC_RELAXED);
+    return features;
+}
 static inline unsigned shape_cpu_features(void)
 {
     static unsigned known;
-    unsigned features = __atomic_load_n(&known, __ATOMIC_RELAXED);
-    if (!features) {
-        const unsigned allowed = shape_cpu_allowed_by(getenv(SHAPE_CPU_ENV));
-        features = shape_cpu_probe() & (allowed ? allowed : ~0u);
-        __atomic_store_n(&known, features, __ATOMIC_RELAXED);
-    }
-    return features;
+    const unsigned features = __atomic_load_n(&known, __ATOMIC_RELAXED);
+    return features ? features : shape_cpu_features_first(&known);
 }
 
 static inline int shape_cpu_has_avx2(void) { return (shape_cpu_features() & SHAPE_CPU_AVX2) != 0; }
