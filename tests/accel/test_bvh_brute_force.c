@@ -1,6 +1,6 @@
 /* The scene's BVH walk against a brute-force loop over every object, on
- * 10^6 random rays (10^5 in the sanitizer builds, which run ten times
- * slower) over varied scenes: spheres, cubes, cylinders, cones and tori
+ * 1.8 x 10^6 random rays (1.8 x 10^5 in the sanitizer builds, which run ten
+ * times slower) over varied scenes: spheres, cubes, cylinders, cones and tori
  * under random rotations and non-uniform scales; regular solids and a mesh
  * file (the mesh module); CSG booleans; and the first scene again at the
  * extremes of scale (1e-6 of the size, 1e6 away, and 1e5 times the size).
