@@ -194,7 +194,14 @@ HR_API uint32_t hr_scene_effects(const hr_scene *scene);
 HR_API const char *hr_effect_name(uint32_t effect);
 
 /* Hill's getFirstHit: the nearest hit of any object with tmin < t < tmax.
- * *found is 1 and *out filled (world space, unit normal) on a hit. */
+ * *found is 1 and *out filled (world space, unit normal) on a hit. The tie
+ * rule: at an exact tie in t the object added first wins (the lower
+ * `object`), then the lower `surface`: the first of hr_scene_all_hits's
+ * list, whatever order the BVH meets objects in (an object's own hits at
+ * one t count as the one its class's first_hit gives: a ray grazing a
+ * cube's edge enters there, it does not leave first; for a class without
+ * first_hit, the lower surface). Renders use the same rule, so
+ * coincident objects show the first-added one on every CPU path. */
 HR_API hr_status hr_scene_first_hit(const hr_scene *scene, const hr_ray *ray,
                                     double tmin, double tmax, hr_hit *out,
                                     int32_t *found);

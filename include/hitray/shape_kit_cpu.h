@@ -7,9 +7,22 @@
  * compiler's runtime at load, and some toolchains' runtimes (zig's, which
  * builds the manylinux wheels) leave it all zero, so every check said "no"
  * and the wheels ran the baseline paths only. The answer is worked out once
- * per translation unit and kept; later calls are a load and a test. */
+ * per translation unit and kept; later calls are a load and a test.
+ *
+ * The environment variable HITRAY_CPU (SHAPE_CPU_ENV) narrows what every
+ * such test answers, so that each path can be forced and compared (the
+ * images must be the same on every path): "sse2", the baseline x86-64
+ * paths alone; "fma", the FMA paths but not the AVX2 ones; "avx2", both
+ * (x86-64-v3, which has both); "native" or unset, what the CPU has. It can
+ * only take paths away: a value asking for more than the CPU has, or one
+ * not listed, leaves what the CPU has, and the library refuses both with a
+ * message (hr_scene_create). It is read when a translation unit first asks,
+ * so it must be set before the program starts. */
 #ifndef HITRAY_SHAPE_KIT_CPU_H
 #define HITRAY_SHAPE_KIT_CPU_H
+
+#include <stdlib.h>
+#include <string.h>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
@@ -41,19 +54,44 @@ static inline unsigned shape_cpu_probe(void)
     return features;
 }
 
-/* The features, probed on the first call in this translation unit. Threads
+/* The environment variable that forces a CPU path, and its values. */
+#define SHAPE_CPU_ENV "HITRAY_CPU"
+#define SHAPE_CPU_CHOICES "native, sse2, fma or avx2"
+
+/* The features HITRAY_CPU's value `v` lets a process use: every one for
+ * NULL, "" and "native"; SHAPE_CPU_KNOWN alone for "sse2"; with FMA for
+ * "fma"; with FMA and AVX2 for "avx2". 0 for any other value. */
+static inline unsigned shape_cpu_allowed_by(const char *v)
+{
+    if (!v || !*v || !strcmp(v, "native")) return ~0u;
+    if (!strcmp(v, "sse2")) return SHAPE_CPU_KNOWN;
+    if (!strcmp(v, "fma")) return SHAPE_CPU_KNOWN | SHAPE_CPU_FMA;
+    if (!strcmp(v, "avx2")) return SHAPE_CPU_KNOWN | SHAPE_CPU_FMA | SHAPE_CPU_AVX2;
+    return 0;
+}
+
+/* The features, probed on the first call in this translation unit, less
+ * what HITRAY_CPU takes away (a value it does not know takes nothing). Threads
  * racing on that first call store the same value; relaxed atomic accesses
  * (GCC's and clang's builtins, which C and C++ share) make that race well
  * defined and cost a plain load on x86. */
+/* The first call's work, out of line, so that the callers (a walk's every
+ * ray) inline only the load and the test. */
+#if defined(__GNUC__)
+__attribute__((noinline, cold, unused))
+#endif
+static unsigned shape_cpu_features_first(unsigned *known)
+{
+    const unsigned allowed = shape_cpu_allowed_by(getenv(SHAPE_CPU_ENV));
+    const unsigned features = shape_cpu_probe() & (allowed ? allowed : ~0u);
+    __atomic_store_n(known, features, __ATOMIC_RELAXED);
+    return features;
+}
 static inline unsigned shape_cpu_features(void)
 {
     static unsigned known;
-    unsigned features = __atomic_load_n(&known, __ATOMIC_RELAXED);
-    if (!features) {
-        features = shape_cpu_probe();
-        __atomic_store_n(&known, features, __ATOMIC_RELAXED);
-    }
-    return features;
+    const unsigned features = __atomic_load_n(&known, __ATOMIC_RELAXED);
+    return features ? features : shape_cpu_features_first(&known);
 }
 
 static inline int shape_cpu_has_avx2(void) { return (shape_cpu_features() & SHAPE_CPU_AVX2) != 0; }

@@ -17,6 +17,11 @@
  * - no allocation per call (the host owns hit storage, see hr_hit_args.out);
  * - no NaN or infinity in any hit field;
  * - hits strictly inside the open interval (tmin, tmax), sorted by t;
+ * - which hits a shape finds does not depend on tmax, only which of them it
+ *   keeps: the host may ask again with a window that ends just after a hit
+ *   it has (the tie rule, hr_scene_first_hit); `first_hit` gives the first
+ *   crossing `hit` would list (at one t on two surfaces, the one it lists
+ *   first);
  * - for a closed solid (HR_SHAPE_CLOSED) entering flags alternate, starting
  *   with whatever the ray origin's side implies;
  * - `hit.error` bounds the distance of `hit.point` from the true surface point

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/env_cpu.h"
 #include "util/errors.h"
 #include "util/field_table.h"
 #include "scene/cull_prepare.h"
@@ -28,10 +29,14 @@ HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
 {
     if (!ctx || !out) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_scene_create: NULL argument");
     *out = NULL;
+    /* A CPU path forced by HITRAY_CPU that this CPU cannot run, or a value
+     * that names none, is refused before any scene exists. */
+    hr_status st = hri_env_cpu_check(ctx);
+    if (st) return st;
     hr_scene *s = calloc(1, sizeof *s);
     if (!s) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     s->ctx = ctx;
-    hr_status st = hri_scene_budget_init(ctx, &s->budget);
+    st = hri_scene_budget_init(ctx, &s->budget);
     if (st) {
         free(s);
         return st;

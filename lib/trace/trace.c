@@ -57,6 +57,10 @@ hr_status hri_object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray 
 typedef struct first_state {
     hr_trace_ctx *tc;
     const hr_ray *ray;
+    /* The window objects are traced in, (tmin, best): for a first hit,
+     * best is the caller's tmax until a hit is found, then the step above
+     * the nearest hit's t, so that a hit at exactly that t is still seen
+     * (the tie rule, visit_object). */
     double tmin, best;
     hr_hit *out;
     hr_intersection *tmp;
@@ -65,7 +69,21 @@ typedef struct first_state {
     const hr_object *hit_object; /* whose hit ended an any-hit walk */
 } first_state;
 
-/* Test one object; returns 1 to stop (any-hit found one). */
+/* Test one object; returns 1 to stop (any-hit found one).
+ *
+ * The tie rule: the first hit is the least hit in hit_before's order, (t,
+ * object, surface), the answer of testing every object and sorting (the
+ * brute force, hr_scene_all_hits): at an exact tie in t the object added
+ * first wins, then the lower surface. The walk meets objects in an order of
+ * its own, so an object it meets later must still be able to give a hit at
+ * exactly the best t (to win it if it was added first): once a hit is
+ * found, the window ends one step above its t, and a hit at that same t
+ * replaces it only if hit_before says so. The walk culls against that
+ * window's end too, and its box test keeps a box whose entry is at the end
+ * (accel/bvh4.h), so a box entered at exactly the best t is visited. Each
+ * object is asked for its own least hit (object_trace), which does not
+ * depend on the window's end but for which hits it keeps, so the answer is
+ * the brute force's in any order the objects are met. */
 static int visit_object(first_state *fs, const hr_object *o)
 {
     fs->tmp->count = 0;
@@ -73,13 +91,18 @@ static int visit_object(first_state *fs, const hr_object *o)
                            : object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_FIRST, 1, fs->tmp);
     if (st != HR_OK) return 0;
     if (fs->tmp->count == 0) return 0;
-    fs->found = 1;
     if (fs->any) {
+        fs->found = 1;
         fs->hit_object = o;
         return 1;
     }
-    fs->best = fs->tmp->hits[0].t;
-    *fs->out = fs->tmp->hits[0];
+    const hr_hit *h = &fs->tmp->hits[0];
+    /* Within the window: at or before the best hit's t; a tie is decided
+     * by the rest of hit_before's order. */
+    if (fs->found && h->t == fs->out->t && !hit_before(h, fs->out)) return 0;
+    fs->found = 1;
+    fs->best = step_towards(h->t, 1.0);
+    *fs->out = *h;
     return 0;
 }
 
@@ -96,15 +119,11 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
 
 /* A first hit: the BVH front to back, boxes further than the best hit so
  * far skipped (the whole walk when the ray misses the box around the BVH's
- * objects, box_misses), then the unbounded objects within the best hit's t,
- * so that one an object hides costs its shape a miss, not a hit taken back
- * to world space. The answer is the one of testing the unbounded objects
- * first, as this walk once did: the BVH's nearest hit below an unbounded
- * object's t is the same with or without that t as its bound (a shape's
- * hits do not depend on tmax but for which it keeps), and on a tie the
- * object tested first kept the hit, so an unbounded object wins a tie with
- * the BVH's best (its window then ends just after it) and loses one with an
- * unbounded object before it. */
+ * objects, box_misses), then the unbounded objects within the best hit's
+ * window, so that one an object hides costs its shape a miss, not a hit
+ * taken back to world space. The tie rule (visit_object) makes the answer
+ * the same whatever the order: an unbounded object added before the BVH's
+ * best wins a tie with it, one added after loses. */
 int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
                            hr_intersection *tmp)
 {
@@ -112,15 +131,7 @@ int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, do
     const hr_scene *s = tc->scene;
     if (!box_misses(&s->bvh_box, ray, tmin, fs.best))
         accel_bvh4_walk(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
-    int tie_wins = fs.found; /* the best so far is the BVH's */
-    for (int32_t i = 0; i < s->unbounded_count; i++) {
-        const double best = fs.best;
-        const double window = tie_wins ? step_towards(best, 1.0) : best;
-        fs.best = window;
-        visit_object(&fs, s->unbounded[i]);
-        if (fs.best == window) fs.best = best; /* no hit (every hit is below the window's end) */
-        else tie_wins = 0;
-    }
+    for (int32_t i = 0; i < s->unbounded_count; i++) visit_object(&fs, s->unbounded[i]);
     return fs.found;
 }
 

@@ -215,3 +215,30 @@ def test_trace_releases_the_gil():
     quarter = 0.25 * (end - start)
     middle = [t for t in ticks if start + quarter < t < end - quarter]
     assert middle, f"no Python ran during the trace ({end - start:.2f} s)"
+
+
+def test_a_tie_goes_to_the_object_added_first():
+    """300 coincident pairs of spheres of two colours, the red one added
+    first in half the pairs and the green one in the others: every first
+    hit, one ray at a time or many at once, is the pair's first-added
+    sphere (an even object index), whatever order the BVH meets them in."""
+    rng = random.Random(26)
+    s = hitray.Scene()
+    for i in range(300):
+        shape = hitray.Sphere().translate(rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(-6, 6)).scale(
+            rng.uniform(0.2, 1.0))
+        colours = [(0.9, 0.1, 0.1), (0.1, 0.9, 0.1)]
+        for colour in colours if i % 2 else colours[::-1]:
+            s.add(shape, diffuse=colour)
+    rng_np = np.random.default_rng(26)
+    origins = np.tile([0.0, 0.0, 30.0], (4000, 1))
+    directions = np.column_stack([rng_np.uniform(-0.3, 0.3, 4000), rng_np.uniform(-0.3, 0.3, 4000),
+                                  -np.ones(4000)])
+    t, _, obj = s.trace(origins, directions)
+    hit = obj >= 0
+    assert np.count_nonzero(hit) > 1000
+    assert np.all(obj[hit] % 2 == 0), f"{np.count_nonzero(obj[hit] % 2)} rays hit the later-added copy"
+    for i in range(0, 4000, 40):
+        one = s.first_hit(origins[i], directions[i])
+        assert (one is None) == (obj[i] < 0)
+        assert one is None or (one.object, one.t) == (obj[i], t[i])

@@ -3,8 +3,8 @@
  * tested at once) must find exactly the nearest of every hit along the ray
  * (hr_scene_all_hits, which visits every object without the BVH, the
  * bounded ones where the ray meets the box around them); planes,
- * tested after the BVH within its best t, must give the answer of testing
- * them first, ties included; and a shape that asks for more room than the
+ * tested after the BVH within its best t, must give that answer too, ties
+ * included (the object added first wins); and a shape that asks for more room than the
  * query's on-stack list has (through host->reserve) must get it, with no hit
  * lost. */
 #include <math.h>
@@ -72,16 +72,16 @@ static void bvh_walk_matches_every_hit(void)
 }
 
 /* Planes (unbounded: not in the BVH) are tested after the BVH's walk, within
- * its best t, but must answer as when they were tested first: the nearest
- * hit of all, and on a tie in t a plane before any BVH object, the earlier
- * plane before a later one. 64 cubes whose top faces lie in z = 0 (objects
- * 0 to 63, so hr_scene_all_hits's order by object puts a cube first on a
- * tie), then two planes z = 0 (64 and 65) and a tilted one (66). Half the
- * rays have dyadic origins and directions, for which a cube's top face and
- * the planes give the same t, bit for bit (-o_z / d_z both ways): ties
- * decided by the rule, not by rounding; the others are random, and some
- * have a window that ends before the planes. */
-static void planes_after_the_walk_answer_as_before(void)
+ * its best t, but must answer as the brute force does: the nearest hit of
+ * all, and on a tie in t the object added first (the tie rule): here a cube
+ * before any plane, the earlier plane before a later one. 64 cubes whose
+ * top faces lie in z = 0 (objects 0 to 63), then two planes z = 0 (64 and
+ * 65) and a tilted one (66). Half the rays have dyadic origins and
+ * directions, for which a cube's top face and the planes give the same t,
+ * bit for bit (-o_z / d_z both ways): ties decided by the rule, not by
+ * rounding; the others are random, and some have a window that ends before
+ * the planes. */
+static void planes_after_the_walk_keep_the_tie_rule(void)
 {
     hr_scene *s;
     CHECK_OK(hr_scene_create(ctx, &s));
@@ -124,10 +124,10 @@ static void planes_after_the_walk_answer_as_before(void)
             misses++;
             continue;
         }
-        /* The nearest t; among its hits the first plane, else the cube. */
+        /* The nearest t; among its hits the first added (hit_before's
+         * order, all hits' first). */
         int32_t want = 0, at_t = 0;
-        for (int32_t i = 0; i < all.count && all.hits[i].t == all.hits[0].t; i++, at_t++)
-            if (all.hits[i].object >= 64 && all.hits[want].object < 64) want = i;
+        for (int32_t i = 0; i < all.count && all.hits[i].t == all.hits[0].t; i++) at_t++;
         ties += at_t > 1;
         cubes += all.hits[want].object < 64;
         planes += all.hits[want].object >= 64;
@@ -255,7 +255,7 @@ int main(void)
     CHECK_OK(hr_context_create(&ctx));
     CHECK_OK(hr_context_register_shape_class(ctx, &many_class, "test_first_hit_paths.c"));
     bvh_walk_matches_every_hit();
-    planes_after_the_walk_answer_as_before();
+    planes_after_the_walk_keep_the_tie_rule();
     growing_list_keeps_every_hit();
     far_ray_every_hit_culls_as_the_walk();
     hr_context_destroy(ctx);

@@ -377,7 +377,9 @@ class Scene:
     def first_hit(self, origin: Sequence[float], direction: Sequence[float], tmin: float = 0.0,
                   tmax: float = math.inf) -> Optional[HitInfo]:
         """Hill's getFirstHit: the nearest hit with tmin < t < tmax along
-        origin + t·direction (direction need not be unit length), or None."""
+        origin + t·direction (direction need not be unit length), or None.
+        At an exact tie in t the object added first wins, then the lower
+        surface (hr_scene_first_hit's tie rule)."""
         hit = self._committed().first_hit(_convert.vec3(origin, "origin"),
                                           _convert.vec3(direction, "direction"),
                                           _convert.number(tmin, "tmin"), _convert.number(tmax, "tmax"))
