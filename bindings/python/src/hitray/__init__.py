@@ -35,7 +35,7 @@ from .errors import (ArgumentError, Error, FileError, ModuleError, NumericError,
 from .image import Image, RenderedImage, RenderStats
 from .modules import (ModuleInfo, ShapeClass, ShapeParam, add_shape_dir, load_module, modules,
                       shape_classes)
-from .queries import HitInfo, Light, TraceResult
+from .queries import HitInfo, Hits, Light, TraceResult
 from .render import render
 from .scene import Scene, SceneObject
 from .sdl import load_sdl, parse_sdl
@@ -55,7 +55,7 @@ __all__ = [
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
     "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Buckyball", "Teapot",
     "Union", "Intersection", "Difference",
-    "HitInfo", "TraceResult", "Light",
+    "HitInfo", "TraceResult", "Hits", "Light",
     "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
     "ModuleInfo",
     "Error", "ArgumentError", "FileError", "ModuleError", "ParameterError", "SDLError",
