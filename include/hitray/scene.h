@@ -212,7 +212,7 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *scene, const hr_ray *ray,
  * that hr_scene_first_hit would refuse (the message names its index: "ray
  * 12: direction is the zero vector"), and then nothing is written. A shape
  * that fails stops the batch with its error, naming the ray; found[] is
- * then 0 from that ray on. */
+ * then 0 for every ray. */
 HR_API hr_status hr_scene_first_hits(const hr_scene *scene, const hr_ray *rays, int64_t count,
                                      double tmin, double tmax, hr_hit *hits, int32_t *found);
 /* The occlusion batch: hit[i] is 1 when rays[i] meets some object with

@@ -10,7 +10,7 @@
 /* rays[i]'s first hit in (tmin, tmax) into hits[i] and found[i], for i <
  * count, each the answer hri_scene_trace_nearest gives that ray alone; tmp
  * is the list of candidate hits. Returns -1, or the index of the ray a
- * shape failed on (tc->status set): found[] is 0 from there on. */
+ * shape failed on (tc->status set): found[] is then 0 for every ray. */
 int64_t hri_trace_first_batch(hr_trace_ctx *tc, const hr_ray *rays, int64_t count, double tmin, double tmax,
                               hr_hit *hits, int32_t *found, hr_intersection *tmp);
 
