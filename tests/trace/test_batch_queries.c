@@ -10,6 +10,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -273,13 +274,83 @@ static void bad_arguments_are_refused(void)
     hr_scene_destroy(open);
 }
 
+/* A slab [-1, 1]^2 x [0, 1] whose hit asks for room for 200 hits (so the
+ * batch's list on the stack must move to the heap) and then answers its top
+ * face, or fails for a ray whose origin has x > 0.5. */
+static hr_status rogue_create(const hr_create_args *a, void **out)
+{
+    *out = (void *)a->host;
+    return HR_OK;
+}
+
+static void rogue_destroy(void *shape) { (void)shape; }
+
+static void rogue_bounds(const void *shape, hr_bounds *b) { *b = (hr_bounds){{-1, -1, 0}, {1, 1, 1}}, (void)shape; }
+
+static hr_status rogue_hit(const hr_hit_args *a)
+{
+    const hr_host *host = a->shape;
+    const hr_ray r = a->ray;
+    hr_status st = host->reserve(a->call, a->out, a->out->count + 200);
+    if (st == HR_OK && r.origin.x > 0.5) st = HR_ERROR_NUMERIC;
+    const double t = r.dir.z < 0 ? (1 - r.origin.z) / r.dir.z : -1;
+    const hr_vec3 p = {r.origin.x + t * r.dir.x, r.origin.y + t * r.dir.y, 1};
+    if (st == HR_OK && t > a->tmin && t < a->tmax && fabs(p.x) <= 1 && fabs(p.y) <= 1)
+        a->out->hits[a->out->count++] = (hr_hit){.t = t, .point = p, .normal = {0, 0, 1}, .entering = 1};
+    return st;
+}
+
+static const hr_shape_class rogue_class = {
+    .struct_size = sizeof(hr_shape_class), .name = "rogueSlab",
+    .help = "a slab that asks for room, and fails for x > 0.5", .surface_count = 1,
+    .create = rogue_create, .destroy = rogue_destroy, .bounds = rogue_bounds, .hit = rogue_hit,
+};
+
+/* 64 rays down -z, origins x from -0.99 up in steps of 1/32 (a packet's
+ * worth of coherence): those with x <= 0.5 trace as single rays do, the
+ * list growing to the heap on the way; with one beyond, the batch fails
+ * with the shape's error naming the first such ray, and found[] is all 0. */
+static void a_failing_shape_names_its_ray(void)
+{
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    for (int i = 0; i < 8; i++) {
+        hr_transform t = tb_place(-0.875 + 0.25 * i, 0.3, 2, 0.1);
+        CHECK(tb_add(s, "sphere", NULL, &t) >= 0);
+    }
+    CHECK(tb_add(s, "rogueSlab", NULL, NULL) == 8);
+    CHECK_OK(hr_scene_commit(s));
+    hr_ray rays[64];
+    for (int i = 0; i < 64; i++) rays[i] = (hr_ray){{-0.99 + i / 32.0, 0.3, 10}, {0.001, 0, -1}};
+    tally tl = {0};
+    compare_batch(s, rays, 48, 48, 0, INFINITY, &tl, "rogue, good rays"); /* x up to 0.479 */
+    CHECK_MSG(tl.hits == 48, "%d hits", tl.hits);
+    hr_hit hits[64];
+    int32_t found[64];
+    for (int i = 0; i < 64; i++) found[i] = 7;
+    CHECK(hr_scene_first_hits(s, rays, 64, 0, INFINITY, hits, found) == HR_ERROR_NUMERIC);
+    int bad = 0;
+    while (bad < 64 && !(rays[bad].origin.x > 0.5)) bad++;
+    char want[64];
+    snprintf(want, sizeof want, "first hits: ray %d: a shape failed", bad);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), want) != NULL, "%s (want %s)", hr_context_last_error(ctx), want);
+    for (int i = 0; i < 64; i++) CHECK(found[i] == 0);
+    CHECK(hr_scene_occluded(s, rays, 64, 0, INFINITY, found) == HR_ERROR_NUMERIC);
+    snprintf(want, sizeof want, "occluded: ray %d: a shape failed", bad);
+    CHECK_MSG(strstr(hr_context_last_error(ctx), want) != NULL, "%s (want %s)", hr_context_last_error(ctx), want);
+    CHECK(bad == 48);
+    hr_scene_destroy(s);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
+    CHECK_OK(hr_context_register_shape_class(ctx, &rogue_class, "test_batch_queries.c"));
     coherent_batches_match_single_rays();
     random_batches_match_single_rays();
     threads_trace_batches_at_once();
     bad_arguments_are_refused();
+    a_failing_shape_names_its_ray();
     hr_context_destroy(ctx);
     return hr_test_end();
 }
