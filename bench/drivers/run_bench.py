@@ -44,8 +44,10 @@ out. tests/bench/test_bench_tools.py runs it, so the script cannot rot.
 
 Raw intersection: bench/raycast (see its header) with 100,000 random spheres
 and 1M primary rays, hitray's hr_scene_first_hit against Embree's native
-spheres, 1 and 2 threads, alternating; then the scaling runs (1k, 10k, 100k,
-1M spheres) with --scaling-runs runs each."""
+spheres, 1 and 2 threads, alternating; then the batch query and Embree's
+packet and stream calls beside the single calls on the same rays, camera
+(coherent) and random; then the scaling runs (1k, 10k, 100k, 1M spheres)
+with --scaling-runs runs each."""
 import argparse
 import datetime
 import gzip
@@ -275,6 +277,47 @@ def raycast_runs(raycast, spheres, threads, runs, engines):
     return res
 
 
+BATCH_ENGINES = ["hitray", "hitray-batch", "embree", "embree8", "embree1M"]
+
+
+def batch_runs(raycast, spheres, threads, runs, embree):
+    """The batch and packet engines on the same rays, all in one raycast run
+    each (so each sees the machine alike): {(kind, threads): {engine: [rays/s]}}."""
+    engines = BATCH_ENGINES if embree else BATCH_ENGINES[:2]
+    res = {}
+    for _ in range(runs):
+        for kind in ("camera", "random"):
+            for t in threads:
+                out = subprocess.run([raycast, "--engine", ",".join(engines), "--rays", kind, "--spheres",
+                                      str(spheres), "--threads", str(t)],
+                                     capture_output=True, text=True, check=True).stdout
+                for line in out.splitlines():
+                    if line.startswith("engine="):
+                        kv = dict(x.split("=", 1) for x in line.split())
+                        res.setdefault((kind, t), {}).setdefault(kv["engine"], []).append(
+                            float(kv["rays_per_s"]))
+    return res
+
+
+def batch_table(res, runs):
+    """Rays/s of each engine and the batch's ratios to Embree's calls."""
+    L = ["", f"## Batches and packets: 1M rays, the same rays for every engine (median of {runs})", "",
+         "bench/raycast `--engine hitray,hitray-batch,embree,embree8,embree1M --rays camera|random`: "
+         "`hr_scene_first_hit` per ray, `hr_scene_first_hits` on each chunk of 256 rays (packets of 8 "
+         "where the rays share an octant), Embree's `rtcIntersect1`, `rtcIntersect8` and `rtcIntersect1M` "
+         "(coherent flag for camera rays). Targets: batch at least 1.5x rtcIntersect1 and 1.0x "
+         "rtcIntersect8.", "",
+         "| rays | threads | hitray | hitray batch | rtcIntersect1 | rtcIntersect8 | rtcIntersect1M | "
+         "batch / rtcIntersect1 | batch / rtcIntersect8 |",
+         "|---|---|---|---|---|---|---|---|---|"]
+    for (kind, t), by in res.items():
+        rate = {e: median(v) for e, v in by.items()}
+        cells = [f"{rate[e] / 1e6:.2f} M" if e in rate else "-" for e in BATCH_ENGINES]
+        ratios = [ratio(rate["hitray-batch"], rate[e]) if e in rate else "-" for e in ("embree", "embree8")]
+        L.append(f"| {kind} | {t} | " + " | ".join(cells + ratios) + " |")
+    return L
+
+
 def ratio(a, b):
     """a / b to two places; '-' where b is not a positive time (a tiny
     --quick render can report a trace time of 0.00 s)."""
@@ -403,14 +446,19 @@ def main():
         capture_output=True, text=True).stdout
     engines = ["hitray", "embree"] if embree else ["hitray"]
     raw_spheres = 1000 if ARGS.quick else 100000
-    ray, check, scaling = None, None, {}
+    ray, check, scaling, batches = None, None, {}, {}
     if have_raycast:
         print(f"raycast: {raw_spheres:,} spheres", flush=True)
         ray = raycast_runs(raycast, raw_spheres, ARGS.threads, ARGS.runs, engines)
         if embree:
             out = subprocess.run([raycast, "--engine", "both", "--spheres", str(raw_spheres)],
                                  capture_output=True, text=True, check=True).stdout
-            check = dict(x.split("=", 1) for x in out.split())
+            # hitray's line, then Embree's with the agreement: take both.
+            check = dict(x.split("=", 1) for line in out.splitlines() if line.startswith("engine=")
+                         for x in line.split() if not x.startswith(("engine=", "hits=")))
+            check["hits"] = out.split("hits=", 1)[1].split()[0]
+        print(f"raycast batches: {raw_spheres:,} spheres", flush=True)
+        batches = batch_runs(raycast, raw_spheres, ARGS.threads, ARGS.runs, embree)
         for n in [int(x) for x in ARGS.scaling.split(",")]:
             print(f"raycast scaling: {n} spheres", flush=True)
             scaling[n] = raycast_runs(raycast, n, ARGS.threads, ARGS.scaling_runs, engines)
@@ -480,6 +528,7 @@ def main():
         L.append(f"Same answers: {int(check['same_first_object']):,} of {int(check['rays']):,} rays "
                  f"name the same first sphere in both (the rest graze a silhouette, where float "
                  f"and double differ); hitray hits {int(check['hits']):,}.")
+    L += batch_table(batches, ARGS.runs)
     L.append("")
     L.append(f"## Scaling (median of {ARGS.scaling_runs}; trace time of 1M rays, build apart)")
     L.append("")

@@ -205,6 +205,30 @@ HR_API const char *hr_effect_name(uint32_t effect);
 HR_API hr_status hr_scene_first_hit(const hr_scene *scene, const hr_ray *ray,
                                     double tmin, double tmax, hr_hit *out,
                                     int32_t *found);
+/* hr_scene_first_hit for `count` rays at once: rays[i]'s nearest hit with
+ * tmin < t < tmax in hits[i] and found[i] (1 on a hit; hits[i] is left as
+ * it was on a miss). Every answer is bit for bit the one
+ * hr_scene_first_hit gives for that ray, ties and rays starting inside an
+ * object included; what is done once per query (the scene's checks, the
+ * nesting level, the tracing context) is done once per batch, and rays
+ * that run side by side may share their walk of the scene. Thread-safe as
+ * the single query: any number of threads may each trace a batch of their
+ * own. count 0 does nothing (rays, hits and found may then be NULL).
+ * Every ray is checked before any is traced: HR_ERROR_INVALID_ARGUMENT
+ * for count < 0, a NULL array, a window that is not tmin <= tmax, or a ray
+ * that hr_scene_first_hit would refuse (the message names its index: "ray
+ * 12: direction is the zero vector"), and then nothing is written. A shape
+ * that fails stops the batch with its error, naming the ray; found[] is
+ * then 0 for every ray. */
+HR_API hr_status hr_scene_first_hits(const hr_scene *scene, const hr_ray *rays, int64_t count,
+                                     double tmin, double tmax, hr_hit *hits, int32_t *found);
+/* The occlusion batch: hit[i] is 1 when rays[i] meets some object with
+ * tmin < t < tmax, 0 when none: the question a renderer's shadow ray asks
+ * (direction the light minus the point, tmax 1), answered by the any-hit
+ * walk, which stops at the first hit it meets. Arguments and errors as
+ * hr_scene_first_hits. */
+HR_API hr_status hr_scene_occluded(const hr_scene *scene, const hr_ray *rays, int64_t count,
+                                   double tmin, double tmax, int32_t *hit);
 /* The origin of a ray leaving the world-space hit `hit` (as
  * hr_scene_first_hit or hr_scene_all_hits return it) toward the side that
  * `side` points to: a unit normal, or its negation to pass into a solid.

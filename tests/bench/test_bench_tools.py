@@ -196,6 +196,10 @@ def test_run_bench_quick_runs_every_step(tmp_path):
     # The thread-scaling table: a speed-up, a CPU ratio and the side-by-side
     # ceiling for every scene, and POV-Ray's own speed-up where it ran.
     assert "## Thread scaling" in text
+    # The batch and packet engines beside the single calls, both kinds of rays.
+    assert "## Batches and packets" in text
+    assert re.search(r"^\| camera \| 1 \| [0-9.]+ M \| [0-9.]+ M \|", text, re.M)
+    assert re.search(r"^\| random \| 1 \| [0-9.]+ M \| [0-9.]+ M \|", text, re.M)
     assert re.search(r"^\| spheres \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| (?:[0-9.]+|-) \|$", text, re.M)
     if (ROOT.parent / "shared" / "scenes" / "spd" / "balls.nff.gz").exists():
         assert "## SPD scenes" in text

@@ -15,7 +15,8 @@ Scenes come from code (Scene, the shape classes, Camera) or from Hill's SDL
 (load_sdl, parse_sdl) or NFF, the format of the SPD benchmark scenes
 (load_nff, parse_nff). Hill's queries are Scene.first_hit (getFirstHit),
 Scene.hits (the Intersection of every hit) and Scene.trace (many rays as
-numpy arrays). Every failure of the library raises a hitray.Error subclass.
+numpy arrays; Scene.first_hits gives every field of their hits as a Hits,
+Scene.occluded whether anything blocks each). Every failure of the library raises a hitray.Error subclass.
 The library, its shape modules and the extension all live inside this
 package; libhitray finds the modules next to itself. ``hitray.abi`` (the C
 ABI through cffi, and shape classes written in Python) is imported on first
@@ -35,7 +36,7 @@ from .errors import (ArgumentError, Error, FileError, ModuleError, NumericError,
 from .image import Image, RenderedImage, RenderStats
 from .modules import (ModuleInfo, ShapeClass, ShapeParam, add_shape_dir, load_module, modules,
                       shape_classes)
-from .queries import HitInfo, Light, TraceResult
+from .queries import HitInfo, Hits, Light, TraceResult
 from .render import render
 from .scene import Scene, SceneObject
 from .sdl import load_sdl, parse_sdl
@@ -55,7 +56,7 @@ __all__ = [
     "Shape", "Sphere", "Cube", "Square", "Plane", "TaperedCylinder", "Cylinder", "Cone", "Torus",
     "Mesh", "Tetrahedron", "Octahedron", "Dodecahedron", "Icosahedron", "Buckyball", "Teapot",
     "Union", "Intersection", "Difference",
-    "HitInfo", "TraceResult", "Light",
+    "HitInfo", "TraceResult", "Hits", "Light",
     "shape_classes", "modules", "load_module", "add_shape_dir", "ShapeClass", "ShapeParam",
     "ModuleInfo",
     "Error", "ArgumentError", "FileError", "ModuleError", "ParameterError", "SDLError",

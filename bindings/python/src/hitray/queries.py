@@ -11,7 +11,7 @@ import numpy as np
 from . import _core
 from ._convert import Vec3, vec3
 
-__all__ = ["HitInfo", "TraceResult", "Light"]
+__all__ = ["HitInfo", "TraceResult", "Hits", "Light"]
 
 
 @dataclass(frozen=True)
@@ -69,6 +69,30 @@ class TraceResult(NamedTuple):
     t: np.ndarray
     normal: np.ndarray
     object: np.ndarray
+
+
+class Hits(NamedTuple):
+    """What :meth:`Scene.first_hits` returns for N rays: each field of
+    :class:`HitInfo` as an array, the nearest hit of each ray (unpacks as a
+    tuple).
+
+    Attributes:
+        t: (N,) float64, ``inf`` for a miss.
+        point: (N, 3) float64, (0, 0, 0) for a miss.
+        normal: (N, 3) float64 unit normals, (0, 0, 0) for a miss.
+        surface: (N,) int32, -1 for a miss.
+        entering: (N,) bool, False for a miss.
+        object: (N,) int64 object indices, -1 for a miss.
+        error: (N,) float64 error bounds of the points, 0 for a miss.
+    """
+
+    t: np.ndarray
+    point: np.ndarray
+    normal: np.ndarray
+    surface: np.ndarray
+    entering: np.ndarray
+    object: np.ndarray
+    error: np.ndarray
 
 
 class Light(NamedTuple):

@@ -22,7 +22,7 @@ from . import _convert, _core, _warnings, material as _material
 from ._convert import Vec3
 from .camera import Camera
 from .image import Image
-from .queries import HitInfo, Light, TraceResult
+from .queries import HitInfo, Hits, Light, TraceResult
 from .shapes import Shape
 
 __all__ = ["Scene", "SceneObject"]
@@ -394,27 +394,54 @@ class Scene:
                                            _convert.number(tmin, "tmin"), _convert.number(tmax, "tmax"))
         return [HitInfo._from_core(h) for h in found]
 
-    def trace(self, origins: Any, directions: Any, tmin: float = 0.0, tmax: float = math.inf,
-              threads: Optional[int] = None) -> TraceResult:
-        """getFirstHit for many rays: `origins` and `directions` are N x 3
-        arrays (either may be one 3-vector, shared by every ray). Runs in C
-        with the GIL released, over `threads` threads (None: every core).
-        Returns arrays t (inf for a miss), normal and object (-1 for a miss).
-        A ray with a non-finite value or a zero direction raises ArgumentError
-        naming its index."""
+    def _rays(self, what: str, origins: Any, directions: Any, threads: Optional[int]
+              ) -> Tuple[np.ndarray, np.ndarray, int]:
+        """N x 3 arrays (one 3-vector broadcast to every ray) and the thread
+        count for _core (0: every core)."""
         o = np.asarray(origins, dtype=np.float64)
         d = np.asarray(directions, dtype=np.float64)
         for name, a in (("origins", o), ("directions", d)):
             if a.ndim not in (1, 2) or a.shape[-1] != 3:
-                raise ValueError(f"trace: {name} must be N x 3 (or one 3-vector), got shape {a.shape}")
+                raise ValueError(f"{what}: {name} must be N x 3 (or one 3-vector), got shape {a.shape}")
         o2, d2 = np.broadcast_arrays(np.atleast_2d(o), np.atleast_2d(d))
         nthreads = 0 if threads is None else _convert.integer(threads, "threads")
         if nthreads < 0 or (threads is not None and nthreads == 0):
-            raise ValueError("trace: threads must be at least 1 (None: every core)")
-        t, normal, obj = _core.trace(self._committed(), np.ascontiguousarray(o2),
-                                     np.ascontiguousarray(d2), _convert.number(tmin, "tmin"),
+            raise ValueError(f"{what}: threads must be at least 1 (None: every core)")
+        return np.ascontiguousarray(o2), np.ascontiguousarray(d2), nthreads
+
+    def trace(self, origins: Any, directions: Any, tmin: float = 0.0, tmax: float = math.inf,
+              threads: Optional[int] = None) -> TraceResult:
+        """getFirstHit for many rays: `origins` and `directions` are N x 3
+        arrays (either may be one 3-vector, shared by every ray). Runs in C
+        with the GIL released, over `threads` threads (None: every core),
+        each handing its rays to the batch query (``hr_scene_first_hits``).
+        Returns arrays t (inf for a miss), normal and object (-1 for a miss);
+        :meth:`first_hits` returns every field of the hits.
+        A ray with a non-finite value or a zero direction raises ArgumentError
+        naming its index."""
+        o, d, nthreads = self._rays("trace", origins, directions, threads)
+        t, normal, obj = _core.trace(self._committed(), o, d, _convert.number(tmin, "tmin"),
                                      _convert.number(tmax, "tmax"), nthreads)
         return TraceResult(t, normal, obj)
+
+    def first_hits(self, origins: Any, directions: Any, tmin: float = 0.0, tmax: float = math.inf,
+                   threads: Optional[int] = None) -> Hits:
+        """:meth:`trace` with every field of Hill's HitInfo, as arrays (a
+        :class:`Hits`): for each ray the same hit as :meth:`first_hit`, bit
+        for bit."""
+        o, d, nthreads = self._rays("first_hits", origins, directions, threads)
+        return Hits(*_core.trace(self._committed(), o, d, _convert.number(tmin, "tmin"),
+                                 _convert.number(tmax, "tmax"), nthreads, True))
+
+    def occluded(self, origins: Any, directions: Any, tmin: float = 0.0, tmax: float = math.inf,
+                 threads: Optional[int] = None) -> np.ndarray:
+        """Whether each ray meets any object with tmin < t < tmax (the C
+        ``hr_scene_occluded``, a shadow ray's question: direction the light
+        minus the point and tmax 1): an (N,) bool array. Arrays, threads
+        and errors as :meth:`trace`."""
+        o, d, nthreads = self._rays("occluded", origins, directions, threads)
+        return _core.occluded(self._committed(), o, d, _convert.number(tmin, "tmin"),
+                              _convert.number(tmax, "tmax"), nthreads)
 
     def shade(self, origin: Sequence[float], direction: Sequence[float],
               depth: Optional[int] = None) -> Vec3:
