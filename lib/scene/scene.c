@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "util/errors.h"
 #include "util/field_table.h"
@@ -140,8 +141,11 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
         }
     }
     /* Leaves of up to 4 objects: a node visit costs about half an object
-     * test (a transform and a shape call). */
-    const accel_bvh4_options bvh_options = {.max_leaf = 4, .traversal_cost = 0.5};
+     * test (a transform and a shape call). Large subtrees are built on a
+     * thread for each CPU (the same tree as on one). */
+    const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    const accel_bvh4_options bvh_options = {.max_leaf = 4, .traversal_cost = 0.5,
+                                            .threads = cpus < 1 ? 1u : cpus > 64 ? 64u : (uint32_t)cpus};
     hr_bounds around = {v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)};
     for (int32_t i = 0; i < nb; i++) {
         around.lo = v3(fmin(around.lo.x, boxes[i].lo.x), fmin(around.lo.y, boxes[i].lo.y),
