@@ -38,6 +38,7 @@ HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
         return st;
     }
     hr_scene_globals_default(&s->globals);
+    hr_material_default(&s->default_material);
     *out = s;
     return HR_OK;
 }
@@ -148,10 +149,10 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
                                             .threads = cpus < 1 ? 1u : cpus > 64 ? 64u : (uint32_t)cpus};
     hr_bounds around = {v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)};
     for (int32_t i = 0; i < nb; i++) {
-        around.lo = v3(fmin(around.lo.x, boxes[i].lo.x), fmin(around.lo.y, boxes[i].lo.y),
-                       fmin(around.lo.z, boxes[i].lo.z));
-        around.hi = v3(fmax(around.hi.x, boxes[i].hi.x), fmax(around.hi.y, boxes[i].hi.y),
-                       fmax(around.hi.z, boxes[i].hi.z));
+        around.lo = v3(v_fmin(around.lo.x, boxes[i].lo.x), v_fmin(around.lo.y, boxes[i].lo.y),
+                       v_fmin(around.lo.z, boxes[i].lo.z));
+        around.hi = v3(v_fmax(around.hi.x, boxes[i].hi.x), v_fmax(around.hi.y, boxes[i].hi.y),
+                       v_fmax(around.hi.z, boxes[i].hi.z));
     }
     s->bvh_box = cull_box_widened(around);
     int built = accel_bvh4_build(&s->bvh, boxes, (uint32_t)nb, &bvh_options);

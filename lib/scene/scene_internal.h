@@ -61,6 +61,8 @@ struct hr_scene {
     hr_light *lights;
     int32_t light_count, light_cap;
     hr_scene_globals globals;
+    hr_material default_material; /* hr_material_default's, made once: an object
+                                     added without a material copies it */
     int32_t committed;
     uint32_t effects;           /* HR_EFFECT_* the scene calls for */
     uint32_t bounce_effects;    /* REFLECTION/REFRACTION the materials call for

@@ -61,13 +61,13 @@ static int transform_bounds(const double m[16], const hr_bounds *in, hr_bounds *
         hr_vec3 p = v3(c & 1 ? in->hi.x : in->lo.x, c & 2 ? in->hi.y : in->lo.y,
                        c & 4 ? in->hi.z : in->lo.z);
         hr_vec3 q = hr_transform_point(m, p);
-        out->lo = v3(fmin(out->lo.x, q.x), fmin(out->lo.y, q.y), fmin(out->lo.z, q.z));
-        out->hi = v3(fmax(out->hi.x, q.x), fmax(out->hi.y, q.y), fmax(out->hi.z, q.z));
+        out->lo = v3(v_fmin(out->lo.x, q.x), v_fmin(out->lo.y, q.y), v_fmin(out->lo.z, q.z));
+        out->hi = v3(v_fmax(out->hi.x, q.x), v_fmax(out->hi.y, q.y), v_fmax(out->hi.z, q.z));
     }
     /* Widen by the rounding of the corner transform, so a box never clips
      * its object (a relative 4 ulps of the largest magnitude involved). */
-    double mag = fmax(fmax(fabs(out->lo.x), fabs(out->hi.x)),
-                      fmax(fmax(fabs(out->lo.y), fabs(out->hi.y)), fmax(fabs(out->lo.z), fabs(out->hi.z))));
+    double mag = v_fmax(v_fmax(fabs(out->lo.x), fabs(out->hi.x)),
+                      v_fmax(v_fmax(fabs(out->lo.y), fabs(out->hi.y)), v_fmax(fabs(out->lo.z), fabs(out->hi.z))));
     double pad = 4.0 * DBL_EPSILON * mag;
     out->lo = v3(out->lo.x - pad, out->lo.y - pad, out->lo.z - pad);
     out->hi = v3(out->hi.x + pad, out->hi.y + pad, out->hi.z + pad);
@@ -84,11 +84,11 @@ static void tighten_bounds(hr_object *o)
     o->cls->transformed_bounds(o->shape, o->m, &t);
     if (!v3_is_finite(t.lo) || !v3_is_finite(t.hi)) return;
     hr_bounds *w = &o->world_bounds;
-    double mag = fmax(fmax(fabs(t.lo.x), fabs(t.hi.x)),
-                      fmax(fmax(fabs(t.lo.y), fabs(t.hi.y)), fmax(fabs(t.lo.z), fabs(t.hi.z))));
+    double mag = v_fmax(v_fmax(fabs(t.lo.x), fabs(t.hi.x)),
+                      v_fmax(v_fmax(fabs(t.lo.y), fabs(t.hi.y)), v_fmax(fabs(t.lo.z), fabs(t.hi.z))));
     double pad = 4.0 * DBL_EPSILON * mag;
-    hr_bounds n = {v3(fmax(w->lo.x, t.lo.x - pad), fmax(w->lo.y, t.lo.y - pad), fmax(w->lo.z, t.lo.z - pad)),
-                   v3(fmin(w->hi.x, t.hi.x + pad), fmin(w->hi.y, t.hi.y + pad), fmin(w->hi.z, t.hi.z + pad))};
+    hr_bounds n = {v3(v_fmax(w->lo.x, t.lo.x - pad), v_fmax(w->lo.y, t.lo.y - pad), v_fmax(w->lo.z, t.lo.z - pad)),
+                   v3(v_fmin(w->hi.x, t.hi.x + pad), v_fmin(w->hi.y, t.hi.y + pad), v_fmin(w->hi.z, t.hi.z + pad))};
     if (!(n.lo.x <= n.hi.x && n.lo.y <= n.hi.y && n.lo.z <= n.hi.z)) return;
     *w = n;
 }
@@ -108,14 +108,16 @@ static hr_status grow_objects(hr_scene *s)
 static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_object_desc *d)
 {
     hr_context *ctx = s->ctx;
-    hr_material_default(&o->material);
+    /* The default material is valid as made (it passes hri_material_check,
+     * test_materials): only a given one is checked. */
+    o->material = s->default_material;
     if (d->material) {
         if (d->material->struct_size < sizeof(uint32_t))
             return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
         HR_SIZED_COPY_IN(&o->material, d->material);
+        hr_status st = hri_material_check(ctx, &o->material);
+        if (st) return st;
     }
-    hr_status st = hri_material_check(ctx, &o->material);
-    if (st) return st;
     if (o->material.parameter_count > 0) {
         o->params_copy = malloc((size_t)o->material.parameter_count * sizeof(double));
         if (!o->params_copy) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
