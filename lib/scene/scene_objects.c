@@ -18,15 +18,40 @@
 #include "geometry/transform_inline.h"
 #include "geometry/vec.h"
 
+/* Objects a slab holds: the first slab 16, each next one twice the last,
+ * up to this many. */
+#define SLAB_MOST_OBJECTS 4096u
+#define OBJECT_SIZE ((sizeof(hr_object) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN)
+#define SLAB_HEADER ((sizeof(hri_object_slab) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN)
+
 /* A zeroed object on cache lines of its own (HR_OBJECT_ALIGN), so that its
- * fields tracing reads first share the fewest lines (hr_object); free()
- * releases it. */
-static hr_object *object_alloc(void)
+ * fields tracing reads first share the fewest lines (hr_object), from the
+ * scene's newest slab, or a new one when that is full. */
+static hr_object *object_alloc(hr_scene *s)
 {
-    const size_t size = (sizeof(hr_object) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN;
-    hr_object *o = aligned_alloc(HR_OBJECT_ALIGN, size);
-    if (o) memset(o, 0, size);
+    hri_object_slab *slab = s->slabs;
+    if (!slab || slab->used == slab->cap) {
+        size_t cap = slab ? 2 * slab->cap : 16;
+        if (cap > SLAB_MOST_OBJECTS) cap = SLAB_MOST_OBJECTS;
+        hri_object_slab *fresh = aligned_alloc(HR_OBJECT_ALIGN, SLAB_HEADER + cap * OBJECT_SIZE);
+        if (!fresh) return NULL;
+        fresh->next = slab;
+        fresh->used = 0;
+        fresh->cap = cap;
+        s->slabs = slab = fresh;
+    }
+    hr_object *o = (hr_object *)(void *)((char *)slab + SLAB_HEADER + slab->used++ * OBJECT_SIZE);
+    memset(o, 0, OBJECT_SIZE);
     return o;
+}
+
+/* Gives back the object object_alloc gave last (an add that failed); were
+ * it not the last, its slot would stay unused until the scene is freed. */
+static void object_unalloc(hr_scene *s, hr_object *o)
+{
+    hri_object_free(o);
+    hri_object_slab *slab = s->slabs;
+    if ((char *)o == (char *)slab + SLAB_HEADER + (slab->used - 1) * OBJECT_SIZE) slab->used--;
 }
 
 void hri_object_free(hr_object *o)
@@ -36,7 +61,15 @@ void hri_object_free(hr_object *o)
     free(o->texture);
     free(o->params_copy);
     free(o->params);
-    free(o);
+}
+
+void hri_object_slabs_free(hri_object_slab *slab)
+{
+    while (slab) {
+        hri_object_slab *next = slab->next;
+        free(slab);
+        slab = next;
+    }
 }
 
 static int is_identity(const double m[16])
@@ -202,7 +235,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     const uint64_t object_bytes = sizeof(hr_object) + 64;
     st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, OBJECT_WHAT, index, cls->name);
     if (st) return st;
-    hr_object *o = object_alloc();
+    hr_object *o = object_alloc(s);
     if (!o) {
         s->budget.objects -= object_bytes;
         return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -212,7 +245,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     o->index = s->object_count;
     o->top_level = 1;
     if ((st = set_material_and_transform(s, o, &desc))) {
-        hri_object_free(o);
+        object_unalloc(s, o);
         s->budget.objects -= object_bytes;
         return st;
     }
@@ -232,7 +265,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         if (!full || !children) {
             free(full);
             free(children);
-            hri_object_free(o);
+            object_unalloc(s, o);
             s->budget.objects -= object_bytes;
             return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         }
@@ -288,7 +321,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         free(children);
     }
     if (st) {
-        hri_object_free(o);
+        object_unalloc(s, o);
         s->budget.objects -= object_bytes + kept_bytes;
         return st;
     }
