@@ -49,6 +49,7 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     /* Composites before their children: reverse order of creation. */
     for (int64_t i = scene->object_count - 1; i >= 0; i--) hri_object_free(scene->objects[i]);
     hri_object_slabs_free(scene->slabs);
+    hri_material_store_free(&scene->materials);
     free(scene->objects);
     free(scene->lights);
     hri_pixmap_set_free(&scene->pixmaps);

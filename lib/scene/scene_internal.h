@@ -11,6 +11,7 @@
 #include <hitray/hitray.h>
 
 #include "bvh4.h"
+#include "scene/material_store.h"
 #include "util/color_bounds.h"
 #include "geometry/transform_inline.h"
 #include "scene/scene_budget.h"
@@ -35,8 +36,8 @@ typedef struct hr_object {
     hr_xform_error_terms m_error; /* hri_xform_error_terms_of(m) */
     /* What tracing does not read. */
     const char *module_path;
-    hr_material material;     /* `parameters` points at params_copy */
-    double *params_copy;
+    const hr_material *material; /* the scene's copy (hri_material_store), shared
+                                    by every object of the same material */
     int32_t top_level;        /* 0 once consumed by a composite */
     int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
@@ -69,6 +70,7 @@ struct hr_scene {
     hr_object **objects;
     int64_t object_count, object_cap;
     hri_object_slab *slabs;     /* where the objects live */
+    hri_material_store materials; /* what their materials point at */
     hr_light *lights;
     int32_t light_count, light_cap;
     hr_scene_globals globals;

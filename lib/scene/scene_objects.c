@@ -59,7 +59,6 @@ void hri_object_free(hr_object *o)
     if (!o) return;
     if (o->shape) o->cls->destroy(o->shape);
     free(o->texture);
-    free(o->params_copy);
     free(o->params);
 }
 
@@ -143,21 +142,18 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
     hr_context *ctx = s->ctx;
     /* The default material is valid as made (it passes hri_material_check,
      * test_materials): only a given one is checked. */
-    o->material = s->default_material;
+    hr_material m = s->default_material;
     if (d->material) {
         if (d->material->struct_size < sizeof(uint32_t))
             return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
-        HR_SIZED_COPY_IN(&o->material, d->material);
-        hr_status st = hri_material_check(ctx, &o->material);
+        HR_SIZED_COPY_IN(&m, d->material);
+        hr_status st = hri_material_check(ctx, &m);
         if (st) return st;
     }
-    if (o->material.parameter_count > 0) {
-        o->params_copy = malloc((size_t)o->material.parameter_count * sizeof(double));
-        if (!o->params_copy) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-        memcpy(o->params_copy, o->material.parameters,
-               (size_t)o->material.parameter_count * sizeof(double));
-    }
-    o->material.parameters = o->params_copy;
+    /* Kept once a scene (its parameters with it): objects of the same
+     * material share the copy. */
+    if (!(o->material = hri_material_store_add(&s->materials, &m)))
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
 
     hr_transform t;
     hr_transform_identity(&t);
@@ -299,7 +295,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         }
     }
     if (st == HR_OK)
-        st = hri_texture_bind(s->ctx, &o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
+        st = hri_texture_bind(s->ctx, o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
     uint64_t kept_bytes = 0;
     if (st == HR_OK && n > 0) {
         o->params = hri_params_keep(full, n, &kept_bytes);
