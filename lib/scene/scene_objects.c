@@ -141,7 +141,7 @@ static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_
 {
     hr_context *ctx = s->ctx;
     /* The default material is valid as made (it passes hri_material_check,
-     * test_materials): only a given one is checked. */
+     * test_object_materials): only a given one is checked. */
     hr_material m = s->default_material;
     if (d->material) {
         if (d->material->struct_size < sizeof(uint32_t))
