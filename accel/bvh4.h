@@ -102,7 +102,16 @@ typedef struct accel_bvh4_options {
      * a module can allocate through its host. */
     void *(*alloc)(size_t size);
     void (*free)(void *ptr);
+    /* The most threads the build may run on, the caller's included (0 or
+     * 1: the caller's alone). Subtrees of at least
+     * ACCEL_BVH4_PARALLEL_ITEMS items are then built side by side; the
+     * tree is the same, byte for byte, for any number. */
+    uint32_t threads;
 } accel_bvh4_options;
+
+/* The fewest items in a subtree the build hands to a thread of its own:
+ * below, starting a thread costs more than it saves. */
+#define ACCEL_BVH4_PARALLEL_ITEMS 4096u
 
 /* Build over `count` boxes (NaN-free; infinite extents are allowed).
  * Returns 0 on success, -1 when out of memory, -2 when count exceeds

@@ -3,11 +3,22 @@
  * in place (so every leaf is a run of `items`), then collapsed to four
  * children a node: starting from a node's two children, the inner child of
  * largest surface area is replaced by its own two until there are four or
- * only leaves. Child boxes are then rounded outward to float. */
+ * only leaves. Child boxes are then rounded outward to float.
+ *
+ * Large subtrees are built on threads of their own (options->threads): a
+ * node's right child goes to a new thread, with the right half of the
+ * items (a range of `items` no other thread touches) and a range of
+ * binary nodes of its own, the one it would have started at had its left
+ * sibling's subtree taken the most nodes it can (2 n - 2 below its root).
+ * Every decision reads only the node's own items, so the binary tree's
+ * nodes and links are the serial build's; only unused slots may lie
+ * between the ranges, and the collapse, which follows links, gives the
+ * same 4-wide tree. */
 #include "bvh4.h"
 
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -84,6 +95,7 @@ typedef struct builder {
     double *centroids; /* 3 per input box; halves first: lo + hi overflows near DBL_MAX */
     uint32_t max_leaf;
     double traversal_cost;
+    uint32_t threads; /* this subtree's share of options->threads (>= 1) */
     /* One node's bins, used before build_binary recurses: here rather than
      * in its frame, which the recursion would multiply. Between nodes every
      * bin is empty (count 0, box empty_box()): a node empties the ones it
@@ -121,6 +133,10 @@ static inline void grow_point(hr_bounds *b, const double c[3])
     const hr_bounds p = {{c[0], c[1], c[2]}, {c[0], c[1], c[2]}};
     grow(b, &p);
 }
+
+static void build_side_by_side(builder *b, uint32_t left, uint32_t first, uint32_t mid, uint32_t right_count,
+                               uint32_t depth, const hr_bounds *left_box, const hr_bounds *left_cbox,
+                               const hr_bounds *right_box, const hr_bounds *right_cbox);
 
 /* Node `node` over items[first, first + count), whose boxes' union is box
  * and whose centroids' bounds are cbox. One pass bins the items on all
@@ -269,8 +285,56 @@ static void build_binary(builder *b, uint32_t node, uint32_t first, uint32_t cou
     b->node_count += 2;
     b->nodes[node].first = left;
     b->nodes[node].count = 0;
+    const uint32_t right_count = first + count - mid;
+    if (b->threads > 1 && right_count >= ACCEL_BVH4_PARALLEL_ITEMS && mid - first >= ACCEL_BVH4_PARALLEL_ITEMS) {
+        build_side_by_side(b, left, first, mid, right_count, depth + 1, &left_box, &left_cbox, &right_box,
+                           &right_cbox);
+        return;
+    }
     build_binary(b, left, first, mid - first, depth + 1, &left_box, &left_cbox);
-    build_binary(b, left + 1, mid, first + count - mid, depth + 1, &right_box, &right_cbox);
+    build_binary(b, left + 1, mid, right_count, depth + 1, &right_box, &right_cbox);
+}
+
+/* A right subtree built on a thread of its own (build_side_by_side). */
+typedef struct side_job {
+    builder b; /* its own bins and node range */
+    uint32_t node, first, count, depth;
+    hr_bounds box, cbox;
+} side_job;
+
+static void *build_side(void *arg)
+{
+    side_job *job = arg;
+    build_binary(&job->b, job->node, job->first, job->count, job->depth, &job->box, &job->cbox);
+    return NULL;
+}
+
+/* The children left (items first .. mid - 1) and left + 1 (mid .. mid +
+ * right_count - 1) of a node: the right one on a new thread with half of
+ * this subtree's threads, its nodes from where the left one's can no longer
+ * reach; the left one here. If no thread can be started, the right one
+ * follows here, in the same range. */
+static void build_side_by_side(builder *b, uint32_t left, uint32_t first, uint32_t mid, uint32_t right_count,
+                               uint32_t depth, const hr_bounds *left_box, const hr_bounds *left_cbox,
+                               const hr_bounds *right_box, const hr_bounds *right_cbox)
+{
+    side_job *job = malloc(sizeof *job);
+    if (job) {
+        job->b = *b; /* between nodes every bin is empty: the copy's are too */
+        job->b.node_count = b->node_count + 2 * (mid - first) - 2;
+        job->b.threads = b->threads / 2;
+        job->node = left + 1, job->first = mid, job->count = right_count, job->depth = depth;
+        job->box = *right_box, job->cbox = *right_cbox;
+    }
+    pthread_t thread;
+    const int started = job && pthread_create(&thread, NULL, build_side, job) == 0;
+    b->threads -= started ? b->threads / 2 : 0;
+    build_binary(b, left, first, mid - first, depth, left_box, left_cbox);
+    if (started) pthread_join(thread, NULL);
+    else if (job) build_side(job);
+    else build_binary(b, left + 1, mid, right_count, depth, right_box, right_cbox);
+    if (job) b->node_count = job->b.node_count; /* past the left's, whose range comes first */
+    free(job);
 }
 
 /* --- Collapsing to four children ------------------------------------------ */
@@ -349,6 +413,7 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
     b.boxes = boxes;
     b.max_leaf = options->max_leaf < 1 ? 1 : options->max_leaf > 16 ? 16 : options->max_leaf;
     b.traversal_cost = options->traversal_cost;
+    b.threads = options->threads > 1 ? options->threads : 1;
     b.node_cap = 2 * count - 1;
     b.nodes = alloc((size_t)b.node_cap * sizeof *b.nodes);
     b.items = alloc((size_t)count * sizeof *b.items);

@@ -1,8 +1,10 @@
 /* hitray shape kit: the instance of a shape class that has no
- * parameters (sphere, plane, square, cube). It remembers only the host, so
- * destroy can give the memory back the way create got it. Nothing else is
- * kept per instance: the generic shape is the same for every object, and the
- * host's transform does the rest. */
+ * parameters (sphere, plane, square, cube). Nothing is kept per instance:
+ * the generic shape is the same for every object, and the host's transform
+ * does the rest. So every object of such a class shares one instance, an
+ * object of the module that is never written, and creating one allocates
+ * nothing (a scene of a million spheres paid an allocation, its bytes and
+ * its free for each). The host only hands `shape` back to the class. */
 #ifndef HITRAY_SHAPE_KIT_INSTANCE_H
 #define HITRAY_SHAPE_KIT_INSTANCE_H
 
@@ -13,23 +15,20 @@ extern "C" {
 #endif
 
 typedef struct shape_plain {
-    const hr_host *host;
+    char unused;
 } shape_plain;
 
 static inline hr_status shape_plain_create(const hr_create_args *args, void **out_shape)
 {
-    shape_plain *shape = args->host->alloc(sizeof *shape);
-    if (!shape) return HR_ERROR_OUT_OF_MEMORY;
-    shape->host = args->host;
-    *out_shape = shape;
+    static shape_plain instance;
+    (void)args;
+    *out_shape = &instance;
     return HR_OK;
 }
 
 static inline void shape_plain_destroy(void *shape)
 {
-    if (!shape) return;
-    const hr_host *host = ((shape_plain *)shape)->host;
-    host->free(shape);
+    (void)shape;
 }
 
 static inline void shape_set_bounds(hr_bounds *out, double lo_x, double lo_y, double lo_z,

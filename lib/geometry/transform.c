@@ -85,9 +85,49 @@ HR_API void hr_transform_identity(hr_transform *t)
     mat_identity(t->inv);
 }
 
+/* The products of a translation or scale step with a finite pair, as
+ * mat_mul gives them, bit for bit, without its 128 multiplications (most of
+ * the time of a scene of many small objects, each placed by a few steps).
+ * In mat_mul's sum ((((0 + p0) + p1) + p2) + p3) every product with a zero
+ * of the step is a zero (the pair is finite), and adding zeros to the
+ * leading +0 leaves +0, so an entry with one nonzero product x is x + 0.0
+ * (x, or +0 for x = -0), and the translation column's sum keeps mat_mul's
+ * order. For a pair that is not finite (inf * 0 is NaN there) the steps
+ * take mat_mul itself. test_transform_steps compares the two. */
+static void translated(hr_transform *t, double dx, double dy, double dz)
+{
+    double *m = t->m, *inv = t->inv;
+    const double d[3] = {dx, dy, dz};
+    for (int i = 0; i < 4; i++) {
+        double *row = m + 4 * i;
+        const double c = (((0.0 + row[0] * dx) + row[1] * dy) + row[2] * dz) + row[3];
+        row[0] += 0.0, row[1] += 0.0, row[2] += 0.0;
+        row[3] = c;
+    }
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++) inv[4 * i + j] = (inv[4 * i + j] + 0.0) + -d[i] * inv[12 + j];
+    for (int j = 0; j < 4; j++) inv[12 + j] += 0.0;
+}
+static void scaled(hr_transform *t, const double s[3], const double si[3])
+{
+    for (int i = 0; i < 4; i++) {
+        for (int j = 0; j < 3; j++) t->m[4 * i + j] = t->m[4 * i + j] * s[j] + 0.0;
+        t->m[4 * i + 3] += 0.0;
+    }
+    for (int j = 0; j < 4; j++) {
+        for (int i = 0; i < 3; i++) t->inv[4 * i + j] = si[i] * t->inv[4 * i + j] + 0.0;
+        t->inv[12 + j] += 0.0;
+    }
+}
+
 HR_API void hr_transform_translate(hr_transform *t, double dx, double dy, double dz)
 {
     if (!t) return;
+    if (doubles_are_finite(t->m, 16) && doubles_are_finite(t->inv, 16) && isfinite(dx) && isfinite(dy) &&
+        isfinite(dz)) {
+        translated(t, dx, dy, dz);
+        return;
+    }
     double s[16], si[16];
     mat_identity(s);
     mat_identity(si);
@@ -101,11 +141,22 @@ HR_API hr_status hr_transform_scale(hr_transform *t, double sx, double sy, doubl
     if (!t) return HR_ERROR_INVALID_ARGUMENT;
     if (sx == 0.0 || sy == 0.0 || sz == 0.0 || !isfinite(sx) || !isfinite(sy) || !isfinite(sz))
         return HR_ERROR_NUMERIC;
+    const double inverse[3] = {1.0 / sx, 1.0 / sy, 1.0 / sz};
+    if (doubles_are_finite(t->m, 16) && doubles_are_finite(t->inv, 16)) {
+        /* checked_step's refusals: an inverse that is not finite, or a pair
+         * that over- or underflows; t is left as it was. */
+        if (!doubles_are_finite(inverse, 3)) return HR_ERROR_NUMERIC;
+        hr_transform next = *t;
+        scaled(&next, (const double[3]){sx, sy, sz}, inverse);
+        if (!doubles_are_finite(next.m, 16) || !doubles_are_finite(next.inv, 16)) return HR_ERROR_NUMERIC;
+        *t = next;
+        return HR_OK;
+    }
     double s[16], si[16];
     mat_identity(s);
     mat_identity(si);
     s[0] = sx, s[5] = sy, s[10] = sz;
-    si[0] = 1.0 / sx, si[5] = 1.0 / sy, si[10] = 1.0 / sz;
+    si[0] = inverse[0], si[5] = inverse[1], si[10] = inverse[2];
     return checked_step(t, s, si);
 }
 

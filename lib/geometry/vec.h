@@ -72,6 +72,13 @@ static inline double step_towards(double x, double dir)
     return x;
 }
 
+/* fmin and fmax inline (each is otherwise a libm call, a dozen of them
+ * for every object a scene adds), with glibc's x86-64 results bit for bit:
+ * a NaN argument gives the other one, and otherwise minsd's (maxsd's)
+ * "a < b ? a : b", so that of two zeros the second is returned. */
+static inline double v_fmin(double a, double b) { return a < b || b != b ? a : b; }
+static inline double v_fmax(double a, double b) { return a > b || b != b ? a : b; }
+
 /* Largest |component| (inline: fmax is a libm call on the hot path). */
 static inline double v3_max_abs(hr_vec3 a)
 {

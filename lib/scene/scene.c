@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "util/env_cpu.h"
 #include "util/errors.h"
@@ -42,6 +43,7 @@ HR_API hr_status hr_scene_create(hr_context *ctx, hr_scene **out)
         return st;
     }
     hr_scene_globals_default(&s->globals);
+    hr_material_default(&s->default_material);
     *out = s;
     return HR_OK;
 }
@@ -51,6 +53,8 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     if (!scene) return;
     /* Composites before their children: reverse order of creation. */
     for (int64_t i = scene->object_count - 1; i >= 0; i--) hri_object_free(scene->objects[i]);
+    hri_object_slabs_free(scene->slabs);
+    hri_material_store_free(&scene->materials);
     free(scene->objects);
     free(scene->lights);
     hri_pixmap_set_free(&scene->pixmaps);
@@ -145,14 +149,17 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
         }
     }
     /* Leaves of up to 4 objects: a node visit costs about half an object
-     * test (a transform and a shape call). */
-    const accel_bvh4_options bvh_options = {.max_leaf = 4, .traversal_cost = 0.5};
+     * test (a transform and a shape call). Large subtrees are built on a
+     * thread for each CPU (the same tree as on one). */
+    const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    const accel_bvh4_options bvh_options = {.max_leaf = 4, .traversal_cost = 0.5,
+                                            .threads = cpus < 1 ? 1u : cpus > 64 ? 64u : (uint32_t)cpus};
     hr_bounds around = {v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)};
     for (int32_t i = 0; i < nb; i++) {
-        around.lo = v3(fmin(around.lo.x, boxes[i].lo.x), fmin(around.lo.y, boxes[i].lo.y),
-                       fmin(around.lo.z, boxes[i].lo.z));
-        around.hi = v3(fmax(around.hi.x, boxes[i].hi.x), fmax(around.hi.y, boxes[i].hi.y),
-                       fmax(around.hi.z, boxes[i].hi.z));
+        around.lo = v3(v_fmin(around.lo.x, boxes[i].lo.x), v_fmin(around.lo.y, boxes[i].lo.y),
+                       v_fmin(around.lo.z, boxes[i].lo.z));
+        around.hi = v3(v_fmax(around.hi.x, boxes[i].hi.x), v_fmax(around.hi.y, boxes[i].hi.y),
+                       v_fmax(around.hi.z, boxes[i].hi.z));
     }
     s->bvh_box = cull_box_widened(around);
     int built = accel_bvh4_build(&s->bvh, boxes, (uint32_t)nb, &bvh_options);

@@ -54,7 +54,7 @@ void hri_scene_work_out_effects(hr_scene *s)
     uint32_t effects = 0;
     for (int64_t i = 0; i < s->object_count; i++) {
         hr_object *o = s->objects[i];
-        const hr_material *m = &o->material;
+        const hr_material *m = o->material;
         uint32_t f = 0;
         if (o->cls->flags & HR_SHAPE_COMPOSITE) {
             o->mat_flags = 0; /* its hits carry the leaves' materials */

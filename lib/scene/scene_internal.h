@@ -11,6 +11,7 @@
 #include <hitray/hitray.h>
 
 #include "bvh4.h"
+#include "scene/material_store.h"
 #include "util/color_bounds.h"
 #include "geometry/transform_inline.h"
 #include "scene/scene_budget.h"
@@ -35,8 +36,8 @@ typedef struct hr_object {
     hr_xform_error_terms m_error; /* hri_xform_error_terms_of(m) */
     /* What tracing does not read. */
     const char *module_path;
-    hr_material material;     /* `parameters` points at params_copy */
-    double *params_copy;
+    const hr_material *material; /* the scene's copy (hri_material_store), shared
+                                    by every object of the same material */
     int32_t top_level;        /* 0 once consumed by a composite */
     int32_t composite_depth;  /* 0 for a leaf; 1 + the deepest child's */
     int32_t bounded;
@@ -54,13 +55,27 @@ typedef struct hr_object {
     hr_param *params;          /* as created, for introspection (hri_params_keep) */
 } hr_object;
 
+/* The memory objects are carved from, one slab for many objects (the
+ * scene's list, newest first): a slab of cap objects, each on
+ * HR_OBJECT_ALIGN, after this header (rounded up to it). One allocation
+ * every few thousand objects, where an aligned allocation each cost about
+ * 660 instructions and its padding (lib/scene/scene_objects.c). */
+typedef struct hri_object_slab {
+    struct hri_object_slab *next;
+    size_t used, cap;
+} hri_object_slab;
+
 struct hr_scene {
     hr_context *ctx;
     hr_object **objects;
     int64_t object_count, object_cap;
+    hri_object_slab *slabs;     /* where the objects live */
+    hri_material_store materials; /* what their materials point at */
     hr_light *lights;
     int32_t light_count, light_cap;
     hr_scene_globals globals;
+    hr_material default_material; /* hr_material_default's, made once: an object
+                                     added without a material copies it */
     int32_t committed;
     uint32_t effects;           /* HR_EFFECT_* the scene calls for */
     uint32_t bounce_effects;    /* REFLECTION/REFRACTION the materials call for
@@ -79,7 +94,9 @@ struct hr_scene {
  * hr_material_validate is the public door, which first reads only the bytes
  * the caller declared. */
 hr_status hri_material_check(hr_context *ctx, const hr_material *m);
-/* Destroys the object's shape and frees what it owns (scene_objects.c). */
+/* Destroys the object's shape and frees what it owns (scene_objects.c);
+ * its own memory is its slab's, freed with the scene (hri_object_slabs_free). */
 void hri_object_free(hr_object *o);
+void hri_object_slabs_free(hri_object_slab *slab);
 
 #endif

@@ -33,7 +33,7 @@ HR_API hr_status hr_scene_object_info(const hr_scene *s, int64_t index, hr_objec
     info.top_level = o->top_level;
     info.shape = o->cls->name;
     info.module_path = o->module_path;
-    info.material = o->material;
+    info.material = *o->material;
     memcpy(info.transform, o->m, sizeof info.transform);
     memcpy(info.inverse, o->inv, sizeof info.inverse);
     info.world_bounds = o->world_bounds;

@@ -18,15 +18,40 @@
 #include "geometry/transform_inline.h"
 #include "geometry/vec.h"
 
+/* Objects a slab holds: the first slab 16, each next one twice the last,
+ * up to this many. */
+#define SLAB_MOST_OBJECTS 4096u
+#define OBJECT_SIZE ((sizeof(hr_object) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN)
+#define SLAB_HEADER ((sizeof(hri_object_slab) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN)
+
 /* A zeroed object on cache lines of its own (HR_OBJECT_ALIGN), so that its
- * fields tracing reads first share the fewest lines (hr_object); free()
- * releases it. */
-static hr_object *object_alloc(void)
+ * fields tracing reads first share the fewest lines (hr_object), from the
+ * scene's newest slab, or a new one when that is full. */
+static hr_object *object_alloc(hr_scene *s)
 {
-    const size_t size = (sizeof(hr_object) + HR_OBJECT_ALIGN - 1) / HR_OBJECT_ALIGN * HR_OBJECT_ALIGN;
-    hr_object *o = aligned_alloc(HR_OBJECT_ALIGN, size);
-    if (o) memset(o, 0, size);
+    hri_object_slab *slab = s->slabs;
+    if (!slab || slab->used == slab->cap) {
+        size_t cap = slab ? 2 * slab->cap : 16;
+        if (cap > SLAB_MOST_OBJECTS) cap = SLAB_MOST_OBJECTS;
+        hri_object_slab *fresh = aligned_alloc(HR_OBJECT_ALIGN, SLAB_HEADER + cap * OBJECT_SIZE);
+        if (!fresh) return NULL;
+        fresh->next = slab;
+        fresh->used = 0;
+        fresh->cap = cap;
+        s->slabs = slab = fresh;
+    }
+    hr_object *o = (hr_object *)(void *)((char *)slab + SLAB_HEADER + slab->used++ * OBJECT_SIZE);
+    memset(o, 0, OBJECT_SIZE);
     return o;
+}
+
+/* Gives back the object object_alloc gave last (an add that failed); were
+ * it not the last, its slot would stay unused until the scene is freed. */
+static void object_unalloc(hr_scene *s, hr_object *o)
+{
+    hri_object_free(o);
+    hri_object_slab *slab = s->slabs;
+    if ((char *)o == (char *)slab + SLAB_HEADER + (slab->used - 1) * OBJECT_SIZE) slab->used--;
 }
 
 void hri_object_free(hr_object *o)
@@ -34,9 +59,16 @@ void hri_object_free(hr_object *o)
     if (!o) return;
     if (o->shape) o->cls->destroy(o->shape);
     free(o->texture);
-    free(o->params_copy);
     free(o->params);
-    free(o);
+}
+
+void hri_object_slabs_free(hri_object_slab *slab)
+{
+    while (slab) {
+        hri_object_slab *next = slab->next;
+        free(slab);
+        slab = next;
+    }
 }
 
 static int is_identity(const double m[16])
@@ -61,13 +93,13 @@ static int transform_bounds(const double m[16], const hr_bounds *in, hr_bounds *
         hr_vec3 p = v3(c & 1 ? in->hi.x : in->lo.x, c & 2 ? in->hi.y : in->lo.y,
                        c & 4 ? in->hi.z : in->lo.z);
         hr_vec3 q = hr_transform_point(m, p);
-        out->lo = v3(fmin(out->lo.x, q.x), fmin(out->lo.y, q.y), fmin(out->lo.z, q.z));
-        out->hi = v3(fmax(out->hi.x, q.x), fmax(out->hi.y, q.y), fmax(out->hi.z, q.z));
+        out->lo = v3(v_fmin(out->lo.x, q.x), v_fmin(out->lo.y, q.y), v_fmin(out->lo.z, q.z));
+        out->hi = v3(v_fmax(out->hi.x, q.x), v_fmax(out->hi.y, q.y), v_fmax(out->hi.z, q.z));
     }
     /* Widen by the rounding of the corner transform, so a box never clips
      * its object (a relative 4 ulps of the largest magnitude involved). */
-    double mag = fmax(fmax(fabs(out->lo.x), fabs(out->hi.x)),
-                      fmax(fmax(fabs(out->lo.y), fabs(out->hi.y)), fmax(fabs(out->lo.z), fabs(out->hi.z))));
+    double mag = v_fmax(v_fmax(fabs(out->lo.x), fabs(out->hi.x)),
+                      v_fmax(v_fmax(fabs(out->lo.y), fabs(out->hi.y)), v_fmax(fabs(out->lo.z), fabs(out->hi.z))));
     double pad = 4.0 * DBL_EPSILON * mag;
     out->lo = v3(out->lo.x - pad, out->lo.y - pad, out->lo.z - pad);
     out->hi = v3(out->hi.x + pad, out->hi.y + pad, out->hi.z + pad);
@@ -84,11 +116,11 @@ static void tighten_bounds(hr_object *o)
     o->cls->transformed_bounds(o->shape, o->m, &t);
     if (!v3_is_finite(t.lo) || !v3_is_finite(t.hi)) return;
     hr_bounds *w = &o->world_bounds;
-    double mag = fmax(fmax(fabs(t.lo.x), fabs(t.hi.x)),
-                      fmax(fmax(fabs(t.lo.y), fabs(t.hi.y)), fmax(fabs(t.lo.z), fabs(t.hi.z))));
+    double mag = v_fmax(v_fmax(fabs(t.lo.x), fabs(t.hi.x)),
+                      v_fmax(v_fmax(fabs(t.lo.y), fabs(t.hi.y)), v_fmax(fabs(t.lo.z), fabs(t.hi.z))));
     double pad = 4.0 * DBL_EPSILON * mag;
-    hr_bounds n = {v3(fmax(w->lo.x, t.lo.x - pad), fmax(w->lo.y, t.lo.y - pad), fmax(w->lo.z, t.lo.z - pad)),
-                   v3(fmin(w->hi.x, t.hi.x + pad), fmin(w->hi.y, t.hi.y + pad), fmin(w->hi.z, t.hi.z + pad))};
+    hr_bounds n = {v3(v_fmax(w->lo.x, t.lo.x - pad), v_fmax(w->lo.y, t.lo.y - pad), v_fmax(w->lo.z, t.lo.z - pad)),
+                   v3(v_fmin(w->hi.x, t.hi.x + pad), v_fmin(w->hi.y, t.hi.y + pad), v_fmin(w->hi.z, t.hi.z + pad))};
     if (!(n.lo.x <= n.hi.x && n.lo.y <= n.hi.y && n.lo.z <= n.hi.z)) return;
     *w = n;
 }
@@ -108,21 +140,20 @@ static hr_status grow_objects(hr_scene *s)
 static hr_status set_material_and_transform(hr_scene *s, hr_object *o, const hr_object_desc *d)
 {
     hr_context *ctx = s->ctx;
-    hr_material_default(&o->material);
+    /* The default material is valid as made (it passes hri_material_check,
+     * test_object_materials): only a given one is checked. */
+    hr_material m = s->default_material;
     if (d->material) {
         if (d->material->struct_size < sizeof(uint32_t))
             return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "material: struct_size is not set");
-        HR_SIZED_COPY_IN(&o->material, d->material);
+        HR_SIZED_COPY_IN(&m, d->material);
+        hr_status st = hri_material_check(ctx, &m);
+        if (st) return st;
     }
-    hr_status st = hri_material_check(ctx, &o->material);
-    if (st) return st;
-    if (o->material.parameter_count > 0) {
-        o->params_copy = malloc((size_t)o->material.parameter_count * sizeof(double));
-        if (!o->params_copy) return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
-        memcpy(o->params_copy, o->material.parameters,
-               (size_t)o->material.parameter_count * sizeof(double));
-    }
-    o->material.parameters = o->params_copy;
+    /* Kept once a scene (its parameters with it): objects of the same
+     * material share the copy. */
+    if (!(o->material = hri_material_store_add(&s->materials, &m)))
+        return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
 
     hr_transform t;
     hr_transform_identity(&t);
@@ -200,7 +231,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     const uint64_t object_bytes = sizeof(hr_object) + 64;
     st = hri_scene_budget_charge(ctx, &s->budget, &s->budget.objects, object_bytes, OBJECT_WHAT, index, cls->name);
     if (st) return st;
-    hr_object *o = object_alloc();
+    hr_object *o = object_alloc(s);
     if (!o) {
         s->budget.objects -= object_bytes;
         return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
@@ -210,7 +241,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
     o->index = s->object_count;
     o->top_level = 1;
     if ((st = set_material_and_transform(s, o, &desc))) {
-        hri_object_free(o);
+        object_unalloc(s, o);
         s->budget.objects -= object_bytes;
         return st;
     }
@@ -230,7 +261,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         if (!full || !children) {
             free(full);
             free(children);
-            hri_object_free(o);
+            object_unalloc(s, o);
             s->budget.objects -= object_bytes;
             return hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
         }
@@ -264,7 +295,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         }
     }
     if (st == HR_OK)
-        st = hri_texture_bind(s->ctx, &o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
+        st = hri_texture_bind(s->ctx, o->material, o->cls, o->shape, o->module_path, &s->pixmaps, &o->texture);
     uint64_t kept_bytes = 0;
     if (st == HR_OK && n > 0) {
         o->params = hri_params_keep(full, n, &kept_bytes);
@@ -286,7 +317,7 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         free(children);
     }
     if (st) {
-        hri_object_free(o);
+        object_unalloc(s, o);
         s->budget.objects -= object_bytes + kept_bytes;
         return st;
     }

@@ -228,7 +228,7 @@ static __attribute__((noinline)) const hr_material *
 shading_material(hr_trace_ctx *tc, const hr_object *o, const hr_hit *h, const hr_vec3 *footprint,
                  uint32_t flags, hr_material *buf)
 {
-    *buf = o->material;
+    *buf = *o->material;
     if (o->texture && (flags & (HR_MAT_AMBIENT | HR_MAT_DIFFUSE))) {
         hr_color t = footprint ? hri_texture_color_filtered(o->texture, o->cls, o->shape, h, footprint[0],
                                                             footprint[1])
@@ -264,7 +264,7 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
     hr_hit h;
     if (!hri_scene_trace_first(tc, ray, 0.0, INFINITY, &h)) return s->globals.background;
     const hr_object *o = s->objects[h.object];
-    const hr_material *mat = &o->material;
+    const hr_material *mat = o->material;
     uint32_t flags = o->mat_flags;
     if (tc->force_all_effects)
         flags |= HR_MAT_EMITS | HR_MAT_AMBIENT | HR_MAT_DIFFUSE | HR_MAT_SPECULAR;

@@ -56,7 +56,10 @@ hr_status mesh_bvh_build(mesh *m)
         goto done;
     }
     for (uint32_t t = 0; t < n; t++) triangle_box(m, t, &boxes[t]);
-    const accel_bvh4_options options = {MESH_BVH_MAX_LEAF, TRAVERSAL_COST, host->alloc, host->free};
+    /* One thread: the host charges what a shape allocates to its scene
+     * through the creating thread (hr_host.alloc), which a thread of the
+     * build would bypass. */
+    const accel_bvh4_options options = {MESH_BVH_MAX_LEAF, TRAVERSAL_COST, host->alloc, host->free, 1};
     /* The count was checked against ACCEL_BVH4_MAX_ITEMS by the caller:
      * only memory can fail. */
     if (accel_bvh4_build(&m->bvh, boxes, (uint32_t)n, &options) != 0) {

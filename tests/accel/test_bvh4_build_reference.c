@@ -366,10 +366,14 @@ int main(void)
         differing += kind_differing;
         fprintf(stderr, "%s: %ld differing\n", kind_names[kind], kind_differing);
     }
-    /* Large random sets, where most of the build's time is. */
-    for (int rep = 0; rep < 3; rep++) {
-        make_boxes(rep == 2 ? 3 : 0, boxes, N);
-        const accel_bvh4_options o = {.max_leaf = rep ? 4u : 1u, .traversal_cost = 1.0};
+    /* Large random sets, where most of the build's time is, built on one
+     * thread and on several (subtrees of ACCEL_BVH4_PARALLEL_ITEMS items or
+     * more side by side, two to four of them, an odd share too): the same
+     * tree either way. */
+    for (int rep = 0; rep < 6; rep++) {
+        make_boxes(rep % 3 == 2 ? 3 : 0, boxes, N);
+        const accel_bvh4_options o = {.max_leaf = rep % 3 ? 4u : 1u, .traversal_cost = 1.0,
+                                      .threads = rep < 3 ? 1u : (uint32_t)rep - 1u};
         accel_bvh4 got, want;
         CHECK(accel_bvh4_build(&got, boxes, N, &o) == 0);
         ref_build(&want, boxes, N, o.max_leaf, 1.0);

@@ -4,8 +4,10 @@
  * Random entries of every magnitude, with signed zeros (0 + -0 is +0, so the
  * leading 0 matters), exact small integers (ties in rounding) and infinities
  * (inf * 0 = NaN): every entry must be the same double, NaN where the loop
- * gives NaN. Then the checked steps: a scale or rotation that over- or
- * underflows is refused and leaves the pair as it was. */
+ * gives NaN. Translate and scale, which skip the product for a finite
+ * pair, against it the same way. Then the checked steps: a scale or
+ * rotation that over- or underflows is refused and leaves the pair as it
+ * was. */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -68,6 +70,53 @@ int main(void)
     }
     fprintf(stderr, "%ld product entries compared with the triple loop, %ld differing\n", entries,
             differing);
+
+    /* Translate and scale, which skip the product for a finite pair
+     * (lib/geometry/transform.c), against it: the same pair bit for bit,
+     * -0 entries and overflow included, and the same refusals. Half the
+     * pairs are finite (the fast steps), half may hold infinities. */
+    long steps = 0, step_differing = 0;
+    for (int trial = 0; trial < 40000; trial++) {
+        hr_transform t;
+        for (int i = 0; i < 16; i++) {
+            t.m[i] = entry(), t.inv[i] = entry();
+            if (trial % 2) t.m[i] = isfinite(t.m[i]) ? t.m[i] : -0.0, t.inv[i] = isfinite(t.inv[i]) ? t.inv[i] : 0.0;
+        }
+        double v[3];
+        for (int a = 0; a < 3; a++) {
+            v[a] = entry();
+            if (trial % 4 < 2 && !isfinite(v[a])) v[a] = -0.0;
+        }
+        double step[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, step_inv[16];
+        memcpy(step_inv, step, sizeof step);
+        double m[16], inv[16];
+        hr_transform got = t;
+        int same = 1;
+        if (trial % 3) {
+            step[3] = v[0], step[7] = v[1], step[11] = v[2];
+            step_inv[3] = -v[0], step_inv[7] = -v[1], step_inv[11] = -v[2];
+            reference_product(m, t.m, step);
+            reference_product(inv, step_inv, t.inv);
+            hr_transform_translate(&got, v[0], v[1], v[2]);
+        } else {
+            for (int a = 0; a < 3; a++) {
+                if (v[a] == 0 || !isfinite(v[a])) v[a] = 0.75; /* refused before any product */
+                step[5 * a] = v[a], step_inv[5 * a] = 1.0 / v[a];
+            }
+            reference_product(m, t.m, step);
+            reference_product(inv, step_inv, t.inv);
+            int finite = isfinite(step_inv[0]) && isfinite(step_inv[5]) && isfinite(step_inv[10]);
+            for (int i = 0; i < 16; i++) finite = finite && isfinite(m[i]) && isfinite(inv[i]);
+            const hr_status st = hr_transform_scale(&got, v[0], v[1], v[2]);
+            same = st == (finite ? HR_OK : HR_ERROR_NUMERIC);
+            if (!finite) memcpy(m, t.m, sizeof m), memcpy(inv, t.inv, sizeof inv);
+        }
+        for (int i = 0; i < 16; i++) same = same && same_double(got.m[i], m[i]) && same_double(got.inv[i], inv[i]);
+        CHECK_MSG(same, "step trial %d (%s) differs from the product", trial, trial % 3 ? "translate" : "scale");
+        steps++, step_differing += !same;
+    }
+    fprintf(stderr, "%ld translate and scale steps compared with the product, %ld differing\n", steps,
+            step_differing);
 
     /* Scale 1e-200 twice underflows M and overflows M^-1: refused, unchanged. */
     hr_transform t, before;
