@@ -37,6 +37,7 @@
 #include "trace/cook_torrance.h"
 #include "scene/material_analysis.h"
 #include "trace/ray_diff.h"
+#include "trace/spawn.h"
 #include "trace/trace_context.h"
 #include "texture/texture.h"
 #include "geometry/vec.h"
@@ -54,12 +55,11 @@ static hr_color cook_torrance_term(const hr_material *mat, hr_vec3 m, hr_vec3 sd
  * specular term, so each caller compiles to a loop of its own and Phong's
  * is the same code it was before Cook-Torrance. */
 static inline __attribute__((always_inline)) hr_color
-light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const hr_hit *h, hr_vec3 m,
+light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, hr_vec3 origin, hr_vec3 m,
            hr_vec3 to_eye, uint32_t flags, const int cook)
 {
     const hr_scene *s = tc->scene;
     hr_color sum = rgb(0, 0, 0);
-    hr_vec3 origin = hr_hit_spawn_origin(h, m);
     for (int32_t i = 0; i < s->light_count; i++) {
         const hr_light *L = &s->lights[i];
         if ((flags & HR_MAT_INERT_LIGHT) && !tc->force_all_effects && hri_light_adds_nothing(L, mat, flags))
@@ -101,17 +101,17 @@ light_loop(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const h
 /* In shade's own code (both its copies), as the light loop of nearly every
  * hit. */
 static inline __attribute__((always_inline)) hr_color
-direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, const hr_hit *h, hr_vec3 m,
+direct_light(hr_trace_ctx *tc, const hr_object *o, const hr_material *mat, hr_vec3 origin, hr_vec3 m,
              hr_vec3 to_eye, uint32_t flags)
 {
-    return light_loop(tc, o, mat, h, m, to_eye, flags, 0);
+    return light_loop(tc, o, mat, origin, m, to_eye, flags, 0);
 }
 
 static __attribute__((noinline)) hr_color direct_light_cook_torrance(hr_trace_ctx *tc, const hr_object *o,
-                                                                     const hr_material *mat, const hr_hit *h,
+                                                                     const hr_material *mat, hr_vec3 origin,
                                                                      hr_vec3 m, hr_vec3 to_eye, uint32_t flags)
 {
-    return light_loop(tc, o, mat, h, m, to_eye, flags, 1);
+    return light_loop(tc, o, mat, origin, m, to_eye, flags, 1);
 }
 
 /* What a ray carries down its path: its weight, the cut-off's allowance
@@ -290,10 +290,17 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
         c = rgb_add(c, rgb_mul(mat->ambient, s->globals.global_ambient));
         tc->effects_ran |= HR_EFFECT_AMBIENT;
     }
-    if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0)
+    /* Where shadow rays and the reflected ray start (both leave on m's
+     * side): worked out once, for the first of them that is cast. */
+    hr_vec3 origin;
+    int have_origin = 0;
+    if ((flags & (HR_MAT_DIFFUSE | HR_MAT_SPECULAR)) && s->light_count > 0) {
+        origin = hri_hit_spawn_origin(&h, m);
+        have_origin = 1;
         c = rgb_add(c, flags & HR_MAT_COOK_TORRANCE
-                           ? direct_light_cook_torrance(tc, o, mat, &h, m, to_eye, flags)
-                           : direct_light(tc, o, mat, &h, m, to_eye, flags));
+                           ? direct_light_cook_torrance(tc, o, mat, origin, m, to_eye, flags)
+                           : direct_light(tc, o, mat, origin, m, to_eye, flags));
+    }
     if (depth >= max_depth) return c;
 
     /* Under HR_EFFECTS_ALL every bounce is traced, weighted by what the
@@ -317,7 +324,9 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
     int have_dm = 0;
     path reflected = {p.weight * reflect_weight, allowance, rays};
     if ((flags & HR_MAT_REFLECTS) && worth_tracing(tc, reflected, forced || reflect_weight == 0.0, budgeted)) {
-        hr_ray r = {hr_hit_spawn_origin(&h, m), v3_madd(dir, m, 2.0 * cos_i)};
+        if (!have_origin) origin = hri_hit_spawn_origin(&h, m);
+        have_origin = 1;
+        hr_ray r = {origin, v3_madd(dir, m, 2.0 * cos_i)};
         tc->rays_reflected++;
         tc->effects_ran |= HR_EFFECT_REFLECTION;
         hr_color seen;
@@ -343,11 +352,13 @@ shade_body(hr_trace_ctx *tc, const hr_ray *ray, const hr_ray_diff *rd, int32_t d
         double cos_t2 = 1.0 - ratio * ratio * (1.0 - cos_i * cos_i);
         hr_ray t;
         if (cos_t2 < 0.0) { /* total internal reflection */
-            t.origin = hr_hit_spawn_origin(&h, m);
+            if (!have_origin) origin = hri_hit_spawn_origin(&h, m);
+            have_origin = 1;
+            t.origin = origin;
             t.dir = v3_madd(dir, m, 2.0 * cos_i);
             tc->rays_reflected++;
         } else {
-            t.origin = hr_hit_spawn_origin(&h, v3_neg(m));
+            t.origin = hri_hit_spawn_origin(&h, v3_neg(m));
             t.dir = v3_add(v3_scale(dir, ratio), v3_scale(m, ratio * cos_i - sqrt(cos_t2)));
             tc->rays_refracted++;
         }
