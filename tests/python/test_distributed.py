@@ -202,6 +202,31 @@ def test_distributed_report(client):
     assert any("balance" in line for line in report.lines())
 
 
+def test_distributed_slow_workers_band_is_split_and_handed_on(client, tmp_path):
+    """One worker made slow (it sleeps 0.3 s before each chunk of rows):
+    once the other has nothing left, it takes the rows the slow one has
+    not begun, of the band waiting and of the band being rendered, and the
+    frame is the single render's bits."""
+    from hitray.distributed._band import set_test_delay
+
+    scene, camera = two_spheres()
+    size, options = (64, 256), {"spp": 4, "adaptive": 0.05}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    client.wait_for_workers(2, timeout=120)
+    slow = sorted(client.scheduler_info()["workers"])[0]
+    client.run(set_test_delay, 0.3, workers=[slow])
+    report = hd.Report()
+    try:
+        there = hd.render(scene, camera, size, client=client, progress=False, report=report, **options)
+    finally:
+        client.run(set_test_delay, 0.0, workers=[slow])
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert report.pixels == 64 * 256  # every row rendered once: the rows given up were not rendered
+    assert report.workers[slow].split >= 1, report.lines()
+    fast = next(w for w in report.workers if w != slow)
+    assert report.workers[slow].pixels < report.workers[fast].pixels / 4, report.lines()
+
+
 def test_distributed_band_on_all_of_a_workers_threads(tmp_path):
     """A worker of 2 Dask threads renders a band on both: one band at a
     time, 2 render threads each (the report says so), same bits."""
