@@ -11,6 +11,7 @@ scene stays on the worker for the whole run.
 
 from __future__ import annotations
 
+import collections
 import threading
 import time
 from typing import Any, Dict, Optional, Set, Tuple
@@ -20,6 +21,7 @@ import numpy as np
 from ..render import render as _render_here
 from ._client import dask_distributed, local_cores
 from ._pack import ScenePack
+from ._shared import open_frame
 
 __all__ = ["BandWorker", "CHUNK_SECONDS", "NEED_SCENE"]
 
@@ -27,13 +29,32 @@ __all__ = ["BandWorker", "CHUNK_SECONDS", "NEED_SCENE"]
 # chunk is one hitray.render of a window, about 0.04 ms of fixed cost, so
 # chunks of a few hundredths of a second cost nothing measurable); rows not
 # yet begun can be taken from a band at any chunk's end.
-CHUNK_SECONDS = 0.025
+CHUNK_SECONDS = 0.1
 # Rows expected to take less than this are not worth a split (the split's
 # round trip and the new band's call cost about 2 ms).
 MIN_SPLIT_SECONDS = 0.02
 # What `render` answers when the worker lacks the scene: the client sends
 # it (`ship`) and asks again.
 NEED_SCENE = "need-scene"
+
+# Scenes this worker process built lately, by their content (ScenePack.key):
+# the next run of the same scene (a render after a render) finds it built.
+_RECENT: "collections.OrderedDict[str, ScenePack]" = collections.OrderedDict()
+_RECENT_KEPT = 2
+_RECENT_LOCK = threading.Lock()
+
+
+def _recent(pack: ScenePack) -> ScenePack:
+    """The pack of the same content built here lately, else `pack` (kept)."""
+    with _RECENT_LOCK:
+        known = _RECENT.get(pack.key)
+        if known is None:
+            known = _RECENT[pack.key] = pack
+        _RECENT.move_to_end(pack.key)
+        while len(_RECENT) > _RECENT_KEPT:
+            _RECENT.popitem(last=False)
+        return known
+
 
 # Seconds a worker sleeps before each chunk: a test's way to make one worker
 # slow (set through Client.run). Zero in any real run.
@@ -89,7 +110,7 @@ class BandWorker:
     def ship(self, key: str, pack: ScenePack) -> None:
         """Keep `pack` under `key` (a scene the scatter did not reach: a
         worker that joined later)."""
-        self._packs[key] = pack
+        self._packs[key] = _recent(pack)
 
     def drop(self, key: str) -> None:
         self._packs.pop(key, None)
@@ -100,13 +121,14 @@ class BandWorker:
             w = _worker()[0]
             found = None if w is None else w.data.get(key) if key in w.data else None
             if isinstance(found, ScenePack):
-                pack = self._packs[key] = found
+                pack = self._packs[key] = _recent(found)
         return pack
 
     def render(self, band: int, key: str, camera: Any, size: Tuple[int, int], options: Dict[str, Any],
-               window: Tuple[int, int, int, int], threads: Optional[int]) -> Any:
+               window: Tuple[int, int, int, int], threads: Optional[int], shared: Optional[str] = None) -> Any:
         """Render the rows of `window` (the band numbered `band`) until its
-        end or a split's row; returns (pixels of the rows rendered, rays
+        end or a split's row; returns (pixels of the rows rendered, or None
+        when they were written to the frame's shared memory `shared`; rays
         (primary, shadow, reflected, refracted, effects), worker address,
         threads, the worker's clock when it began and ended, the rows
         rendered), or NEED_SCENE."""
@@ -122,7 +144,8 @@ class BandWorker:
             if self._stopped:
                 stop = y0
             state = self._bands[band] = _Progress(y0, stop)
-        pixels = np.empty((h, w, 3), dtype=np.float32)
+        frame = open_frame(shared, size)
+        pixels = np.empty((h, w, 3), dtype=np.float32) if frame is None else frame[y0:y0 + h, x:x + w]
         rays = [0, 0, 0, 0]
         effects: Set[str] = set()
         rows = max(1, h // 8)
@@ -156,8 +179,9 @@ class BandWorker:
                 del self._bands[band]
                 self._finished.add(band)
         ended = time.time()
-        return (pixels[:y - y0], (rays[0], rays[1], rays[2], rays[3], tuple(sorted(effects))), where, threads,
-                began, ended, y - y0)
+        sent = None if frame is not None else pixels[:y - y0]
+        return (sent, (rays[0], rays[1], rays[2], rays[3], tuple(sorted(effects))), where, threads, began, ended,
+                y - y0)
 
     async def split(self, band: int, start: int, share: float = 0.5) -> Optional[int]:
         """Give up the last `share` of the rows of band `band` (which begins

@@ -31,6 +31,7 @@ from ..scene import Scene
 from ._client import connect, dask_distributed, local_cores
 from ._band import NEED_SCENE, BandWorker
 from ._pack import ScenePack
+from ._shared import FrameBuffer
 from ._plan import Band, Planner
 from ._report import Report, WorkerReport
 
@@ -98,7 +99,7 @@ def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], option
 
 
 def row_costs(scene: Scene, camera: Camera, size: Tuple[int, int], options: Dict[str, Any],
-              width: int = 240, bands: int = 32) -> List[float]:
+              width: int = 160, bands: int = 16) -> List[float]:
     """Each row's relative cost in a frame of `size`: the rays cast by the
     rows of a small render of it (about `width` pixels wide, 1 sample per
     pixel, one thread), in `bands` windows. Rays, not seconds: the same
@@ -153,9 +154,12 @@ class _Frame:
     """One frame on its way: its pixels as they come back."""
 
     def __init__(self, index: int, path: Optional[str], size: Tuple[int, int], pack_key: str,
-                 camera: Camera) -> None:
+                 camera: Camera, shared: bool = False) -> None:
         self.index, self.path, self.pack_key, self.camera = index, path, pack_key, camera
-        self.pixels = np.empty((size[1], size[0], 3), dtype=np.float32)
+        # Workers on this machine write their rows straight into it.
+        self.buffer = FrameBuffer.make(size) if shared else None
+        pixels = None if self.buffer is None else self.buffer.pixels
+        self.pixels: np.ndarray = np.empty((size[1], size[0], 3), dtype=np.float32) if pixels is None else pixels
         self.rays = [0, 0, 0, 0]
         self.effects: Set[str] = set()
         self.workers: Dict[str, int] = {}
@@ -166,20 +170,32 @@ class _Frame:
     def place(self, window: Window, result: Tuple[Any, ...]) -> None:
         pixels, rays, where, threads = result[:4]
         x, y, w, h = window
-        if pixels.shape != (h, w, 3):
+        if pixels is None:  # written into the shared frame
+            if self.buffer is None:
+                raise RuntimeError("hitray.distributed: a worker sent no pixels for a frame not shared")
+        elif pixels.shape != (h, w, 3):
             raise RuntimeError(f"hitray.distributed: a worker returned {pixels.shape} pixels for the "
                                f"{w}x{h} window at ({x}, {y})")
-        self.pixels[y:y + h, x:x + w] = pixels
+        else:
+            self.pixels[y:y + h, x:x + w] = pixels
         for i in range(4):
             self.rays[i] += rays[i]
         self.effects.update(rays[4])
         self.workers[where] = max(self.workers.get(where, 0), threads)
 
     def image(self) -> Image:
+        """The frame's Image (its pixels copied: a shared frame is released)."""
         image = Image(self.pixels)
+        self.close()
         image._stats = RenderStats(sum(self.workers.values()), self.rays[0], self.rays[1], self.rays[2],
                                    self.rays[3], time.monotonic() - self.started, frozenset(self.effects))
         return image
+
+    def close(self) -> None:
+        if self.buffer is not None:
+            self.pixels = np.empty((0, 0, 3), dtype=np.float32)
+            self.buffer.close()
+            self.buffer = None
 
 
 class _Bar:
@@ -260,8 +276,9 @@ class _Run:
     # Bands held by a worker at once.
     DEPTH = 2
     # How often, waiting for bands, the client asks the scheduler which
-    # workers there are (seconds).
-    CHECK_WORKERS = 0.5
+    # workers there are (seconds; a lost worker's actor also says so as soon
+    # as a call to it fails).
+    CHECK_WORKERS = 1.0
 
     def __init__(self, client: Any, size: Tuple[int, int], options: Dict[str, Any], planner: Planner,
                  threads: Optional[int], bar: _Bar, frame_at: Callable[[int], Tuple[int, Optional[str], Scene,
@@ -317,7 +334,7 @@ class _Run:
                                                               pack)
             self.shipped.move_to_end(pack.key)
             shipped.users += 1
-            frame = self.frames[n] = _Frame(index, path, self.size, pack.key, camera)
+            frame = self.frames[n] = _Frame(index, path, self.size, pack.key, camera, shared=self.sized)
             frame.scene, frame.number = scene, n
         return frame
 
@@ -415,6 +432,14 @@ class _Run:
             result = e
         self.done.put((what, result))
 
+    @staticmethod
+    async def _release_after(answer: Any, future: Any) -> None:
+        try:
+            await answer
+        except Exception:  # noqa: BLE001 - a worker gone: its actor with it
+            pass
+        future.release()
+
     def _call(self, worker: str, band: Optional[Band] = None) -> bool:
         """Send the worker's actor its next band (or `band`)."""
         if band is None:
@@ -430,7 +455,8 @@ class _Run:
         worker, band = self.calls[n]
         frame = self._frame(band.frame)
         future = self.actors[worker].render(n, self.shipped[frame.pack_key].future.key, frame.camera, self.size,
-                                            self.options, band.window, self.threads)
+                                            self.options, band.window, self.threads,
+                                            None if frame.buffer is None else frame.buffer.name)
         self.client.loop.add_callback(self._wait, ("band", n, worker), future)
 
     def _steal(self, worker: str) -> None:
@@ -580,12 +606,22 @@ class _Run:
                 del self.by_scene[scene_id]
 
     def close(self) -> None:
-        """Cancel every band still out (after Ctrl-C or a failure) and let
-        the workers drop the scenes."""
+        """Cancel every band still out (after Ctrl-C or a failure), let
+        the workers drop the scenes and the actors, free the frames' shared
+        memory."""
         if self.out:
             self.client.cancel(list(self.out))
         self.out.clear()
         self.by_band.clear()
+        for worker, actor in self.actors.items():
+            # Its band ends at the chunk under way; the actor is dropped once
+            # it has heard that (not waited for here).
+            self.client.loop.add_callback(self._release_after, actor.stop(), self.actor_futures[worker])
+        self.actors.clear()
+        self.actor_futures.clear()
+        self.calls.clear()
+        for frame in self.frames.values():
+            frame.close()
         for shipped in self.shipped.values():
             shipped.future.release()
         self.shipped.clear()
