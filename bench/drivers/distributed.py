@@ -140,7 +140,8 @@ def per_band(client, scene, camera, size, spp, count):
     after the other to each worker in turn, (1) as a Dask task (submit,
     schedule, run, report, fetch: how every band went before the actors,
     and how fixed tiles go), (2) as a call to the worker's actor (how bands
-    go now). Returns {way: (CPU seconds per band, wall seconds per band)}."""
+    go now). Returns {way: (CPU seconds per band, of which the workers',
+    wall seconds per band)}."""
     workers = sorted(client.scheduler_info()["workers"])
     pack = client.scatter(hd.ScenePack(scene), broadcast=True, hash=False)
     # The same cluster through a client of Dask's default, which sends an
@@ -171,13 +172,15 @@ def per_band(client, scene, camera, size, spp, count):
             fn(i)
         idle0, cpu0, t0 = worker_cpu(client), time.process_time(), time.perf_counter()
         time.sleep(1.0)
-        idle = (worker_cpu(client) - idle0 + time.process_time() - cpu0) / (time.perf_counter() - t0)
+        t = time.perf_counter() - t0
+        idle_workers, idle_here = (worker_cpu(client) - idle0) / t, (time.process_time() - cpu0) / t
         before, cpu0, t0 = worker_cpu(client), time.process_time(), time.perf_counter()
         for i in range(count):
             fn(i)
         wall = time.perf_counter() - t0
-        cpu = worker_cpu(client) - before + time.process_time() - cpu0 - idle * wall
-        out[way] = (cpu / count, wall / count)
+        workers_cpu = worker_cpu(client) - before - idle_workers * wall
+        cpu = workers_cpu + time.process_time() - cpu0 - idle_here * wall
+        out[way] = (cpu / count, workers_cpu / count, wall / count)
     for future in futures.values():
         future.release()
     relayed.close()
@@ -301,7 +304,8 @@ def measure(a):
         bands = per_band(client, scene, camera, size, a.spp, 200)
         print(f"Per band, beyond its rendering (2 workers x 1 thread, 200 bands of one pixel one after the other, "
               f"all processes' CPU less their idle rate): " + ", ".join(
-                  f"as {way} {1e3 * cpu:.2f} core-ms ({1e3 * wall:.2f} ms wall)" for way, (cpu, wall) in bands.items())
+                  f"as {way} {1e3 * cpu:.2f} core-ms ({1e3 * on_workers:.2f} of them the worker's; "
+                  f"{1e3 * wall:.2f} ms wall)" for way, (cpu, on_workers, wall) in bands.items())
               + "\n")
         if a.skip_model:
             return
@@ -309,7 +313,6 @@ def measure(a):
         # The model's costs.
         one = min(cpu_of(lambda: hitray.render(scene, camera, size, spp=a.spp, threads=1, progress=False))
                   for _ in range(2))
-        cpu2, r2 = best["2 workers x 1 thread"]["cpu"]
         prepass, _ = timed(lambda: row_costs(scene, camera, size, {"spp": a.spp}))
         blob = np.zeros((size[1], size[0], 3), dtype=np.float32)
         back, _ = timed(lambda: np.copyto(blob, pickle.loads(pickle.dumps(blob, protocol=5))))
@@ -327,15 +330,15 @@ def measure(a):
         time.sleep(2.0)
         worker_idle = (worker_cpu(client) - before) / 2.0 / 2
         hub_pixel = back / pixels
+        call = bands["an actor call straight to the worker"]
         costs = {
             "scene": os.path.relpath(a.scene, ROOT), "size": list(size), "spp": a.spp,
             "pixel": one / pixels,
-            "task": r2.between_per_task,
-            # What the run cost beyond the frame's rendering (one thread's
-            # CPU time) and the workers' own costs: the client's and the
-            # scheduler's, per task.
-            "hub": max(0.0, (cpu2 - one - r2.tasks * r2.between_per_task - prepass - hub_pixel * pixels)
-                       / r2.tasks),
+            # A band's cost beyond its rendering, as bands go (a call to the
+            # worker's actor, straight to it): the worker's part, and the
+            # client's and scheduler's.
+            "task": max(0.0, call[1]),
+            "hub": max(0.0, call[0] - call[1]),
             "hub_pixel": hub_pixel,
             "save_pixel": save / pixels,
             "ship": ship / 2 + build,

@@ -7,6 +7,7 @@ planner hears back each band's render time."""
 
 import asyncio
 import heapq
+import os
 import threading
 
 import numpy as np
@@ -319,3 +320,56 @@ def test_client_hands_a_lost_workers_bands_on(tmp_path):
     assert len(frames) == 1 and seen[-1] == 1.0
     here = hitray.render(scene, camera, size, progress=False, **options)
     assert np.array_equal(np.asarray(frames[0].image()), np.asarray(here))
+
+
+def test_band_worker_writes_into_shared_memory_or_sends_the_pixels(tmp_path):
+    """A band's rows go into the frame's shared memory where the worker can
+    open it (and none are sent back), and are sent back where it cannot (no
+    name, a name not of hitray's form, a file of another size): the same
+    bits either way, and the frame's file is gone once closed."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._band import BandWorker
+    from hitray.distributed._pack import ScenePack
+    from hitray.distributed._shared import FrameBuffer, open_frame
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
+    scene.light((4, 6, 5))
+    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    size, window = (40, 30), (0, 5, 40, 20)
+    here = np.asarray(hitray.render(scene, camera, size, spp=2, progress=False))
+    actor = BandWorker()
+    actor.ship("s", ScenePack(scene))
+    sent = actor.render(0, "s", camera, size, {"spp": 2}, window, 1, None)
+    assert sent[6] == 20 and np.array_equal(sent[0], here[5:25])
+    buffer = FrameBuffer.make(size)
+    if buffer is None:
+        pytest.skip("no /dev/shm here")
+    try:
+        written = actor.render(1, "s", camera, size, {"spp": 2}, window, 1, buffer.name)
+        assert written[0] is None and written[6] == 20
+        assert np.array_equal(buffer.pixels[5:25], here[5:25])
+        assert open_frame(buffer.name, (40, 31)) is None  # another size
+        assert open_frame("psm_" + buffer.name[7:], size) is None  # not a name of hitray's
+        assert open_frame("hitray-" + "0" * 32, size) is None  # no such file
+    finally:
+        path = "/dev/shm/" + buffer.name
+        buffer.close()
+    assert not os.path.exists(path)
+
+
+def test_band_worker_split_gives_up_rows_not_begun():
+    """The actor's split, alone: a band not begun is given up whole; one
+    finished gives nothing; a band being rendered gives half of its rows
+    not yet begun, and stops before them."""
+    from hitray.distributed._band import BandWorker, _Progress
+
+    actor = BandWorker()
+    assert asyncio.run(actor.split(7, 100)) == 100  # not begun: whole
+    actor._finished.add(8)
+    assert asyncio.run(actor.split(8, 0)) is None
+    actor._bands[9] = _Progress(0, 40)
+    actor._bands[9].next = 10  # rows 0..9 begun
+    assert asyncio.run(actor.split(9, 0)) == 25 and actor._bands[9].stop == 25
+    actor._bands[9].next = 24
+    assert asyncio.run(actor.split(9, 0)) is None  # one row left
