@@ -366,6 +366,30 @@ def test_distributed_animation_bands_and_whole_frames(client, tmp_path):
         assert here == pathlib.Path(pattern % i).read_bytes(), i
 
 
+def test_distributed_animation_slow_worker_frame_is_split(client, tmp_path):
+    """An animation on a slow worker and a fast one: the slow one's whole
+    frame is split once the fast one has nothing left, and every frame is
+    the bits of hitray.render, every pixel rendered once."""
+    from hitray.distributed._band import set_test_delay
+
+    pattern = str(tmp_path / "frame_%02d.exr")
+    size = (40, 60)
+    client.wait_for_workers(2, timeout=120)
+    slow = sorted(client.scheduler_info()["workers"])[0]
+    client.run(set_test_delay, 0.2, workers=[slow])
+    report = hd.Report()
+    try:
+        hd.render_frames(orbit, pattern, count=3, size=size, spp=2, client=client, progress=False, report=report)
+    finally:
+        client.run(set_test_delay, 0.0, workers=[slow])
+    assert report.frames == 3 and report.pixels == 3 * 40 * 60
+    assert report.splits >= 1, report.lines()
+    for i in range(3):
+        scene, camera = orbit(i)
+        here = exr_bytes(hitray.render(scene, camera, size, spp=2, progress=False), tmp_path / "here.exr")
+        assert here == pathlib.Path(pattern % i).read_bytes(), i
+
+
 def test_distributed_animation_writes_skips_and_resumes(client, tmp_path):
     pattern = str(tmp_path / "frame_%02d.png")
     size = (32, 24)
