@@ -20,7 +20,12 @@ frame about to be cut is first weighed: `row_costs(frame)` gives each
 row's relative cost (the client measures it by the rays of a small, cheap
 render of the frame), and bands are sized in that work, not in pixels.
 A worker that would be idle at the end, with nothing left to hand out,
-takes the band waiting longest behind another worker's (`steal`).
+takes the rest of another worker's work: `victims` lists the bands it could
+take (waiting ones first, then the largest being rendered), and `split`
+records what the other worker gave up (the client asks the worker's actor
+which rows it has not begun). The cost model (_model.py) does not split:
+there an idle worker takes the band waiting longest behind another's
+(`steal`).
 """
 
 from __future__ import annotations
