@@ -373,3 +373,31 @@ def test_band_worker_split_gives_up_rows_not_begun():
     assert asyncio.run(actor.split(9, 0)) == 25 and actor._bands[9].stop == 25
     actor._bands[9].next = 24
     assert asyncio.run(actor.split(9, 0)) is None  # one row left
+
+
+def test_split_band_hands_the_rest_on_and_the_frame_completes():
+    """Nothing left to hand out: an idle worker's victims are the band
+    waiting behind another's, then the bands being rendered, largest first.
+    A band split at a row is held as its rows above by its worker and its
+    rest by the idle one; the frame completes when both are back."""
+    p = Planner((10, 100), 1, min_seconds=0.001)
+    p.add_worker("a")
+    p.add_worker("b")
+    first = p.next_band("a")
+    p.done(first, "a", first.pixels / 1e3)
+    bands = []
+    while (band := p.next_band("a")) is not None:
+        bands.append(band)
+    assert p.victims("b") == [("a", b) for b in bands[1:]] + [("a", bands[0])]
+    assert p.victims("a") == []  # nothing held by another
+    running = bands[0]
+    x, y, w, h = running.window
+    rest = p.split("a", running, y + h // 2, "b")
+    assert rest.window == (x, y + h // 2, w, h - h // 2)
+    kept = Band(running.frame, (x, y, w, h // 2))
+    assert p.held("b") == 1 and kept in p._speed["a"].held
+    assert p.split("b", kept, y) is None  # "b" does not hold it
+    for band in bands[1:]:
+        assert not p.done(band, "a", 0.01)
+    assert not p.done(rest, "b", 0.01)
+    assert p.done(kept, "a", 0.01) and p.finished()
