@@ -366,6 +366,26 @@ def test_distributed_animation_bands_and_whole_frames(client, tmp_path):
         assert here == pathlib.Path(pattern % i).read_bytes(), i
 
 
+def test_distributed_slow_worker_split_by_two_idle_workers(tmp_path):
+    """Three workers, one slow: the two others both take rows of its band
+    (one split asked of a band at a time, so no row is given twice), and
+    the frame is the single render's bits, every row rendered once."""
+    from hitray.distributed._band import set_test_delay
+
+    scene, camera = two_spheres()
+    size, options = (48, 200), {"spp": 2}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    with distributed.LocalCluster(n_workers=3, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        slow = sorted(c.scheduler_info()["workers"])[0]
+        c.run(set_test_delay, 0.3, workers=[slow])
+        report = hd.Report()
+        there = hd.render(scene, camera, size, client=c, progress=False, report=report, **options)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert report.pixels == 48 * 200 and report.splits >= 2, report.lines()
+    assert report.workers[slow].split >= 1, report.lines()
+
+
 def test_distributed_animation_slow_worker_frame_is_split(client, tmp_path):
     """An animation on a slow worker and a fast one: the slow one's whole
     frame is split once the fast one has nothing left, and every frame is

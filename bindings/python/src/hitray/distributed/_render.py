@@ -309,6 +309,9 @@ class _Run:
         self.calls: Dict[int, Tuple[str, Band]] = {}
         self.dead: Set[str] = set()
         self.splitting: Set[str] = set()
+        # Bands with a split asked for and not answered: one at a time, so
+        # the answers come back in the order the worker gave them.
+        self.being_split: Set[int] = set()
         self.unsplittable: Set[int] = set()
         if self.sized and planner.row_costs is None:
             planner.row_costs = self._row_costs
@@ -465,9 +468,11 @@ class _Run:
         by_band: Dict[Tuple[Any, Band], int] = {(w, b): n for n, (w, b) in self.calls.items()}
         for victim, band in self.planner.victims(worker):
             n = by_band.get((victim, band))
-            if n is None or n in self.unsplittable or not isinstance(victim, str) or victim not in self.actors:
+            if (n is None or n in self.unsplittable or n in self.being_split or not isinstance(victim, str)
+                    or victim not in self.actors):
                 continue
             self.splitting.add(worker)
+            self.being_split.add(n)
             self.client.loop.add_callback(self._wait, ("split", n, worker, victim),
                                           self.actors[victim].split(n, band.window[1]))
             return
@@ -496,6 +501,7 @@ class _Run:
         if what[0] == "split":
             n, thief, victim = what[1:]
             self.splitting.discard(thief)
+            self.being_split.discard(n)
             if isinstance(result, Exception) or result is None:
                 self.unsplittable.add(n)
             elif n in self.calls and thief in self.known:
