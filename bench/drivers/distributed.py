@@ -49,7 +49,8 @@ try:
     import hitray.distributed as hd
     from hitray.distributed._client import QUIET, local_cores
     from hitray.distributed._model import Costs, simulate
-    from hitray.distributed._render import row_costs
+    from hitray.distributed._band import BandWorker
+    from hitray.distributed._render import render_window, row_costs
 except ImportError as e:
     # `make demo` builds the command only: the package and Dask are
     # `make python-install`'s (into .venv, with scripts/requirements-test.txt).
@@ -78,7 +79,9 @@ def timed(fn):
 def cluster(distributed, workers, threads):
     c = distributed.LocalCluster(n_workers=workers, threads_per_worker=threads, processes=True,
                                  dashboard_address=":0")
-    return c, distributed.Client(c)
+    # As hitray.distributed's own LocalClusters: the client talks to the
+    # workers straight (a band's call to a worker's actor skips the scheduler).
+    return c, distributed.Client(c, direct_to_workers=True)
 
 
 def cpu_of(fn):
@@ -92,6 +95,102 @@ def cpu_of(fn):
 def worker_cpu(client):
     """CPU seconds the workers' processes have used so far, summed."""
     return sum(client.run(time.process_time).values())
+
+
+def live_threads():
+    """CPU seconds of each thread of this process still running, by thread
+    id. hitray's render threads live for one render each, so between two
+    readings the threads that are still there are the ones that do not
+    render: the main thread, Dask's event loop (and a LocalCluster's
+    scheduler on it), a worker's actor thread."""
+    tick = os.sysconf("SC_CLK_TCK")
+    out = {}
+    for tid in os.listdir("/proc/self/task"):
+        try:
+            with open(f"/proc/self/task/{tid}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:  # ended since the listing
+            continue
+        out[tid] = (int(fields[11]) + int(fields[12])) / tick
+    return out
+
+
+def grown(before, after):
+    """CPU seconds the threads of `after` used since `before` (a thread
+    started since: all of its time)."""
+    return sum(v - before.get(tid, 0.0) for tid, v in after.items())
+
+
+def dask_threads(client):
+    """live_threads() of this process and of every worker's."""
+    return live_threads(), client.run(live_threads)
+
+
+def dask_cpu(client, before):
+    """CPU seconds the non-rendering threads (here and on the workers) used
+    since `before` (a dask_threads() reading)."""
+    here, there = dask_threads(client)
+    return grown(before[0], here) + sum(grown(before[1].get(w, {}), t) for w, t in there.items())
+
+
+def per_band(client, scene, camera, size, spp, count):
+    """What a band costs beyond its rendering, on warm workers: the CPU
+    seconds of every process (the client with its scheduler, the workers),
+    less their idle rate, per band of one pixel, sent `count` times one
+    after the other to each worker in turn, (1) as a Dask task (submit,
+    schedule, run, report, fetch: how every band went before the actors,
+    and how fixed tiles go), (2) as a call to the worker's actor (how bands
+    go now). Returns {way: (CPU seconds per band, of which the workers',
+    wall seconds per band)}."""
+    workers = sorted(client.scheduler_info()["workers"])
+    pack = client.scatter(hd.ScenePack(scene), broadcast=True, hash=False)
+    # The same cluster through a client of Dask's default, which sends an
+    # actor's calls through the scheduler (it relays them).
+    relayed = distributed.Client(client.scheduler.address, direct_to_workers=False)
+    futures = {(w, c): c.submit(BandWorker, actor=True, workers=[w], pure=False)
+               for w in workers for c in (client, relayed)}
+    actors = {key: future.result() for key, future in futures.items()}
+    options = {"spp": spp}
+
+    def as_task(i):
+        w = workers[i % len(workers)]
+        client.submit(render_window, pack, camera, size, options, (0, 0, 1, 1), None, pure=False,
+                      workers=[w]).result()
+
+    def as_call(i):
+        w = workers[i % len(workers)]
+        actors[w, client].render(i, pack.key, camera, size, options, (0, 0, 1, 1), None, None).result()
+
+    def as_relayed_call(i):
+        w = workers[i % len(workers)]
+        actors[w, relayed].render(i, pack.key, camera, size, options, (0, 0, 1, 1), None, None).result()
+
+    out = {}
+    for way, fn in (("a Dask task", as_task), ("an actor call relayed by the scheduler", as_relayed_call),
+                    ("an actor call straight to the worker", as_call)):
+        for i in range(10):  # warm
+            fn(i)
+        idle0, cpu0, t0 = worker_cpu(client), time.process_time(), time.perf_counter()
+        time.sleep(1.0)
+        t = time.perf_counter() - t0
+        idle_workers, idle_here = (worker_cpu(client) - idle0) / t, (time.process_time() - cpu0) / t
+        before, cpu0, t0 = worker_cpu(client), time.process_time(), time.perf_counter()
+        for i in range(count):
+            fn(i)
+        wall = time.perf_counter() - t0
+        workers_cpu = worker_cpu(client) - before - idle_workers * wall
+        cpu = workers_cpu + time.process_time() - cpu0 - idle_here * wall
+        out[way] = (cpu / count, workers_cpu / count, wall / count)
+    for future in futures.values():
+        future.release()
+    relayed.close()
+    pack.release()
+    return out
+
+
+def median(values):
+    v = sorted(values)
+    return (v[(len(v) - 1) // 2] + v[len(v) // 2]) / 2
 
 
 def keep(best, name, wall, cpu, report):
@@ -126,20 +225,37 @@ def measure(a):
         time.sleep(2.0)
         idle = (time.process_time() - cpu0) / 2.0
         reference = None
+        walls = {}  # every run's wall, by setup
+        direct = {}  # every run's CPU of the threads that do not render, beyond hitray.render's, by setup
+        splits = {}
+        # The rows' weighing (the client's, on threads of their own that end
+        # with it): part of every frame's cost.
+        weigh = min(cpu_of(lambda: row_costs(scene, camera, size, {"spp": a.spp})) for _ in range(3))
         for run in range(a.runs):
             cpu0 = time.process_time()
+            caller0 = time.thread_time()
             t, image = timed(lambda: hitray.render(scene, camera, size, spp=a.spp, threads=cores, progress=False))
             cpu = time.process_time() - cpu0
+            # What hitray.render's own calling thread spent (setting up, the
+            # pixels' conversion): a distributed run spends it on its actor
+            # threads too, and it is not overhead.
+            caller = time.thread_time() - caller0
+            walls.setdefault("hitray.render", []).append(t)
             reference = np.asarray(image) if reference is None else reference
             keep(best, "hitray.render", t, cpu, None)
-            t_local = t
+            t_local, cpu_local_run = t, cpu
             for name, (c, client) in clusters.items():
                 report = hd.Report()
                 before = worker_cpu(client)
+                threads0 = dask_threads(client)
                 cpu0 = time.process_time()
                 t, image = timed(lambda: hd.render(scene, camera, size, spp=a.spp, client=client, progress=False,
                                                    report=report))
                 cpu = time.process_time() - cpu0 - idle * t + worker_cpu(client) - before
+                direct.setdefault(name, []).append((dask_cpu(client, threads0) - caller + weigh, report.tasks,
+                                                    cpu_local_run))
+                walls.setdefault(name, []).append(t)
+                splits.setdefault(name, []).append(report.splits)
                 if not np.array_equal(np.asarray(image), reference):
                     raise SystemExit(f"{name}: the image differs from hitray.render's")
                 keep(best, name, t, cpu, report)
@@ -158,18 +274,45 @@ def measure(a):
         for name in setups:
             t, r = best[name]["wall"][0], best[name]["wall"][1]
             cpu, rc = best[name]["cpu"][0], best[name]["cpu"][1]
-            ratios = sorted(paired[name])
-            median = (ratios[(len(ratios) - 1) // 2] + ratios[len(ratios) // 2]) / 2
-            print(f"| hitray.distributed, {name} | {t:.3f} | {t / local:.2f} | {median:.2f} | {cpu:.3f} | "
+            print(f"| hitray.distributed, {name} | {t:.3f} | {t / local:.2f} | {median(paired[name]):.2f} | "
+                  f"{cpu:.3f} | "
                   f"{cpu / local_cpu:.2f} | "
                   f"{rc.tasks} | {1e3 * (cpu - local_cpu) / rc.tasks:.1f} | {100 * r.overhead_share:.1f}% | "
                   f"{1e3 * r.between_per_task:.1f} | {r.balance:.2f} |")
         print()
+        print(f"Overhead measured directly, run by run: the CPU time of every thread that does not render (the "
+              f"client's and its scheduler's, the workers' event loops and actor threads; hitray's render threads "
+              f"end with each render), plus the rows' weighing ({1e3 * weigh:.1f} ms), less what hitray.render's "
+              f"own calling thread spends on the frame; its share of the core time is over that plus the CPU time "
+              f"of hitray.render on {cores} threads in the same run. Walls: min and median of the {a.runs} "
+              f"runs.\n")
+        print("| run | wall min (s) | wall median (s) | min over hitray.render's min | paired median | tasks | "
+              "overhead per task, min / median (core-ms) | overhead share, min / median | bands split |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        lw = walls["hitray.render"]
+        print(f"| hitray.render, {cores} threads | {min(lw):.3f} | {median(lw):.3f} | 1.00 | 1.00 | | | | |")
+        for name in setups:
+            w = walls[name]
+            per_task = [o / n for o, n, _ in direct[name]]
+            share = [o / (o + c) for o, _, c in direct[name]]
+            print(f"| hitray.distributed, {name} | {min(w):.3f} | {median(w):.3f} | {min(w) / min(lw):.2f} | "
+                  f"{median(paired[name]):.2f} | {median([n for _, n, _ in direct[name]]):.0f} | "
+                  f"{1e3 * min(per_task):.2f} / {1e3 * median(per_task):.2f} | "
+                  f"{100 * min(share):.1f}% / {100 * median(share):.1f}% | {median(splits[name]):.0f} |")
+        print()
+        c, client = clusters["2 workers x 1 thread"]
+        bands = per_band(client, scene, camera, size, a.spp, 200)
+        print(f"Per band, beyond its rendering (2 workers x 1 thread, 200 bands of one pixel one after the other, "
+              f"all processes' CPU less their idle rate): " + ", ".join(
+                  f"as {way} {1e3 * cpu:.2f} core-ms ({1e3 * on_workers:.2f} of them the worker's; "
+                  f"{1e3 * wall:.2f} ms wall)" for way, (cpu, on_workers, wall) in bands.items())
+              + "\n")
+        if a.skip_model:
+            return
 
         # The model's costs.
         one = min(cpu_of(lambda: hitray.render(scene, camera, size, spp=a.spp, threads=1, progress=False))
                   for _ in range(2))
-        cpu2, r2 = best["2 workers x 1 thread"]["cpu"]
         prepass, _ = timed(lambda: row_costs(scene, camera, size, {"spp": a.spp}))
         blob = np.zeros((size[1], size[0], 3), dtype=np.float32)
         back, _ = timed(lambda: np.copyto(blob, pickle.loads(pickle.dumps(blob, protocol=5))))
@@ -187,15 +330,15 @@ def measure(a):
         time.sleep(2.0)
         worker_idle = (worker_cpu(client) - before) / 2.0 / 2
         hub_pixel = back / pixels
+        call = bands["an actor call straight to the worker"]
         costs = {
             "scene": os.path.relpath(a.scene, ROOT), "size": list(size), "spp": a.spp,
             "pixel": one / pixels,
-            "task": r2.between_per_task,
-            # What the run cost beyond the frame's rendering (one thread's
-            # CPU time) and the workers' own costs: the client's and the
-            # scheduler's, per task.
-            "hub": max(0.0, (cpu2 - one - r2.tasks * r2.between_per_task - prepass - hub_pixel * pixels)
-                       / r2.tasks),
+            # A band's cost beyond its rendering, as bands go (a call to the
+            # worker's actor, straight to it): the worker's part, and the
+            # client's and scheduler's.
+            "task": max(0.0, call[1]),
+            "hub": max(0.0, call[0] - call[1]),
             "hub_pixel": hub_pixel,
             "save_pixel": save / pixels,
             "ship": ship / 2 + build,
@@ -292,6 +435,8 @@ def main():
     m.add_argument("--check-size", default="960x540")
     m.add_argument("--check-workers", default="1,2,4,8", help="the model check's clusters: workers of 1 thread")
     m.add_argument("--costs", help="write the measured costs here (JSON)")
+    m.add_argument("--skip-model", action="store_true", help="measure the two clusters only: no model costs, "
+                   "no check of the model")
     t = verbs.add_parser("model")
     t.add_argument("costs")
     a = p.parse_args()

@@ -202,6 +202,31 @@ def test_distributed_report(client):
     assert any("balance" in line for line in report.lines())
 
 
+def test_distributed_slow_workers_band_is_split_and_handed_on(client, tmp_path):
+    """One worker made slow (it sleeps 0.3 s before each chunk of rows):
+    once the other has nothing left, it takes the rows the slow one has
+    not begun, of the band waiting and of the band being rendered, and the
+    frame is the single render's bits."""
+    from hitray.distributed._band import set_test_delay
+
+    scene, camera = two_spheres()
+    size, options = (64, 256), {"spp": 4, "adaptive": 0.05}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    client.wait_for_workers(2, timeout=120)
+    slow = sorted(client.scheduler_info()["workers"])[0]
+    client.run(set_test_delay, 0.3, workers=[slow])
+    report = hd.Report()
+    try:
+        there = hd.render(scene, camera, size, client=client, progress=False, report=report, **options)
+    finally:
+        client.run(set_test_delay, 0.0, workers=[slow])
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert report.pixels == 64 * 256  # every row rendered once: the rows given up were not rendered
+    assert report.workers[slow].split >= 1, report.lines()
+    fast = next(w for w in report.workers if w != slow)
+    assert report.workers[slow].pixels < report.workers[fast].pixels / 4, report.lines()
+
+
 def test_distributed_band_on_all_of_a_workers_threads(tmp_path):
     """A worker of 2 Dask threads renders a band on both: one band at a
     time, 2 render threads each (the report says so), same bits."""
@@ -336,6 +361,50 @@ def test_distributed_animation_bands_and_whole_frames(client, tmp_path):
     assert sorted(written) == [pattern % i for i in range(7)]
     assert report.frames == 7 and report.pixels == 7 * 40 * 30
     for i in range(7):
+        scene, camera = orbit(i)
+        here = exr_bytes(hitray.render(scene, camera, size, spp=2, progress=False), tmp_path / "here.exr")
+        assert here == pathlib.Path(pattern % i).read_bytes(), i
+
+
+def test_distributed_slow_worker_split_by_two_idle_workers(tmp_path):
+    """Three workers, one slow: the two others both take rows of its band
+    (one split asked of a band at a time, so no row is given twice), and
+    the frame is the single render's bits, every row rendered once."""
+    from hitray.distributed._band import set_test_delay
+
+    scene, camera = two_spheres()
+    size, options = (48, 200), {"spp": 2}
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    with distributed.LocalCluster(n_workers=3, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as c:
+        slow = sorted(c.scheduler_info()["workers"])[0]
+        c.run(set_test_delay, 0.3, workers=[slow])
+        report = hd.Report()
+        there = hd.render(scene, camera, size, client=c, progress=False, report=report, **options)
+    assert exr_bytes(there, tmp_path / "there.exr") == exr_bytes(here, tmp_path / "here.exr")
+    assert report.pixels == 48 * 200 and report.splits >= 2, report.lines()
+    assert report.workers[slow].split >= 1, report.lines()
+
+
+def test_distributed_animation_slow_worker_frame_is_split(client, tmp_path):
+    """An animation on a slow worker and a fast one: the slow one's whole
+    frame is split once the fast one has nothing left, and every frame is
+    the bits of hitray.render, every pixel rendered once."""
+    from hitray.distributed._band import set_test_delay
+
+    pattern = str(tmp_path / "frame_%02d.exr")
+    size = (40, 60)
+    client.wait_for_workers(2, timeout=120)
+    slow = sorted(client.scheduler_info()["workers"])[0]
+    client.run(set_test_delay, 0.2, workers=[slow])
+    report = hd.Report()
+    try:
+        hd.render_frames(orbit, pattern, count=3, size=size, spp=2, client=client, progress=False, report=report)
+    finally:
+        client.run(set_test_delay, 0.0, workers=[slow])
+    assert report.frames == 3 and report.pixels == 3 * 40 * 60
+    assert report.splits >= 1, report.lines()
+    for i in range(3):
         scene, camera = orbit(i)
         here = exr_bytes(hitray.render(scene, camera, size, spp=2, progress=False), tmp_path / "here.exr")
         assert here == pathlib.Path(pattern % i).read_bytes(), i

@@ -5,7 +5,9 @@ A small event simulation plays workers of given speeds against the planner:
 each worker holds two bands, renders them one after the other, and the
 planner hears back each band's render time."""
 
+import asyncio
 import heapq
+import os
 import threading
 
 import numpy as np
@@ -199,64 +201,94 @@ def test_row_costs_weigh_the_rows_by_their_rays():
 
 
 class FakeFuture:
-    """A Dask future run at once (or never, for a worker that is gone)."""
+    """A Dask future, done at once."""
 
-    def __init__(self, fn, args, worker):
-        self.fn, self.args, self.worker = fn, args, worker
-        self.value, self.finished, self.callbacks = None, False, []
+    def __init__(self, value, worker=None):
+        self.value, self.worker = value, worker
 
-    def finish(self):
-        self.value = self.fn(*[a.value if isinstance(a, FakeFuture) else a for a in self.args])
-        self.finished = True
-        for callback in self.callbacks:
-            callback(self)
-
-    def add_done_callback(self, callback):
-        self.callbacks.append(callback)
-        if self.finished:
-            callback(self)
-
-    def done(self):
-        return self.finished
-
-    def result(self):
+    def result(self, timeout=None):
         return self.value
 
     def release(self):
         pass
 
 
+class FakeLoop:
+    """Dask's event loop as _Run uses it (add_callback of a coroutine
+    function): an asyncio loop on a thread of its own."""
+
+    def __init__(self):
+        self.loop = asyncio.new_event_loop()
+        threading.Thread(target=self.loop.run_forever, daemon=True).start()
+
+    def add_callback(self, fn, *args):
+        asyncio.run_coroutine_threadsafe(fn(*args), self.loop)
+
+
+class FakeCall:
+    """An actor call's future: its answer, or none ever (`hang`)."""
+
+    def __init__(self, fn, hang):
+        self.fn, self.hang, self.called = fn, hang, False
+
+    def result(self, timeout=None):
+        return self.fn()
+
+    def __await__(self):
+        async def answer():
+            self.called = True
+            while self.hang:
+                await asyncio.sleep(3600)
+            value = self.fn()
+            return await value if asyncio.iscoroutine(value) else value
+        return answer().__await__()
+
+
+class FakeActor:
+    """A worker's BandWorker, run in this process; a worker not in the
+    client's `running` takes bands and never answers."""
+
+    def __init__(self, client, worker):
+        from hitray.distributed._band import BandWorker
+        self.client, self.worker, self.real = client, worker, BandWorker()
+
+    def __getattr__(self, name):
+        method = getattr(self.real, name)
+
+        def call(*args):
+            future = FakeCall(lambda: method(*args), self.worker not in self.client.running)
+            if name == "render":
+                self.client.calls.append(future)
+            return future
+        return call
+
+
 class FakeClient:
-    """The Dask client as _Run uses it, its workers a set the test changes;
-    a band given to a worker not in `running` never comes back."""
+    """The Dask client as _Run uses it (an actor per worker), its workers a
+    set the test changes."""
 
     def __init__(self, workers):
         self.workers, self.running = set(workers), set(workers)
-        self.submitted, self.cancelled = [], []
+        self.calls = []
+        self.loop = FakeLoop()
 
     def scheduler_info(self):
         return {"workers": {w: {} for w in self.workers}}
 
     def scatter(self, value, broadcast, hash):
-        future = FakeFuture(lambda: value, (), None)
-        future.finish()
+        future = FakeFuture(value)
+        future.key = "the-scene"
         return future
 
-    def submit(self, fn, *args, key, pure, priority, workers=None, allow_other_workers=False):
-        future = FakeFuture(fn, args, workers[0] if workers else None)
-        self.submitted.append(future)
-        if future.worker in self.running:
-            future.finish()
-        return future
-
-    def cancel(self, futures):
-        self.cancelled += futures
+    def submit(self, cls, *, actor, workers, allow_other_workers, pure, key):
+        assert actor
+        return FakeFuture(FakeActor(self, workers[0]), workers[0])
 
 
 def test_client_hands_a_lost_workers_bands_on(tmp_path):
-    """The client's loop (_Run) with a fake Dask: worker "b" stops answering
-    and then leaves the scheduler. Its bands are cancelled, given back and
-    rendered by "a", and the frame is the bits of hitray.render."""
+    """The client's loop (_Run) with a fake Dask: worker "b" takes bands
+    and never answers, then leaves the scheduler. Its bands are given back
+    and rendered by "a", and the frame is the bits of hitray.render."""
     hitray = pytest.importorskip("hitray")
     from hitray.distributed._render import _Bar, _Run
 
@@ -284,9 +316,88 @@ def test_client_hands_a_lost_workers_bands_on(tmp_path):
     worker.start()
     worker.join(60)
     assert not worker.is_alive(), "the lost worker's bands were never handed on"
-    lost = [f for f in client.submitted if f.worker == "b"]
-    assert lost and all(not f.done() for f in lost)
-    assert set(client.cancelled) == set(lost)
+    assert any(c.hang and c.called for c in client.calls)
     assert len(frames) == 1 and seen[-1] == 1.0
     here = hitray.render(scene, camera, size, progress=False, **options)
     assert np.array_equal(np.asarray(frames[0].image()), np.asarray(here))
+
+
+def test_band_worker_writes_into_shared_memory_or_sends_the_pixels(tmp_path):
+    """A band's rows go into the frame's shared memory where the worker can
+    open it (and none are sent back), and are sent back where it cannot (no
+    name, a name not of hitray's form, a file of another size): the same
+    bits either way, and the frame's file is gone once closed."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._band import BandWorker
+    from hitray.distributed._pack import ScenePack
+    from hitray.distributed._shared import FrameBuffer, open_frame
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
+    scene.light((4, 6, 5))
+    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    size, window = (40, 30), (0, 5, 40, 20)
+    here = np.asarray(hitray.render(scene, camera, size, spp=2, progress=False))
+    actor = BandWorker()
+    actor.ship("s", ScenePack(scene))
+    sent = actor.render(0, "s", camera, size, {"spp": 2}, window, 1, None)
+    assert sent[6] == 20 and np.array_equal(sent[0], here[5:25])
+    buffer = FrameBuffer.make(size)
+    if buffer is None:
+        pytest.skip("no /dev/shm here")
+    try:
+        written = actor.render(1, "s", camera, size, {"spp": 2}, window, 1, buffer.name)
+        assert written[0] is None and written[6] == 20
+        assert np.array_equal(buffer.pixels[5:25], here[5:25])
+        assert open_frame(buffer.name, (40, 31)) is None  # another size
+        assert open_frame("psm_" + buffer.name[7:], size) is None  # not a name of hitray's
+        assert open_frame("hitray-" + "0" * 32, size) is None  # no such file
+    finally:
+        path = "/dev/shm/" + buffer.name
+        buffer.close()
+    assert not os.path.exists(path)
+
+
+def test_band_worker_split_gives_up_rows_not_begun():
+    """The actor's split, alone: a band not begun is given up whole; one
+    finished gives nothing; a band being rendered gives half of its rows
+    not yet begun, and stops before them."""
+    from hitray.distributed._band import BandWorker, _Progress
+
+    actor = BandWorker()
+    assert asyncio.run(actor.split(7, 100)) == 100  # not begun: whole
+    actor._finished.add(8)
+    assert asyncio.run(actor.split(8, 0)) is None
+    actor._bands[9] = _Progress(0, 40)
+    actor._bands[9].next = 10  # rows 0..9 begun
+    assert asyncio.run(actor.split(9, 0)) == 25 and actor._bands[9].stop == 25
+    actor._bands[9].next = 24
+    assert asyncio.run(actor.split(9, 0)) is None  # one row left
+
+
+def test_split_band_hands_the_rest_on_and_the_frame_completes():
+    """Nothing left to hand out: an idle worker's victims are the band
+    waiting behind another's, then the bands being rendered, largest first.
+    A band split at a row is held as its rows above by its worker and its
+    rest by the idle one; the frame completes when both are back."""
+    p = Planner((10, 100), 1, min_seconds=0.001)
+    p.add_worker("a")
+    p.add_worker("b")
+    first = p.next_band("a")
+    p.done(first, "a", first.pixels / 1e3)
+    bands = []
+    while (band := p.next_band("a")) is not None:
+        bands.append(band)
+    assert p.victims("b") == [("a", b) for b in bands[1:]] + [("a", bands[0])]
+    assert p.victims("a") == []  # nothing held by another
+    running = bands[0]
+    x, y, w, h = running.window
+    rest = p.split("a", running, y + h // 2, "b")
+    assert rest.window == (x, y + h // 2, w, h - h // 2)
+    kept = Band(running.frame, (x, y, w, h // 2))
+    assert p.held("b") == 1 and kept in p._speed["a"].held
+    assert p.split("b", kept, y) is None  # "b" does not hold it
+    for band in bands[1:]:
+        assert not p.done(band, "a", 0.01)
+    assert not p.done(rest, "b", 0.01)
+    assert p.done(kept, "a", 0.01) and p.finished()

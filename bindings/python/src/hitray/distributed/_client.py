@@ -155,7 +155,9 @@ def connect(client: Any = None, workers: Optional[int] = None, timeout: float = 
         cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=max(1, local_cores() // n),
                                            processes=True, dashboard_address=":0")
         try:
-            made = distributed.Client(cluster)
+            # Straight to the workers (all on this machine): a band's call to a
+            # worker's actor then skips the scheduler.
+            made = distributed.Client(cluster, direct_to_workers=True)
             try:
                 yield made
             finally:

@@ -20,7 +20,12 @@ frame about to be cut is first weighed: `row_costs(frame)` gives each
 row's relative cost (the client measures it by the rays of a small, cheap
 render of the frame), and bands are sized in that work, not in pixels.
 A worker that would be idle at the end, with nothing left to hand out,
-takes the band waiting longest behind another worker's (`steal`).
+takes the rest of another worker's work: `victims` lists the bands it could
+take (waiting ones first, then the largest being rendered), and `split`
+records what the other worker gave up (the client asks the worker's actor
+which rows it has not begun). The cost model (_model.py) does not split:
+there an idle worker takes the band waiting longest behind another's
+(`steal`).
 """
 
 from __future__ import annotations
@@ -224,6 +229,39 @@ class Planner:
         band = self._speed[best[1]].held.pop()
         self.give_back(band)
         return best[1], band
+
+    def victims(self, worker: Hashable) -> List[Tuple[Hashable, Band]]:
+        """For an idle `worker` when no work is left to hand out: the bands
+        of other workers whose rest could be split off and handed to it,
+        the most promising first: a band waiting behind another (it is
+        given up whole), then the bands being rendered, the largest (in
+        work) first. Empty while there is work to hand out."""
+        if self.tile is not None or any(self._free.values()) or self._next_frame < self.frames:
+            return []
+        waiting = [(other, b) for other, speed in self._speed.items() if other != worker for b in speed.held[1:]]
+        running = [(other, speed.held[0]) for other, speed in self._speed.items() if other != worker and speed.held]
+        running.sort(key=lambda ob: -self.work(ob[1].frame, ob[1].window))
+        return waiting + running
+
+    def split(self, worker: Hashable, band: Band, at: int, to: Hashable = None) -> Optional[Band]:
+        """`worker`, rendering `band`, gave up its rows from `at` on: it
+        holds the rows above, and the rest is a band of its own, held by
+        `to` (returned); None if `worker` no longer holds the band."""
+        speed = self._speed.get(worker)
+        if speed is None or band not in speed.held:
+            return None
+        x, y, w, h = band.window
+        if not y <= at < y + h:
+            raise ValueError(f"Planner: split at row {at} outside the band {band}")
+        i = speed.held.index(band)
+        if at == y:
+            del speed.held[i]
+        else:
+            speed.held[i] = Band(band.frame, (x, y, w, at - y))
+        rest = Band(band.frame, (x, at, w, y + h - at))
+        if to is not None:
+            self.add_worker(to)
+        return self._hold(to, rest)
 
     def give_back(self, band: Band, forget: bool = False) -> None:
         """A band whose worker was lost: back to the front of the work

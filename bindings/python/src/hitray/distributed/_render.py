@@ -29,7 +29,9 @@ from ..image import Image, RenderStats
 from ..render import render as _render_here
 from ..scene import Scene
 from ._client import connect, dask_distributed, local_cores
+from ._band import NEED_SCENE, BandWorker
 from ._pack import ScenePack
+from ._shared import FrameBuffer
 from ._plan import Band, Planner
 from ._report import Report, WorkerReport
 
@@ -97,7 +99,7 @@ def render_window(pack: ScenePack, camera: Camera, size: Tuple[int, int], option
 
 
 def row_costs(scene: Scene, camera: Camera, size: Tuple[int, int], options: Dict[str, Any],
-              width: int = 240, bands: int = 32) -> List[float]:
+              width: int = 160, bands: int = 16) -> List[float]:
     """Each row's relative cost in a frame of `size`: the rays cast by the
     rows of a small render of it (about `width` pixels wide, 1 sample per
     pixel, one thread), in `bands` windows. Rays, not seconds: the same
@@ -152,32 +154,48 @@ class _Frame:
     """One frame on its way: its pixels as they come back."""
 
     def __init__(self, index: int, path: Optional[str], size: Tuple[int, int], pack_key: str,
-                 camera: Camera) -> None:
+                 camera: Camera, shared: bool = False) -> None:
         self.index, self.path, self.pack_key, self.camera = index, path, pack_key, camera
-        self.pixels = np.empty((size[1], size[0], 3), dtype=np.float32)
+        # Workers on this machine write their rows straight into it.
+        self.buffer = FrameBuffer.make(size) if shared else None
+        pixels = None if self.buffer is None else self.buffer.pixels
+        self.pixels: np.ndarray = np.empty((size[1], size[0], 3), dtype=np.float32) if pixels is None else pixels
         self.rays = [0, 0, 0, 0]
         self.effects: Set[str] = set()
         self.workers: Dict[str, int] = {}
         self.started = time.monotonic()
         self.scene: Optional[Scene] = None
+        self.number = -1  # its place in the run (the planner's frame number)
 
     def place(self, window: Window, result: Tuple[Any, ...]) -> None:
         pixels, rays, where, threads = result[:4]
         x, y, w, h = window
-        if pixels.shape != (h, w, 3):
+        if pixels is None:  # written into the shared frame
+            if self.buffer is None:
+                raise RuntimeError("hitray.distributed: a worker sent no pixels for a frame not shared")
+        elif pixels.shape != (h, w, 3):
             raise RuntimeError(f"hitray.distributed: a worker returned {pixels.shape} pixels for the "
                                f"{w}x{h} window at ({x}, {y})")
-        self.pixels[y:y + h, x:x + w] = pixels
+        else:
+            self.pixels[y:y + h, x:x + w] = pixels
         for i in range(4):
             self.rays[i] += rays[i]
         self.effects.update(rays[4])
         self.workers[where] = max(self.workers.get(where, 0), threads)
 
     def image(self) -> Image:
+        """The frame's Image (its pixels copied: a shared frame is released)."""
         image = Image(self.pixels)
+        self.close()
         image._stats = RenderStats(sum(self.workers.values()), self.rays[0], self.rays[1], self.rays[2],
                                    self.rays[3], time.monotonic() - self.started, frozenset(self.effects))
         return image
+
+    def close(self) -> None:
+        if self.buffer is not None:
+            self.pixels = np.empty((0, 0, 3), dtype=np.float32)
+            self.buffer.close()
+            self.buffer = None
 
 
 class _Bar:
@@ -219,10 +237,10 @@ class _Bar:
 class _Shipped:
     """A scene scattered to the workers, and the frames in flight using it."""
 
-    __slots__ = ("future", "users")
+    __slots__ = ("future", "users", "pack")
 
-    def __init__(self, future: Any) -> None:
-        self.future, self.users = future, 0
+    def __init__(self, future: Any, pack: ScenePack) -> None:
+        self.future, self.users, self.pack = future, 0, pack
 
 
 def _same_description(a: Tuple[Any, List[Any], Dict[str, Any]], b: Tuple[Any, List[Any], Dict[str, Any]]) -> bool:
@@ -237,10 +255,19 @@ class _Run:
     """Bands of frames on a client (the Planner says which): each worker
     holds `DEPTH` bands (one rendering, the next waiting, so it never waits
     on the client), scenes shipped once each (scattered to every worker),
-    frames handed back as they complete. A worker that leaves has its bands
-    not yet back given back to the planner, which hands them on cut to size.
-    With a fixed tile size, every tile of the open frames is submitted at
-    once and Dask places them."""
+    frames handed back as they complete.
+
+    Bands sized by measurement go to one actor per worker (_band.BandWorker),
+    called straight from the client, with no scheduler round trip per band.
+    A worker left with nothing to do takes the rest of another's band: the
+    band waiting behind it whole, or the rows not begun of the one being
+    rendered (the actor renders in chunks and gives up the rows it has not
+    begun), so a slow worker's band is split and handed on. A worker that
+    leaves has its bands not yet back given back to the planner, which
+    hands them on cut to size.
+
+    With a fixed tile size, every tile of the open frames is a Dask task,
+    submitted at once, and Dask places them."""
 
     # Scenes no frame in flight uses stay on the workers, this many of the
     # latest, for the next frames (an animation of one scene ships it once);
@@ -249,8 +276,9 @@ class _Run:
     # Bands held by a worker at once.
     DEPTH = 2
     # How often, waiting for bands, the client asks the scheduler which
-    # workers there are (seconds).
-    CHECK_WORKERS = 0.5
+    # workers there are (seconds; a lost worker's actor also says so as soon
+    # as a call to it fails).
+    CHECK_WORKERS = 1.0
 
     def __init__(self, client: Any, size: Tuple[int, int], options: Dict[str, Any], planner: Planner,
                  threads: Optional[int], bar: _Bar, frame_at: Callable[[int], Tuple[int, Optional[str], Scene,
@@ -272,6 +300,19 @@ class _Run:
         # description when packed; the pack).
         self.by_scene: Dict[int, Tuple[Scene, Any, ScenePack]] = {}
         self.known: Set[str] = set()
+        # Bands sized by measurement: the actors by worker; the calls out,
+        # band number -> (worker, the band as it stands after splits);
+        # workers whose actor stopped answering; idle workers waiting for a
+        # split's answer; bands that would not split.
+        self.actors: Dict[str, Any] = {}
+        self.actor_futures: Dict[str, Any] = {}
+        self.calls: Dict[int, Tuple[str, Band]] = {}
+        self.dead: Set[str] = set()
+        self.splitting: Set[str] = set()
+        # Bands with a split asked for and not answered: one at a time, so
+        # the answers come back in the order the worker gave them.
+        self.being_split: Set[int] = set()
+        self.unsplittable: Set[int] = set()
         if self.sized and planner.row_costs is None:
             planner.row_costs = self._row_costs
         self.checked = 0.0
@@ -292,11 +333,12 @@ class _Run:
             pack = self._pack(scene)
             shipped = self.shipped.get(pack.key)
             if shipped is None:
-                shipped = self.shipped[pack.key] = _Shipped(self.client.scatter(pack, broadcast=True, hash=False))
+                shipped = self.shipped[pack.key] = _Shipped(self.client.scatter(pack, broadcast=True, hash=False),
+                                                              pack)
             self.shipped.move_to_end(pack.key)
             shipped.users += 1
-            frame = self.frames[n] = _Frame(index, path, self.size, pack.key, camera)
-            frame.scene = scene
+            frame = self.frames[n] = _Frame(index, path, self.size, pack.key, camera, shared=self.sized)
+            frame.scene, frame.number = scene, n
         return frame
 
     def _row_costs(self, n: int) -> List[float]:
@@ -305,12 +347,8 @@ class _Run:
         return row_costs(frame.scene, frame.camera, self.size, self.options)
 
     def _submit(self, worker: Optional[str]) -> bool:
+        """Submit the next tile as a Dask task (fixed tiles)."""
         band = self.planner.next_band(worker)
-        if band is None and worker is not None and not self.planner.held(worker):
-            stolen = self.planner.steal(worker)  # nothing left: take a band waiting behind another's
-            if stolen is not None:
-                self._cancel([stolen[1]])
-                band = self.planner.next_band(worker)
         if band is None:
             return False
         frame = self._frame(band.frame)
@@ -339,12 +377,39 @@ class _Run:
         """Follow the scheduler's workers: new ones get bands, lost ones'
         bands not back are handed on."""
         self.checked = time.monotonic()
-        now = set(self.client.scheduler_info()["workers"])
+        now = set(self.client.scheduler_info()["workers"]) - self.dead
         for gone in self.known - now:
-            self._cancel(self.planner.remove_worker(gone))
-        for new in sorted(now - self.known):
-            self.planner.add_worker(new)
+            self._lose(gone)
+        new = sorted(now - self.known)
+        if self.sized and new:
+            futures = {w: self.client.submit(BandWorker, actor=True, workers=[w], allow_other_workers=False,
+                                              pure=False, key=f"hitray-bands-{self.run_id}-{w}") for w in new}
+            for w, future in futures.items():
+                try:
+                    self.actors[w] = future.result(timeout=max(10.0, 10 * self.CHECK_WORKERS))
+                except Exception:  # noqa: BLE001 - a worker that went as it was joining: skip it
+                    future.release()
+                    now.discard(w)
+                    continue
+                self.actor_futures[w] = future
+        for w in sorted(now - self.known):
+            self.planner.add_worker(w)
         self.known = now
+
+    def _lose(self, worker: str) -> None:
+        """A worker gone: its bands not back are handed on."""
+        self.known.discard(worker)
+        if self.sized:
+            for n in [n for n, (w, _) in self.calls.items() if w == worker]:
+                del self.calls[n]
+            self.actors.pop(worker, None)
+            future = self.actor_futures.pop(worker, None)
+            if future is not None:
+                future.release()
+            self.splitting.discard(worker)
+            self.planner.remove_worker(worker)
+        else:
+            self._cancel(self.planner.remove_worker(worker))
 
     def _fill(self) -> None:
         if not self.sized:
@@ -356,42 +421,152 @@ class _Run:
         for _ in range(self.DEPTH):  # round-robin: every worker's first band before anyone's second
             for worker in sorted(self.known):
                 if self.planner.held(worker) < self.DEPTH:
-                    self._submit(worker)
+                    self._call(worker)
+        for worker in sorted(self.known):
+            if not self.planner.held(worker) and worker not in self.splitting:
+                self._steal(worker)
+
+    async def _wait(self, what: Tuple[Any, ...], future: Any) -> None:
+        """An actor's answer, put on the queue the client's loop reads (this
+        runs on Dask's event loop)."""
+        try:
+            result = await future
+        except Exception as e:  # noqa: BLE001 - handed to the client's loop, which raises it or hands the band on
+            result = e
+        self.done.put((what, result))
+
+    @staticmethod
+    async def _release_after(answer: Any, future: Any) -> None:
+        try:
+            await answer
+        except Exception:  # noqa: BLE001 - a worker gone: its actor with it
+            pass
+        future.release()
+
+    def _call(self, worker: str, band: Optional[Band] = None) -> bool:
+        """Send the worker's actor its next band (or `band`)."""
+        if band is None:
+            band = self.planner.next_band(worker)
+            if band is None:
+                return False
+        self.submitted += 1
+        self.calls[self.submitted] = (worker, band)
+        self._send(self.submitted)
+        return True
+
+    def _send(self, n: int) -> None:
+        worker, band = self.calls[n]
+        frame = self._frame(band.frame)
+        future = self.actors[worker].render(n, self.shipped[frame.pack_key].future.key, frame.camera, self.size,
+                                            self.options, band.window, self.threads,
+                                            None if frame.buffer is None else frame.buffer.name)
+        self.client.loop.add_callback(self._wait, ("band", n, worker), future)
+
+    def _steal(self, worker: str) -> None:
+        """An idle worker, nothing left to hand out: ask another's actor
+        for the rest of a band."""
+        by_band: Dict[Tuple[Any, Band], int] = {(w, b): n for n, (w, b) in self.calls.items()}
+        for victim, band in self.planner.victims(worker):
+            n = by_band.get((victim, band))
+            if (n is None or n in self.unsplittable or n in self.being_split or not isinstance(victim, str)
+                    or victim not in self.actors):
+                continue
+            self.splitting.add(worker)
+            self.being_split.add(n)
+            self.client.loop.add_callback(self._wait, ("split", n, worker, victim),
+                                          self.actors[victim].split(n, band.window[1]))
+            return
+
+    def _split(self, n: int, at: int, to: Optional[str]) -> None:
+        """Band `n` stops before row `at`: the rest goes to `to`, or back to
+        the planner."""
+        worker, band = self.calls[n]
+        rest = self.planner.split(worker, band, at, to)
+        assert rest is not None
+        x, y, w, h = band.window
+        if at == y:
+            del self.calls[n]
+        else:
+            self.calls[n] = (worker, Band(band.frame, (x, y, w, at - y)))
+        if to is None:
+            self.planner.give_back(rest)
+            return
+        self.report.splits += 1
+        if at > y:  # begun: the rest of a band being rendered
+            self._worker_report(worker).split += 1
+        self._call(to, rest)
+
+    def _answer(self, what: Tuple[Any, ...], result: Any) -> Optional[_Frame]:
+        """An actor's answer; the frame it completed, if it did."""
+        if what[0] == "split":
+            n, thief, victim = what[1:]
+            self.splitting.discard(thief)
+            self.being_split.discard(n)
+            if isinstance(result, Exception) or result is None:
+                self.unsplittable.add(n)
+            elif n in self.calls and thief in self.known:
+                self._split(n, result, thief)
+            return None
+        n, worker = what[1:]
+        if n not in self.calls:
+            return None  # its worker was lost, or the band was given up whole
+        if isinstance(result, Exception):
+            if isinstance(result, OSError) and worker in self.actors:  # the worker is not there any more
+                self.dead.add(worker)
+                self._lose(worker)
+                return None
+            raise result
+        if isinstance(result, str) and result == NEED_SCENE:  # a worker that joined after the scene was shipped
+            frame = self.frames[self.calls[n][1].frame]
+            shipped = self.shipped[frame.pack_key]
+            self.actors[worker].ship(shipped.future.key, shipped.pack).result()
+            self._send(n)
+            return None
+        pixels, rays, where, threads, began, ended, rows = result
+        _, band = self.calls[n]
+        x, y, w, h = band.window
+        if rows < h:  # a split gave up the rest, its answer not in yet
+            self._split(n, y + rows, None)
+            _, band = self.calls.get(n, (worker, Band(band.frame, (x, y, w, 0))))
+        self.calls.pop(n, None)
+        if not rows:
+            return None
+        return self._place(band, result[:6])
+
+    def _place(self, band: Band, result: Tuple[Any, ...]) -> Optional[_Frame]:
+        pixels, rays, where, threads, began, ended = result
+        frame = self.frames[band.frame]
+        frame.place(band.window, result)
+        self._count(band, where, threads, rays, began, ended)
+        complete = self.planner.done(band, where, ended - began)
+        self.bar.pixels(band.pixels)
+        return frame if complete else None
 
     def _next_done(self) -> Any:
         while True:
             try:
-                future = self.done.get(timeout=self.CHECK_WORKERS)
+                item = self.done.get(timeout=self.CHECK_WORKERS)
             except queue.Empty:
                 if self.sized:
                     self._workers()
                     self._fill()
                 continue
-            if future in self.out:
-                return future
+            if self.sized or item in self.out:
+                return item
 
     def frames_done(self) -> Iterator[_Frame]:
         """Frames as their last band comes back (a worker's failure raised)."""
         self._fill()
         while not self.planner.finished():
-            future = self._next_done()
-            result = future.result()
-            band = self.out.pop(future)
-            del self.by_band[band]
-            future.release()
-            if result is None:  # it saw itself cancelled, yet was still wanted: render it again
-                self.planner.give_back(band, forget=True)
-                self._fill()
-                continue
-            pixels, rays, where, threads, began, ended = result
-            frame = self.frames[band.frame]
-            frame.place(band.window, result)
-            self._count(band, where, threads, rays, began, ended)
-            complete = self.planner.done(band, where, ended - began)
+            item = self._next_done()
+            if self.sized:
+                complete = self._answer(*item)
+            else:
+                complete = self._task_done(item)
             self._fill()
-            self.bar.pixels(band.pixels)
-            if complete:
-                del self.frames[band.frame]
+            if complete is not None:
+                frame = complete
+                del self.frames[frame.number]
                 self.shipped[frame.pack_key].users -= 1
                 self._drop_idle()
                 self.report.frames += 1
@@ -399,12 +574,27 @@ class _Run:
                 yield frame
                 self._fill()
 
+    def _task_done(self, future: Any) -> Optional[_Frame]:
+        """A tile's task done (fixed tiles)."""
+        result = future.result()
+        band = self.out.pop(future)
+        del self.by_band[band]
+        future.release()
+        if result is None:  # it saw itself cancelled, yet was still wanted: render it again
+            self.planner.give_back(band, forget=True)
+            return None
+        return self._place(band, result)
+
+    def _worker_report(self, where: str) -> WorkerReport:
+        w = self.report.workers.get(where)
+        if w is None:
+            w = self.report.workers[where] = WorkerReport(where)
+        return w
+
     def _count(self, band: Band, where: str, threads: int, rays: Tuple[Any, ...], began: float,
                ended: float) -> None:
         r = self.report
-        w = r.workers.get(where)
-        if w is None:
-            w = r.workers[where] = WorkerReport(where)
+        w = self._worker_report(where)
         w.threads = max(w.threads, threads)
         w.tasks += 1
         w.pixels += band.pixels
@@ -422,12 +612,22 @@ class _Run:
                 del self.by_scene[scene_id]
 
     def close(self) -> None:
-        """Cancel every band still out (after Ctrl-C or a failure) and let
-        the workers drop the scenes."""
+        """Cancel every band still out (after Ctrl-C or a failure), let
+        the workers drop the scenes and the actors, free the frames' shared
+        memory."""
         if self.out:
             self.client.cancel(list(self.out))
         self.out.clear()
         self.by_band.clear()
+        for worker, actor in self.actors.items():
+            # Its band ends at the chunk under way; the actor is dropped once
+            # it has heard that (not waited for here).
+            self.client.loop.add_callback(self._release_after, actor.stop(), self.actor_futures[worker])
+        self.actors.clear()
+        self.actor_futures.clear()
+        self.calls.clear()
+        for frame in self.frames.values():
+            frame.close()
         for shipped in self.shipped.values():
             shipped.future.release()
         self.shipped.clear()

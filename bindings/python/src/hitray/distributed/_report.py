@@ -23,6 +23,7 @@ class WorkerReport:
     busy: float = 0.0  # seconds rendering, all its tasks
     first: float = math.inf  # the worker's clock when its first task began
     last: float = -math.inf  # ... and when its last one ended
+    split: int = 0  # bands it was rendering whose rows not begun went to another worker
 
     @property
     def rays_per_second(self) -> float:
@@ -46,6 +47,8 @@ class Report:
             is shipped and the rows weighed) to the last pixels back.
         tasks: tasks run (bands, or tiles with a fixed `tile`).
         frames: frames completed.
+        splits: bands whose rows not yet begun were taken from the worker
+            rendering them and handed to an idle one.
         workers: by address.
     """
 
@@ -53,6 +56,7 @@ class Report:
     tasks: int = 0
     frames: int = 0
     pixels: int = 0
+    splits: int = 0
     workers: Dict[str, WorkerReport] = field(default_factory=dict)
 
     @property
@@ -96,11 +100,11 @@ class Report:
         out = []
         for w in sorted(self.workers.values(), key=lambda w: w.address):
             out.append(f"  {w.address}: {w.tasks} tasks, {w.threads} thread{'s' if w.threads != 1 else ''}, "
-                       f"busy {w.busy:.2f} s, "
+                       f"busy {w.busy:.2f} s, {w.split} split, "
                        f"{w.rays_per_second / 1e6:.2f} Mrays/s")
         out.append(f"  {self.tasks} tasks on {len(self.workers)} workers ({self.threads} render threads) in "
                    f"{self.wall:.2f} s: overhead {100 * self.overhead_share:.1f}% of the core time "
                    f"({1e3 * self.overhead_per_task:.1f} core-ms per task, "
                    f"{1e3 * self.between_per_task:.1f} ms between tasks on a worker), "
-                   f"balance {self.balance:.2f}")
+                   f"balance {self.balance:.2f}, {self.splits} band{'' if self.splits == 1 else 's'} split")
         return out
