@@ -71,18 +71,17 @@ static inline __attribute__((always_inline)) int hit_to_parent(const hr_trace_ct
          * point; a hit whose point is not finite is dropped below. */
         const double error = hri_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h->point, h->error);
         hr_vec3 point, n;
-        if (obj->diagonal && hri_xform_point_diagonal(obj->m, h->point, &point) &&
-            hri_xform_normal_diagonal(obj->inv, normal, &n)) {
-            /* The one-term forms hold, so the point and the normal are
-             * finite (and the normal stays so, rescaled): only the error
-             * is left to test. */
-            normal = v3_unit_exponent(n);
-            if (!(error - error == 0.0)) return 0;
-        } else {
+        /* Where the one-term forms of a diagonal transform hold, the point
+         * and the normal are finite (and the normal stays so, rescaled):
+         * only the error is left to test. */
+        const int one_term = obj->diagonal && hri_xform_point_diagonal(obj->m, h->point, &point) &&
+                             hri_xform_normal_diagonal(obj->inv, normal, &n);
+        if (!one_term) {
             point = hri_xform_point_as(obj->m, obj->diagonal, h->point);
-            normal = v3_unit_exponent(hri_xform_normal_as(obj->inv, obj->diagonal, normal));
-            if (!v3_pair_is_finite(point, normal, error)) return 0;
+            n = hri_xform_normal_as(obj->inv, obj->diagonal, normal);
         }
+        normal = v3_unit_exponent(n);
+        if (one_term ? !(error - error == 0.0) : !v3_pair_is_finite(point, normal, error)) return 0;
         h->point = point;
         h->error = error;
     }
