@@ -131,14 +131,28 @@ static inline int hri_xform_nonzero_finite(hr_vec3 r)
     return (bits & ~(UINT64_C(1) << 63)) - 1 < UINT64_C(0x7fefffffffffffff);
 }
 
+/* The one-term forms of M p and of (M^-1)^T n for a diagonal linear part,
+ * into *r; 1 when they are the full products' bits (every coordinate
+ * non-zero and finite, so the result is finite too), 0 otherwise. */
+static inline int hri_xform_point_diagonal(const double m[16], hr_vec3 p, hr_vec3 *r)
+{
+    const hr_vec3 q = {m[0] * p.x + m[3], m[5] * p.y + m[7], m[10] * p.z + m[11]};
+    *r = q;
+    return hri_xform_nonzero_finite(q);
+}
+static inline int hri_xform_normal_diagonal(const double inv[16], hr_vec3 n, hr_vec3 *r)
+{
+    const hr_vec3 q = {inv[0] * n.x, inv[5] * n.y, inv[10] * n.z};
+    *r = q;
+    return hri_xform_nonzero_finite(q);
+}
+
 /* hri_xform_point, hri_xform_vector and hri_xform_normal, the same bits, one
  * term a row when `diagonal` (hri_xform_is_diagonal of the matrix given). */
 static inline hr_vec3 hri_xform_point_as(const double m[16], int diagonal, hr_vec3 p)
 {
-    if (diagonal) {
-        const hr_vec3 r = {m[0] * p.x + m[3], m[5] * p.y + m[7], m[10] * p.z + m[11]};
-        if (hri_xform_nonzero_finite(r)) return r;
-    }
+    hr_vec3 r;
+    if (diagonal && hri_xform_point_diagonal(m, p, &r)) return r;
     return hri_xform_point(m, p);
 }
 static inline hr_vec3 hri_xform_vector_as(const double m[16], int diagonal, hr_vec3 v)
@@ -151,10 +165,8 @@ static inline hr_vec3 hri_xform_vector_as(const double m[16], int diagonal, hr_v
 }
 static inline hr_vec3 hri_xform_normal_as(const double inv[16], int diagonal, hr_vec3 n)
 {
-    if (diagonal) {
-        const hr_vec3 r = {inv[0] * n.x, inv[5] * n.y, inv[10] * n.z};
-        if (hri_xform_nonzero_finite(r)) return r;
-    }
+    hr_vec3 r;
+    if (diagonal && hri_xform_normal_diagonal(inv, n, &r)) return r;
     return hri_xform_normal(inv, n);
 }
 

@@ -26,6 +26,69 @@ static inline int hit_before(const hr_hit *a, const hr_hit *b)
     return a->surface < b->surface;
 }
 
+/* Whether a hit's t, found in the window (tmin, tmax) of a ray whose
+ * direction was scaled by 2^-t_exp, is inside it, and then inside the
+ * caller's (ray_tmin, ray_tmax) once scaled back (*t is then the caller's).
+ * Scaling back may overflow to infinity or round onto an end of the window
+ * (the scaled window's ends were rounded too): the hit must be inside the
+ * caller's window, checked on the t it will be given. */
+static inline __attribute__((always_inline)) int hit_t_in_window(double *t, double tmin, double tmax, int t_exp,
+                                                                 double ray_tmin, double ray_tmax)
+{
+    if (!(*t > tmin && *t < tmax)) return 0;
+    if (!t_exp) return 1;
+    *t = ldexp(*t, -t_exp);
+    return *t > ray_tmin && *t < ray_tmax && isfinite(*t);
+}
+
+/* One hit a class gave, whose t is already checked against the window,
+ * taken to the parent's space in place (object_trace): 0 when the host's
+ * contract drops it. */
+static inline __attribute__((always_inline)) int hit_to_parent(const hr_trace_ctx *tc, const hr_object *obj,
+                                                               int composite, int unit_normals, hr_hit *h)
+{
+    /* A non-finite point or normal stays non-finite through the
+     * transform (each row has a term in every coordinate, and inf * 0 is
+     * NaN) and through v3_unit_exponent, so a transformed object's hit
+     * is dropped for it by the test after the transform; only a
+     * non-finite error could vanish there (a NaN row loses the max), so
+     * that is the one value tested first. An untransformed object's hit
+     * is tested whole, here. */
+    if (obj->identity ? !v3_pair_is_finite(h->point, h->normal, h->error) : !(h->error - h->error == 0.0))
+        return 0;
+    /* A composite's hit names its leaf; one naming no object of the scene
+     * is taken as the composite's own, so shading never indexes past the
+     * object list. Any other shape leaves `object` unset: it is not read
+     * (not even by a branch the compiler may merge, which memcheck flags). */
+    if (!composite) h->object = obj->index;
+    else if (h->object < 0 || h->object >= tc->scene->object_count) h->object = obj->index;
+    /* Normals may have any non-zero length: bring them to a safe scale
+     * (exactly, by a power of two) before and after the transform, so
+     * neither M^-T nor normalising overflows or underflows. */
+    hr_vec3 normal = v3_unit_exponent(h->normal);
+    if (!obj->identity) {
+        /* hri_xform_error_as gives the full bound's bits for a finite
+         * point; a hit whose point is not finite is dropped below. */
+        const double error = hri_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h->point, h->error);
+        hr_vec3 point, n;
+        /* Where the one-term forms of a diagonal transform hold, the point
+         * and the normal are finite (and the normal stays so, rescaled):
+         * only the error is left to test. */
+        const int one_term = obj->diagonal && hri_xform_point_diagonal(obj->m, h->point, &point) &&
+                             hri_xform_normal_diagonal(obj->inv, normal, &n);
+        if (!one_term) {
+            point = hri_xform_point_as(obj->m, obj->diagonal, h->point);
+            n = hri_xform_normal_as(obj->inv, obj->diagonal, normal);
+        }
+        normal = v3_unit_exponent(n);
+        if (one_term ? !(error - error == 0.0) : !v3_pair_is_finite(point, normal, error)) return 0;
+        h->point = point;
+        h->error = error;
+    }
+    h->normal = unit_normals ? v3_normalize(normal) : normal;
+    return 1;
+}
+
 /* hri_object_trace's body, inline so that the scene walk (visit_object in
  * trace.c) and a composite's every-hit child trace (host_trace_child in
  * host_services.c) get copies specialised to their modes. */
@@ -80,55 +143,28 @@ object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double t
         return tc->status = HR_ERROR_MODULE;
     }
     int composite = (cls->flags & HR_SHAPE_COMPOSITE) != 0;
+    /* The host enforces the contract instead of trusting it: a hit outside
+     * (tmin, tmax) or with a non-finite field is dropped, before a first
+     * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
+     * answers carry only t. */
+    if (mode == HR_TRACE_FIRST && out->count == start + 1) {
+        /* A first hit, as classes give it: the one hit, in place. */
+        hr_hit *h = &out->hits[start];
+        const int keep = hit_t_in_window(&h->t, tmin, tmax, t_exp, ray_tmin, ray_tmax) &&
+                         hit_to_parent(tc, obj, composite, unit_normals, h);
+        out->count = start + keep;
+        return HR_OK;
+    }
     int32_t kept = start;
     for (int32_t i = start; i < out->count; i++) {
         hr_hit h = out->hits[i];
-        /* The host enforces the contract instead of trusting it: a hit outside
-         * (tmin, tmax) or with a non-finite field is dropped, before a first
-         * or any hit is chosen, so a bad hit cannot hide a good one. Any-hit
-         * answers carry only t. */
-        if (!(h.t > tmin && h.t < tmax)) continue;
-        /* Scaling back may overflow to infinity or round onto an end of the
-         * window (the scaled window's ends were rounded too): the hit must be
-         * inside the caller's window, checked on the t it will be given. */
-        if (t_exp) {
-            h.t = ldexp(h.t, -t_exp);
-            if (!(h.t > ray_tmin && h.t < ray_tmax && isfinite(h.t))) continue;
-        }
+        if (!hit_t_in_window(&h.t, tmin, tmax, t_exp, ray_tmin, ray_tmax)) continue;
         if (mode == HR_TRACE_ANY) {
             out->hits[start] = h;
             out->count = start + 1;
             return HR_OK;
         }
-        /* A non-finite point or normal stays non-finite through the
-         * transform (each row has a term in every coordinate, and inf * 0 is
-         * NaN) and through v3_unit_exponent, so a transformed object's hit
-         * is dropped for it by the test after the transform; only a
-         * non-finite error could vanish there (a NaN row loses the max), so
-         * that is the one value tested first. An untransformed object's hit
-         * is tested whole, here. */
-        if (obj->identity ? !v3_pair_is_finite(h.point, h.normal, h.error) : !(h.error - h.error == 0.0))
-            continue;
-        /* A composite's hit names its leaf; one naming no object of the scene
-         * is taken as the composite's own, so shading never indexes past the
-         * object list. Any other shape leaves `object` unset: it is not read
-         * (not even by a branch the compiler may merge, which memcheck flags). */
-        if (!composite) h.object = obj->index;
-        else if (h.object < 0 || h.object >= tc->scene->object_count) h.object = obj->index;
-        /* Normals may have any non-zero length: bring them to a safe scale
-         * (exactly, by a power of two) before and after the transform, so
-         * neither M^-T nor normalising overflows or underflows. */
-        h.normal = v3_unit_exponent(h.normal);
-        if (!obj->identity) {
-            /* hri_xform_error_as gives the full bound's bits for a finite
-             * point; a hit whose point is not finite is dropped below. */
-            h.error = hri_xform_error_as(obj->m, &obj->m_error, obj->diagonal, h.point, h.error);
-            h.point = hri_xform_point_as(obj->m, obj->diagonal, h.point);
-            h.normal = hri_xform_normal_as(obj->inv, obj->diagonal, h.normal);
-            h.normal = v3_unit_exponent(h.normal);
-            if (!v3_pair_is_finite(h.point, h.normal, h.error)) continue;
-        }
-        if (unit_normals) h.normal = v3_normalize(h.normal);
+        if (!hit_to_parent(tc, obj, composite, unit_normals, &h)) continue;
         out->hits[kept++] = h;
     }
     out->count = kept;

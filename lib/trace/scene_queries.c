@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "util/errors.h"
 #include "trace/object_trace.h"
@@ -13,7 +14,10 @@
 #include "trace/trace_context.h"
 #include "geometry/vec.h"
 
-static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
+/* The checks of every query's arguments, each failure with its message;
+ * check_query runs them only for a ray its one test does not pass. */
+static __attribute__((noinline)) hr_status check_query_fully(const hr_scene *s, const hr_ray *ray, double tmin,
+                                                             double tmax)
 {
     if (!s) return HR_ERROR_INVALID_ARGUMENT;
     if (!s->committed) return hri_error(s->ctx, HR_ERROR_STATE, "the scene is not committed (call hr_scene_commit)");
@@ -27,14 +31,39 @@ static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double
     return HR_OK;
 }
 
-/* Ends a query begun with hri_query_enter, which gave `level`. */
-static hr_status finish_query(hr_trace_ctx *tc, int32_t *level)
+/* check_query_fully's answer, with one branch for a good ray (a finite ray
+ * with a direction that is not zero, and tmin <= tmax, which no NaN
+ * passes): a single-ray query pays it on every call. */
+static inline hr_status check_query(const hr_scene *s, const hr_ray *ray, double tmin, double tmax)
 {
-    hri_query_leave(level);
+    if (s && s->committed && ray) {
+        const hr_vec3 d = ray->dir;
+        uint64_t x, y, z; /* the direction's bits: zero but for signs when d = 0 */
+        memcpy(&x, &d.x, sizeof x);
+        memcpy(&y, &d.y, sizeof y);
+        memcpy(&z, &d.z, sizeof z);
+        if (v3_pair_is_finite(ray->origin, d, 0.0) & (((x | y | z) << 1) != 0) & (tmin <= tmax)) return HR_OK;
+    }
+    return check_query_fully(s, ray, tmin, tmax);
+}
+
+/* finish_query's end for a query that failed or took scratch lists. */
+static __attribute__((noinline)) hr_status finish_query_fully(hr_trace_ctx *tc)
+{
     hr_status st = tc->status;
     hri_trace_ctx_release(tc);
     if (st) return hri_error(tc->scene->ctx, st, "a shape failed while tracing: %s", hr_status_name(st));
     return HR_OK;
+}
+
+/* Ends a query begun with hri_query_enter, which gave `level`: inline, as
+ * most queries neither fail nor take a scratch list, and then there is
+ * nothing to release. */
+static inline hr_status finish_query(hr_trace_ctx *tc, int32_t *level)
+{
+    hri_query_leave(level);
+    if (__builtin_expect(tc->status == HR_OK && tc->scratch_ready == 0, 1)) return HR_OK;
+    return finish_query_fully(tc);
 }
 
 HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double tmin, double tmax,

@@ -32,6 +32,12 @@ static hr_context *ctx;
  * overflows under a large transform, then the good hit. */
 #define ROGUE_BAD_FIELD 100
 #define ROGUE_FAR_POINT 130
+/* One hit alone at t = 1 (the host's path for a single first hit), with a
+ * normal that has no zero coordinate, whose point (ROGUE_FAR_POINT_ALONE)
+ * or error (ROGUE_FAR_ERROR_ALONE) is finite but overflows under a large
+ * transform. */
+#define ROGUE_FAR_POINT_ALONE 131
+#define ROGUE_FAR_ERROR_ALONE 132
 
 typedef struct rogue {
     int mode;
@@ -73,7 +79,7 @@ static void put(const hr_hit_args *a, double t, hr_vec3 normal)
 static hr_status rogue_hit(const hr_hit_args *a)
 {
     const rogue *r = a->shape;
-    hr_vec3 up = {0, 0, 1};
+    hr_vec3 up = {0, 0, 1}, tilted = {0.5, 0.5, 1};
     switch (r->mode) {
     case ROGUE_UNSORTED:
         put(a, 3, up);
@@ -94,6 +100,14 @@ static hr_status rogue_hit(const hr_hit_args *a)
         put(a, 1, up);
         a->out->hits[a->out->count - 1].point.x = 1e300;
         put(a, 2, up);
+        break;
+    case ROGUE_FAR_POINT_ALONE:
+        put(a, 1, tilted);
+        a->out->hits[a->out->count - 1].point.x = 1e300;
+        break;
+    case ROGUE_FAR_ERROR_ALONE:
+        put(a, 1, tilted);
+        a->out->hits[a->out->count - 1].error = 1e300;
         break;
     default:
         if (r->mode >= ROGUE_BAD_FIELD && r->mode < ROGUE_BAD_FIELD + 21) {
@@ -308,6 +322,27 @@ static void non_finite_fields(void)
     hr_transform_identity(&big);
     CHECK_OK(hr_transform_scale(&big, 1e10, 1, 1));
     first_and_all_are_the_good_hit(rogue_scene(ROGUE_FAR_POINT, &big), "point overflowing to the world");
+    /* The same for a class's only hit, which the host takes to the world in
+     * place (a translate and scale, one term a row): dropped, nothing found. */
+    static const int alone[2] = {ROGUE_FAR_POINT_ALONE, ROGUE_FAR_ERROR_ALONE};
+    /* No zero coordinate in the hit's point or normal, either side of the
+     * transform: the one-term forms of a diagonal transform hold for them. */
+    const hr_ray aslant = {{0.5, 0.25, 5}, {0, 0, -1}};
+    for (int k = 0; k < 2; k++) {
+        hr_scene *s = rogue_scene(alone[k], &big);
+        CHECK_OK(hr_scene_commit(s));
+        hr_hit h;
+        int32_t found = 1;
+        CHECK_OK(hr_scene_first_hit(s, &aslant, 0, INFINITY, &h, &found));
+        CHECK_MSG(found == 0, "%s overflowing to the world alone: found at t = %g", k ? "error" : "point", h.t);
+        hr_intersection all;
+        hr_intersection_init(&all);
+        CHECK_OK(hr_scene_all_hits(s, &aslant, 0, INFINITY, &all));
+        CHECK_MSG(all.count == 0, "%s overflowing alone: all hits gave %d", k ? "error" : "point",
+                  (int)all.count);
+        hr_intersection_release(&all);
+        hr_scene_destroy(s);
+    }
 }
 
 /* A committed scene with no objects: every query answers "nothing". */
