@@ -83,14 +83,38 @@ static int visit_object(first_state *fs, const hr_object *o)
     return 0;
 }
 
+/* A BVH object for a first hit once one is found: its hits up to and
+ * including the best t, and one at that very t taken only from a lower
+ * object index (a leaf's, for a composite), the tie rule of
+ * hr_scene_all_hits's order. The walk visits front to back by boxes, not
+ * by index: seen from 1e16 away, two solids a unit apart are met at the
+ * same rounded t, and the one visited second must still win when its
+ * index is lower. */
+static void visit_for_tie(first_state *fs, const hr_object *o)
+{
+    fs->tmp->count = 0;
+    const double best = fs->best;
+    if (object_trace(fs->tc, o, fs->ray, fs->tmin, step_towards(best, 1.0), HR_TRACE_FIRST, 1, fs->tmp) !=
+            HR_OK ||
+        fs->tmp->count == 0)
+        return;
+    const hr_hit *h = &fs->tmp->hits[0];
+    if (h->t < best || h->object < fs->out->object) {
+        fs->best = h->t;
+        *fs->out = *h;
+    }
+}
+
 /* The objects of one BVH leaf; a nearer hit lowers fs->best, which the
  * walk reads back. */
 static int visit_leaf(void *user, uint32_t first, uint32_t count)
 {
     first_state *fs = user;
     const hr_object *const *objects = fs->tc->scene->leaf_objects + first;
-    for (uint32_t i = 0; i < count; i++)
-        if (visit_object(fs, objects[i])) return ACCEL_WALK_STOP;
+    for (uint32_t i = 0; i < count; i++) {
+        if (fs->found && !fs->any) visit_for_tie(fs, objects[i]);
+        else if (visit_object(fs, objects[i])) return ACCEL_WALK_STOP;
+    }
     return ACCEL_WALK_GO_ON;
 }
 
