@@ -58,63 +58,56 @@ typedef struct first_state {
     hr_trace_ctx *tc;
     const hr_ray *ray;
     double tmin, best;
+    /* A first hit's objects are traced below this: the best t (or tmax),
+     * or in the BVH walk the double after the best t, which the walk
+     * reads back to skip boxes. */
+    double window;
     hr_hit *out;
     hr_intersection *tmp;
     int found;
-    int any; /* stop at the first hit (shadow rays) */
+    int any;      /* stop at the first hit (shadow rays) */
+    int by_index; /* the BVH walk: ties at the best t go to the lower object index */
+    int32_t taken; /* hits that became the best */
     const hr_object *hit_object; /* whose hit ended an any-hit walk */
 } first_state;
 
-/* Test one object; returns 1 to stop (any-hit found one). */
+/* Test one object; returns 1 to stop (any-hit found one). The BVH walk
+ * visits objects front to back by their boxes, not by index, so it traces
+ * each object up to and including the best t and takes a hit at that very
+ * t only from a lower object index (a leaf's, for a composite): the tie
+ * rule of hr_scene_all_hits's order. Seen from 1e16 away, two solids a
+ * unit apart are met at the same rounded t, and the one visited second
+ * must still win when its index is lower. */
 static int visit_object(first_state *fs, const hr_object *o)
 {
     fs->tmp->count = 0;
     hr_status st = fs->any ? object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_ANY, 0, fs->tmp)
-                           : object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_FIRST, 1, fs->tmp);
+                           : object_trace(fs->tc, o, fs->ray, fs->tmin, fs->window, HR_TRACE_FIRST, 1, fs->tmp);
     if (st != HR_OK) return 0;
     if (fs->tmp->count == 0) return 0;
-    fs->found = 1;
     if (fs->any) {
+        fs->found = 1;
         fs->hit_object = o;
         return 1;
     }
-    fs->best = fs->tmp->hits[0].t;
-    *fs->out = fs->tmp->hits[0];
+    const hr_hit *h = &fs->tmp->hits[0];
+    if (fs->by_index && fs->found && !(h->t < fs->best || h->object < fs->out->object)) return 0;
+    fs->found = 1;
+    fs->taken++;
+    fs->best = h->t;
+    fs->window = fs->by_index ? step_towards(h->t, 1.0) : h->t;
+    *fs->out = *h;
     return 0;
 }
 
-/* A BVH object for a first hit once one is found: its hits up to and
- * including the best t, and one at that very t taken only from a lower
- * object index (a leaf's, for a composite), the tie rule of
- * hr_scene_all_hits's order. The walk visits front to back by boxes, not
- * by index: seen from 1e16 away, two solids a unit apart are met at the
- * same rounded t, and the one visited second must still win when its
- * index is lower. */
-static void visit_for_tie(first_state *fs, const hr_object *o)
-{
-    fs->tmp->count = 0;
-    const double best = fs->best;
-    if (object_trace(fs->tc, o, fs->ray, fs->tmin, step_towards(best, 1.0), HR_TRACE_FIRST, 1, fs->tmp) !=
-            HR_OK ||
-        fs->tmp->count == 0)
-        return;
-    const hr_hit *h = &fs->tmp->hits[0];
-    if (h->t < best || h->object < fs->out->object) {
-        fs->best = h->t;
-        *fs->out = *h;
-    }
-}
-
-/* The objects of one BVH leaf; a nearer hit lowers fs->best, which the
- * walk reads back. */
+/* The objects of one BVH leaf; a nearer hit lowers fs->window (or
+ * fs->best, for any hit), which the walk reads back. */
 static int visit_leaf(void *user, uint32_t first, uint32_t count)
 {
     first_state *fs = user;
     const hr_object *const *objects = fs->tc->scene->leaf_objects + first;
-    for (uint32_t i = 0; i < count; i++) {
-        if (fs->found && !fs->any) visit_for_tie(fs, objects[i]);
-        else if (visit_object(fs, objects[i])) return ACCEL_WALK_STOP;
-    }
+    for (uint32_t i = 0; i < count; i++)
+        if (visit_object(fs, objects[i])) return ACCEL_WALK_STOP;
     return ACCEL_WALK_GO_ON;
 }
 
@@ -132,18 +125,18 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
 int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
                            hr_intersection *tmp)
 {
-    first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL};
+    first_state fs = {.tc = tc, .ray = ray, .tmin = tmin, .best = tmax, .window = tmax, .out = out, .tmp = tmp,
+                      .by_index = 1};
     const hr_scene *s = tc->scene;
     if (!box_misses(&s->bvh_box, ray, tmin, fs.best))
-        accel_bvh4_walk(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
+        accel_bvh4_walk(&s->bvh, ray, tmin, &fs.window, visit_leaf, &fs);
+    fs.by_index = 0;
     int tie_wins = fs.found; /* the best so far is the BVH's */
     for (int32_t i = 0; i < s->unbounded_count; i++) {
-        const double best = fs.best;
-        const double window = tie_wins ? step_towards(best, 1.0) : best;
-        fs.best = window;
+        fs.window = tie_wins ? step_towards(fs.best, 1.0) : fs.best;
+        const int32_t taken = fs.taken;
         visit_object(&fs, s->unbounded[i]);
-        if (fs.best == window) fs.best = best; /* no hit (every hit is below the window's end) */
-        else tie_wins = 0;
+        if (fs.taken != taken) tie_wins = 0;
     }
     return fs.found;
 }
@@ -213,7 +206,7 @@ int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, dou
     int32_t first = 0;
     while (first < s->unbounded_count && shadow_passes(s->unbounded[first], ray, tmin, tmax)) first++;
     const int walk = !box_misses(&s->bvh_box, ray, tmin, tmax);
-    first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL};
+    first_state fs = {.tc = tc, .ray = ray, .tmin = tmin, .best = tmax, .window = tmax, .tmp = tmp, .any = 1};
     if (first < s->unbounded_count || walk) {
         if (!tmp && !(fs.tmp = tmp = scratch_acquire(tc))) {
             tc->status = HR_ERROR_OUT_OF_MEMORY;
