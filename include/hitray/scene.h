@@ -149,6 +149,24 @@ HR_API hr_status hr_scene_set_pixmap(hr_scene *scene, int32_t index, const hr_im
 /* Whether pixmap `index` is made (1) or not (0). */
 HR_API int32_t hr_scene_has_pixmap(const hr_scene *scene, int32_t index);
 
+/* The files a scene was built from: every file a reader or a shape read
+ * while the scene was made (the SDL or NFF scene file, a makePixmap image,
+ * a mesh's file), once each, in the order first read, each as the path it
+ * was read at, made absolute with the working directory of then (".." and
+ * symbolic links kept as they were). A scene's text may name other files,
+ * in a comment or a macro never used: those were not read and are not
+ * listed. hitray.distributed ships exactly these. A string stays valid
+ * until the scene is destroyed; hr_scene_file is NULL for an index out of
+ * range. */
+HR_API int64_t hr_scene_file_count(const hr_scene *scene);
+HR_API const char *hr_scene_file(const hr_scene *scene, int64_t index);
+/* Lists `path` among the scene's files (once; a relative path is made
+ * absolute first). The readers call it for the files they read and the
+ * host for a shape's (hr_host.file_read); a program that builds a scene
+ * from files of its own may call it too. Fails with HR_ERROR_INVALID_ARGUMENT
+ * (NULL or empty path) or HR_ERROR_OUT_OF_MEMORY. */
+HR_API hr_status hr_scene_note_file(hr_scene *scene, const char *path);
+
 /* Introspection. */
 HR_API int64_t hr_scene_object_count(const hr_scene *scene);
 HR_API int32_t hr_scene_light_count(const hr_scene *scene);

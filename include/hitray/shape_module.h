@@ -52,6 +52,7 @@ extern "C" {
 #define HR_TRACE_ANY 2   /* any hit (count 0 or 1; only t is meaningful) */
 
 typedef struct hr_shape_class hr_shape_class;
+typedef struct hr_create_args hr_create_args;
 
 /* Host services. The host passes one table that lives as long as the module
  * is loaded. `call` is the host's per-thread context of the current hit call
@@ -88,6 +89,15 @@ typedef struct hr_host {
     /* The class of a child object (the host's copy: name, flags, ...), so a
      * composite can refuse a child that is no solid (no HR_SHAPE_CLOSED). */
     const hr_shape_class *(*child_class)(const void *child);
+    /* Tells the host that create, called with `args` (pass the pointer
+     * create was given), read the file at `path` (as opened: a relative
+     * name joined to args->base_dir), so the scene can list the files it
+     * was built from (hr_scene_file) and a scene shipped elsewhere carries
+     * exactly these. Call it for every file a create reads, once the file
+     * has been read; a create that fails needs not. HR_OK, or
+     * HR_ERROR_OUT_OF_MEMORY (fail create with it). NULL in a host built
+     * before it (HR_HOST_HAS), which then lists no shape's files. */
+    hr_status (*file_read)(const hr_create_args *args, const char *path);
 } hr_host;
 
 /* Whether the host table `host` has `field` (it may come from an older
@@ -96,7 +106,7 @@ typedef struct hr_host {
     ((host)->struct_size >= offsetof(hr_host, field) + sizeof((host)->field))
 
 /* Arguments of a shape's create. */
-typedef struct hr_create_args {
+struct hr_create_args {
     uint32_t struct_size;
     int32_t param_count;
     /* The parameters given, each already checked by the host against the
@@ -115,7 +125,7 @@ typedef struct hr_create_args {
     /* Directory of the scene file being read, for relative file parameters
      * (mesh files); "" when not reading a file. */
     const char *base_dir;
-} hr_create_args;
+};
 
 /* Arguments of a hit call. Everything is in the shape's object space. */
 typedef struct hr_hit_args {

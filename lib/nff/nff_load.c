@@ -14,12 +14,13 @@
 #include "sdl/text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const char *text, size_t length, const char *name,
-                            hr_sdl_result *result)
+                            const char *file, hr_sdl_result *result)
 {
     hr_scene *scene = NULL;
     nff_reader reader;
     memset(&reader, 0, sizeof reader);
     hr_status st = hr_scene_create(ctx, &scene);
+    if (!st && file) st = hr_scene_note_file(scene, file);
     if (!st) {
         nff_reader_init(&reader, ctx, scene, name, text, length);
         st = nff_reader_run(&reader);
@@ -43,12 +44,13 @@ static hr_status read_scene(hr_context *ctx, const char *text, size_t length, co
     return st;
 }
 
+/* `file`: the path the text was read from, NULL for text given. */
 static hr_status load_text(hr_context *ctx, const char *text, size_t length, const char *name,
-                           hr_sdl_result *out)
+                           const char *file, hr_sdl_result *out)
 {
     hr_sdl_result result;
     hri_load_result_empty(&result);
-    hr_status st = read_scene(ctx, text, length, name, &result);
+    hr_status st = read_scene(ctx, text, length, name, file, &result);
     hri_load_result_give(out, &result);
     return st;
 }
@@ -59,7 +61,7 @@ HR_API hr_status hr_nff_load_string(hr_context *ctx, const char *text, const cha
     hr_status st = hri_load_result_begin(ctx, out, "NFF");
     if (st) return st;
     if (!text) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_nff_load_string: NULL text");
-    return load_text(ctx, text, strlen(text), name ? name : "<string>", out);
+    return load_text(ctx, text, strlen(text), name ? name : "<string>", NULL, out);
 }
 
 /* The file's bytes as they are (a plain NFF file), or inflated where they
@@ -197,7 +199,7 @@ HR_API hr_status hr_nff_load_file(hr_context *ctx, const char *path, hr_sdl_resu
     char *text;
     size_t length;
     if ((st = read_file(ctx, path, &text, &length))) return st;
-    st = load_text(ctx, text, length, path, out);
+    st = load_text(ctx, text, length, path, path, out);
     free(text);
     return st;
 }

@@ -61,6 +61,7 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     free(scene->unbounded);
     accel_bvh4_release(&scene->bvh);
     free(scene->leaf_objects);
+    hri_scene_files_free(scene);
     free(scene);
 }
 

@@ -88,12 +88,22 @@ struct hr_scene {
     int32_t unbounded_count;
     hr_pixmap_set pixmaps;      /* Hill's makePixmap (lib/texture/pixmap.c) */
     hr_scene_budget budget;     /* what its objects, shape data and texels may take */
+    char **files;               /* the files it was built from (scene_files.c) */
+    int64_t file_count, file_cap;
 };
 
 /* The checks on a full-size material (scene_materials.c);
  * hr_material_validate is the public door, which first reads only the bytes
  * the caller declared. */
 hr_status hri_material_check(hr_context *ctx, const hr_material *m);
+/* The scene's list of files (scene_files.c): freed with the scene; a
+ * shape's create is bracketed by begin and end, so that hr_host.file_read
+ * (hri_scene_create_file_read, with the create's own arguments) notes the
+ * file in the scene being built. */
+void hri_scene_files_free(hr_scene *s);
+void hri_scene_create_begin(hr_scene *s, const hr_create_args *args);
+void hri_scene_create_end(void);
+hr_status hri_scene_create_file_read(const hr_create_args *args, const char *path);
 /* Destroys the object's shape and frees what it owns (scene_objects.c);
  * its own memory is its slab's, freed with the scene (hri_object_slabs_free). */
 void hri_object_free(hr_object *o);

@@ -282,7 +282,9 @@ HR_API hr_status hr_scene_add_object(hr_scene *s, const hr_object_desc *d, int64
         args.base_dir = desc.base_dir ? desc.base_dir : "";
         s->budget.refused = 0;
         hri_scene_budget_begin(&s->budget);
+        hri_scene_create_begin(s, &args);
         st = cls->create(&args, &o->shape);
+        hri_scene_create_end();
         hri_scene_budget_end();
         if (st != HR_OK || !o->shape) {
             o->shape = NULL;

@@ -16,7 +16,7 @@
 #include "sdl/text_file.h"
 
 static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const char *name,
-                            const char *base_dir, hr_sdl_result *result)
+                            const char *base_dir, const char *file, hr_sdl_result *result)
 {
     hr_scene *scene = NULL;
     sdl_source src;
@@ -24,6 +24,7 @@ static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const
     memset(&src, 0, sizeof src);
     memset(&reader, 0, sizeof reader);
     hr_status st = hr_scene_create(ctx, &scene);
+    if (!st && file) st = hr_scene_note_file(scene, file); /* the first file it was built from */
     if (!st) st = sdl_source_init(&src, ctx, name, tokens);
     if (!st) st = sdl_reader_init(&reader, ctx, scene, &src, base_dir);
     if (!st) st = sdl_reader_run(&reader);
@@ -53,8 +54,9 @@ static hr_status read_scene(hr_context *ctx, const sdl_token_list *tokens, const
     return st;
 }
 
+/* `file`: the path the text was read from, NULL for text given. */
 static hr_status load_text(hr_context *ctx, const char *text, size_t length, const char *name,
-                           const char *base_dir, hr_sdl_result *out)
+                           const char *base_dir, const char *file, hr_sdl_result *out)
 {
     hr_sdl_result result;
     hri_load_result_empty(&result);
@@ -68,7 +70,7 @@ static hr_status load_text(hr_context *ctx, const char *text, size_t length, con
     else if (st)
         hri_error(ctx, st, "out of memory reading '%s'", name);
     else
-        st = read_scene(ctx, &tokens, name, base_dir, &result);
+        st = read_scene(ctx, &tokens, name, base_dir, file, &result);
     sdl_token_list_release(&tokens);
     hri_load_result_give(out, &result);
     return st;
@@ -80,7 +82,7 @@ HR_API hr_status hr_sdl_load_string(hr_context *ctx, const char *text, const cha
     hr_status st = hri_load_result_begin(ctx, out, "SDL");
     if (st) return st;
     if (!text) return hri_error(ctx, HR_ERROR_INVALID_ARGUMENT, "hr_sdl_load_string: NULL text");
-    return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, out);
+    return load_text(ctx, text, strlen(text), name ? name : "<string>", base_dir, NULL, out);
 }
 
 HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_result *out)
@@ -95,7 +97,7 @@ HR_API hr_status hr_sdl_load_file(hr_context *ctx, const char *path, hr_sdl_resu
     if (!base_dir)
         st = hri_error(ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     else
-        st = load_text(ctx, text, length, path, base_dir, out);
+        st = load_text(ctx, text, length, path, base_dir, path, out);
     free(base_dir);
     free(text);
     return st;

@@ -28,11 +28,12 @@ hr_status sdl_cmd_make_pixmap(sdl_reader *r, sdl_located keyword)
     if (!path) return hri_error(r->ctx, HR_ERROR_OUT_OF_MEMORY, "out of memory");
     hr_image *image = NULL;
     st = hr_image_read(r->ctx, path, &image);
-    free(path);
     if (st == HR_OK) {
         st = hr_scene_set_pixmap(r->scene, (int32_t)index, image);
         hr_image_destroy(image);
     }
+    if (st == HR_OK) st = hr_scene_note_file(r->scene, path);
+    free(path);
     if (st) return sdl_error(r->src, st, file, "makePixmap %lld: %s", (long long)index,
                              hr_context_last_error(r->ctx));
     return HR_OK;

@@ -77,6 +77,7 @@ static void host_services_init(hr_host *host)
     host->trace_child = host_trace_child;
     host->child_bounds = host_child_bounds;
     host->child_class = host_child_class;
+    host->file_read = hri_scene_create_file_read;
 }
 
 HR_API hr_status hr_context_create(hr_context **out)

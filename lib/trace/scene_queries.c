@@ -86,10 +86,49 @@ HR_API hr_status hr_scene_first_hit(const hr_scene *s, const hr_ray *ray, double
     return finish_query(&tc, level);
 }
 
-static int compare_hits(const void *a, const void *b)
+/* The order of all hits: by t, equal t by object (hr_scene_first_hit's
+ * tie rule across objects), and hits of one object at equal t in the
+ * order its class listed them: a solid crossed where its entering and
+ * leaving t round to the same double (a few units wide, seen from 1e16
+ * away) enters before it leaves, as its first hit says, whichever surface
+ * ids the two crossings have. */
+static inline int listed_before(const hr_hit *a, const hr_hit *b)
 {
-    const hr_hit *x = a, *y = b;
-    return hit_before(x, y) ? -1 : hit_before(y, x) ? 1 : 0;
+    return a->t < b->t || (a->t == b->t && a->object < b->object);
+}
+
+/* Sorts the list stably by listed_before: bottom-up merges through a
+ * buffer, or (when there is no memory for it) insertion, which is stable
+ * too. The list is the objects' answers one after the other, each sorted
+ * already. */
+static void sort_hits_stably(hr_intersection *list)
+{
+    const size_t n = (size_t)list->count;
+    hr_hit *a = list->hits, *buffer = malloc(n * sizeof *buffer);
+    if (!buffer) {
+        for (size_t i = 1; i < n; i++) {
+            hr_hit h = a[i];
+            size_t j = i;
+            for (; j > 0 && listed_before(&h, &a[j - 1]); j--) a[j] = a[j - 1];
+            a[j] = h;
+        }
+        return;
+    }
+    hr_hit *from = a, *to = buffer;
+    for (size_t width = 1; width < n; width *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * width) {
+            const size_t mid = lo + width < n ? lo + width : n;
+            const size_t hi = mid + width < n ? mid + width : n;
+            size_t i = lo, j = mid, k = lo;
+            while (i < mid && j < hi) to[k++] = listed_before(&from[j], &from[i]) ? from[j++] : from[i++];
+            while (i < mid) to[k++] = from[i++];
+            while (j < hi) to[k++] = from[j++];
+        }
+        hr_hit *swap = from;
+        from = to, to = swap;
+    }
+    if (from != a) memcpy(a, from, n * sizeof *a);
+    free(buffer);
 }
 
 HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double tmin, double tmax,
@@ -118,7 +157,7 @@ HR_API hr_status hr_scene_all_hits(const hr_scene *s, const hr_ray *ray, double 
     }
     /* qsort's base must not be NULL, even for no elements (a scene with no
      * object never gave the list storage). */
-    if (out->count > 1) qsort(out->hits, (size_t)out->count, sizeof *out->hits, compare_hits);
+    if (out->count > 1) sort_hits_stably(out);
     if (tc.status) out->count = 0;
     return finish_query(&tc, level);
 }

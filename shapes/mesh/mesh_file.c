@@ -84,9 +84,12 @@ static hr_status read_all(const hr_host *host, const char *path, char **text, si
     return HR_OK;
 }
 
-hr_status mesh_load_file(const hr_host *host, const char *file, const char *base_dir, mesh **out,
-                         char *error, size_t error_size)
+hr_status mesh_load_file(const hr_create_args *args, const char *file, mesh **out)
 {
+    const hr_host *host = args->host;
+    const char *base_dir = args->base_dir;
+    char *error = args->error;
+    const size_t error_size = args->error_size;
     *out = NULL;
     if (!file || !file[0]) {
         snprintf(error, error_size, "'file': no mesh file named");
@@ -101,6 +104,11 @@ hr_status mesh_load_file(const hr_host *host, const char *file, const char *base
     char *text;
     size_t length;
     hr_status st = read_all(host, path, &text, &length, error, error_size);
+    /* The scene lists the files it was built from (a shipped scene carries
+     * exactly those): an older host has no such service. */
+    if (st == HR_OK && HR_HOST_HAS(host, file_read) && host->file_read &&
+        (st = host->file_read(args, path)) != HR_OK)
+        host->free(text);
     if (st == HR_OK) {
         mesh_builder b;
         mesh_builder_init(&b, host);

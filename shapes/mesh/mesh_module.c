@@ -74,8 +74,7 @@ static hr_status mesh_create(const hr_create_args *args, void **out_shape)
     const hr_param *file_param = shape_param(args, "file");
     const char *file = file_param && file_param->type == HR_PARAM_STRING ? file_param->string : NULL;
     mesh *m = NULL;
-    hr_status st = mesh_load_file(args->host, file, args->base_dir, &m, args->error,
-                                  args->error_size);
+    hr_status st = mesh_load_file(args, file, &m);
     if (st) return st;
     *out_shape = m;
     return HR_OK;

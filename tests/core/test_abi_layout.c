@@ -41,12 +41,14 @@ PIN_OFF(hr_param_spec, default_number, 16);
 PIN_OFF(hr_param_spec, help, 40);
 /* Appended within ABI 1 (hr_shape_class.param_spec_size gives the stride). */
 PIN_OFF(hr_param_spec, flags, 48);
-PIN_SIZE(hr_host, 72);
+PIN_SIZE(hr_host, 80);
 PIN_OFF(hr_host, alloc, 8);
 PIN_OFF(hr_host, trace_child, 48);
 PIN_OFF(hr_host, child_bounds, 56);
 /* child_class was added within ABI 1, after the first layout: at the end. */
 PIN_OFF(hr_host, child_class, 64);
+/* file_read, within ABI 1 too, after it. */
+PIN_OFF(hr_host, file_read, 72);
 PIN_SIZE(hr_create_args, 56);
 PIN_OFF(hr_create_args, params, 8);
 PIN_OFF(hr_create_args, objects, 16);

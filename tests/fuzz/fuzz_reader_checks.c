@@ -43,13 +43,18 @@ void fuzz_reader_check_error(hr_context *ctx, const char *tag, const char *name,
  * into its own space, rounded; for an eye 4e18 away that rounding moves the
  * line more than the boxes are widened, and a crossing one ulp nearer than
  * the first hit, in a box the world ray misses, is seen by the all-hits
- * query only. */
+ * query only. Either way the first hit is one of the list: its object's
+ * first hit listed at its t, with the same entering flag (a solid whose
+ * two crossings round to one t, seen from far away, enters before it
+ * leaves in both). At a tie between objects the first hit may be another
+ * object than the list's first (an unbounded object wins a tie with the
+ * BVH's, trace.c). */
 static int first_among(const hr_hit *first, const hr_intersection *all)
 {
-    if (first->t == all->hits[0].t) return 1;
     if (!(first->t - all->hits[0].t <= 1e-6 * fabs(all->hits[0].t))) return 0;
-    for (int32_t i = 1; i < all->count; i++)
-        if (all->hits[i].t == first->t && all->hits[i].object == first->object) return 1;
+    for (int32_t i = 0; i < all->count; i++)
+        if (all->hits[i].t == first->t && all->hits[i].object == first->object)
+            return all->hits[i].entering == first->entering;
     return 0;
 }
 

@@ -93,6 +93,53 @@ def test_pack_carries_only_regular_files(tmp_path):
     assert hd.ScenePack(scene).key != pack.key
 
 
+def test_pack_ships_only_the_files_the_scene_read(tmp_path):
+    """A readable file that the scene's text names in a comment and inside
+    a macro never used (relatively and absolutely, as a mesh and as a
+    pixmap) is not read, so not shipped: not one byte of it is in the
+    pickled pack. The files the scene did read (a pixmap and a mesh, each
+    used twice) are shipped, exactly those, and Scene.files lists them with
+    the scene file first."""
+    require_classes("mesh")
+    secret = tmp_path / "id_ed25519"
+    secret.write_bytes(b"-----BEGIN OPENSSH PRIVATE KEY----- not for workers\n")
+    shutil.copy(MESHES / "cube.obj", tmp_path / "cube.obj")
+    hitray.Image(np.full((4, 4, 3), 0.5, dtype=np.float32)).save(tmp_path / "t.png")
+    path = tmp_path / "s.sdl"
+    path.write_text(
+        f"! a comment naming id_ed25519 and {secret}\n"
+        f"def unused {{ mesh id_ed25519 makePixmap 7 {secret} mesh {secret} }}\n"
+        "makePixmap 1 t.png\nmakePixmap 2 t.png\n"
+        "camera 3 2.5 4 0 0 0 0 1 0 45\nlight 4 6 5 1 1 1\n"
+        "mesh cube.obj\npush translate 2 0 0 mesh cube.obj texture 1 sphere pop\n")
+    scene, camera = hitray.load_sdl(path)
+    assert scene.files == [str(path), str(tmp_path / "t.png"), str(tmp_path / "cube.obj")]
+    pack = hd.ScenePack(scene)
+    assert pack.files == sorted([str(tmp_path / "t.png"), str(tmp_path / "cube.obj")])
+    assert pack.shipped_bytes == (tmp_path / "t.png").stat().st_size + (tmp_path / "cube.obj").stat().st_size
+    assert b"OPENSSH" not in pickle.dumps(pack)
+    here = pixels(scene, camera)
+    for name in ("t.png", "cube.obj"):
+        os.remove(tmp_path / name)
+    assert np.array_equal(pixels(rebuilt(pack).scene(), camera), here)
+
+
+def test_pack_sdl_string_and_python_mesh(tmp_path, monkeypatch):
+    """SDL text given as a string, plus a mesh added in Python: the mesh's
+    file is read and shipped; a file the text names in a comment and in a
+    macro never used is not."""
+    require_classes("mesh")
+    shutil.copy(MESHES / "cube.obj", tmp_path / "cube.obj")
+    (tmp_path / "secret").write_bytes(b"top secret")
+    monkeypatch.chdir(tmp_path)
+    scene, _ = hitray.parse_sdl(TWO_SPHERES_SDL + "! secret\ndef unused { mesh secret }\n", base_dir=tmp_path)
+    scene.add(hitray.Mesh("cube.obj"))
+    assert scene.files == [str(tmp_path / "cube.obj")]
+    pack = hd.ScenePack(scene)
+    assert pack.files == [str(tmp_path / "cube.obj")]
+    assert b"top secret" not in pickle.dumps(pack)
+
+
 def test_pack_refuses_more_than_the_limit(tmp_path, monkeypatch):
     require_classes("mesh")
     shutil.copy(MESHES / "cube.3vn", tmp_path / "cube.3vn")

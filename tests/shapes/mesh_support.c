@@ -20,6 +20,12 @@ const char *mesh_build_path(const char *name, char *buf, size_t size)
 hr_status mesh_create_file(const harness_module *module, const char *file, void **shape,
                            char *error, size_t error_size)
 {
+    return mesh_create_file_on(module, harness_host(), file, shape, error, error_size);
+}
+
+hr_status mesh_create_file_on(const harness_module *module, const hr_host *host, const char *file,
+                              void **shape, char *error, size_t error_size)
+{
     const hr_shape_class *cls = harness_find_class(module, "mesh");
     *shape = NULL;
     if (!cls) return HR_ERROR_MODULE;
@@ -35,7 +41,7 @@ hr_status mesh_create_file(const harness_module *module, const char *file, void 
     args.param_count = 1;
     args.params = &param;
     args.objects = objects;
-    args.host = harness_host();
+    args.host = host;
     args.error = error;
     args.error_size = error_size;
     args.base_dir = "";

@@ -17,6 +17,9 @@ const char *mesh_build_path(const char *name, char *buf, size_t size);
  * the harness's host. Returns create's status; the message in error. */
 hr_status mesh_create_file(const harness_module *module, const char *file, void **shape,
                            char *error, size_t error_size);
+/* The same with another host (an older one, one whose services fail). */
+hr_status mesh_create_file_on(const harness_module *module, const hr_host *host, const char *file,
+                              void **shape, char *error, size_t error_size);
 
 /* harness_open for a `mesh` on `file`. 1 on success. */
 int mesh_open_file(harness_shape *out, const char *file);

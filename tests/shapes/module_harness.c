@@ -132,10 +132,17 @@ static const hr_shape_class *host_child_class(const void *child_ptr)
     return c->shape->cls;
 }
 
+/* A shape tells the file it read: with its create's arguments and a name
+ * (the library's host lists it in the scene, test_files_read.c). */
+static hr_status host_file_read(const hr_create_args *args, const char *path)
+{
+    return args && path && path[0] ? HR_OK : HR_ERROR_INVALID_ARGUMENT;
+}
+
 static const hr_host test_host = {
     sizeof(hr_host),      HR_SHAPE_ABI_VERSION, host_alloc,       host_free,
     host_reserve,         host_scratch_acquire, host_scratch_release, host_trace_child,
-    host_child_bounds,    host_child_class,
+    host_child_bounds,    host_child_class,     host_file_read,
 };
 
 const hr_host *harness_host(void)

@@ -3,6 +3,7 @@
  * and never crash: every prefix of every good and bad file is read too
  * (truncated files), and so are a few generated hostile inputs. */
 #define _POSIX_C_SOURCE 200809L /* mkfifo */
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -263,6 +264,55 @@ static void test_mutations(void)
     CHECK(total == 1600);
 }
 
+/* hr_host.file_read: called once, after the file is read, with create's
+ * own arguments and the path opened; its failure fails create (out of
+ * memory, no shape); a host from before it (a smaller struct_size) is never
+ * asked. */
+static int files_told;
+static char told_path[1024];
+static hr_status tell_ok(const hr_create_args *args, const char *path)
+{
+    files_told++;
+    snprintf(told_path, sizeof told_path, "%s", args && args->host && path ? path : "");
+    return HR_OK;
+}
+static hr_status tell_fails(const hr_create_args *args, const char *path)
+{
+    (void)args, (void)path;
+    files_told++;
+    return HR_ERROR_OUT_OF_MEMORY;
+}
+
+static void test_file_read_service(void)
+{
+    char path[1024], error[512];
+    mesh_data_path("cube.obj", path, sizeof path);
+    hr_host host = *harness_host();
+    const hr_shape_class *cls = harness_find_class(&module, "mesh");
+    struct {
+        hr_status (*tell)(const hr_create_args *, const char *);
+        uint32_t size;
+        hr_status want;
+        int told;
+    } cases[] = {
+        {tell_ok, sizeof(hr_host), HR_OK, 1},
+        {tell_fails, sizeof(hr_host), HR_ERROR_OUT_OF_MEMORY, 1},
+        {tell_fails, (uint32_t)offsetof(hr_host, file_read), HR_OK, 0},
+    };
+    for (int i = 0; i < 3; i++) {
+        host.file_read = cases[i].tell;
+        host.struct_size = cases[i].size;
+        files_told = 0, told_path[0] = '\0';
+        void *shape = NULL;
+        hr_status st = mesh_create_file_on(&module, &host, path, &shape, error, sizeof error);
+        CHECK_MSG(st == cases[i].want && (shape != NULL) == (st == HR_OK) && files_told == cases[i].told,
+                  "case %d: status %d, %d calls: %s", i, (int)st, files_told, error);
+        if (i == 0) CHECK_MSG(strcmp(told_path, path) == 0, "told '%s'", told_path);
+        if (st != HR_OK) CHECK_MSG(strstr(error, "out of memory") != NULL, "case %d: %s", i, error);
+        if (shape) cls->destroy(shape);
+    }
+}
+
 int main(void)
 {
     if (!harness_load("mesh", &module)) return hr_test_end() | 1;
@@ -272,6 +322,7 @@ int main(void)
     test_prefixes();
     test_hostile();
     test_mutations();
+    test_file_read_service();
     harness_unload(&module);
     return hr_test_end();
 }

@@ -250,6 +250,81 @@ static void far_ray_every_hit_culls_as_the_walk(void)
     hr_scene_destroy(r.scene);
 }
 
+/* Eyes 1e12 to 2^64 away from the objects: the first hit must still be the
+ * first of all hits, the same t and the same entering flag (and object).
+ * Far away, the world ray's origin carries rounding of 1e-4 to 2e3 into
+ * every object's copy of it, and the first-hit walk prunes by boxes the
+ * every-hit query does not use in the same way: both must still agree on
+ * what that rounded line meets. One object of each solid kind, rotated,
+ * scaled unevenly and placed apart; rays from points at the distance in
+ * random directions, aimed at random points in and near an object (so that
+ * most hit and some graze). */
+static void far_eyes_first_hit_is_first_of_all(void)
+{
+    static const char *const kinds[] = {"sphere",      "cube",       "cylinder",     "cone",
+                                        "torus",       "octahedron", "taperedCylinder",
+                                        "icosahedron", "tetrahedron", "buckyball"};
+    const int n_kinds = (int)(sizeof kinds / sizeof kinds[0]);
+    hr_scene *s;
+    CHECK_OK(hr_scene_create(ctx, &s));
+    uint64_t seed = 2024;
+    hr_vec3 centre[sizeof kinds / sizeof kinds[0]];
+    for (int i = 0; i < n_kinds; i++) {
+        centre[i] = (hr_vec3){3.0 * (i % 4) - 4.5, 3.0 * (i / 4) - 3, 0.5 * (i % 3)};
+        hr_transform t;
+        hr_transform_identity(&t);
+        hr_transform_translate(&t, centre[i].x, centre[i].y, centre[i].z);
+        const double ax = uniform(&seed) - 0.5, ay = uniform(&seed) - 0.5;
+        CHECK_OK(hr_transform_rotate(&t, 360 * uniform(&seed), ax, ay, 1));
+        CHECK_OK(hr_transform_scale(&t, 0.5 + uniform(&seed), 0.5 + uniform(&seed),
+                                    0.5 + uniform(&seed)));
+        CHECK(tb_add(s, kinds[i], NULL, &t) >= 0);
+    }
+    CHECK_OK(hr_scene_commit(s));
+    hr_intersection all;
+    hr_intersection_init(&all);
+    int rays = 0, hits = 0;
+    for (int k = 0; k < 40000; k++) {
+        /* log-uniform distance in [1e12, 2^64] */
+        const double distance = 1e12 * pow(0x1p64 / 1e12, uniform(&seed));
+        hr_vec3 u = {2 * uniform(&seed) - 1, 2 * uniform(&seed) - 1, 2 * uniform(&seed) - 1};
+        const double len = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+        if (len < 0.1 || len > 1) continue;
+        const hr_vec3 c = centre[k % n_kinds];
+        const hr_vec3 aim = {c.x + 3 * uniform(&seed) - 1.5, c.y + 3 * uniform(&seed) - 1.5,
+                             c.z + 3 * uniform(&seed) - 1.5};
+        hr_ray r;
+        r.origin = (hr_vec3){c.x + distance * u.x / len, c.y + distance * u.y / len,
+                             c.z + distance * u.z / len};
+        r.dir = (hr_vec3){aim.x - r.origin.x, aim.y - r.origin.y, aim.z - r.origin.z};
+        if (k % 3 == 1) { /* unit directions too, so t is the distance */
+            const double d = sqrt(r.dir.x * r.dir.x + r.dir.y * r.dir.y + r.dir.z * r.dir.z);
+            r.dir = (hr_vec3){r.dir.x / d, r.dir.y / d, r.dir.z / d};
+        }
+        hr_hit first;
+        int32_t found = 0;
+        CHECK_OK(hr_scene_first_hit(s, &r, 0, INFINITY, &first, &found));
+        CHECK_OK(hr_scene_all_hits(s, &r, 0, INFINITY, &all));
+        rays++;
+        CHECK_MSG(found == (all.count > 0),
+                  "ray (%a, %a, %a) + t (%a, %a, %a): first hit found %d, all hits %d",
+                  r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, (int)found,
+                  (int)all.count);
+        if (!found || all.count == 0) continue;
+        hits++;
+        const hr_hit *h = &all.hits[0];
+        CHECK_MSG(first.t == h->t && first.entering == h->entering && first.object == h->object,
+                  "ray (%a, %a, %a) + t (%a, %a, %a): first hit t = %a entering %d object %lld, "
+                  "first of all t = %a entering %d object %lld (%d hits)",
+                  r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, first.t,
+                  (int)first.entering, (long long)first.object, h->t, (int)h->entering,
+                  (long long)h->object, (int)all.count);
+    }
+    CHECK_MSG(rays > 20000 && hits > rays / 4, "%d rays, %d hit", rays, hits);
+    hr_intersection_release(&all);
+    hr_scene_destroy(s);
+}
+
 int main(void)
 {
     CHECK_OK(hr_context_create(&ctx));
@@ -258,6 +333,7 @@ int main(void)
     planes_after_the_walk_keep_the_tie_rule();
     growing_list_keeps_every_hit();
     far_ray_every_hit_culls_as_the_walk();
+    far_eyes_first_hit_is_first_of_all();
     hr_context_destroy(ctx);
     return hr_test_end();
 }

@@ -310,6 +310,11 @@ void bind_scene(py::module_ &m)
         .def_property_readonly("committed", [](const ScenePtr &s) { return hr_scene_is_committed(s->scene) != 0; })
         .def_property_readonly("object_count", [](const ScenePtr &s) { return hr_scene_object_count(s->scene); })
         .def_property_readonly("light_count", [](const ScenePtr &s) { return hr_scene_light_count(s->scene); })
+        .def_property_readonly("files", [](const ScenePtr &s) {
+            py::list out;
+            for (int64_t i = 0; i < hr_scene_file_count(s->scene); i++) out.append(py::bytes(hr_scene_file(s->scene, i)));
+            return out;
+        })
         .def("object_info", &object_info, py::arg("index"))
         .def("light", [](const ScenePtr &s, int32_t index) {
             hr_light l{};

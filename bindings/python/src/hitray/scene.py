@@ -351,6 +351,16 @@ class Scene:
         return [SceneObject(self, i) for i in range(int(self._current().object_count))]
 
     @property
+    def files(self) -> List[str]:
+        """The files the scene was built from: every file the library read
+        to make it (the scene file, ``makePixmap`` images, mesh files), once
+        each, in the order first read, as absolute paths (``..`` and links
+        kept as they were). A file the scene's text names without reading
+        it, in a comment or a macro never used, is not among them.
+        ``hitray.distributed`` ships exactly these."""
+        return [os.fsdecode(p) for p in self._current().files]
+
+    @property
     def lights(self) -> List[Light]:
         """Every light, in the order added (an SDL file's first)."""
         core = self._current()

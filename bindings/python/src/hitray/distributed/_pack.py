@@ -1,17 +1,17 @@
-"""A Scene made portable: its description and every file it references, in
-one picklable object that a worker rebuilds the same scene from, bit for
-bit, with no shared file system.
+"""A Scene made portable: its description and every file it was built
+from, in one picklable object that a worker rebuilds the same scene from,
+bit for bit, with no shared file system.
 
-What a scene references: the files its shapes read (a mesh's ``file``).
-The library knows no shape by name, so neither does this: every string a
-shape is given (a Python-built shape's string parameters, every word of a
-scene file's text) that names a regular file, relative to the scene's
-directory or absolute, is carried. A word that happens to name a file
-costs its bytes and nothing else. On the worker the files are written
-under a private directory at their own absolute paths (so ``../meshes/x``
-from the scene's directory lands where it did on the client), the scene's
-directory becomes that directory's copy, and absolute names are rewritten
-to point into it.
+What a scene was built from: the files the library read while building it
+(``Scene.files``: the readers' pixmaps, a mesh's ``file``), and nothing
+else. A word of a scene file's text or a string a shape is given may name
+a file without the file being read (in a comment, a macro never used, a
+parameter that is no file name): such a file stays where it is. The scene
+file itself travels as its text. On the worker the files are written under
+a private directory at their own absolute paths (so ``../meshes/x`` from
+the scene's directory lands where it did on the client), the scene's
+directory becomes that directory's copy, and absolute names of the files
+carried are rewritten to point into it.
 """
 
 from __future__ import annotations
@@ -67,15 +67,17 @@ def _sdl_words(text: bytes) -> List[Tuple[int, int]]:
 
 
 class _Files:
-    """The files a scene references, gathered on the client."""
+    """The files a scene read, gathered on the client."""
 
-    def __init__(self) -> None:
+    def __init__(self, read: List[bytes]) -> None:
+        self.read = frozenset(read)  # normalised absolute paths
         self.contents: Dict[bytes, bytes] = {}
         self.total = 0
 
-    def carry(self, name: bytes, base_dir: Optional[bytes]) -> Optional[bytes]:
-        """If `name` (relative to `base_dir`) names a regular file, carry it
-        and return its place (the normalised absolute path); else None."""
+    def place_of(self, name: bytes, base_dir: Optional[bytes]) -> Optional[bytes]:
+        """The place (normalised absolute path) of `name`, relative to
+        `base_dir`, where the scene read that file and it is carried; else
+        None."""
         if not name or b"\0" in name:
             return None
         if os.path.isabs(name):
@@ -84,30 +86,35 @@ class _Files:
             full = os.path.join(base_dir, name)
         else:
             return None
-        try:
-            info = os.stat(full)
-        except (OSError, ValueError):
-            return None
-        if not stat.S_ISREG(info.st_mode):
-            return None
         place = os.path.normpath(full)
+        return place if place in self.contents else None
+
+    def carry(self, place: bytes) -> None:
+        """Carry the regular file at `place` (read by the scene)."""
         if place in self.contents:
-            return place
+            return
+        try:
+            info = os.stat(place)
+        except (OSError, ValueError) as e:
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(place)}: the scene read it, but it cannot "
+                                f"be read now to ship it: {getattr(e, 'strerror', None) or e}") from None
+        if not stat.S_ISREG(info.st_mode):
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(place)}: the scene read it, but it is no "
+                                "longer a regular file to ship")
         if self.total + info.st_size > MAX_SHIPPED_BYTES:
-            raise ShippingError(f"hitray.distributed: {os.fsdecode(full)}: the scene's files would exceed "
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(place)}: the scene's files would exceed "
                                 f"{MAX_SHIPPED_BYTES} bytes, the most a shipped scene carries")
         try:
-            with open(full, "rb") as f:
+            with open(place, "rb") as f:
                 data = f.read(MAX_SHIPPED_BYTES - self.total + 1)
         except OSError as e:
-            raise ShippingError(f"hitray.distributed: {os.fsdecode(full)}: cannot read it to ship it "
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(place)}: cannot read it to ship it "
                                 f"with the scene: {e.strerror}") from None
         if self.total + len(data) > MAX_SHIPPED_BYTES:
-            raise ShippingError(f"hitray.distributed: {os.fsdecode(full)}: the scene's files would exceed "
+            raise ShippingError(f"hitray.distributed: {os.fsdecode(place)}: the scene's files would exceed "
                                 f"{MAX_SHIPPED_BYTES} bytes, the most a shipped scene carries")
         self.contents[place] = data
         self.total += len(data)
-        return place
 
 
 class _ShippedFile:
@@ -151,14 +158,22 @@ Op = Union[_AddObject, _AddLight, _MakePixmap]
 class ScenePack:
     """Everything a worker needs to rebuild a Scene: the scene file's text
     (with the spans of its absolute file names), the objects, lights and
-    globals added in Python, and the referenced files by absolute path.
+    globals added in Python, and the files the scene read, by absolute path.
     ``key`` is a digest of all of it, so the same scene ships once."""
 
     __slots__ = ("key", "_sdl", "_spans", "_ops", "_globals", "_files", "_lock", "_scene", "__weakref__")
 
     def __init__(self, scene: Scene) -> None:
         sdl, ops, globals_ = scene._description()
-        files = _Files()
+        # The files the library read to build the scene, and only those.
+        read = [os.path.normpath(p) for p in scene._current().files]
+        files = _Files(read)
+        own = None
+        if sdl is not None and sdl.path is not None:
+            own = os.path.normpath(os.path.abspath(sdl.path))  # travels as its text
+        for place in read:
+            if place != own:
+                files.carry(place)
         self._spans: List[Tuple[int, int]] = []
         self._sdl: Optional[_SDLSource] = None
         if sdl is not None:
@@ -168,10 +183,11 @@ class ScenePack:
                 raise ShippingError(f"hitray.distributed: {os.fsdecode(sdl.path or b'?')}: the scene file "
                                     "could not be read back to ship it")
             if not sdl.nff:
-                # NFF names no files; SDL's words may.
+                # NFF names no files; an absolute name of a file carried is
+                # rewritten on the worker.
                 for start, end in _sdl_words(text):
                     word = text[start:end]
-                    if files.carry(word, sdl.base_dir) is not None and os.path.isabs(word):
+                    if os.path.isabs(word) and files.place_of(word, sdl.base_dir) is not None:
                         self._spans.append((start, end))
             self._sdl = _SDLSource(text, sdl.name, sdl.base_dir, None, sdl.nff)
         self._ops: List[Op] = []
@@ -180,7 +196,9 @@ class ScenePack:
                 base = op.base_dir
 
                 def carried(value: Any, base: bytes = base) -> Any:
-                    place = files.carry(os.fsencode(value), base)
+                    if isinstance(value, _ShippedFile):
+                        return value
+                    place = files.place_of(os.fsencode(value), base)
                     return value if place is None else _ShippedFile(place)
 
                 self._ops.append(_AddObject(_map_strings(op.shape, carried), dict(op.material), base))
