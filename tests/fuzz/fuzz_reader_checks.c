@@ -46,9 +46,9 @@ void fuzz_reader_check_error(hr_context *ctx, const char *tag, const char *name,
  * query only. Either way the first hit is one of the list: its object's
  * first hit listed at its t, with the same entering flag (a solid whose
  * two crossings round to one t, seen from far away, enters before it
- * leaves in both). At a tie between objects the first hit may be another
- * object than the list's first (an unbounded object wins a tie with the
- * BVH's, trace.c). */
+ * leaves in both). At a tie between objects both queries name the object
+ * added first (the tie rule, trace.c); the check still accepts any listed
+ * hit at the first hit's t, because of the far-eye rounding above. */
 static int first_among(const hr_hit *first, const hr_intersection *all)
 {
     if (!(first->t - all->hits[0].t <= 1e-6 * fabs(all->hits[0].t))) return 0;
