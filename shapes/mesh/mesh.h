@@ -7,10 +7,11 @@
  * has normals, the vertices themselves (24 bytes each, shared: a closed
  * mesh has about half as many vertices as triangles) and the BVH's nodes
  * (accel/bvh4.h: 128 bytes each, four children, small leaves: some 20
- * bytes a triangle, see mesh_bvh.c): some 44 bytes a triangle for a closed
- * mesh without normals (test_shape_mesh_large prints the figure).
+ * bytes a triangle, see mesh_bvh.c) and each triangle's index in the file
+ * (4 bytes, for the tie rule): some 48 bytes a triangle for a closed mesh
+ * without normals (test_shape_mesh_large prints the figure).
  * The BVH orders the triangles themselves, so no index array sits between
- * them. */
+ * them and their corners. */
 #ifndef HITRAY_MESH_H
 #define HITRAY_MESH_H
 
@@ -43,8 +44,10 @@ typedef struct mesh {
     uint32_t *corners;     /* 3 vertex indices per triangle, in BVH order */
     uint32_t *corner_normals; /* 3 normal indices per triangle or NULL */
     uint32_t vertex_count, normal_count, triangle_count;
-    /* accel/'s 4-wide BVH over the triangles, in leaf order (its item
-     * array is dropped once the corners are reordered). */
+    /* accel/'s 4-wide BVH over the triangles, in leaf order; its item
+     * array, bvh.items[i], is triangle i's index in the file (the order
+     * the builder was given), by which exact ties are broken: at one t,
+     * the lower file index wins, whatever order the walk takes. */
     accel_bvh4 bvh;
     hr_bounds bounds;
     /* The axis the mesh lies flat across (its bounds' sides equal), or -1,

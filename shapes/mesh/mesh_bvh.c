@@ -68,7 +68,8 @@ hr_status mesh_bvh_build(mesh *m)
     }
     host->free(boxes);
     boxes = NULL;
-    /* Triangles in leaf order; the BVH's own order array is then not needed. */
+    /* Triangles in leaf order. The BVH's order array stays: each
+     * triangle's index in the file, which breaks exact ties (mesh_trace.c). */
     const uint32_t *order = m->bvh.items;
     for (size_t i = 0; i < n; i++) {
         memcpy(corners + 3 * i, m->corners + 3 * (size_t)order[i], 3 * sizeof *corners);
@@ -79,8 +80,6 @@ hr_status mesh_bvh_build(mesh *m)
             memcpy(corner_texcoords + 3 * i, m->corner_texcoords + 3 * (size_t)order[i],
                    3 * sizeof *corner_texcoords);
     }
-    host->free(m->bvh.items);
-    m->bvh.items = NULL;
     host->free(m->corners);
     m->corners = corners;
     corners = NULL;

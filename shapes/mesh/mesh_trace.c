@@ -140,44 +140,54 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
 
 /* A mesh's order of its own hits: by t, an entering hit first at equal t
  * (the library's hit_before, lib/trace/object_trace.h, orders a scene's
- * hits by t, object and surface instead). */
-static int mesh_hit_before(const hr_hit *a, const hr_hit *b)
+ * hits by t, object and surface instead), then the lower triangle index in
+ * the file (key): the order of all hits does not depend on the walk's. */
+static int mesh_hit_before(const hr_hit *a, uint32_t a_key, const hr_hit *b, uint32_t b_key)
 {
     if (a->t != b->t) return a->t < b->t;
-    return a->entering > b->entering; /* a zero-length visit: enter first */
+    if (a->entering != b->entering) return a->entering > b->entering; /* a zero-length visit: enter first */
+    return a_key < b_key;
 }
 
-/* Sorts hits[0, n): insertion sort for the short lists rays usually make,
- * heapsort (no allocation, no recursion) beyond. */
-static void sift(hr_hit *h, size_t root, size_t n)
+/* Sorts hits[0, n) with their keys: insertion sort for the short lists
+ * rays usually make, heapsort (no allocation, no recursion) beyond. */
+static void swap_hits(hr_hit *h, uint32_t *key, size_t i, size_t j)
+{
+    const hr_hit t = h[i];
+    h[i] = h[j], h[j] = t;
+    const uint32_t k = key[i];
+    key[i] = key[j], key[j] = k;
+}
+
+static void sift(hr_hit *h, uint32_t *key, size_t root, size_t n)
 {
     for (;;) {
         size_t child = 2 * root + 1;
         if (child >= n) return;
-        if (child + 1 < n && mesh_hit_before(&h[child], &h[child + 1])) child++;
-        if (!mesh_hit_before(&h[root], &h[child])) return;
-        hr_hit t = h[root];
-        h[root] = h[child], h[child] = t;
+        if (child + 1 < n && mesh_hit_before(&h[child], key[child], &h[child + 1], key[child + 1])) child++;
+        if (!mesh_hit_before(&h[root], key[root], &h[child], key[child])) return;
+        swap_hits(h, key, root, child);
         root = child;
     }
 }
 
-static void sort_hits(hr_hit *h, size_t n)
+static void sort_hits(hr_hit *h, uint32_t *key, size_t n)
 {
     if (n <= 32) {
         for (size_t i = 1; i < n; i++) {
-            hr_hit x = h[i];
+            const hr_hit x = h[i];
+            const uint32_t kx = key[i];
             size_t j = i;
-            while (j > 0 && mesh_hit_before(&x, &h[j - 1])) h[j] = h[j - 1], j--;
-            h[j] = x;
+            while (j > 0 && mesh_hit_before(&x, kx, &h[j - 1], key[j - 1]))
+                h[j] = h[j - 1], key[j] = key[j - 1], j--;
+            h[j] = x, key[j] = kx;
         }
         return;
     }
-    for (size_t i = n / 2; i-- > 0;) sift(h, i, n);
+    for (size_t i = n / 2; i-- > 0;) sift(h, key, i, n);
     for (size_t end = n; end-- > 1;) {
-        hr_hit t = h[0];
-        h[0] = h[end], h[end] = t;
-        sift(h, 0, end);
+        swap_hits(h, key, 0, end);
+        sift(h, key, 0, end);
     }
 }
 
@@ -291,7 +301,27 @@ typedef struct query {
     double best_error; /* point_error of best, in a closed mesh's first-hit search */
     seen_crossing seen[TIE_SEEN];
     int seen_count, seen_overflow;
+    /* An all-hits query's file index of each hit it appended (sort_hits'
+     * keys): in key_room until that is full, then in memory from the host. */
+    uint32_t *keys;
+    size_t key_capacity;
+    uint32_t key_room[32];
 } query;
+
+/* Room for the key of the all-hits query's hit number `at`. */
+static hr_status key_room(query *q, size_t at)
+{
+    if (at < q->key_capacity) return HR_OK;
+    const hr_host *host = q->m->host;
+    const size_t wanted = 2 * q->key_capacity;
+    uint32_t *grown = wanted <= SIZE_MAX / sizeof *grown ? host->alloc(wanted * sizeof *grown) : NULL;
+    if (!grown) return HR_ERROR_OUT_OF_MEMORY;
+    memcpy(grown, q->keys, q->key_capacity * sizeof *grown);
+    if (q->keys != q->key_room) host->free(q->keys);
+    q->keys = grown;
+    q->key_capacity = wanted;
+    return HR_OK;
+}
 
 /* How far inside its triangle a crossing must lie (each barycentric weight
  * at least this) for a closed mesh's any-hit search to stop at it. */
@@ -436,6 +466,13 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
                 q->status = st;
                 return 1;
             }
+            st = key_room(q, (size_t)(args->out->count - q->start));
+            if (st) {
+                args->out->count = q->start;
+                q->status = st;
+                return 1;
+            }
+            q->keys[args->out->count - q->start] = m->bvh.items[i];
             hr_hit *hit = &args->out->hits[args->out->count++];
             fill_hit(m, &args->ray, i, &th, hit);
             /* The caller's interval as mesh_triangle_test applies it (so a
@@ -467,21 +504,26 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             }
             return 1;
         }
-        /* A tie goes to the entering hit, as in the all-hits order
-         * (mesh_hit_before): a ray through a vertex or an edge where it touches
-         * the mesh meets an entering and an exiting triangle at one t, and
-         * the first hit must be the first of all hits whichever the BVH
-         * reaches first. */
-        if (q->found && !(th.t < q->best.t || (th.t == q->best.t && th.entering > q->best.entering)))
+        /* A tie goes to the entering hit, then to the lower triangle index
+         * in the file, as in the all-hits order (mesh_hit_before): a ray
+         * through a vertex or an edge where it touches the mesh meets an
+         * entering and an exiting triangle at one t, coincident triangles
+         * meet it at one t with one flag, and the first hit must be the
+         * first of all hits whichever the BVH reaches first. */
+        if (q->found && !(th.t < q->best.t ||
+                          (th.t == q->best.t && (th.entering > q->best.entering ||
+                                                 (th.entering == q->best.entering &&
+                                                  m->bvh.items[i] < m->bvh.items[q->best_tri])))))
             continue;
         q->found = 1;
         q->best = th;
         q->best_tri = i;
         if (q->mode == HR_TRACE_ANY) return 1;
-        /* Nearer hits only from here on; an exiting best still lets an
-         * entering hit at the same t in, and a closed mesh's search runs
-         * on over the slack of a near tie. */
-        tmax = th.entering ? th.t : mesh_next_up(th.t);
+        /* Nearer hits only from here on, and hits at the same t (an
+         * entering one after an exiting best, a lower triangle index after
+         * either); a closed mesh's search runs on over the slack of a near
+         * tie. */
+        tmax = mesh_next_up(th.t);
         if (q->tie_check) {
             q->best_error = point_error(m, i, th.b);
             const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
@@ -618,6 +660,44 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
     return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t);
 }
 
+static hr_status trace_query(const mesh *m, const hr_hit_args *args, int32_t mode);
+
+/* trace_query's answer once the walk is over. */
+static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
+{
+    if (q->needs_first) return trace_query(m, args, HR_TRACE_FIRST);
+    const int32_t start = q->start;
+    int near_tie = q->found && q->seen_overflow;
+    for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
+        near_tie = near_tie_with_best(q, &q->seen[k]);
+    if (near_tie) {
+        const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
+        if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;
+        return st;
+    }
+    if (q->mode != HR_TRACE_ALL) {
+        if (!q->found) return HR_OK;
+        hr_hit *hit = &args->out->hits[args->out->count++];
+        if (q->mode == HR_TRACE_ANY) fill_any_hit(m, &q->r, q->best_tri, &q->best, hit);
+        else fill_hit(m, &args->ray, q->best_tri, &q->best, hit);
+        return HR_OK;
+    }
+    hr_hit *hits = args->out->hits + start;
+    const size_t count = (size_t)(args->out->count - start);
+    sort_hits(hits, q->keys, count);
+    if (q->whole_line) {
+        alternate_closed(&args->ray, hits, count);
+        int32_t kept = start;
+        for (size_t i = 0; i < count; i++) {
+            if (hits[i].surface) continue;
+            args->out->hits[kept] = hits[i];
+            args->out->hits[kept++].surface = 0;
+        }
+        args->out->count = kept;
+    }
+    return HR_OK;
+}
+
 /* mesh_trace past its first question: out of line, so that the rays a
  * flat mesh turns away never enter its large frame. */
 static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_hit_args *args, int32_t mode)
@@ -635,6 +715,8 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.best_error = 0.0;
     q.seen_count = q.seen_overflow = 0;
     q.needs_first = 0;
+    q.keys = q.key_room;
+    q.key_capacity = sizeof q.key_room / sizeof *q.key_room;
     /* A closed mesh's any hit is its first hit: the all-hits repair (see
      * alternate_closed and the first-hit search below) may drop a touch at
      * a vertex whose crossings come out a rounding apart, and a shadow ray
@@ -686,38 +768,9 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
                                           16.0 * DBL_EPSILON * fabs(args->tmax));
     q.start = args->out->count;
     walk(&q);
-    if (q.status) return q.status;
-    if (q.needs_first) return trace_query(m, args, HR_TRACE_FIRST);
-    const int32_t start = q.start;
-    int near_tie = q.found && q.seen_overflow;
-    for (int k = 0; q.found && !near_tie && k < q.seen_count; k++)
-        near_tie = near_tie_with_best(&q, &q.seen[k]);
-    if (near_tie) {
-        const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
-        if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;
-        return st;
-    }
-    if (mode != HR_TRACE_ALL) {
-        if (!q.found) return HR_OK;
-        hr_hit *hit = &args->out->hits[args->out->count++];
-        if (mode == HR_TRACE_ANY) fill_any_hit(m, &q.r, q.best_tri, &q.best, hit);
-        else fill_hit(m, &args->ray, q.best_tri, &q.best, hit);
-        return HR_OK;
-    }
-    hr_hit *hits = args->out->hits + start;
-    const size_t count = (size_t)(args->out->count - start);
-    sort_hits(hits, count);
-    if (q.whole_line) {
-        alternate_closed(&args->ray, hits, count);
-        int32_t kept = start;
-        for (size_t i = 0; i < count; i++) {
-            if (hits[i].surface) continue;
-            args->out->hits[kept] = hits[i];
-            args->out->hits[kept++].surface = 0;
-        }
-        args->out->count = kept;
-    }
-    return HR_OK;
+    const hr_status st = q.status ? q.status : finish_query(m, args, &q);
+    if (q.keys != q.key_room) m->host->free(q.keys);
+    return st;
 }
 
 hr_status mesh_trace(const mesh *m, const hr_hit_args *args, int32_t mode)

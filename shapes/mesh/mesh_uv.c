@@ -36,7 +36,9 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
                                 2.0 * q->half, &th))
             continue;
         const double gap = fabs(th.t - q->half);
-        if (q->found && !(gap < q->gap)) continue;
+        /* At an equal gap (coincident triangles), the lower index in the
+         * file, whatever order the walk takes. */
+        if (q->found && !(gap < q->gap || (gap == q->gap && m->bvh.items[i] < m->bvh.items[q->tri]))) continue;
         q->found = 1, q->gap = gap, q->tri = i;
         q->b[0] = th.b[0], q->b[1] = th.b[1], q->b[2] = th.b[2];
     }

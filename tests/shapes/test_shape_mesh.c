@@ -865,10 +865,27 @@ static void test_thin_closed(double thickness)
     harness_close(&thin);
 }
 
-static int compare_doubles(const void *a, const void *b)
+/* One triangle's hit in the brute-force list: ordered by t, entering
+ * first, then the lower index in the file (the mesh's tie rule). */
+typedef struct soup_hit {
+    double t;
+    int entering;
+    int index;
+} soup_hit;
+
+static int compare_soup_hits(const void *a, const void *b)
 {
-    const double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
+    const soup_hit *x = a, *y = b;
+    if (x->t != y->t) return x->t < y->t ? -1 : 1;
+    if (x->entering != y->entering) return x->entering > y->entering ? -1 : 1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+/* Whether a hit's normal is (up to its side) the per-face normal n. */
+static int normal_is(hr_vec3 got, hr_vec3 n)
+{
+    const hr_vec3 u = unit(got);
+    return fabs(fabs(dot(u, n)) - 1.0) < 1e-9;
 }
 
 /* The BVH finds exactly what testing every triangle finds: a soup of
@@ -879,46 +896,58 @@ static int compare_doubles(const void *a, const void *b)
  * of t agree bit for bit with the same watertight test run on each
  * triangle in turn, the first hit is the smallest of them and the any hit
  * finds one of them when there is one. Scales beyond float's range give the BVH
- * infinite boxes. */
+ * infinite boxes. Exact ties: a quarter of the triangles are coincident
+ * copies of earlier ones, and every face has its own normal, so the
+ * first hit's normal and the order of the all-hits list show which of the
+ * copies won each tie: the lower index in the file. */
 static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double scale)
 {
     hr_vec3 *v = malloc(3 * (size_t)tris * sizeof *v);
-    double *want = malloc((size_t)tris * sizeof *want);
+    hr_vec3 *normal = malloc((size_t)tris * sizeof *normal);
+    soup_hit *want = malloc((size_t)tris * sizeof *want);
     char path[1024];
     mesh_build_path("mesh_soup.obj", path, sizeof path);
     FILE *f = fopen(path, "w");
-    CHECK(f != NULL && v != NULL && want != NULL);
-    if (!f || !v || !want) {
+    CHECK(f != NULL && v != NULL && want != NULL && normal != NULL);
+    if (!f || !v || !want || !normal) {
         if (f) fclose(f);
         free(v);
         free(want);
+        free(normal);
         return;
     }
     ray_rng rng;
     rng_seed(&rng, seed);
+    int copies = 0;
     for (int t = 0; t < tris; t++) {
         hr_vec3 c = harness_vec(rng_uniform(&rng, -10, 10), rng_uniform(&rng, -10, 10),
                                 rng_uniform(&rng, -10, 10));
         const double size = exp2(rng_uniform(&rng, -8, 3));
+        const int copy_of = t > 0 && rng_chance(&rng, 0.25) ? (int)rng_uniform(&rng, 0, t) : -1;
         for (int k = 0; k < 3; k++) {
             hr_vec3 w = rng_unit_vector(&rng);
             v[3 * t + k] = harness_vec(scale * (c.x + size * w.x), scale * (c.y + size * w.y),
                                        scale * (c.z + size * w.z));
+            if (copy_of >= 0 && copy_of < t) v[3 * t + k] = v[3 * copy_of + k];
             fprintf(f, "v %.17g %.17g %.17g\n", v[3 * t + k].x, v[3 * t + k].y, v[3 * t + k].z);
         }
-        fprintf(f, "f -3 -2 -1\n");
+        copies += copy_of >= 0;
+        normal[t] = rng_unit_vector(&rng);
+        fprintf(f, "vn %.17g %.17g %.17g\n", normal[t].x, normal[t].y, normal[t].z);
+        fprintf(f, "f -3//-1 -2//-1 -1//-1\n");
     }
     fclose(f);
     harness_shape soup;
     if (!mesh_open_file(&soup, path)) {
         free(v);
         free(want);
+        free(normal);
         return;
     }
     hr_intersection list = {NULL, 0, 0};
     CHECK_OK(harness_host()->reserve(NULL, &list, HR_MIN_HIT_CAPACITY));
     hr_bounds b = {{-10, -10, -10}, {10, 10, 10}};
-    int hits = 0, failures = 0;
+    int hits = 0, failures = 0, ties = 0;
     for (int i = 0; i < rays; i++) {
         hr_ray ray = random_ray_near(&rng, &b);
         ray.origin.x *= scale, ray.origin.y *= scale, ray.origin.z *= scale;
@@ -936,9 +965,10 @@ static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double s
             for (int t = 0; t < tris; t++) {
                 mesh_triangle_hit th;
                 if (mesh_triangle_test(&r, &v[3 * t], &v[3 * t + 1], &v[3 * t + 2], tmin, tmax, &th))
-                    want[n++] = th.t;
+                    want[n].t = th.t, want[n].entering = th.entering, want[n++].index = t;
             }
-        qsort(want, (size_t)n, sizeof *want, compare_doubles);
+        qsort(want, (size_t)n, sizeof *want, compare_soup_hits);
+        for (int k = 1; k < n; k++) ties += want[k].t == want[k - 1].t;
         hr_hit_args args;
         memset(&args, 0, sizeof args);
         args.shape = soup.shape;
@@ -948,15 +978,18 @@ static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double s
         args.out = &list;
         list.count = 0;
         int ok = soup.cls->hit(&args) == HR_OK && list.count == n;
-        for (int k = 0; k < n && k < list.count; k++) ok &= list.hits[k].t == want[k];
+        for (int k = 0; k < n && k < list.count; k++)
+            ok &= list.hits[k].t == want[k].t && normal_is(list.hits[k].normal, normal[want[k].index]);
         list.count = 0;
         ok &= soup.cls->first_hit(&args) == HR_OK && list.count == (n > 0) &&
-              (n == 0 || list.hits[0].t == want[0]);
+              (n == 0 || (list.hits[0].t == want[0].t && normal_is(list.hits[0].normal, normal[want[0].index])));
         list.count = 0;
         /* The any hit (an open mesh's: leaves in any order) is one of the
          * hits, bit for bit. */
-        ok &= soup.cls->any_hit(&args) == HR_OK && list.count == (n > 0) &&
-              (n == 0 || bsearch(&list.hits[0].t, want, (size_t)n, sizeof *want, compare_doubles));
+        int found = 0;
+        ok &= soup.cls->any_hit(&args) == HR_OK && list.count == (n > 0);
+        for (int k = 0; k < n && list.count > 0; k++) found |= list.hits[0].t == want[k].t;
+        ok &= n == 0 || found;
         if (!ok && failures++ < 10)
             CHECK_MSG(0, "scale %g, ray %d (interval %g, %g): the BVH's hits differ from every "
                          "triangle's %d", scale, i, tmin, tmax, n);
@@ -964,9 +997,11 @@ static void soup_matches_brute_force(uint64_t seed, int tris, int rays, double s
     }
     CHECK_MSG(failures == 0, "scale %g: %d of %d rays differ", scale, failures, rays);
     CHECK_MSG(hits > rays / 3, "scale %g: only %d hits in all", scale, hits);
+    CHECK_MSG(copies > tris / 8 && ties > rays / 50, "scale %g: %d copies, %d exact ties", scale, copies, ties);
     free(list.hits);
     free(v);
     free(want);
+    free(normal);
     harness_close(&soup);
 }
 
