@@ -203,12 +203,16 @@ static double ray_speed(const hr_ray *ray)
 
 /* How far apart in t two crossings of a closed mesh may lie and still be
  * put in the other order by alternate_closed: their points' error bounds
- * as distances along the ray, and the bounds on the rounding of their t
- * (t_errors, the sum of the two): a ray that runs nearly along thin faces
- * far from the origin (faces 1e15 long and a few units wide, crossed from
- * 1e16 away: a fuzz input) has t errors of several times t, and the exact
- * order of its crossings, a few 1e-17 apart in t, is not that of their
- * computed t. */
+ * as distances along the ray, and the bound on the rounding of the earlier
+ * one's t, twice (t_errors): a ray that runs nearly along thin faces far
+ * from the origin (faces 1e15 long and a few units wide, crossed from 1e16
+ * away: a fuzz input) has t errors of several times t, and the exact order
+ * of its crossings, a few 1e-17 apart in t, is not that of their computed
+ * t. Only the earlier one's: the first-hit search, which must find the
+ * same near ties, sees crossings as far past its best as its best's t
+ * error reaches, not as far as a later crossing's may (a crossing 0.02
+ * past a vertex touch, nearly edge on with a t error of 200, whose box
+ * the search never reaches: a fuzz input). */
 static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_error, double b_t,
                        double t_errors)
 {
@@ -216,10 +220,9 @@ static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_e
            8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t)) + 2.0 * t_errors;
 }
 
-static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, const hr_hit *b,
-                           hit_key b_key)
+static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, const hr_hit *b)
 {
-    return slack_of(ray, a->error, a->t, b->error, b->t, a_key.t_error + b_key.t_error);
+    return slack_of(ray, a->error, a->t, b->error, b->t, 2.0 * a_key.t_error);
 }
 
 /* A closed mesh's crossings alternate along the exact line, entering
@@ -236,17 +239,12 @@ static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, co
  * moved hit takes over from the place it takes. */
 static void alternate_closed(const hr_ray *ray, hr_hit *h, hit_key *key, size_t n)
 {
-    double widest = 0.0; /* the largest t error in the list */
-    for (size_t i = 0; i < n; i++) widest = mesh_max(widest, key[i].t_error);
     int expected = 1;
     for (size_t i = 0; i < n; i++) {
         if (h[i].entering != expected) {
             for (size_t j = i + 1; j < n; j++) {
-                /* Sorted by t: past the widest slack nothing more can be. */
-                if (!(h[j].t - h[i].t <= slack_of(ray, h[i].error, h[i].t, h[j].error, h[j].t,
-                                                   key[i].t_error + widest)))
-                    break;
-                if (!(h[j].t - h[i].t <= closed_slack(ray, &h[i], key[i], &h[j], key[j]))) continue;
+                const double slack = closed_slack(ray, &h[i], key[i], &h[j]);
+                if (!(h[j].t - h[i].t <= slack)) break;
                 if (h[j].entering != expected) continue;
                 hr_hit moved = h[j];
                 const hit_key moved_key = key[j];
@@ -692,7 +690,7 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
     if (s->th.entering == q->best.entering) return 0;
     const hr_ray *ray = &q->args->ray;
     const double apart = fabs(s->th.t - q->best.t);
-    const double t_errors = s->th.t_error + q->best.t_error;
+    const double t_errors = 2.0 * (s->th.t < q->best.t ? s->th.t_error : q->best.t_error);
     if (apart > slack_of(ray, q->tie_error, s->th.t, q->best_error, q->best.t, t_errors)) return 0;
     return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t,
                              t_errors);
@@ -705,7 +703,13 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
 {
     if (q->needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q->start;
-    int near_tie = q->found && q->seen_overflow;
+    /* A best whose t is rounded by more than the points' slack may lie
+     * within rounding of a crossing the walk never reached (its box past
+     * the window): the all-hits list, which sees the whole line, decides. */
+    int near_tie = q->found && q->tie_check &&
+                   (q->seen_overflow ||
+                    !(2.0 * q->best.t_error <=
+                      slack_of(&args->ray, q->best_error, q->best.t, q->tie_error, q->best.t, 0.0)));
     for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
         near_tie = near_tie_with_best(q, &q->seen[k]);
     if (near_tie) {
