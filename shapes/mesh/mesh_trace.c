@@ -703,13 +703,7 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
 {
     if (q->needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q->start;
-    /* A best whose t is rounded by more than the points' slack may lie
-     * within rounding of a crossing the walk never reached (its box past
-     * the window): the all-hits list, which sees the whole line, decides. */
-    int near_tie = q->found && q->tie_check &&
-                   (q->seen_overflow ||
-                    !(2.0 * q->best.t_error <=
-                      slack_of(&args->ray, q->best_error, q->best.t, q->tie_error, q->best.t, 0.0)));
+    int near_tie = q->found && q->seen_overflow;
     for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
         near_tie = near_tie_with_best(q, &q->seen[k]);
     if (near_tie) {
