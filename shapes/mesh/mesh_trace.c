@@ -380,7 +380,10 @@ static hr_status key_room(query *q, size_t at)
  *   roundings of the differences; for |h[i].t| > |X.t|, h[i].t would be
  *   negative and the slack, whose part in |t| is 8 DBL_EPSILON |h[i].t|,
  *   could not reach from below 0 to X.t > reach. Nor is it refused for
- *   lying at or past tmax: h[i].t <= X.t < tmax.
+ *   lying at or past tmax: h[i].t <= X.t < tmax. (The slack also holds
+ *   twice h[i]'s t error, which reach does not bound; like the t error
+ *   refusal below, that error is large only for a triangle seen nearly
+ *   edge on.)
  * - Nor for its t error (h[i].t - tmin <= t_error, the one refusal left):
  *   that error exceeds X.t - tmin - reach only for a triangle the ray sees
  *   nearly edge on. A sliver is seen so from every side, and a ray
@@ -405,10 +408,7 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
     if (!(x->b[0] >= CLOSED_ANY_INSIDE && x->b[1] >= CLOSED_ANY_INSIDE && x->b[2] >= CLOSED_ANY_INSIDE))
         return 0;
     const double reach = 2.0 * slack_of(&q->args->ray, q->tie_error, x->t, q->tie_error, x->t, 0.0);
-    /* And X's t well within that reach: the slack of a near tie now holds
-     * the crossings' t errors (slack_of), so a crossing whose t is that
-     * uncertain is left to the first-hit search. */
-    return x->t - reach > q->tmin && x->t_error * 8.0 <= reach;
+    return x->t - reach > q->tmin;
 }
 
 /* Whether a walk of one half of the line (walk) keeps hit th of triangle
