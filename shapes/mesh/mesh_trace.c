@@ -142,24 +142,29 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
  * (the library's hit_before, lib/trace/object_trace.h, orders a scene's
  * hits by t, object and surface instead), then the lower triangle index in
  * the file (key): the order of all hits does not depend on the walk's. */
-static int mesh_hit_before(const hr_hit *a, uint32_t a_key, const hr_hit *b, uint32_t b_key)
+typedef struct hit_key {
+    double t_error; /* the triangle test's bound on the rounding of t */
+    uint32_t index; /* the triangle's index in the file */
+} hit_key;
+
+static int mesh_hit_before(const hr_hit *a, hit_key a_key, const hr_hit *b, hit_key b_key)
 {
     if (a->t != b->t) return a->t < b->t;
     if (a->entering != b->entering) return a->entering > b->entering; /* a zero-length visit: enter first */
-    return a_key < b_key;
+    return a_key.index < b_key.index;
 }
 
 /* Sorts hits[0, n) with their keys: insertion sort for the short lists
  * rays usually make, heapsort (no allocation, no recursion) beyond. */
-static void swap_hits(hr_hit *h, uint32_t *key, size_t i, size_t j)
+static void swap_hits(hr_hit *h, hit_key *key, size_t i, size_t j)
 {
     const hr_hit t = h[i];
     h[i] = h[j], h[j] = t;
-    const uint32_t k = key[i];
+    const hit_key k = key[i];
     key[i] = key[j], key[j] = k;
 }
 
-static void sift(hr_hit *h, uint32_t *key, size_t root, size_t n)
+static void sift(hr_hit *h, hit_key *key, size_t root, size_t n)
 {
     for (;;) {
         size_t child = 2 * root + 1;
@@ -171,12 +176,12 @@ static void sift(hr_hit *h, uint32_t *key, size_t root, size_t n)
     }
 }
 
-static void sort_hits(hr_hit *h, uint32_t *key, size_t n)
+static void sort_hits(hr_hit *h, hit_key *key, size_t n)
 {
     if (n <= 32) {
         for (size_t i = 1; i < n; i++) {
             const hr_hit x = h[i];
-            const uint32_t kx = key[i];
+            const hit_key kx = key[i];
             size_t j = i;
             while (j > 0 && mesh_hit_before(&x, kx, &h[j - 1], key[j - 1]))
                 h[j] = h[j - 1], key[j] = key[j - 1], j--;
@@ -197,16 +202,27 @@ static double ray_speed(const hr_ray *ray)
 }
 
 /* How far apart in t two crossings of a closed mesh may lie and still be
- * put in the other order by alternate_closed. */
-static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_error, double b_t)
+ * put in the other order by alternate_closed: their points' error bounds
+ * as distances along the ray, and the bound on the rounding of the earlier
+ * one's t, twice (t_errors): a ray that runs nearly along thin faces far
+ * from the origin (faces 1e15 long and a few units wide, crossed from 1e16
+ * away: a fuzz input) has t errors of several times t, and the exact order
+ * of its crossings, a few 1e-17 apart in t, is not that of their computed
+ * t. Only the earlier one's: the first-hit search, which must find the
+ * same near ties, sees crossings as far past its best as its best's t
+ * error reaches, not as far as a later crossing's may (a crossing 0.02
+ * past a vertex touch, nearly edge on with a t error of 200, whose box
+ * the search never reaches: a fuzz input). */
+static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_error, double b_t,
+                       double t_errors)
 {
     return (a_error + b_error) / ray_speed(ray) * 4.0 +
-           8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t));
+           8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t)) + 2.0 * t_errors;
 }
 
-static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
+static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, const hr_hit *b)
 {
-    return slack_of(ray, a->error, a->t, b->error, b->t);
+    return slack_of(ray, a->error, a->t, b->error, b->t, 2.0 * a_key.t_error);
 }
 
 /* A closed mesh's crossings alternate along the exact line, entering
@@ -214,26 +230,30 @@ static double closed_slack(const hr_ray *ray, const hr_hit *a, const hr_hit *b)
  * the computed t can put two crossings a rounding apart in the wrong order.
  * So a closed mesh's all-hits query collects the whole line, and where the
  * sorted list breaks the alternation, the next crossing of the expected kind
- * within the two hits' error bounds (as distances along the ray) is moved
+ * within the two hits' error bounds (as distances along the ray) and their
+ * t error bounds (slack_of) is moved
  * up and given the t of the place it takes, which keeps the list sorted.
  * Where none is that close, the list is left as computed (the surface
  * crosses itself there) and the expectation follows what was found.
  * `surface` holds each hit's "outside the caller's interval" mark, which a
  * moved hit takes over from the place it takes. */
-static void alternate_closed(const hr_ray *ray, hr_hit *h, size_t n)
+static void alternate_closed(const hr_ray *ray, hr_hit *h, hit_key *key, size_t n)
 {
     int expected = 1;
     for (size_t i = 0; i < n; i++) {
         if (h[i].entering != expected) {
             for (size_t j = i + 1; j < n; j++) {
-                const double slack = closed_slack(ray, &h[i], &h[j]);
+                const double slack = closed_slack(ray, &h[i], key[i], &h[j]);
                 if (!(h[j].t - h[i].t <= slack)) break;
                 if (h[j].entering != expected) continue;
                 hr_hit moved = h[j];
+                const hit_key moved_key = key[j];
                 moved.t = h[i].t;
                 moved.surface = h[i].surface;
                 memmove(&h[i + 1], &h[i], (j - i) * sizeof *h);
+                memmove(&key[i + 1], &key[i], (j - i) * sizeof *key);
                 h[i] = moved;
+                key[i] = moved_key;
                 break;
             }
         }
@@ -301,11 +321,12 @@ typedef struct query {
     double best_error; /* point_error of best, in a closed mesh's first-hit search */
     seen_crossing seen[TIE_SEEN];
     int seen_count, seen_overflow;
-    /* An all-hits query's file index of each hit it appended (sort_hits'
-     * keys): in key_room until that is full, then in memory from the host. */
-    uint32_t *keys;
+    /* An all-hits query's file index and t error bound of each hit it
+     * appended (sort_hits' keys, alternate_closed's slack): in key_room
+     * until that is full, then in memory from the host. */
+    hit_key *keys;
     size_t key_capacity;
-    uint32_t key_room[32];
+    hit_key key_room[32];
 } query;
 
 /* Room for the key of the all-hits query's hit number `at`. */
@@ -314,7 +335,7 @@ static hr_status key_room(query *q, size_t at)
     if (at < q->key_capacity) return HR_OK;
     const hr_host *host = q->m->host;
     const size_t wanted = 2 * q->key_capacity;
-    uint32_t *grown = wanted <= SIZE_MAX / sizeof *grown ? host->alloc(wanted * sizeof *grown) : NULL;
+    hit_key *grown = wanted <= SIZE_MAX / sizeof *grown ? host->alloc(wanted * sizeof *grown) : NULL;
     if (!grown) return HR_ERROR_OUT_OF_MEMORY;
     memcpy(grown, q->keys, q->key_capacity * sizeof *grown);
     if (q->keys != q->key_room) host->free(q->keys);
@@ -359,7 +380,10 @@ static hr_status key_room(query *q, size_t at)
  *   roundings of the differences; for |h[i].t| > |X.t|, h[i].t would be
  *   negative and the slack, whose part in |t| is 8 DBL_EPSILON |h[i].t|,
  *   could not reach from below 0 to X.t > reach. Nor is it refused for
- *   lying at or past tmax: h[i].t <= X.t < tmax.
+ *   lying at or past tmax: h[i].t <= X.t < tmax. (The slack also holds
+ *   twice h[i]'s t error, which reach does not bound; like the t error
+ *   refusal below, that error is large only for a triangle seen nearly
+ *   edge on.)
  * - Nor for its t error (h[i].t - tmin <= t_error, the one refusal left):
  *   that error exceeds X.t - tmin - reach only for a triangle the ray sees
  *   nearly edge on. A sliver is seen so from every side, and a ray
@@ -383,7 +407,7 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
 {
     if (!(x->b[0] >= CLOSED_ANY_INSIDE && x->b[1] >= CLOSED_ANY_INSIDE && x->b[2] >= CLOSED_ANY_INSIDE))
         return 0;
-    const double reach = 2.0 * slack_of(&q->args->ray, q->tie_error, x->t, q->tie_error, x->t);
+    const double reach = 2.0 * slack_of(&q->args->ray, q->tie_error, x->t, q->tie_error, x->t, 0.0);
     return x->t - reach > q->tmin;
 }
 
@@ -472,7 +496,8 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
                 q->status = st;
                 return 1;
             }
-            q->keys[args->out->count - q->start] = m->bvh.items[i];
+            q->keys[args->out->count - q->start].index = m->bvh.items[i];
+            q->keys[args->out->count - q->start].t_error = th.t_error;
             hr_hit *hit = &args->out->hits[args->out->count++];
             fill_hit(m, &args->ray, i, &th, hit);
             /* The caller's interval as mesh_triangle_test applies it (so a
@@ -522,12 +547,21 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
         /* Nearer hits only from here on, and hits at the same t (an
          * entering one after an exiting best, a lower triangle index after
          * either); a closed mesh's search runs on over the slack of a near
-         * tie. */
-        tmax = mesh_next_up(th.t);
+         * tie. The boxes bound the exact crossings while the best is the
+         * least computed t, which may lie t_error from its crossing: a
+         * crossing whose box lies past the best's t can still have the
+         * smaller computed t, the one the all-hits list puts first (a ray
+         * nearly along a triangle's plane, 1e14 long, in an NFF polygon
+         * gave t errors of 1e-4). So the search runs on twice the best's
+         * t error, which holds the crossings whose t is as uncertain as
+         * the best's (neighbouring faces seen the same way). */
+        tmax = mesh_min(tmax, mesh_next_up(mesh_max(th.t, th.t + 2.0 * th.t_error)));
         if (q->tie_check) {
             q->best_error = point_error(m, i, th.b);
+            /* And the best's t error twice over (slack_of's t part for a
+             * crossing whose t is as uncertain as the best's). */
             const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
-                                  16.0 * DBL_EPSILON * fabs(th.t);
+                                  16.0 * DBL_EPSILON * fabs(th.t) + 4.0 * th.t_error;
             tmax = fmin(q->tie_end, mesh_next_up(th.t + window));
         }
         q->tmax = tmax;
@@ -656,8 +690,10 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
     if (s->th.entering == q->best.entering) return 0;
     const hr_ray *ray = &q->args->ray;
     const double apart = fabs(s->th.t - q->best.t);
-    if (apart > slack_of(ray, q->tie_error, s->th.t, q->best_error, q->best.t)) return 0;
-    return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t);
+    const double t_errors = 2.0 * (s->th.t < q->best.t ? s->th.t_error : q->best.t_error);
+    if (apart > slack_of(ray, q->tie_error, s->th.t, q->best_error, q->best.t, t_errors)) return 0;
+    return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->best_error, q->best.t,
+                             t_errors);
 }
 
 static hr_status trace_query(const mesh *m, const hr_hit_args *args, int32_t mode);
@@ -686,7 +722,7 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
     const size_t count = (size_t)(args->out->count - start);
     sort_hits(hits, q->keys, count);
     if (q->whole_line) {
-        alternate_closed(&args->ray, hits, count);
+        alternate_closed(&args->ray, hits, q->keys, count);
         int32_t kept = start;
         for (size_t i = 0; i < count; i++) {
             if (hits[i].surface) continue;
