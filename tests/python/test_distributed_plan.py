@@ -322,6 +322,54 @@ def test_client_hands_a_lost_workers_bands_on(tmp_path):
     assert np.array_equal(np.asarray(frames[0].image()), np.asarray(here))
 
 
+class LostActor(FakeActor):
+    """A BandWorker whose worker is gone while the scheduler still lists it:
+    as Dask's Actor does then, every call raises RuntimeError at once."""
+
+    def __getattr__(self, name):
+        if self.worker in self.client.lost:
+            raise RuntimeError("Worker holding Actor was lost.  Status: error")
+        return super().__getattr__(name)
+
+
+def test_client_goes_on_when_a_lost_workers_actor_raises(tmp_path):
+    """Worker "b"'s actor raises on every call (a band, a split, the stop
+    at the end) before the scheduler drops "b": the band sent to it is
+    handed on as a lost worker's, the run closes without raising, and the
+    frame is the bits of hitray.render."""
+    hitray = pytest.importorskip("hitray")
+    from hitray.distributed._render import _Bar, _Run
+
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
+    scene.light((4, 6, 5))
+    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    size, options = (40, 64), {"spp": 2}
+    client = FakeClient({"a", "b"})
+    client.lost = {"b"}
+    client.submit = lambda cls, *, actor, workers, allow_other_workers, pure, key: FakeFuture(
+        LostActor(client, workers[0]), workers[0])
+    run = _Run(client, size, dict(options, depth=None), Planner(size, 1), None, _Bar(False, 40 * 64, "t"),
+               lambda n: (0, None, scene, camera), None)
+    frames = []
+    errors = []
+
+    def go():
+        try:
+            frames.extend(run.frames_done())
+            run.close()
+        except Exception as e:  # noqa: BLE001 - the test reports it
+            errors.append(e)
+    worker = threading.Thread(target=go, daemon=True)
+    worker.start()
+    worker.join(60)
+    assert not worker.is_alive(), "the lost worker's band was never handed on"
+    assert not errors, errors
+    assert len(frames) == 1
+    here = hitray.render(scene, camera, size, progress=False, **options)
+    assert np.array_equal(np.asarray(frames[0].image()), np.asarray(here))
+
+
 def test_band_worker_writes_into_shared_memory_or_sends_the_pixels(tmp_path):
     """A band's rows go into the frame's shared memory where the worker can
     open it (and none are sent back), and are sent back where it cannot (no

@@ -457,9 +457,13 @@ class _Run:
     def _send(self, n: int) -> None:
         worker, band = self.calls[n]
         frame = self._frame(band.frame)
-        future = self.actors[worker].render(n, self.shipped[frame.pack_key].future.key, frame.camera, self.size,
-                                            self.options, band.window, self.threads,
-                                            None if frame.buffer is None else frame.buffer.name)
+        try:
+            future = self.actors[worker].render(n, self.shipped[frame.pack_key].future.key, frame.camera,
+                                                self.size, self.options, band.window, self.threads,
+                                                None if frame.buffer is None else frame.buffer.name)
+        except RuntimeError as e:  # Dask's Actor: its worker was lost before the list of workers said so
+            self.done.put((("band", n, worker), OSError(str(e))))  # answered as a worker gone (_answer)
+            return
         self.client.loop.add_callback(self._wait, ("band", n, worker), future)
 
     def _steal(self, worker: str) -> None:
@@ -471,10 +475,14 @@ class _Run:
             if (n is None or n in self.unsplittable or n in self.being_split or not isinstance(victim, str)
                     or victim not in self.actors):
                 continue
+            try:
+                answer = self.actors[victim].split(n, band.window[1])
+            except RuntimeError:  # Dask's Actor: the victim's worker was lost, its bands go on through _lose
+                self.unsplittable.add(n)
+                continue
             self.splitting.add(worker)
             self.being_split.add(n)
-            self.client.loop.add_callback(self._wait, ("split", n, worker, victim),
-                                          self.actors[victim].split(n, band.window[1]))
+            self.client.loop.add_callback(self._wait, ("split", n, worker, victim), answer)
             return
 
     def _split(self, n: int, at: int, to: Optional[str]) -> None:
@@ -622,7 +630,12 @@ class _Run:
         for worker, actor in self.actors.items():
             # Its band ends at the chunk under way; the actor is dropped once
             # it has heard that (not waited for here).
-            self.client.loop.add_callback(self._release_after, actor.stop(), self.actor_futures[worker])
+            try:
+                stopped = actor.stop()
+            except RuntimeError:  # Dask's Actor: its worker was lost; nothing to stop
+                self.actor_futures[worker].release()
+                continue
+            self.client.loop.add_callback(self._release_after, stopped, self.actor_futures[worker])
         self.actors.clear()
         self.actor_futures.clear()
         self.calls.clear()
