@@ -285,6 +285,14 @@ class FakeClient:
         return FakeFuture(FakeActor(self, workers[0]), workers[0])
 
 
+def one_sphere(hitray):
+    """The fake-Dask tests' scene: a lit, reflective sphere, and a camera on it."""
+    scene = hitray.Scene()
+    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
+    scene.light((4, 6, 5))
+    return scene, hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+
+
 def test_client_hands_a_lost_workers_bands_on(tmp_path):
     """The client's loop (_Run) with a fake Dask: worker "b" takes bands
     and never answers, then leaves the scheduler. Its bands are given back
@@ -292,10 +300,7 @@ def test_client_hands_a_lost_workers_bands_on(tmp_path):
     hitray = pytest.importorskip("hitray")
     from hitray.distributed._render import _Bar, _Run
 
-    scene = hitray.Scene()
-    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
-    scene.light((4, 6, 5))
-    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    scene, camera = one_sphere(hitray)
     size, options = (40, 64), {"spp": 2}
     client = FakeClient({"a", "b"})
     client.running = {"a"}  # "b" takes bands and never returns them
@@ -340,10 +345,7 @@ def test_client_goes_on_when_a_lost_workers_actor_raises(tmp_path):
     hitray = pytest.importorskip("hitray")
     from hitray.distributed._render import _Bar, _Run
 
-    scene = hitray.Scene()
-    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
-    scene.light((4, 6, 5))
-    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    scene, camera = one_sphere(hitray)
     size, options = (40, 64), {"spp": 2}
     client = FakeClient({"a", "b"})
     client.lost = {"b"}
@@ -380,10 +382,7 @@ def test_band_worker_writes_into_shared_memory_or_sends_the_pixels(tmp_path):
     from hitray.distributed._pack import ScenePack
     from hitray.distributed._shared import FrameBuffer, open_frame
 
-    scene = hitray.Scene()
-    scene.add(hitray.Sphere(), diffuse=(0.8, 0.3, 0.2), reflectivity=0.3)
-    scene.light((4, 6, 5))
-    camera = hitray.Camera((0, 1, 5), (0, 0, 0), (0, 1, 0), 40)
+    scene, camera = one_sphere(hitray)
     size, window = (40, 30), (0, 5, 40, 20)
     here = np.asarray(hitray.render(scene, camera, size, spp=2, progress=False))
     actor = BandWorker()
