@@ -61,6 +61,8 @@ import subprocess
 import sys
 import time
 
+import bench_targets
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BENCH = os.path.join(ROOT, "bench")
 
@@ -483,6 +485,8 @@ def main():
     if ARGS.note:
         L.append("")
         L.append(ARGS.note)
+    L += bench_targets.targets_table(ARGS.threads, scene_rows, spd_rows, ray, batches, scaling, profile,
+                                     raw_spheres)
     sdl_skipped = [(n, m) for n, m in skipped if n not in SPD_SCENES]
     spd_skipped = [(n, m) for n, m in skipped if n in SPD_SCENES]
     if scene_rows or sdl_skipped:
@@ -678,8 +682,8 @@ def update_readme(lines, cmdline):
     notes = [x for x in lines if x == ARGS.note and x]
     body = [README_BEGIN, "", f"Made by `{cmdline}`; everything it measured, with the scaling "
             "runs, is in [bench/results/RESULTS.md](bench/results/RESULTS.md).", ""] + machine + [""] + notes
-    # The bench scenes, the raw intersection and the SPD scenes' times.
-    wanted = (SCENES_HEADER, "| threads | hitray rays/s", SPD_HEADER)
+    # The targets, the bench scenes, the raw intersection and the SPD scenes' times.
+    wanted = (bench_targets.HEADER, SCENES_HEADER, "| threads | hitray rays/s", SPD_HEADER)
     for head in wanted:
         for table in tables:
             if table[0] == head or (head.startswith("| threads") and table[0].startswith(head)):

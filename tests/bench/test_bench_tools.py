@@ -196,6 +196,10 @@ def test_run_bench_quick_runs_every_step(tmp_path):
     # The thread-scaling table: a speed-up, a CPU ratio and the side-by-side
     # ceiling for every scene, and POV-Ray's own speed-up where it ran.
     assert "## Thread scaling" in text
+    # The speed targets, each with met or missed (or not measured).
+    assert "## Speed targets" in text
+    assert re.search(r"^\| single rays, 1 thread \| >= 1.0x Embree rtcIntersect1 \| .* \| (yes|no|-) \|$",
+                     text, re.M)
     # The batch and packet engines beside the single calls, both kinds of rays.
     assert "## Batches and packets" in text
     assert re.search(r"^\| camera \| 1 \| [0-9.]+ M \| [0-9.]+ M \|", text, re.M)
@@ -208,3 +212,41 @@ def test_run_bench_quick_runs_every_step(tmp_path):
         # hitray's rays by kind: balls reflects and casts shadows, refracts nothing.
         row = re.search(r"^\| balls \| ([0-9,]+) \| ([0-9,]+) \| ([0-9,]+) \| 0 \|", text, re.M)
         assert row and all(int(x.replace(",", "")) > 0 for x in row.groups())
+
+
+def test_speed_targets_are_worked_out_from_the_rows():
+    # bench/drivers/bench_targets.py: each target from the measured rows, the
+    # worst scene and thread count named, met or missed by the goal's side.
+    targets = load(ROOT / "bench" / "drivers" / "bench_targets.py")
+
+    def scene(hr_render, pov_render):
+        return {t: {"hr_render": [hr_render], "pov_render": [pov_render]} for t in (1, 2)}
+
+    def runs(rate, build, kb, trace=1.0):
+        return {t: [{"rays_per_s": rate, "build_s": build, "peak_kb": kb, "trace_s": trace}] for t in (1, 2)}
+
+    ray = {"hitray": runs(8e6, 0.15, 90000), "embree": runs(10e6, 0.03, 30000)}
+    scaling = {1000: {"hitray": runs(0, 0, 0, 0.10)}, 1000000: {"hitray": runs(0, 0, 0, 0.15)}}
+    batches = {("camera", 1): {"hitray-batch": [15e6], "embree": [10e6], "embree8": [20e6]},
+               ("camera", 2): {"hitray-batch": [28e6], "embree": [20e6], "embree8": [30e6]}}
+    profile = ("== raycast: 100,000 spheres, 300 x 300 rays, hitray's hr_scene_first_hit\n"
+               "135,000,000 (100.0%)  PROGRAM TOTALS\n"
+               "== raycast: the same rays through Embree (trace only)\n"
+               "90,000,000 (100.0%)  PROGRAM TOTALS\n")
+    lines = targets.targets_table([1, 2], [("spheres", scene(0.3, 1.0), 100.0)],
+                                  [("teapot", scene(0.5, 1.0), {}), ("balls", scene(0.2, 1.0), {})],
+                                  ray, batches, scaling, profile)
+    rows = {line.split(" | ")[0][2:]: line for line in lines if line.startswith("| ") and " | " in line}
+    assert rows["single rays, 1 thread"].endswith("| 0.80 (100,000 spheres) | no |")
+    assert "1,500 against Embree's 1,000: 1.50x" in rows["instructions per query"]
+    assert rows["SPD mesh scenes"].endswith("| 0.50 (worst: teapot 1 thr) | no |")
+    assert rows["camera rays as a batch, against rtcIntersect1"].endswith("| 1.40 (worst: 2 thr) | no |")
+    assert rows["camera rays as a batch, against rtcIntersect8"].endswith("| 0.75 (worst: 1 thr) | no |")
+    assert rows["renders, every bench and SPD scene"].endswith("| 0.50 (worst: teapot 1 thr) | no |")
+    assert rows["1M spheres per ray over 1k"].endswith("| 1.50 (worst: 1 thr) | yes |")
+    assert rows["memory, 100,000 spheres"].endswith("| 3.00 (peak resident) | no |")
+    assert rows["build, 100,000 spheres"].endswith("| 5.00 (median) | no |")
+    # Nothing measured (no Embree, no profile): said so, never a number.
+    bare = targets.targets_table([1], [], [], {"hitray": runs(8e6, 0.1, 1)}, {}, {}, "")
+    assert any("single rays, 1 thread" in x and "not measured" in x for x in bare)
+    assert not any(x.startswith("| instructions per query") for x in bare)
