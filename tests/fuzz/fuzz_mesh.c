@@ -24,10 +24,10 @@
 #include <string.h>
 
 #include "fuzz_input.h"
+#include "fuzz_mesh_t_error.h"
 #include "fuzz_modes.h"
 #include "hr_test.h"
 #include "mesh.h"
-#include "mesh_triangle.h"
 #include "module_harness.h"
 
 static harness_module mesh_module;
@@ -58,26 +58,6 @@ static void check_message(const char *name, const char *error, long lines, hr_st
         fuzz_fail("%s: the message does not start with '%s:<line>: ': %s", name, name, error);
     if (line < 1 || line > lines)
         fuzz_fail("%s: the message names line %ld of %ld: %s", name, line, lines, error);
-}
-
-/* The largest t error bound (mesh_t_error) of any crossing of the line
- * with the mesh's triangles, by testing every one: first_hit's BVH prunes
- * by boxes, which bound the exact crossings, while hit sorts computed t,
- * so two crossings closer than their t errors may come in either order. */
-static double line_t_error(const mesh *m, const hr_ray *ray)
-{
-    mesh_ray r;
-    if (!mesh_ray_init(&r, ray)) return 0.0;
-    double worst = 0.0;
-    for (uint32_t i = 0; i < m->triangle_count; i++) {
-        const uint32_t *c = m->corners + 3 * (size_t)i;
-        mesh_triangle_hit th;
-        if (mesh_triangle_test(&r, &m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]],
-                               -INFINITY, INFINITY, &th) &&
-            th.t_error > worst)
-            worst = th.t_error;
-    }
-    return worst;
 }
 
 static hr_ray ray_between(hr_vec3 from, hr_vec3 to)
@@ -117,7 +97,7 @@ static void trace_mesh(mesh *m)
                 const double tmin = intervals[k][0], tmax = intervals[k][1];
                 hr_hit all[HARNESS_MAX_HITS];
                 const int n =
-                    fuzz_trace_modes(&shape, ray, tmin, tmax, m->closed, line_t_error(m, &ray), all);
+                    fuzz_trace_modes(&shape, ray, tmin, tmax, m->closed, fuzz_mesh_line_t_error(m, &ray), all);
                 /* harness_trace copies at most HARNESS_MAX_HITS: a list that
                  * long may be longer, and its balance cannot be counted. */
                 if (!m->closed || tmin != -INFINITY || n >= HARNESS_MAX_HITS) continue;

@@ -20,6 +20,15 @@ void fuzz_reader_check_error(hr_context *ctx, const char *tag, const char *name,
  * hr_scene_all_hits and hr_scene_shade. */
 void fuzz_reader_check_rays(hr_context *ctx, const char *tag, const hr_sdl_result *r);
 
+/* Whether `first`, hr_scene_first_hit's answer along `ray` over the
+ * interval `all` (hr_scene_all_hits's list) was made for, is the first of
+ * that list: its object's first hit listed at its t with its entering
+ * flag, and every hit listed before it within 1e-6 of t (relative) or a
+ * mesh crossing within twice its mesh's largest t error bound along the
+ * line (fuzz_reader_checks.c says why). */
+int fuzz_first_hit_is_first(const hr_scene *scene, const hr_ray *ray, const hr_hit *first,
+                            const hr_intersection *all);
+
 /* A reader under test: the text (a C string) read as `name`. */
 typedef hr_status (*fuzz_reader_fn)(hr_context *ctx, const char *text, const char *name,
                                        hr_sdl_result *out);
