@@ -48,18 +48,18 @@ void accel_bvh8_release(accel_bvh8 *bvh8);
 __attribute__((target("avx2"))) ACCEL_ALWAYS_INLINE int
 accel_bvh8_walk_octant(const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_ray *ray, double tmin,
                        double *tmax, int (*leaf)(void *user, uint32_t first, uint32_t count), void *user,
-                       int octant)
+                       int octant, int ordered)
 {
     accel_ray4 r4;
     if (!accel_ray4_init_common_as(&r4, ray, tmin, 1) || !(bvh4->extent <= ACCEL_CULL_RANGE))
-        return accel_bvh4_walk_sse2(bvh4, ray, tmin, tmax, leaf, user);
-    __m256 o_near[3], o_far[3], inv_near[3], inv_far[3];
-    for (int a = 0; a < 3; a++) {
-        o_near[a] = _mm256_broadcastss_ps(r4.o_near[a]);
-        o_far[a] = _mm256_broadcastss_ps(r4.o_far[a]);
-        inv_near[a] = _mm256_broadcastss_ps(r4.inv_near[a]);
-        inv_far[a] = _mm256_broadcastss_ps(r4.inv_far[a]);
-    }
+        return ordered ? accel_bvh4_walk_sse2(bvh4, ray, tmin, tmax, leaf, user)
+                       : accel_bvh4_walk_any_sse2(bvh4, ray, tmin, tmax, leaf, user);
+    /* Written out (a loop here was kept as one, a dozen instructions a
+     * ray). */
+#define ACCEL_WIDEN(v) {_mm256_broadcastss_ps(r4.v[0]), _mm256_broadcastss_ps(r4.v[1]), _mm256_broadcastss_ps(r4.v[2])}
+    const __m256 o_near[3] = ACCEL_WIDEN(o_near), o_far[3] = ACCEL_WIDEN(o_far);
+    const __m256 inv_near[3] = ACCEL_WIDEN(inv_near), inv_far[3] = ACCEL_WIDEN(inv_far);
+#undef ACCEL_WIDEN
     const __m256 tmin8 = _mm256_set1_ps(accel_ray4_tmin(&r4, tmin));
     float tmax_f = accel_ray4_tmax(&r4, *tmax);
     __m256 tmax8 = _mm256_set1_ps(tmax_f);
@@ -92,7 +92,14 @@ accel_bvh8_walk_octant(const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_
         _mm256_storeu_ps(entry, lo);
         uint32_t k = (uint32_t)__builtin_ctz(mask);
         mask &= mask - 1;
-        if (mask && !(mask & (mask - 1))) {
+        if (mask && !ordered) {
+            /* Any order (accel_bvh4_walk_any): stack all but the first. */
+            for (unsigned rest = mask; rest; rest &= rest - 1) {
+                const uint32_t c = (uint32_t)__builtin_ctz(rest);
+                stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
+                stack_entry[top++] = entry[c];
+            }
+        } else if (mask && !(mask & (mask - 1))) {
             ACCEL_WALK_TWO();
         } else if (mask) {
             /* Three or more: each child's rank by entry (ties by slot),
@@ -143,7 +150,13 @@ accel_bvh8_walk_octant(const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_
         const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_ray *ray, double tmin, double *tmax, \
         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)                          \
     {                                                                                                 \
-        return accel_bvh8_walk_octant(bvh8, bvh4, ray, tmin, tmax, leaf, user, o);                    \
+        return accel_bvh8_walk_octant(bvh8, bvh4, ray, tmin, tmax, leaf, user, o, 1);                 \
+    }                                                                                                 \
+    __attribute__((target("avx2"), noinline, unused)) static int accel_bvh8_walk_any_##o(             \
+        const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_ray *ray, double tmin, double *tmax, \
+        int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)                          \
+    {                                                                                                 \
+        return accel_bvh8_walk_octant(bvh8, bvh4, ray, tmin, tmax, leaf, user, o, 0);                 \
     }
 ACCEL_WALK8_OCTANT(0)
 ACCEL_WALK8_OCTANT(1)
@@ -167,28 +180,41 @@ static inline int accel_bvh8_usable(void)
 #endif
 }
 
-/* The nearest-first walk over bvh8 where it is built and AVX2 may be used,
- * else accel_bvh4_walk over bvh4 (which bvh8 was collapsed from). */
+/* The walks over bvh8 where it is built and AVX2 may be used, else over
+ * bvh4 (which bvh8 was collapsed from): nearest first (accel_bvh4_walk's
+ * contract) or in any order (accel_bvh4_walk_any's). */
+#if ACCEL_WALK_AVX2
+#define ACCEL_BVH8_BY_OCTANT(walk)                                                                 \
+    switch (accel_octant(&ray->dir)) {                                                             \
+    case 0: return walk##0(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    case 1: return walk##1(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    case 2: return walk##2(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    case 3: return walk##3(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    case 4: return walk##4(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    case 5: return walk##5(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    case 6: return walk##6(bvh8, bvh4, ray, tmin, tmax, leaf, user);                               \
+    default: return walk##7(bvh8, bvh4, ray, tmin, tmax, leaf, user);                              \
+    }
+#endif
 static inline int accel_bvh8_walk(const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_ray *ray,
                                   double tmin, double *tmax,
                                   int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
 {
 #if ACCEL_WALK_AVX2
-    if (bvh8->nodes && accel_walk_avx2_usable()) {
-        switch (accel_octant(&ray->dir)) {
-        case 0: return accel_bvh8_walk_0(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        case 1: return accel_bvh8_walk_1(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        case 2: return accel_bvh8_walk_2(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        case 3: return accel_bvh8_walk_3(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        case 4: return accel_bvh8_walk_4(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        case 5: return accel_bvh8_walk_5(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        case 6: return accel_bvh8_walk_6(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        default: return accel_bvh8_walk_7(bvh8, bvh4, ray, tmin, tmax, leaf, user);
-        }
-    }
+    if (bvh8->nodes && accel_walk_avx2_usable()) ACCEL_BVH8_BY_OCTANT(accel_bvh8_walk_)
 #endif
     (void)bvh8;
     return accel_bvh4_walk(bvh4, ray, tmin, tmax, leaf, user);
+}
+static inline int accel_bvh8_walk_any(const accel_bvh8 *bvh8, const accel_bvh4 *bvh4, const hr_ray *ray,
+                                      double tmin, double *tmax,
+                                      int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
+{
+#if ACCEL_WALK_AVX2
+    if (bvh8->nodes && accel_walk_avx2_usable()) ACCEL_BVH8_BY_OCTANT(accel_bvh8_walk_any_)
+#endif
+    (void)bvh8;
+    return accel_bvh4_walk_any(bvh4, ray, tmin, tmax, leaf, user);
 }
 
 #endif

@@ -210,7 +210,7 @@ int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, dou
         for (int32_t i = first; i < s->unbounded_count && !fs.found; i++)
             if (i == first || !shadow_passes(s->unbounded[i], ray, tmin, tmax))
                 visit_object(&fs, s->unbounded[i]);
-        if (!fs.found && walk) accel_bvh4_walk_any(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
+        if (!fs.found && walk) accel_bvh8_walk_any(&s->bvh8, &s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
     }
     *slot = fs.hit_object;
     if (tmp) hri_trace_scratch_release(tc, tmp);

@@ -3,7 +3,8 @@
  *   tree (the same run of items), every child box containing the items
  *   below it, empty slots empty, no more nodes than the 4-wide tree has;
  *   no tree made for no items;
- * - the walk is conservative: with tmax fixed, every box the ray meets
+ * - both walks (nearest first, and in any order) are conservative: with
+ *   tmax fixed, every box the ray meets
  *   within [tmin, tmax] by an exact slab test (in __float128) has its leaf
  *   visited, for random and hard rays (axis-parallel, tiny direction
  *   components, origins on slab planes, negative tmin, far origins, boxes
@@ -118,12 +119,17 @@ static void check_ray(const accel_bvh8 *b8, const accel_bvh4 *b4, const hr_bound
     double t = tmax;
     search s = {b4, boxes, ray, tmin, &t, 0, visited, 0};
     accel_bvh8_walk(b8, b4, ray, tmin, &t, leaf_cb, &s);
+    char *visited_any = visited + n;
+    memset(visited_any, 0, n);
+    double t_any = tmax;
+    search s_any = {b4, boxes, ray, tmin, &t_any, 0, visited_any, 0};
+    accel_bvh8_walk_any(b8, b4, ray, tmin, &t_any, leaf_cb, &s_any);
     double brute = tmax;
     for (uint32_t i = 0; i < n; i++) {
         double e = quad_entry(ray, &boxes[i], tmin, tmax);
         if (e == e) {
             met++;
-            missed += !visited[i];
+            missed += !visited[i] + !visited_any[i];
             if (e < brute) brute = e;
         }
     }
@@ -141,7 +147,7 @@ static void test_walk(void)
 {
     enum { N = 3000 };
     hr_bounds *boxes = malloc(N * sizeof *boxes);
-    char *visited = malloc(N);
+    char *visited = malloc(2 * N); /* by the nearest-first walk, then by the walk in any order */
     CHECK(boxes && visited);
     const double scales[] = {1e-6, 1.0, 1e6, 0x1p60, 0x1p124};
     for (int s = 0; s < 5; s++) {
