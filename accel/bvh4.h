@@ -553,6 +553,48 @@ static int accel_bvh4_walk_every(const accel_bvh4 *bvh,
 typedef int (*accel_walk_fn)(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
                              int (*leaf)(void *user, uint32_t first, uint32_t count), void *user);
 
+/* In a nearest-first walk (this one's and the 8-wide one's), of two
+ * children met, k and the one left in mask: go on with the nearer (k) and
+ * stack the farther (the later slot, c, on a tie, as the sort of three or
+ * more does). */
+#define ACCEL_WALK_TWO()                                                                           \
+    do {                                                                                           \
+        uint32_t c = (uint32_t)__builtin_ctz(mask);                                                \
+        if (entry[c] < entry[k]) {                                                                 \
+            const uint32_t t = c;                                                                  \
+            c = k, k = t;                                                                          \
+        }                                                                                          \
+        stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];                                \
+        stack_entry[top++] = entry[c];                                                             \
+    } while (0)
+
+/* The end of a nearest-first walk's loop (this one's and the 8-wide one's,
+ * accel/bvh8.h), once it has chosen child k of node n to go on with: into
+ * it if it is an inner node, else its leaf, then the next stacked child
+ * that may still hold something nearer than the best hit, which may have
+ * come nearer since it was pushed. `reload` is run when a leaf lowered
+ * *tmax, to take the new value (tmax_f, and the walk's vector of it). */
+#define ACCEL_WALK_ON(reload)                                                                      \
+    ref = n->ref[k], count = n->count[k];                                                          \
+    if (count == 0) {                                                                              \
+        n = nodes + ref;                                                                           \
+        continue;                                                                                  \
+    }                                                                                              \
+    leaf:;                                                                                         \
+    {                                                                                              \
+        const double before = *tmax;                                                               \
+        if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;                    \
+        if (*tmax != before) reload;                                                               \
+    }                                                                                              \
+    next:                                                                                          \
+    do {                                                                                           \
+        if (top == 0) return ACCEL_WALK_GO_ON;                                                     \
+        --top;                                                                                     \
+    } while (stack_entry[top] > tmax_f);                                                           \
+    ref = stack_ref[top], count = stack_count[top];                                                \
+    if (count > 0) goto leaf;                                                                      \
+    n = nodes + ref
+
 /* The walk of accel_bvh4_walk (ordered: nearest entry first, the earlier
  * slot on a tie) and of accel_bvh4_walk_any (children in slot order), with
  * the node test flipped or not (accel_bvh4_test_as). */
@@ -602,15 +644,8 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
                 stack_entry[top++] = entry[c];
             }
         } else if (mask && !(mask & (mask - 1))) {
-            /* Exactly two (the most common case): stack the farther (the
-             * later slot, c, on a tie, as the sort below does). */
-            uint32_t c = (uint32_t)__builtin_ctz(mask);
-            if (entry[c] < entry[k]) {
-                uint32_t t = c;
-                c = k, k = t;
-            }
-            stack_ref[top] = n->ref[c], stack_count[top] = n->count[c];
-            stack_entry[top++] = entry[c];
+            /* Exactly two (the most common case). */
+            ACCEL_WALK_TWO();
         } else if (mask) {
 #if defined(__SSE2__)
             /* Three or four: stack all but the nearest, farthest first, in
@@ -670,25 +705,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
             k = kid[0];
 #endif
         }
-        ref = n->ref[k], count = n->count[k];
-        if (count == 0) {
-            n = nodes + ref;
-            continue;
-        }
-    leaf:;
-        double before = *tmax;
-        if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
-        if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
-    next:
-        /* The next stacked child that may still hold something nearer than
-         * the best hit, which may have come nearer since it was pushed. */
-        do {
-            if (top == 0) return ACCEL_WALK_GO_ON;
-            --top;
-        } while (stack_entry[top] > tmax_f);
-        ref = stack_ref[top], count = stack_count[top];
-        if (count > 0) goto leaf;
-        n = nodes + ref;
+        ACCEL_WALK_ON((tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f)));
     }
 }
 

@@ -60,6 +60,7 @@ HR_API void hr_scene_destroy(hr_scene *scene)
     hri_pixmap_set_free(&scene->pixmaps);
     free(scene->unbounded);
     accel_bvh4_release(&scene->bvh);
+    accel_bvh8_release(&scene->bvh8);
     free(scene->leaf_objects);
     hri_scene_files_free(scene);
     free(scene);
@@ -165,10 +166,14 @@ HR_API hr_status hr_scene_commit(hr_scene *s)
     s->bvh_box = cull_box_widened(around);
     int built = accel_bvh4_build(&s->bvh, boxes, (uint32_t)nb, &bvh_options);
     free(boxes);
+    /* On AVX2 CPUs the first-hit walk takes the tree 8 wide (accel/bvh8.h):
+     * fewer nodes a ray, for about as many instructions. */
+    if (built == 0 && accel_bvh8_usable() && accel_bvh8_build(&s->bvh8, &s->bvh) != 0) built = -1;
     s->leaf_objects = built == 0 ? malloc((size_t)(nb ? nb : 1) * sizeof *s->leaf_objects) : NULL;
     if (!s->leaf_objects) {
         free(owner);
         accel_bvh4_release(&s->bvh);
+        accel_bvh8_release(&s->bvh8);
         /* The scene stays uncommitted and commit may be tried again, which
          * allocates this anew. */
         free(s->unbounded);

@@ -10,7 +10,7 @@
 
 #include <hitray/hitray.h>
 
-#include "bvh4.h"
+#include "bvh8.h"
 #include "scene/material_store.h"
 #include "util/color_bounds.h"
 #include "geometry/transform_inline.h"
@@ -82,6 +82,7 @@ struct hr_scene {
                                    at any depth (a render or shade may ask for
                                    more depth than the scene's) */
     accel_bvh4 bvh;             /* over bounded top-level objects */
+    accel_bvh8 bvh8;            /* bvh collapsed to 8 wide, on AVX2 CPUs (else not built) */
     hr_bounds bvh_box;          /* around them, widened (lib/scene/cull_prepare.h) */
     const hr_object **leaf_objects; /* those objects in the BVH's leaf order */
     const hr_object **unbounded; /* top-level objects outside the BVH */

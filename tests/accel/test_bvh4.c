@@ -25,18 +25,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define ACCEL_TEST_SEED 0x9e3779b97f4a7c15ull
+#include "accel_test_rays.h"
 #include "bvh4.h"
 #include "hr_test.h"
-
-typedef __float128 quad;
-
-static uint64_t rng_state = 0x9e3779b97f4a7c15ull;
-static double uniform(void) /* [0, 1) */
-{
-    rng_state ^= rng_state << 13, rng_state ^= rng_state >> 7, rng_state ^= rng_state << 17;
-    return (double)(rng_state >> 11) * 0x1p-53;
-}
-static double between(double a, double b) { return a + (b - a) * uniform(); }
 
 /* --- the build ------------------------------------------------------------ */
 
@@ -164,29 +156,6 @@ static void test_build(void)
 }
 
 /* --- the walk ------------------------------------------------------------- */
-
-/* Exact slab test of a double ray against a double box within [tmin, tmax]. */
-static int quad_meets(const hr_ray *ray, const hr_bounds *b, double tmin, double tmax)
-{
-    const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
-    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
-    const double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z};
-    quad t0 = tmin, t1 = tmax;
-    for (int a = 0; a < 3; a++) {
-        if (d[a] == 0) {
-            if (o[a] < lo[a] || o[a] > hi[a]) return 0;
-            continue;
-        }
-        quad n = ((quad)lo[a] - o[a]) / d[a], f = ((quad)hi[a] - o[a]) / d[a];
-        if (n > f) {
-            quad t = n;
-            n = f, f = t;
-        }
-        if (n > t0) t0 = n;
-        if (f < t1) t1 = f;
-    }
-    return t0 <= t1;
-}
 
 typedef struct walk_record {
     char *visited; /* per item */
@@ -361,14 +330,6 @@ static long missed_boxes(const accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t
     }
     free(meets);
     return missed;
-}
-
-static hr_vec3 random_dir(void)
-{
-    for (;;) {
-        hr_vec3 v = {between(-1, 1), between(-1, 1), between(-1, 1)};
-        if (v.x * v.x + v.y * v.y + v.z * v.z > 1e-4) return v;
-    }
 }
 
 static void test_walk(void)
