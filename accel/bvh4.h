@@ -560,37 +560,27 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
                                                double *tmax,
                                                int (*leaf)(void *user, uint32_t first, uint32_t count),
                                                void *user, int ordered, int flipped, int octant,
-                                               accel_walk_fn uncommon, const accel_ray4 *given)
+                                               accel_walk_fn uncommon)
 {
     if (!bvh->nodes) return ACCEL_WALK_GO_ON;
-    /* given (NULL, a constant, in every walk but the _given ones): the ray
-     * as accel_ray4_prepare made it (a common ray, prepared for this walk's
-     * flip), which is what the preparation below would make of it. */
-    accel_ray4 own;
-    const accel_ray4 *r = &own;
-    if (given) {
-        r = given;
-    } else {
+    accel_ray4 r;
 #if defined(__SSE2__)
-        /* uncommon (a constant): the walk for any ray
-         * accel_ray4_init_common_as does not take, so that this one knows
-         * t_offset 0, t_scale 1 and cull 1 as constants (fewer values live,
-         * less to work out per ray). */
-        if (uncommon) {
-            if (!accel_ray4_init_common_as(&own, ray, tmin, flipped))
-                return uncommon(bvh, ray, tmin, tmax, leaf, user);
-        } else {
-            accel_ray4_init_as(&own, ray, tmin, flipped);
-        }
-#else
-        (void)uncommon;
-        accel_ray4_init_as(&own, ray, tmin, flipped);
-#endif
+    /* uncommon (a constant): the walk for any ray accel_ray4_init_common_as
+     * does not take, so that this one knows t_offset 0, t_scale 1 and cull
+     * 1 as constants (fewer values live, less to work out per ray). */
+    if (uncommon) {
+        if (!accel_ray4_init_common_as(&r, ray, tmin, flipped)) return uncommon(bvh, ray, tmin, tmax, leaf, user);
+    } else {
+        accel_ray4_init_as(&r, ray, tmin, flipped);
     }
-    /* The origin: accel_ray4_init_as. */
-    if (!r->cull || !(bvh->extent <= ACCEL_CULL_RANGE)) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
-    const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(r, tmin));
-    float tmax_f = accel_ray4_tmax(r, *tmax);
+#else
+    (void)uncommon;
+    accel_ray4_init_as(&r, ray, tmin, flipped);
+#endif
+    if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init_as */
+    if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
+    const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
+    float tmax_f = accel_ray4_tmax(&r, *tmax);
     accel_f4 tmax4 = accel_f4_set(tmax_f);
     uint32_t stack_ref[ACCEL_BVH4_STACK], stack_count[ACCEL_BVH4_STACK];
     float stack_entry[ACCEL_BVH4_STACK];
@@ -600,7 +590,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
     uint32_t ref, count;
     for (;;) {
         float entry[4];
-        unsigned mask = accel_bvh4_test_at(r, n, tmin4, tmax4, entry, flipped, octant);
+        unsigned mask = accel_bvh4_test_at(&r, n, tmin4, tmax4, entry, flipped, octant);
         if (!mask) goto next;
         uint32_t k = (uint32_t)__builtin_ctz(mask);
         mask &= mask - 1;
@@ -688,7 +678,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
     leaf:;
         double before = *tmax;
         if (leaf(user, ref, count) == ACCEL_WALK_STOP) return ACCEL_WALK_STOP;
-        if (*tmax != before) tmax_f = accel_ray4_tmax(r, *tmax), tmax4 = accel_f4_set(tmax_f);
+        if (*tmax != before) tmax_f = accel_ray4_tmax(&r, *tmax), tmax4 = accel_f4_set(tmax_f);
     next:
         /* The next stacked child that may still hold something nearer than
          * the best hit, which may have come nearer since it was pushed. */
@@ -707,7 +697,7 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_core(const accel_bvh4 *bvh, const hr_ray
                                              int (*leaf)(void *user, uint32_t first, uint32_t count),
                                              void *user, int ordered, int flipped)
 {
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, ordered, flipped, -1, NULL, NULL);
+    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, ordered, flipped, -1, NULL);
 }
 
 /* The same walks compiled for AVX2 CPUs, chosen at run time (the build
@@ -750,13 +740,7 @@ accel_bvh4_walk_any_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
         int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)                       \
     {                                                                                              \
         return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 1, o,                   \
-                                      accel_bvh4_walk_sse2, NULL);                                 \
-    }                                                                                              \
-    __attribute__((target("avx2"), noinline, unused)) static int accel_bvh4_walk_avx2_given_##o(    \
-        const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,                       \
-        int (*leaf)(void *user, uint32_t first, uint32_t count), void *user, const accel_ray4 *r)  \
-    {                                                                                              \
-        return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 1, o, NULL, r);          \
+                                      accel_bvh4_walk_sse2);                                       \
     }
 ACCEL_WALK_AVX2_OCTANT(0)
 ACCEL_WALK_AVX2_OCTANT(1)
@@ -799,28 +783,6 @@ accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, 
 }
 /* A load and a test after the first call (shape_kit_cpu.h). */
 static inline int accel_walk_avx2_usable(void) { return shape_cpu_has_avx2(); }
-/* The walks from a prepared ray (accel_bvh4_walk_given). */
-__attribute__((noinline, unused)) static int
-accel_bvh4_walk_given_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                           int (*leaf)(void *user, uint32_t first, uint32_t count), void *user,
-                           const accel_ray4 *r)
-{
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 0, -1, NULL, r);
-}
-__attribute__((noinline, unused)) static int
-accel_bvh4_walk_any_given_sse2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                               int (*leaf)(void *user, uint32_t first, uint32_t count), void *user,
-                               const accel_ray4 *r)
-{
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 0, 0, -1, NULL, r);
-}
-__attribute__((target("avx2"), noinline, unused)) static int
-accel_bvh4_walk_any_given_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
-                               int (*leaf)(void *user, uint32_t first, uint32_t count), void *user,
-                               const accel_ray4 *r)
-{
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 0, 1, -1, NULL, r);
-}
 #else
 #define ACCEL_WALK_AVX2 0
 #endif
@@ -865,93 +827,6 @@ static inline int accel_bvh4_walk_any(const accel_bvh4 *bvh, const hr_ray *ray, 
                                       void *user)
 {
     return accel_bvh4_walk_as(bvh, ray, tmin, tmax, leaf, user, 0);
-}
-
-/* --- A ray prepared once for several walks --------------------------------
- * A caller that walks a tree and hands the same ray, from the same tmin, to
- * a shape that walks a tree of its own (an untransformed mesh in the
- * scene's BVH) can prepare it once: accel_ray4_prepare, then
- * accel_bvh4_walk_given and accel_bvh4_walk_any_given, in both walks. The
- * walks visit the same leaves in the same order as accel_bvh4_walk and
- * accel_bvh4_walk_any, since the preparation is theirs, bit for bit (their
- * own for a common ray, accel_ray4_init_common_as, with the flip this CPU's
- * walks use). */
-
-/* Whether this CPU's walks take the node test flipped (the AVX2 walks). */
-static inline int accel_walk_flipped(void)
-{
-#if ACCEL_WALK_AVX2
-    return accel_walk_avx2_usable();
-#else
-    return 0;
-#endif
-}
-
-/* What a prepared ray is, as a number a module can compare with its own
- * before it uses a ray another binary prepared (hr_hit_args.walk_ray):
- * the layout's version and size, and the flip. */
-#define ACCEL_RAY4_LAYOUT (0x41520000u | (uint32_t)sizeof(accel_ray4))
-#define ACCEL_RAY4_FLIPPED 0x80000000u
-static inline uint32_t accel_ray4_format(void)
-{
-    return ACCEL_RAY4_LAYOUT | (accel_walk_flipped() ? ACCEL_RAY4_FLIPPED : 0u);
-}
-
-/* Prepares r for the _given walks of `ray` from tmin: 1 for a common ray
- * (accel_ray4_init_common_as), 0 for any other (r then unset: walk with
- * NULL, which prepares as the plain walks do). */
-ACCEL_ALWAYS_INLINE int accel_ray4_prepare(accel_ray4 *r, const hr_ray *ray, double tmin)
-{
-#if defined(__SSE2__)
-    /* The flip as a constant in each branch: inlined, each is the walk's
-     * own preparation, with no per-lane choice between the two. */
-    return accel_walk_flipped() ? accel_ray4_init_common_as(r, ray, tmin, 1)
-                                : accel_ray4_init_common_as(r, ray, tmin, 0);
-#else
-    (void)r, (void)ray, (void)tmin;
-    return 0;
-#endif
-}
-
-/* accel_bvh4_walk from `given`, accel_ray4_prepare's r for this ray and
- * tmin, or NULL (the plain walk). */
-static inline int accel_bvh4_walk_given(const accel_bvh4 *bvh, const hr_ray *ray, const accel_ray4 *given,
-                                        double tmin, double *tmax,
-                                        int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
-{
-    if (!given) return accel_bvh4_walk(bvh, ray, tmin, tmax, leaf, user);
-#if ACCEL_WALK_AVX2
-    if (accel_walk_avx2_usable()) {
-        switch (accel_octant(&ray->dir)) {
-        case 0: return accel_bvh4_walk_avx2_given_0(bvh, ray, tmin, tmax, leaf, user, given);
-        case 1: return accel_bvh4_walk_avx2_given_1(bvh, ray, tmin, tmax, leaf, user, given);
-        case 2: return accel_bvh4_walk_avx2_given_2(bvh, ray, tmin, tmax, leaf, user, given);
-        case 3: return accel_bvh4_walk_avx2_given_3(bvh, ray, tmin, tmax, leaf, user, given);
-        case 4: return accel_bvh4_walk_avx2_given_4(bvh, ray, tmin, tmax, leaf, user, given);
-        case 5: return accel_bvh4_walk_avx2_given_5(bvh, ray, tmin, tmax, leaf, user, given);
-        case 6: return accel_bvh4_walk_avx2_given_6(bvh, ray, tmin, tmax, leaf, user, given);
-        default: return accel_bvh4_walk_avx2_given_7(bvh, ray, tmin, tmax, leaf, user, given);
-        }
-    }
-    return accel_bvh4_walk_given_sse2(bvh, ray, tmin, tmax, leaf, user, given);
-#else
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 1, 0, -1, NULL, given);
-#endif
-}
-
-/* accel_bvh4_walk_any from `given`, or NULL (the plain walk). */
-static inline int accel_bvh4_walk_any_given(const accel_bvh4 *bvh, const hr_ray *ray, const accel_ray4 *given,
-                                            double tmin, double *tmax,
-                                            int (*leaf)(void *user, uint32_t first, uint32_t count),
-                                            void *user)
-{
-    if (!given) return accel_bvh4_walk_any(bvh, ray, tmin, tmax, leaf, user);
-#if ACCEL_WALK_AVX2
-    if (accel_walk_avx2_usable()) return accel_bvh4_walk_any_given_avx2(bvh, ray, tmin, tmax, leaf, user, given);
-    return accel_bvh4_walk_any_given_sse2(bvh, ray, tmin, tmax, leaf, user, given);
-#else
-    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 0, 0, -1, NULL, given);
-#endif
 }
 
 /* The root children's boxes merged on axis a (an empty tree: lo +inf, hi

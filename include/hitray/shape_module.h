@@ -140,16 +140,6 @@ typedef struct hr_hit_args {
      * this in: a module reads a field added after it only when struct_size
      * covers it (HR_HIT_ARGS_HAS), since an older host passes less. --- */
     uint32_t struct_size;
-    /* The host's own walk's form of `ray` from `tmin`, or NULL: set only
-     * where the host traces the object untransformed from inside its BVH
-     * walk, `ray` and `tmin` being that walk's exactly, so that a shape
-     * walking a tree of its own with the host's accel (accel/bvh4.h: an
-     * accel_ray4 from accel_ray4_prepare) need not prepare the ray again.
-     * Opaque to any other module: read it only where walk_ray_format
-     * equals your own accel_ray4_format(), which names the layout and the
-     * CPU path it was made for. */
-    const void *walk_ray;
-    uint32_t walk_ray_format;
 } hr_hit_args;
 
 /* Whether the hit arguments `args` have `field` (an older host, built

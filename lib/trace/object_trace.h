@@ -91,13 +91,10 @@ static inline __attribute__((always_inline)) int hit_to_parent(const hr_trace_ct
 
 /* hri_object_trace's body, inline so that the scene walk (visit_object in
  * trace.c) and a composite's every-hit child trace (host_trace_child in
- * host_services.c) get copies specialised to their modes. walk_ray: the
- * scene walk's accel_ray4_prepare of `ray` from `tmin`, or NULL; handed to
- * an untransformed object's shape (hr_hit_args.walk_ray), whose own walk
- * then starts from it. */
+ * host_services.c) get copies specialised to their modes. */
 static inline __attribute__((always_inline)) hr_status
-object_trace_from(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, const accel_ray4 *walk_ray,
-                  double tmin, double tmax, int32_t mode, int unit_normals, hr_intersection *out)
+object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double tmin, double tmax,
+             int32_t mode, int unit_normals, hr_intersection *out)
 {
     const hr_shape_class *cls = obj->cls;
     hr_status st;
@@ -129,9 +126,6 @@ object_trace_from(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, con
     args.out = out;
     args.call = tc;
     args.struct_size = (uint32_t)sizeof args;
-    /* The walk's ray is this one only untransformed and unscaled. */
-    args.walk_ray = obj->identity && !t_exp ? walk_ray : NULL;
-    args.walk_ray_format = args.walk_ray ? accel_ray4_format() : 0;
     hr_hit_fn fn = cls->hit;
     if (mode == HR_TRACE_FIRST && cls->first_hit) fn = cls->first_hit;
     if (mode == HR_TRACE_ANY) fn = cls->any_hit ? cls->any_hit : cls->first_hit ? cls->first_hit : cls->hit;
@@ -183,14 +177,6 @@ object_trace_from(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, con
         out->count = start + 1;
     }
     return HR_OK;
-}
-
-/* The same with no prepared ray. */
-static inline __attribute__((always_inline)) hr_status
-object_trace(hr_trace_ctx *tc, const hr_object *obj, const hr_ray *ray, double tmin, double tmax,
-             int32_t mode, int unit_normals, hr_intersection *out)
-{
-    return object_trace_from(tc, obj, ray, NULL, tmin, tmax, mode, unit_normals, out);
 }
 
 #endif

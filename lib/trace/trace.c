@@ -71,9 +71,6 @@ typedef struct first_state {
      * window, and found clear (the shadow cache's, hri_scene_trace_shadow):
      * the walk passes it by. NULL: none. */
     const hr_object *asked;
-    /* The walk's prepared ray (accel_ray4_prepare), or NULL: see
-     * object_trace_from. */
-    const accel_ray4 *walk_ray;
 } first_state;
 
 /* Test one object; returns 1 to stop (any-hit found one).
@@ -95,10 +92,8 @@ static int visit_object(first_state *fs, const hr_object *o)
 {
     if (o == fs->asked) return 0;
     fs->tmp->count = 0;
-    hr_status st = fs->any ? object_trace_from(fs->tc, o, fs->ray, fs->walk_ray, fs->tmin, fs->best,
-                                               HR_TRACE_ANY, 0, fs->tmp)
-                           : object_trace_from(fs->tc, o, fs->ray, fs->walk_ray, fs->tmin, fs->best,
-                                               HR_TRACE_FIRST, 1, fs->tmp);
+    hr_status st = fs->any ? object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_ANY, 0, fs->tmp)
+                           : object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_FIRST, 1, fs->tmp);
     if (st != HR_OK) return 0;
     if (fs->tmp->count == 0) return 0;
     if (fs->any) {
@@ -137,15 +132,10 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
 int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
                            hr_intersection *tmp)
 {
-    first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL, NULL, NULL};
+    first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL, NULL};
     const hr_scene *s = tc->scene;
-    /* The ray prepared once, for this walk and each untransformed object's
-     * own (a mesh's BVH). */
-    accel_ray4 prepared;
-    if (!box_misses(&s->bvh_box, ray, tmin, fs.best)) {
-        if (accel_ray4_prepare(&prepared, ray, tmin)) fs.walk_ray = &prepared;
-        accel_bvh4_walk_given(&s->bvh, ray, fs.walk_ray, tmin, &fs.best, visit_leaf, &fs);
-    }
+    if (!box_misses(&s->bvh_box, ray, tmin, fs.best))
+        accel_bvh4_walk(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
     for (int32_t i = 0; i < s->unbounded_count; i++) visit_object(&fs, s->unbounded[i]);
     return fs.found;
 }
@@ -218,20 +208,16 @@ int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, dou
     int32_t first = 0;
     while (first < s->unbounded_count && shadow_passes(s->unbounded[first], ray, tmin, tmax)) first++;
     const int walk = !box_misses(&s->bvh_box, ray, tmin, tmax);
-    first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL, *slot, NULL};
+    first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL, *slot};
     if (first < s->unbounded_count || walk) {
         if (!tmp && !(fs.tmp = tmp = scratch_acquire(tc))) {
             tc->status = HR_ERROR_OUT_OF_MEMORY;
             return 0;
         }
-        /* The ray prepared once for the walk and its objects' own walks
-         * (hri_scene_trace_nearest); the cached object was asked without. */
-        accel_ray4 prepared;
-        if (walk && accel_ray4_prepare(&prepared, ray, tmin)) fs.walk_ray = &prepared;
         for (int32_t i = first; i < s->unbounded_count && !fs.found; i++)
             if (i == first || !shadow_passes(s->unbounded[i], ray, tmin, tmax))
                 visit_object(&fs, s->unbounded[i]);
-        if (!fs.found && walk) accel_bvh4_walk_any_given(&s->bvh, ray, fs.walk_ray, tmin, &fs.best, visit_leaf, &fs);
+        if (!fs.found && walk) accel_bvh4_walk_any(&s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
     }
     *slot = fs.hit_object;
     if (tmp) hri_trace_scratch_release(tc, tmp);

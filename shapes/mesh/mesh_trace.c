@@ -627,16 +627,6 @@ static inline leaf_fn leaf_callback(void)
     return leaf_of;
 }
 
-/* The host's prepared ray (hr_hit_args.walk_ray), where it gives one that
- * this module's accel reads: the ray and args->tmin as its walk would
- * prepare them, so the walks from it visit the same leaves in the same
- * order (accel_bvh4_walk_given). NULL: the walk prepares its own. */
-static inline const accel_ray4 *host_walk_ray(const hr_hit_args *args)
-{
-    if (!HR_HIT_ARGS_HAS(args, walk_ray_format) || !args->walk_ray) return NULL;
-    return args->walk_ray_format == accel_ray4_format() ? args->walk_ray : NULL;
-}
-
 /* An any-hit search from tmin >= 0. An open mesh's any hit is any
  * triangle hit in the interval, which every order of the leaves finds, and
  * a closed mesh's (closed_any) is whether the first-hit search finds a
@@ -648,8 +638,7 @@ static __attribute__((noinline)) void walk_any_order(query *q)
 {
     leaf_fn leaf_of_cpu = leaf_callback();
     if (isnan(q->tmax)) return;
-    accel_bvh4_walk_any_given(&q->m->bvh, &q->args->ray, host_walk_ray(q->args), q->tmin, &q->tmax, leaf_of_cpu,
-                              q);
+    accel_bvh4_walk_any(&q->m->bvh, &q->args->ray, q->tmin, &q->tmax, leaf_of_cpu, q);
 }
 
 /* Every leaf whose box the ray may meet over the query's interval, which
@@ -673,8 +662,7 @@ static void walk(query *q)
     const hr_ray *ray = &q->args->ray;
     if (isnan(q->tmin) || isnan(q->tmax)) return;
     if (q->tmin >= 0.0) {
-        /* q->tmin is the caller's here (not the whole line's). */
-        accel_bvh4_walk_given(bvh, ray, host_walk_ray(q->args), q->tmin, &q->tmax, leaf_of_cpu, q);
+        accel_bvh4_walk(bvh, ray, q->tmin, &q->tmax, leaf_of_cpu, q);
         return;
     }
     hr_ray back = *ray;

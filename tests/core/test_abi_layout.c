@@ -55,16 +55,13 @@ PIN_OFF(hr_create_args, objects, 16);
 PIN_OFF(hr_create_args, host, 24);
 PIN_OFF(hr_create_args, error, 32);
 PIN_OFF(hr_create_args, base_dir, 48);
-PIN_SIZE(hr_hit_args, 112);
+PIN_SIZE(hr_hit_args, 96);
 PIN_OFF(hr_hit_args, ray, 8);
 PIN_OFF(hr_hit_args, tmin, 56);
 PIN_OFF(hr_hit_args, out, 72);
 PIN_OFF(hr_hit_args, call, 80);
 /* Appended within ABI 1: the host's size of the struct. */
 PIN_OFF(hr_hit_args, struct_size, 88);
-/* Appended within ABI 1: the host walk's prepared ray (issue 26). */
-PIN_OFF(hr_hit_args, walk_ray, 96);
-PIN_OFF(hr_hit_args, walk_ray_format, 104);
 PIN_SIZE(hr_shape_class, 120);
 PIN_OFF(hr_shape_class, name, 8);
 PIN_OFF(hr_shape_class, params, 24);
