@@ -67,6 +67,10 @@ typedef struct first_state {
     int found;
     int any; /* stop at the first hit (shadow rays) */
     const hr_object *hit_object; /* whose hit ended an any-hit walk */
+    /* An any-hit walk's object already asked, with the same ray and
+     * window, and found clear (the shadow cache's, hri_scene_trace_shadow):
+     * the walk passes it by. NULL: none. */
+    const hr_object *asked;
 } first_state;
 
 /* Test one object; returns 1 to stop (any-hit found one).
@@ -86,6 +90,7 @@ typedef struct first_state {
  * the brute force's in any order the objects are met. */
 static int visit_object(first_state *fs, const hr_object *o)
 {
+    if (o == fs->asked) return 0;
     fs->tmp->count = 0;
     hr_status st = fs->any ? object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_ANY, 0, fs->tmp)
                            : object_trace(fs->tc, o, fs->ray, fs->tmin, fs->best, HR_TRACE_FIRST, 1, fs->tmp);
@@ -128,7 +133,7 @@ static int visit_leaf(void *user, uint32_t first, uint32_t count)
 int hri_scene_trace_nearest(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax, hr_hit *out,
                            hr_intersection *tmp)
 {
-    first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL};
+    first_state fs = {tc, ray, tmin, tmax, out, tmp, 0, 0, NULL, NULL};
     const hr_scene *s = tc->scene;
     if (!box_misses(&s->bvh_box, ray, tmin, fs.best))
         accel_bvh8_walk(&s->bvh8, &s->bvh, ray, tmin, &fs.best, visit_leaf, &fs);
@@ -177,8 +182,11 @@ static inline __attribute__((always_inline)) int shadow_passes(const hr_object *
  * blocks this ray too, and one object test replaces the walk. Then the
  * unbounded objects (planes) that unbounded_misses does not cull, and the
  * BVH, children in slot order, unless the ray misses the box around its
- * objects (box_misses), stopping at the first hit. The answer is the same
- * in any order: the ray is blocked if any object has a hit in (tmin, tmax).
+ * objects (box_misses), stopping at the first hit; the cached object, which
+ * has just answered this ray and window with no hit, is not asked again
+ * (a shape's answer depends on nothing else: a mesh's any-hit walk costs
+ * as much the second time). The answer is the same in any order: the ray
+ * is blocked if any object has a hit in (tmin, tmax).
  * A ray that the culls leave nothing to ask (most shadow rays over a floor)
  * takes no scratch list. */
 int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, double tmax,
@@ -201,7 +209,7 @@ int hri_scene_trace_shadow(hr_trace_ctx *tc, const hr_ray *ray, double tmin, dou
     int32_t first = 0;
     while (first < s->unbounded_count && shadow_passes(s->unbounded[first], ray, tmin, tmax)) first++;
     const int walk = !box_misses(&s->bvh_box, ray, tmin, tmax);
-    first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL};
+    first_state fs = {tc, ray, tmin, tmax, NULL, tmp, 0, 1, NULL, *slot};
     if (first < s->unbounded_count || walk) {
         if (!tmp && !(fs.tmp = tmp = scratch_acquire(tc))) {
             tc->status = HR_ERROR_OUT_OF_MEMORY;
