@@ -273,8 +273,16 @@ static inline __attribute__((always_inline)) double mesh_t_error(const mesh_ray 
     const double delta_e =
         2.0 * (MESH_GAMMA(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     const double max_e = mesh_max(fabs(U), mesh_max(fabs(V), fabs(W)));
-    return 3.0 * (MESH_GAMMA(3) * max_e * max_z + 2.0 * delta_e * spread_z + delta_z * max_e) /
-           fabs(det);
+    const double bound =
+        3.0 * (MESH_GAMMA(3) * max_e * max_z + 2.0 * delta_e * spread_z + delta_z * max_e) / fabs(det);
+    /* A bound past the doubles' range says that t may lie anywhere; as
+     * +inf it also refused the crossing for lying "within its error" of a
+     * tmin of -inf (t - tmin = +inf), where nothing lies before: a closed
+     * mesh's whole line lost one crossing of a pair (a ray in the plane of
+     * a face, det 5e-24 against sheared corners 1e300 deep: a fuzz input).
+     * So it is the largest double, which every finite distance to a finite
+     * tmin stays within. */
+    return bound == INFINITY ? DBL_MAX : bound;
 }
 
 /* The test's last steps, once the edge functions U, V, W of the sheared

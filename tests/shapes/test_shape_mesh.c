@@ -291,6 +291,41 @@ static void test_edge_crossing_at_zero(void)
     harness_close(&octa);
 }
 
+/* A line in the plane of a face with a t error bound past the doubles (a
+ * fuzz input): from (a, 1, a), a = 1.0e-300, within 1e-300 of the vertex
+ * (0, 1, 0), along (-2^-1074, a, a). In rational arithmetic on the doubles
+ * it misses the solid by 2^-1074 (|x| + |y| + |z| is 1 + 2^-1074 at
+ * t = -1, its least); the sheared corners, rounded, put it through the
+ * edge (0, 1, 0)-(1, 0, 0) at t = -1, where it leaves the face x + y + z = 1
+ * and enters x + y - z = 1, in whose plane it runs: that crossing has
+ * det = 4.9e-24 against corners 1e300 deep, and its t error bound overflowed
+ * to +inf, so the whole line (tmin = -inf, t - tmin = +inf) refused it as
+ * lying within its error of tmin: one hit, leaving. Either way along the
+ * line: no hit, or entered and left once, and the first hit is the list's
+ * first. */
+static void test_face_plane_t_error_past_doubles(void)
+{
+    harness_shape octa;
+    if (!harness_open(&octa, "mesh", "octahedron", NAN)) return;
+    const double a = 0x1.56e1fc2f8f359p-997;
+    for (int back = 0; back < 2; back++) {
+        const double s = back ? -1.0 : 1.0;
+        hr_ray ray = harness_ray(a, 1.0, a, s * -0x1p-1074, s * a, s * a);
+        hr_hit h[HARNESS_MAX_HITS], first[HARNESS_MAX_HITS];
+        const int n = harness_trace(&octa, ray, -INFINITY, INFINITY, HARNESS_ALL, h);
+        CHECK_MSG(n == 0 || (n == 2 && h[0].entering == 1 && h[1].entering == 0),
+                  "line in a face's plane by the vertex, %s: %d hits, the first %s", back ? "back" : "ahead",
+                  n, n ? (h[0].entering ? "entering" : "leaving") : "none");
+        if (n == 2) {
+            CHECK_NEAR(h[0].t, -s, 1e-15);
+            CHECK_NEAR(h[1].t, -s, 1e-15);
+            const int nf = harness_trace(&octa, ray, -INFINITY, INFINITY, HARNESS_FIRST, first);
+            CHECK(nf == 1 && first[0].t == h[0].t && first[0].entering == 1);
+        }
+    }
+    harness_close(&octa);
+}
+
 /* The same cube in Hill's format: four-corner faces fanned, normals from
  * the file (here equal to the geometric ones). */
 static void test_hill_cube(void)
@@ -1198,6 +1233,7 @@ int main(void)
     test_edge_sweeps();
     test_vertices();
     test_edge_crossing_at_zero();
+    test_face_plane_t_error_past_doubles();
     test_hill_cube();
     test_hill_tetrahedron();
     test_obj_normals();
