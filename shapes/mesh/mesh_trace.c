@@ -235,8 +235,26 @@ static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, co
  * up and given the t of the place it takes, which keeps the list sorted.
  * Where none is that close, the list is left as computed (the surface
  * crosses itself there) and the expectation follows what was found.
- * `surface` holds each hit's "outside the caller's interval" mark, which a
- * moved hit takes over from the place it takes. */
+ * `surface` holds each hit's mark (MARK_*): inside the caller's interval,
+ * outside it, or inside but within its t error of tmin (the triangle
+ * test refuses it: it may lie at or before tmin). A moved hit and the hit
+ * whose place it takes become one place, a zero-length visit, and share
+ * one mark, so that the interval keeps both or neither:
+ * - the place's mark where that place's t lies outside the interval: both
+ *   now have that t;
+ * - the moved hit's own mark where the place is refused only for its t
+ *   error. The repair says that the moved hit comes first along the exact
+ *   line and the place's crossing at or after it; so when the moved hit
+ *   lies past tmin by more than its own t error, so does the place's
+ *   crossing. (Taking the place's mark there dropped a crossing clearly
+ *   inside its triangle, t error 5e-14, with a leaving one at t = 1 that
+ *   the ray, in that triangle's plane, saw with a t error of 9.5 from
+ *   tmin = 0: the ray met the mesh, yet neither hit nor first_hit said
+ *   so; a fuzz input.) */
+#define MARK_INSIDE 0
+#define MARK_OUTSIDE 1
+#define MARK_T_ERROR 2
+
 static void alternate_closed(const hr_ray *ray, hr_hit *h, hit_key *key, size_t n)
 {
     int expected = 1;
@@ -249,7 +267,8 @@ static void alternate_closed(const hr_ray *ray, hr_hit *h, hit_key *key, size_t 
                 hr_hit moved = h[j];
                 const hit_key moved_key = key[j];
                 moved.t = h[i].t;
-                moved.surface = h[i].surface;
+                if (h[i].surface != MARK_T_ERROR) moved.surface = h[i].surface;
+                h[i].surface = moved.surface;
                 memmove(&h[i + 1], &h[i], (j - i) * sizeof *h);
                 memmove(&key[i + 1], &key[i], (j - i) * sizeof *key);
                 h[i] = moved;
@@ -368,27 +387,27 @@ static hr_status key_room(query *q, size_t at)
  *   arithmetic on the same triangle), unmarked (see alternate_closed:
  *   inside the caller's interval). alternate_closed changes a hit's mark in
  *   one way only: a hit h[j] moved up into the place of a hit h[i] of the
- *   other kind takes h[i]'s mark, where h[i].t <= h[j].t and h[j].t -
- *   h[i].t <= closed_slack; every other hit is shifted with its own mark,
- *   and a moved hit is never moved again. So X stays in the list unless it
- *   takes the place of a marked h[i] within the slack before it.
- * - That h[i] is not refused for lying at or before tmin: every error
- *   bound is at most tie_error (mesh_largest_error), and the rounded slack is
- *   monotone in the errors, so for |h[i].t| <= |X.t| the slack is at most
- *   reach / 2, and X.t - reach > tmin (checked as computed, which implies it
- *   exactly) puts h[i].t after tmin, with reach's factor 2 covering the
- *   roundings of the differences; for |h[i].t| > |X.t|, h[i].t would be
- *   negative and the slack, whose part in |t| is 8 DBL_EPSILON |h[i].t|,
- *   could not reach from below 0 to X.t > reach. Nor is it refused for
- *   lying at or past tmax: h[i].t <= X.t < tmax. (The slack also holds
- *   twice h[i]'s t error, which reach does not bound; like the t error
- *   refusal below, that error is large only for a triangle seen nearly
- *   edge on.)
- * - Nor for its t error (h[i].t - tmin <= t_error, the one refusal left):
- *   that error exceeds X.t - tmin - reach only for a triangle the ray sees
- *   nearly edge on. A sliver is seen so from every side, and a ray
- *   through a corner of one that lies on a face meets it with an error of
- *   1 at the face's crossing (a fuzz input found it), so a mesh with any
+ *   other kind, where h[i].t <= h[j].t and h[j].t - h[i].t <=
+ *   closed_slack, shares one mark with it: h[i]'s, or h[j]'s own where
+ *   h[i] is refused only for its t error; every other hit is shifted with
+ *   its own mark, and a moved hit is never moved again. So X stays in the
+ *   list unless it takes the place of an h[i] within the slack before it
+ *   whose t lies outside the caller's interval.
+ * - That h[i].t does not lie at or past tmax: h[i].t <= X.t < tmax. Nor at
+ *   or before tmin, unless h[i]'s t error is large: every error bound is
+ *   at most tie_error (mesh_largest_error), and the rounded slack is
+ *   monotone in the errors, so for |h[i].t| <= |X.t| the slack's parts in
+ *   the points' errors and in |t| are at most reach / 2, and X.t - reach >
+ *   tmin (checked as computed, which implies it exactly) puts h[i].t after
+ *   tmin, with reach's factor 2 covering the roundings of the differences;
+ *   for |h[i].t| > |X.t|, h[i].t would be negative and those parts, the
+ *   one in |t| being 8 DBL_EPSILON |h[i].t|, could not reach from below 0
+ *   to X.t > reach.
+ * - The slack also holds four times h[i]'s t error, which reach does not
+ *   bound, and which reaches from tmin to X only for a triangle the ray
+ *   sees nearly edge on. A sliver is seen so from every side, and a
+ *   ray through a corner of one that lies on a face meets it with an error
+ *   of 1 at the face's crossing (a fuzz input found it), so a mesh with any
  *   triangle less round than mesh_faces_round allows keeps the first-hit
  *   search. A round triangle is seen edge on only by a ray in its plane;
  *   its crossing is then where the ray meets its plane's edge with the
@@ -398,9 +417,13 @@ static hr_status key_room(query *q, size_t at)
  *   the edge that face shares with X's triangle drags X's mark exactly so;
  *   the test meets it, and it is why X must lie inside.) What no bound
  *   excludes is a round triangle whose computed t, uncertain as the ray
- *   runs in its plane, rounds to within the slack before X's, or a surface
- *   meeting itself at X's crossing: test_mesh_any_hit_closed aims rays at
- *   vertices, edges and along faces to look for them.
+ *   runs in its plane, rounds to tmin or before within the slack before
+ *   X's, or a surface meeting itself at X's crossing:
+ *   test_mesh_any_hit_closed aims rays at vertices, edges and along faces
+ *   to look for them. (Such a t rounded past tmin, refused only for its t
+ *   error, keeps X: a ray in a round face's plane through its corner, t =
+ *   1 with a t error of 9.5 from tmin = 0, 0.125 before X, whose pair was
+ *   dropped while the place's mark was taken: test_mesh_repair_mark.)
  * A hit near an edge of its triangle or within reach of tmin (a ray
  * starting on the mesh) is left to the first-hit search. */
 static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
@@ -503,8 +526,9 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             /* The caller's interval as mesh_triangle_test applies it (so a
              * hit is kept by the same test in every mode). */
             if (q->whole_line)
-                hit->surface = !(th.t > args->tmin && th.t < args->tmax &&
-                                 !(th.t - args->tmin <= th.t_error));
+                hit->surface = !(th.t > args->tmin && th.t < args->tmax) ? MARK_OUTSIDE
+                               : th.t - args->tmin <= th.t_error         ? MARK_T_ERROR
+                                                                         : MARK_INSIDE;
             continue;
         }
         if (q->tie_check) {
