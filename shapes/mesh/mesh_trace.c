@@ -204,7 +204,9 @@ static double ray_speed(const hr_ray *ray)
 /* How far apart in t two crossings of a closed mesh may lie and still be
  * put in the other order by alternate_closed: their points' error bounds
  * as distances along the ray, and the bound on the rounding of the earlier
- * one's t, twice (t_errors): a ray that runs nearly along thin faces far
+ * one's t, twice (t_errors: the two crossings' bounds where the later's is
+ * no larger; their computed t can be in the other order than the exact
+ * crossings only within the sum of the two): a ray that runs nearly along thin faces far
  * from the origin (faces 1e15 long and a few units wide, crossed from 1e16
  * away: a fuzz input) has t errors of several times t, and the exact order
  * of its crossings, a few 1e-17 apart in t, is not that of their computed
@@ -217,7 +219,7 @@ static double slack_of(const hr_ray *ray, double a_error, double a_t, double b_e
                        double t_errors)
 {
     return (a_error + b_error) / ray_speed(ray) * 4.0 +
-           8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t)) + 2.0 * t_errors;
+           8.0 * DBL_EPSILON * mesh_max(fabs(a_t), fabs(b_t)) + t_errors;
 }
 
 static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, const hr_hit *b)
@@ -329,6 +331,7 @@ typedef struct query {
     int needs_first; /* it met a hit it cannot decide on: ask the first-hit search */
     double tie_error;
     double tie_end;    /* how far past the caller's tmax a closed mesh's first-hit search looks */
+    int window_cut;    /* its best's window reaches past tie_end (see leaf_loop) */
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
     int phase;         /* see walk: 0, or the sign of the t this walk keeps */
@@ -582,11 +585,21 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
         tmax = mesh_min(tmax, mesh_next_up(mesh_max(th.t, th.t + 2.0 * th.t_error)));
         if (q->tie_check) {
             q->best_error = point_error(m, i, th.b);
-            /* And the best's t error twice over (slack_of's t part for a
-             * crossing whose t is as uncertain as the best's). */
+            /* And the best's t error twice (slack_of's t part for a
+             * crossing after the best). */
             const double window = (q->best_error + q->tie_error) / ray_speed(&args->ray) * 4.0 +
-                                  16.0 * DBL_EPSILON * fabs(th.t) + 4.0 * th.t_error;
-            tmax = fmin(q->tie_end, mesh_next_up(th.t + window));
+                                  16.0 * DBL_EPSILON * fabs(th.t) + 2.0 * th.t_error;
+            const double window_end = mesh_next_up(th.t + window);
+            tmax = fmin(q->tie_end, window_end);
+            /* A window cut at tie_end leaves unseen the crossings between
+             * tie_end and its end, which alternate_closed may move up onto
+             * the best (tie_end allows for the points' slack past the
+             * caller's tmax, not for the best's t error: a leaving
+             * crossing at t = 0.75 with a t error of 0.145 and tmax = 0.8,
+             * the list moving an entering one up from t = 1, a fuzz input
+             * altered): then the answer is the all-hits list's
+             * (finish_query). */
+            q->window_cut = !(window_end <= q->tie_end);
         }
         q->tmax = tmax;
     }
@@ -727,7 +740,7 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
 {
     if (q->needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q->start;
-    int near_tie = q->found && q->seen_overflow;
+    int near_tie = q->found && (q->seen_overflow || q->window_cut);
     for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
         near_tie = near_tie_with_best(q, &q->seen[k]);
     if (near_tie) {
@@ -774,6 +787,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.best_tri = 0;
     q.best_error = 0.0;
     q.seen_count = q.seen_overflow = 0;
+    q.window_cut = 0;
     q.needs_first = 0;
     q.keys = q.key_room;
     q.key_capacity = sizeof q.key_room / sizeof *q.key_room;
@@ -821,7 +835,9 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
      * exiting one at tmax - 1 ulp: found by fuzzing). So the first-hit
      * search sees crossings as far past tmax as the widest window of a
      * best hit before it reaches (both error bounds at most tie_error),
-     * and takes none of them as its best. */
+     * and takes none of them as its best; a best whose window, with its
+     * t error, reaches further takes the answer from the all-hits list
+     * (window_cut in leaf_loop). */
     q.tie_end = args->tmax;
     if (q.tie_check)
         q.tmax = q.tie_end = mesh_next_up(args->tmax + 2.0 * q.tie_error / ray_speed(&args->ray) * 4.0 +
