@@ -332,6 +332,8 @@ typedef struct query {
     double tie_error;
     double tie_end;    /* how far past the caller's tmax a closed mesh's first-hit search looks */
     int window_cut;    /* its best's window reaches past tie_end (see leaf_loop) */
+    double searched_end; /* the least end of the search's interval so far (see leaf_loop) */
+    int window_widened;  /* its best's window reaches past searched_end */
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
     int phase;         /* see walk: 0, or the sign of the t this walk keeps */
@@ -567,6 +569,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
                                                  (th.entering == q->best.entering &&
                                                   m->bvh.items[i] < m->bvh.items[q->best_tri])))))
             continue;
+        q->searched_end = mesh_min(q->searched_end, tmax);
         q->found = 1;
         q->best = th;
         q->best_tri = i;
@@ -600,6 +603,17 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
              * altered): then the answer is the all-hits list's
              * (finish_query). */
             q->window_cut = !(window_end <= q->tie_end);
+            /* A best may take over at the same t (or just before) with a
+             * wider window than the best it replaces: its t error larger.
+             * Crossings and boxes the search passed over under the
+             * narrower end are then unseen, and one may form a near tie
+             * with the new best (a fuzz input: a leaving crossing at t = 1
+             * with a t error of 1.4e-13 narrowed the end to 1 + 2.9e-13, an
+             * entering one at 1 + 4.6e-10 was refused, and a leaving one at
+             * t = 1 with a t error of 4.8e-5 and a lower index took over,
+             * whose slack holds the entering one; the all-hits list moves
+             * it up). Then the answer is the all-hits list's too. */
+            q->window_widened = tmax > q->searched_end;
         }
         q->tmax = tmax;
     }
@@ -740,7 +754,7 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
 {
     if (q->needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q->start;
-    int near_tie = q->found && (q->seen_overflow || q->window_cut);
+    int near_tie = q->found && (q->seen_overflow || q->window_cut || q->window_widened);
     for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
         near_tie = near_tie_with_best(q, &q->seen[k]);
     if (near_tie) {
@@ -788,6 +802,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.best_error = 0.0;
     q.seen_count = q.seen_overflow = 0;
     q.window_cut = 0;
+    q.window_widened = 0;
     q.needs_first = 0;
     q.keys = q.key_room;
     q.key_capacity = sizeof q.key_room / sizeof *q.key_room;
@@ -842,6 +857,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     if (q.tie_check)
         q.tmax = q.tie_end = mesh_next_up(args->tmax + 2.0 * q.tie_error / ray_speed(&args->ray) * 4.0 +
                                           16.0 * DBL_EPSILON * fabs(args->tmax));
+    q.searched_end = q.tmax;
     q.start = args->out->count;
     walk(&q);
     const hr_status st = q.status ? q.status : finish_query(m, args, &q);

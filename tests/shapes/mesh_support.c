@@ -59,3 +59,16 @@ int mesh_open_file(harness_shape *out, const char *file)
     CHECK_MSG(st == HR_OK && out->shape, "mesh %s: status %d: %s", file, (int)st, error);
     return st == HR_OK && out->shape != NULL;
 }
+
+int mesh_open_text(harness_shape *out, const char *name, const char *text)
+{
+    char path[1024];
+    mesh_build_path(name, path, sizeof path);
+    FILE *f = fopen(path, "w");
+    CHECK_MSG(f != NULL, "%s: not written", path);
+    if (!f) return 0;
+    const int written = fputs(text, f) >= 0;
+    const int closed = fclose(f) == 0;
+    CHECK_MSG(written && closed, "%s: not written", path);
+    return written && closed && mesh_open_file(out, path);
+}

@@ -23,5 +23,8 @@ hr_status mesh_create_file_on(const harness_module *module, const hr_host *host,
 
 /* harness_open for a `mesh` on `file`. 1 on success. */
 int mesh_open_file(harness_shape *out, const char *file);
+/* Writes `text` to mesh_build_path(name) and opens a `mesh` on it. 1 on
+ * success; a failure is a failed check. */
+int mesh_open_text(harness_shape *out, const char *name, const char *text);
 
 #endif
