@@ -331,9 +331,8 @@ typedef struct query {
     int needs_first; /* it met a hit it cannot decide on: ask the first-hit search */
     double tie_error;
     double tie_end;    /* how far past the caller's tmax a closed mesh's first-hit search looks */
-    int window_cut;    /* its best's window reaches past tie_end (see leaf_loop) */
-    double searched_end; /* the least end of the search's interval so far (see leaf_loop) */
-    int window_widened;  /* its best's window reaches past searched_end */
+    double searched_end; /* the least end of the search's interval so far, at most tie_end */
+    int window_unseen;   /* its best's window reaches past searched_end (see leaf_loop) */
     double tmin, tmax; /* the interval boxes are tested over */
     int32_t start;     /* the caller's first hit in args->out */
     int phase;         /* see walk: 0, or the sign of the t this walk keeps */
@@ -594,26 +593,24 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
                                   16.0 * DBL_EPSILON * fabs(th.t) + 2.0 * th.t_error;
             const double window_end = mesh_next_up(th.t + window);
             tmax = fmin(q->tie_end, window_end);
-            /* A window cut at tie_end leaves unseen the crossings between
-             * tie_end and its end, which alternate_closed may move up onto
-             * the best (tie_end allows for the points' slack past the
-             * caller's tmax, not for the best's t error: a leaving
-             * crossing at t = 0.75 with a t error of 0.145 and tmax = 0.8,
-             * the list moving an entering one up from t = 1, a fuzz input
-             * altered): then the answer is the all-hits list's
-             * (finish_query). */
-            q->window_cut = !(window_end <= q->tie_end);
-            /* A best may take over at the same t (or just before) with a
-             * wider window than the best it replaces: its t error larger.
-             * Crossings and boxes the search passed over under the
-             * narrower end are then unseen, and one may form a near tie
-             * with the new best (a fuzz input: a leaving crossing at t = 1
-             * with a t error of 1.4e-13 narrowed the end to 1 + 2.9e-13, an
-             * entering one at 1 + 4.6e-10 was refused, and a leaving one at
-             * t = 1 with a t error of 4.8e-5 and a lower index took over,
-             * whose slack holds the entering one; the all-hits list moves
-             * it up). Then the answer is the all-hits list's too. */
-            q->window_widened = tmax > q->searched_end;
+            /* Where the best's window reaches past the least end the
+             * search has run under, crossings between that end and the
+             * window's are unseen, and alternate_closed may move one up
+             * onto the best: then the answer is the all-hits list's
+             * (finish_query). Two ways it happens:
+             * - a window cut at tie_end, which allows for the points'
+             *   slack past the caller's tmax, not for the best's t error
+             *   (a leaving crossing at t = 0.75 with a t error of 0.145 and
+             *   tmax = 0.8, the list moving an entering one up from t = 1,
+             *   a fuzz input altered);
+             * - a best taking over at the same t (or just before) with a
+             *   wider window than the one it replaces (a fuzz input: a
+             *   leaving crossing at t = 1 with a t error of 1.4e-13
+             *   narrowed the end to 1 + 2.9e-13, an entering one at
+             *   1 + 4.6e-10 was refused, and a leaving one at t = 1 with a
+             *   t error of 4.8e-5 and a lower index took over, whose slack
+             *   holds the entering one). */
+            q->window_unseen = !(window_end <= q->searched_end);
         }
         q->tmax = tmax;
     }
@@ -754,7 +751,7 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
 {
     if (q->needs_first) return trace_query(m, args, HR_TRACE_FIRST);
     const int32_t start = q->start;
-    int near_tie = q->found && (q->seen_overflow || q->window_cut || q->window_widened);
+    int near_tie = q->found && (q->seen_overflow || q->window_unseen);
     for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
         near_tie = near_tie_with_best(q, &q->seen[k]);
     if (near_tie) {
@@ -801,8 +798,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.best_tri = 0;
     q.best_error = 0.0;
     q.seen_count = q.seen_overflow = 0;
-    q.window_cut = 0;
-    q.window_widened = 0;
+    q.window_unseen = 0;
     q.needs_first = 0;
     q.keys = q.key_room;
     q.key_capacity = sizeof q.key_room / sizeof *q.key_room;
@@ -852,7 +848,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
      * best hit before it reaches (both error bounds at most tie_error),
      * and takes none of them as its best; a best whose window, with its
      * t error, reaches further takes the answer from the all-hits list
-     * (window_cut in leaf_loop). */
+     * (window_unseen in leaf_loop). */
     q.tie_end = args->tmax;
     if (q.tie_check)
         q.tmax = q.tie_end = mesh_next_up(args->tmax + 2.0 * q.tie_error / ray_speed(&args->ray) * 4.0 +
