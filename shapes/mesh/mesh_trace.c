@@ -744,6 +744,37 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
                              t_errors);
 }
 
+/* Whether a crossing the first-hit search saw sorts before its best (in
+ * the all-hits order, mesh_hit_before) as a place that alternate_closed
+ * may fill from as far as the best or past it: its slack, which holds
+ * twice its own t error, reaches the best's t. Such a crossing lies
+ * outside the caller's interval, or within its t error of tmin (else it
+ * would be the best), and a crossing of the interval moved onto it is kept
+ * where the place was refused only for its t error: one the search passed
+ * over once its end had narrowed to the best's window, or one it saw past
+ * the best but weighed against the best alone (a leaving crossing at t = 1
+ * with a t error of 500, refused for it from tmin = 0, before a leaving
+ * best at t = 1 with a t error of 1.4e-13, and the list moved an entering
+ * crossing up from 1 + 5e-4 onto the first: a fuzz input). A crossing
+ * moved up from past the caller's tmax is marked outside it, and so is
+ * its place then: with no best, no such move keeps a hit. The slack's part
+ * in |t| is taken at the best's t: past it the distance grows faster than
+ * the slack. */
+static int place_reaches_best(const query *q, const seen_crossing *s)
+{
+    if (s->tri == q->best_tri || !(s->th.t <= q->best.t)) return 0;
+    const hr_ray *ray = &q->args->ray;
+    const double apart = q->best.t - s->th.t;
+    const double t_errors = 2.0 * s->th.t_error;
+    if (!(apart <= slack_of(ray, q->tie_error, s->th.t, q->tie_error, q->best.t, t_errors))) return 0;
+    if (s->th.t == q->best.t && (s->th.entering < q->best.entering ||
+                                 (s->th.entering == q->best.entering &&
+                                  q->m->bvh.items[s->tri] > q->m->bvh.items[q->best_tri])))
+        return 0; /* at the best's t, after it */
+    return apart <= slack_of(ray, point_error(q->m, s->tri, s->th.b), s->th.t, q->tie_error, q->best.t,
+                             t_errors);
+}
+
 static hr_status trace_query(const mesh *m, const hr_hit_args *args, int32_t mode);
 
 /* trace_query's answer once the walk is over. */
@@ -753,7 +784,7 @@ static hr_status finish_query(const mesh *m, const hr_hit_args *args, query *q)
     const int32_t start = q->start;
     int near_tie = q->found && (q->seen_overflow || q->window_unseen);
     for (int k = 0; q->found && !near_tie && k < q->seen_count; k++)
-        near_tie = near_tie_with_best(q, &q->seen[k]);
+        near_tie = near_tie_with_best(q, &q->seen[k]) || place_reaches_best(q, &q->seen[k]);
     if (near_tie) {
         const hr_status st = mesh_trace(m, args, HR_TRACE_ALL);
         if (st == HR_OK && args->out->count > start + 1) args->out->count = start + 1;
