@@ -429,7 +429,9 @@ static void test_walk(void)
     fprintf(stderr, "walk: %ld rays, %ld box meetings, %ld missed\n", rays, met_total, missed);
     fprintf(stderr, "walk: nearest first against the plain order: %ld walks, %ld with other leaves or order\n",
             walks_ordered, walks_out_of_order);
-    CHECK(walks_ordered > 20000 && walks_out_of_order == 0);
+    /* One walk per ray for each walk this CPU runs (SSE2, and AVX2 where
+     * it has it): HITRAY_CPU=sse2 leaves one. */
+    CHECK(walks_ordered > 15000 && walks_out_of_order == 0);
     CHECK_MSG(missed == 0, "the walk skipped %ld boxes the exact test says the ray meets", missed);
     CHECK(met_total > 20000);
 #if ACCEL_WALK_AVX2
