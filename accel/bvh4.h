@@ -141,10 +141,15 @@ typedef struct accel_ray4 {
 #endif
     /* Byte offsets in a node of the plane each axis meets first and last. */
     size_t near_at[3], far_at[3];
-    /* The walk's t is (t - t_offset) * t_scale: t_scale for the direction's
-     * scaling, t_offset (tmin when negative, else 0) so that the walk's
-     * interval starts at 0 or later, which the slack's direction needs. */
-    double t_scale, t_offset;
+    /* The walk's t is (t - t_offset) * t_scale: t_scale for the
+     * direction's scaling, t_offset (tmin when negative, else 0) so that
+     * the walk's interval starts at 0 or later, which the slack's
+     * direction needs. tmin_offset is t_offset but for a far origin
+     * (accel_ray4_init_far), whose move along the line is known within a
+     * rounding of its size: t_offset then lies that far below it, and
+     * tmin_offset that far above, so the walk's interval holds the
+     * caller's. */
+    double t_scale, t_offset, tmin_offset;
     int cull; /* 0: no usable interval, every leaf is visited */
 } accel_ray4;
 
@@ -182,6 +187,7 @@ static inline void accel_ray4_init_any(accel_ray4 *r, const hr_ray *ray, double 
               isfinite(ray->origin.y + r->t_offset * ray->dir.y) &&
               isfinite(ray->origin.z + r->t_offset * ray->dir.z);
     if (!r->cull) r->t_offset = 0.0;
+    r->tmin_offset = r->t_offset;
     const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
     double big = fabs(d[0]);
     if (fabs(d[1]) > big) big = fabs(d[1]);
@@ -353,7 +359,7 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *r
     ACCEL_AXIS(2, _MM_SHUFFLE(2, 2, 2, 2));
 #undef ACCEL_AXIS
     r->t_scale = 1.0;
-    r->t_offset = 0.0;
+    r->t_offset = r->tmin_offset = 0.0;
     r->cull = 1;
     return 1;
 }
@@ -389,7 +395,7 @@ ACCEL_ALWAYS_INLINE void accel_ray4_init_as(accel_ray4 *r, const hr_ray *ray, do
  * so culls exactly what +inf did: every entry the test passes is finite. */
 static inline float accel_ray4_tmin(const accel_ray4 *r, double tmin)
 {
-    return accel_float_at_most((tmin - r->t_offset) * r->t_scale);
+    return accel_float_at_most((tmin - r->tmin_offset) * r->t_scale);
 }
 static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
 {
@@ -402,7 +408,9 @@ static inline float accel_ray4_tmax(const accel_ray4 *r, double tmax)
  * for child k, with a lower bound of where it enters in entry[k]. With the
  * interval at t >= 0, only positive slab distances can decide a test, and
  * for those the slack in inv_near (inv_far) makes the entry smaller (the
- * exit larger); a negative distance stays negative.
+ * exit larger); a negative distance stays negative. (A far origin's walk,
+ * accel_ray4_init_far, may have tmin < 0, with every box wholly ahead of
+ * its moved origin: for a box ahead the same argument holds.)
  *
  * An entry of +inf is a miss: no hit lies there. The test needs no compare
  * of its own for it: the exit is at most tmax + 2^-149, which is at most
@@ -506,6 +514,103 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
                                        accel_f4 tmin, accel_f4 tmax, float entry[4])
 {
     return accel_bvh4_test_as(r, n, tmin, tmax, entry, 0);
+}
+
+/* a + b as s + e exactly (Knuth's two-sum). */
+static inline void accel_two_sum(double a, double b, double *s, double *e)
+{
+    *s = a + b;
+    const double bb = *s - a;
+    *e = (a - (*s - bb)) + (b - bb);
+}
+
+/* A t at or before every point of the line p + t d that lies in the cube
+ * [-c, c]^3 (at or before where the line enters it): the largest of the
+ * near planes' distances, each with two roundings (relative 2^-52), moved
+ * back by 2^-48 of itself. Axes with d = 0 bound nothing here. */
+static inline double accel_cube_entry(const double p[3], const double d[3], double c)
+{
+    double t = -INFINITY;
+    for (int a = 0; a < 3; a++) {
+        if (d[a] == 0.0) continue;
+        const double ta = ((d[a] > 0.0 ? -c : c) - p[a]) / d[a];
+        if (ta > t) t = ta;
+    }
+    return t - fabs(t) * 0x1p-48;
+}
+
+/* For a ray accel_ray4_init_any leaves with no interval to cull by whose
+ * line is finite: an origin beyond ACCEL_CULL_RANGE (a shadow ray from 1e21
+ * away toward a light beside a mesh walked every leaf of the mesh: a fuzz
+ * input), or tmin = -inf. The boxes lie in the cube |x| <= extent, so the
+ * origin can move along the line to just before the cube [-c, c]^3,
+ * c = 2 extent + 2^-20, without passing a box: by t1 + t2, two steps
+ * toward the cube's entry (accel_cube_entry), the second from where the
+ * first arrived, each step's product and sum exact (fma, two-sum), so the
+ * moved origin is known within 2^-50 of its size and of the terms left
+ * over, whatever the first distance was; the walk then culls as for a ray
+ * from there. Returns 1 with *r prepared (unflipped), 0 where that does
+ * not hold (the walk visits every leaf), -1 where the line misses the cube
+ * (parallel to an axis, outside its slab): no box is met. The walk's tmin
+ * is below 0 where the move passes the caller's tmin; no box lies there. */
+static __attribute__((noinline, unused)) int accel_ray4_init_far(accel_ray4 *r, const hr_ray *ray, double tmin,
+                                                                 double extent)
+{
+    const double o[3] = {ray->origin.x, ray->origin.y, ray->origin.z};
+    const double d[3] = {ray->dir.x, ray->dir.y, ray->dir.z};
+    if (!(tmin < INFINITY) || !(extent <= ACCEL_CULL_RANGE)) return 0;
+    const double c = 2.0 * extent + 0x1p-20;
+    for (int a = 0; a < 3; a++) {
+        if (!isfinite(o[a]) || !isfinite(d[a])) return 0;
+        if (d[a] == 0.0 && !(fabs(o[a]) <= c)) return -1;
+    }
+    double t1 = accel_cube_entry(o, d, c);
+    if (tmin > t1) t1 = tmin;
+    if (!isfinite(t1)) return 0;
+    double s[3], lo1[3], m1[3];
+    for (int a = 0; a < 3; a++) {
+        const double p = t1 * d[a], pe = fma(t1, d[a], -p);
+        double se;
+        accel_two_sum(o[a], p, &s[a], &se);
+        lo1[a] = se + pe; /* o + t1 d = s + lo1, within 2^-53 |lo1| */
+        m1[a] = s[a] + lo1[a];
+    }
+    const double t2 = accel_cube_entry(m1, d, c);
+    if (!isfinite(t2)) return 0;
+    hr_ray moved = *ray;
+    double m2[3], err[3];
+    for (int a = 0; a < 3; a++) {
+        const double q = t2 * d[a], qe = fma(t2, d[a], -q);
+        double sum, sum_e;
+        accel_two_sum(s[a], q, &sum, &sum_e);
+        m2[a] = sum + ((lo1[a] + sum_e) + qe);
+        err[a] = (fabs(m2[a]) + fabs(lo1[a]) + fabs(sum_e) + fabs(qe)) * 0x1p-50 + 0x1p-1060;
+        if (!(fabs(m2[a]) + err[a] <= ACCEL_CULL_RANGE)) return 0;
+    }
+    moved.origin.x = m2[0], moved.origin.y = m2[1], moved.origin.z = m2[2];
+    accel_ray4_init_any(r, &moved, 0.0);
+    if (!r->cull) return 0;
+    for (int a = 0; a < 3; a++) {
+        const float dn = accel_float_at_most(m2[a] - err[a]), up = accel_float_at_least(m2[a] + err[a]);
+        const int neg = r->near_at[a] == offsetof(accel_bvh4_node, hi) + (size_t)a * 4 * sizeof(float);
+#if defined(__SSE2__)
+        r->o_near[a] = _mm_set1_ps(neg ? dn : up);
+        r->o_far[a] = _mm_set1_ps(neg ? up : dn);
+#else
+        r->o_near[a] = neg ? dn : up;
+        r->o_far[a] = neg ? up : dn;
+#endif
+    }
+    /* The move is t1 + t2, which a double holds within 2^-53 of its size;
+     * the walk's t is then (t - t_offset) * t_scale with one more rounding,
+     * within 2^-53 of the result, which the node test's slack covers. So
+     * both ends move out by 2^-50 of the terms (each of those roundings and
+     * this one's, with room): along the line the walk culls no closer than
+     * that, across it as closely as from an origin beside the boxes. */
+    const double sum = t1 + t2, pad = (fabs(t1) + fabs(t2)) * 0x1p-50;
+    r->t_offset = sum - pad;
+    r->tmin_offset = sum + pad;
+    return 1;
 }
 
 /* What a walk's leaf callback returns. */
@@ -620,7 +725,18 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
     accel_ray4_init_as(&r, ray, tmin, flipped);
 #endif
     if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init_as */
-    if (!r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
+    if (!r.cull) {
+        /* Into a copy: r's address stays in this function (see
+         * accel_ray4_init_as). */
+        accel_ray4 moved;
+        const int far = accel_ray4_init_far(&moved, ray, tmin, bvh->extent);
+        if (far < 0) return ACCEL_WALK_GO_ON;
+        if (!far) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
+#if defined(__SSE2__)
+        if (flipped) accel_ray4_flip(&moved);
+#endif
+        r = moved;
+    }
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
     accel_f4 tmax4 = accel_f4_set(tmax_f);

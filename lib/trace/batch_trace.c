@@ -159,7 +159,7 @@ int64_t hri_trace_first_batch(hr_trace_ctx *tc, const hr_ray *rays, int64_t coun
         accel_walk_avx2_usable()) {
         accel_packet8 p;
         packet_state ps = {.tc = tc, .tmin = tmin, .failed = -1, .tmp = tmp, .p = &p};
-        ps.unit.t_offset = 0.0, ps.unit.t_scale = 1.0;
+        ps.unit.t_offset = ps.unit.tmin_offset = 0.0, ps.unit.t_scale = 1.0;
         const float tmin_f = accel_ray4_tmin(&ps.unit, tmin), tmax_f = accel_ray4_tmax(&ps.unit, tmax);
         const float tmax8[ACCEL_PACKET] = {tmax_f, tmax_f, tmax_f, tmax_f, tmax_f, tmax_f, tmax_f, tmax_f};
         for (; i < count && failed < 0; i += ACCEL_PACKET) {

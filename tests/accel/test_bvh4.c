@@ -398,6 +398,42 @@ static void test_walk(void)
             rays++;
         }
     }
+    /* Origins past ACCEL_CULL_RANGE, which the walk moves along the line
+     * to just before the boxes (accel_ray4_init_far): directions unit and
+     * as long as the distance (a shadow ray's, to its light), some along an
+     * axis, some from beside the boxes' slab, intervals from 0 and from
+     * -inf. Conservative, and culling: a walk that visits every leaf, as
+     * these did before, visits all 2,000 items; one that culls, those near
+     * the line. */
+    const double beyond[] = {0x1p65, 1e21, 1e25, 1e30};
+    long far_visited = 0, far_walks = 0;
+    for (int f = 0; f < 4; f++) {
+        for (int k = 0; k < 500; k++) {
+            const hr_bounds *b = &boxes[(k * 7919) % N];
+            hr_vec3 target = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
+            hr_vec3 from = random_dir();
+            if (k % 5 == 0) from = k % 3 == 0 ? (hr_vec3){-1, 0, 0} : k % 3 == 1 ? (hr_vec3){0, 1, 0} : (hr_vec3){0, 0, -1};
+            if (k % 10 == 5) target.y = 3.0; /* beside every box's slab */
+            const double scale = k % 2 ? 1.0 : beyond[f];
+            hr_ray ray = {{target.x + from.x * beyond[f], target.y + from.y * beyond[f],
+                           target.z + from.z * beyond[f]},
+                          {-from.x * scale, -from.y * scale, -from.z * scale}};
+            const double tmin = k % 4 == 3 ? -INFINITY : 0.0;
+            missed += missed_boxes(&bvh, boxes, N, &ray, tmin, INFINITY, visited);
+            rays++;
+            memset(visited, 0, N);
+            walk_record w = {visited, &bvh};
+            double t = INFINITY;
+            accel_bvh4_walk_any(&bvh, &ray, tmin, &t, record_leaf, &w);
+            for (uint32_t i = 0; i < N; i++) far_visited += visited[i];
+            far_walks++;
+        }
+    }
+    fprintf(stderr, "walk: origins past the cull range: %ld walks, %.1f items visited a walk of %d\n", far_walks,
+            (double)far_visited / (double)far_walks, N);
+    CHECK_MSG(far_visited < far_walks * (N / 20), "far origins visit %ld items in %ld walks", far_visited,
+              far_walks);
+
     /* No finite interval to cull by (tmin -inf, or so far back that the
      * moved origin overflows), and directions in the largest binade. */
     for (int k = 0; k < 300; k++) {
