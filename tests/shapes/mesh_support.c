@@ -1,5 +1,6 @@
 #include "mesh_support.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -71,4 +72,19 @@ int mesh_open_text(harness_shape *out, const char *name, const char *text)
     const int closed = fclose(f) == 0;
     CHECK_MSG(written && closed, "%s: not written", path);
     return written && closed && mesh_open_file(out, path);
+}
+
+void mesh_check_first_is_all_first(const char *name, const char *text, hr_ray ray)
+{
+    harness_shape shape;
+    if (!mesh_open_text(&shape, name, text)) return;
+    hr_hit all[HARNESS_MAX_HITS], first[HARNESS_MAX_HITS];
+    const int n_all = harness_trace(&shape, ray, 0.0, INFINITY, HARNESS_ALL, all);
+    const int n_first = harness_trace(&shape, ray, 0.0, INFINITY, HARNESS_FIRST, first);
+    CHECK_MSG(n_all >= 1 && n_first == 1, "%s: %d hits, %d first hits", name, n_all, n_first);
+    if (n_all >= 1 && n_first == 1)
+        CHECK_MSG(first[0].t == all[0].t && first[0].entering == all[0].entering,
+                  "%s: first hit t %a entering %d, all hits' first t %a entering %d", name, first[0].t,
+                  (int)first[0].entering, all[0].t, (int)all[0].entering);
+    harness_close(&shape);
 }

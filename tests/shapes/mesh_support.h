@@ -26,5 +26,10 @@ int mesh_open_file(harness_shape *out, const char *file);
 /* Writes `text` to mesh_build_path(name) and opens a `mesh` on it. 1 on
  * success; a failure is a failed check. */
 int mesh_open_text(harness_shape *out, const char *name, const char *text);
+/* Opens a `mesh` on `text` (mesh_open_text), traces `ray` over (0, inf)
+ * for all hits and for the first, and checks that there is a first hit and
+ * that it is all hits' first: the same t and entering flag (a closed
+ * mesh's first-hit search against its all-hits list). */
+void mesh_check_first_is_all_first(const char *name, const char *text, hr_ray ray);
 
 #endif

@@ -20,8 +20,6 @@
  * its best, whose window ends at 1 + 2.9e-13, and (1, 2, 6), of the same
  * kind, formed no near tie with it: it gave the leaving hit. Checked:
  * first_hit's t and entering flag are those of all hits' first. */
-#include <math.h>
-
 #include "hr_test.h"
 #include "mesh_support.h"
 #include "module_harness.h"
@@ -39,17 +37,7 @@ static const char mesh_text[] = "v -6663333333316665 -1 -0\n"
 
 int main(void)
 {
-    harness_shape shape;
-    if (!mesh_open_text(&shape, "place_reaches.obj", mesh_text)) return hr_test_end();
     const hr_ray ray = harness_ray(-0x1.d97553c70c149p+53, -1.0, -1.5, 0x1.1c1332443a72cp+53, 0.0, 1.5);
-    hr_hit all[HARNESS_MAX_HITS], first[HARNESS_MAX_HITS];
-    const int n_all = harness_trace(&shape, ray, 0.0, INFINITY, HARNESS_ALL, all);
-    const int n_first = harness_trace(&shape, ray, 0.0, INFINITY, HARNESS_FIRST, first);
-    CHECK_MSG(n_all >= 1 && n_first == 1, "%d hits, %d first hits", n_all, n_first);
-    if (n_all >= 1 && n_first == 1)
-        CHECK_MSG(first[0].t == all[0].t && first[0].entering == all[0].entering,
-                  "first hit t %a entering %d, all hits' first t %a entering %d", first[0].t,
-                  (int)first[0].entering, all[0].t, (int)all[0].entering);
-    harness_close(&shape);
+    mesh_check_first_is_all_first("place_reaches.obj", mesh_text, ray);
     return hr_test_end();
 }
