@@ -180,6 +180,13 @@ class Viewer:
         assert line is not None, f"hitray view ended before printing {starts!r}: {self.proc.stderr.read()}"
         return line
 
+    def exits_ok(self):
+        """Whether the viewer exits with status 0; what it wrote to stderr
+        otherwise, in the failure."""
+        status = self.proc.wait(timeout=WAIT)
+        assert status == 0, f"hitray view exited {status}: stderr {self.proc.stderr.read()!r}"
+        return True
+
     def xdotool(self, *args):
         r = subprocess.run(["xdotool", *args], capture_output=True, text=True,
                            env=clean_env(DISPLAY=self.display), timeout=WAIT)
@@ -281,7 +288,7 @@ def test_view_keys_move_the_camera_as_hill_defines(display, tmp_path):
         assert viewer.line("saved ", nth=2) == f"saved {second}: {after_line}"
         assert second.read_bytes() == saved.read_bytes()
         viewer.keys("Escape")
-        assert viewer.proc.wait(timeout=WAIT) == 0
+        assert viewer.exits_ok()
         assert viewer.proc.stderr.read() == ""
     finally:
         viewer.close()
@@ -375,7 +382,7 @@ def test_view_window_shows_the_final_pass(display, tmp_path):
             time.sleep(0.1)
         assert wrong == 0, f"{wrong} of {iw * ih} pixels on the screen differ from hitray render's PPM"
         viewer.keys("Escape")
-        assert viewer.proc.wait(timeout=WAIT) == 0
+        assert viewer.exits_ok()
     finally:
         viewer.close()
 
@@ -421,7 +428,7 @@ def test_view_passes_replace_the_last_tile_by_tile(display, tmp_path):
                 break
         assert mixed, f"no screenshot showed tiles of the final pass beside the pass before it (last: {tiles})"
         viewer.keys("Escape")
-        assert viewer.proc.wait(timeout=WAIT) == 0
+        assert viewer.exits_ok()
     finally:
         viewer.close()
 
@@ -438,7 +445,7 @@ def test_view_quits_during_a_pass_of_minutes(display, tmp_path):
         else:
             pytest.fail(f"the final pass did not start: {viewer.title()!r}")
         viewer.keys("Escape")
-        assert viewer.proc.wait(timeout=WAIT) == 0
+        assert viewer.exits_ok()
     finally:
         viewer.close()
 
@@ -449,7 +456,7 @@ def test_view_help_key_lists_the_keys(display, tmp_path):
         viewer.keys("h")
         assert "slide forward" in viewer.line("  W / S")
         viewer.keys("Escape")
-        assert viewer.proc.wait(timeout=WAIT) == 0
+        assert viewer.exits_ok()
     finally:
         viewer.close()
 
