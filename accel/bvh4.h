@@ -53,6 +53,7 @@
 #include <hitray/common.h>
 #include <hitray/shape_kit_box.h>
 #include <hitray/shape_kit_cpu.h>
+#include <hitray/shape_kit_math.h>
 
 #include "float_bounds.h"
 
@@ -516,14 +517,6 @@ static inline unsigned accel_bvh4_test(const accel_ray4 *r, const accel_bvh4_nod
     return accel_bvh4_test_as(r, n, tmin, tmax, entry, 0);
 }
 
-/* a + b as s + e exactly (Knuth's two-sum). */
-static inline void accel_two_sum(double a, double b, double *s, double *e)
-{
-    *s = a + b;
-    const double bb = *s - a;
-    *e = (a - (*s - bb)) + (b - bb);
-}
-
 /* A t at or before every point of the line p + t d that lies in the cube
  * [-c, c]^3 (at or before where the line enters it): the largest of the
  * near planes' distances, each with two roundings (relative 2^-52), moved
@@ -546,7 +539,8 @@ static inline double accel_cube_entry(const double p[3], const double d[3], doub
  * origin can move along the line to just before the cube [-c, c]^3,
  * c = 2 extent + 2^-20, without passing a box: by t1 + t2, two steps
  * toward the cube's entry (accel_cube_entry), the second from where the
- * first arrived, each step's product and sum exact (fma, two-sum), so the
+ * first arrived, each step's product and sum exact (shape_two_product,
+ * shape_two_sum), so the
  * moved origin is known within 2^-50 of its size and of the terms left
  * over, whatever the first distance was; the walk then culls as for a ray
  * from there. Returns 1 with *r prepared (unflipped), 0 where that does
@@ -569,9 +563,9 @@ static __attribute__((noinline, unused)) int accel_ray4_init_far(accel_ray4 *r, 
     if (!isfinite(t1)) return 0;
     double s[3], lo1[3], m1[3];
     for (int a = 0; a < 3; a++) {
-        const double p = t1 * d[a], pe = fma(t1, d[a], -p);
-        double se;
-        accel_two_sum(o[a], p, &s[a], &se);
+        double pe, se;
+        const double p = shape_two_product(t1, d[a], &pe);
+        s[a] = shape_two_sum(o[a], p, &se);
         lo1[a] = se + pe; /* o + t1 d = s + lo1, within 2^-53 |lo1| */
         m1[a] = s[a] + lo1[a];
     }
@@ -580,9 +574,9 @@ static __attribute__((noinline, unused)) int accel_ray4_init_far(accel_ray4 *r, 
     hr_ray moved = *ray;
     double m2[3], err[3];
     for (int a = 0; a < 3; a++) {
-        const double q = t2 * d[a], qe = fma(t2, d[a], -q);
-        double sum, sum_e;
-        accel_two_sum(s[a], q, &sum, &sum_e);
+        double qe, sum_e;
+        const double q = shape_two_product(t2, d[a], &qe);
+        const double sum = shape_two_sum(s[a], q, &sum_e);
         m2[a] = sum + ((lo1[a] + sum_e) + qe);
         err[a] = (fabs(m2[a]) + fabs(lo1[a]) + fabs(sum_e) + fabs(qe)) * 0x1p-50 + 0x1p-1060;
         if (!(fabs(m2[a]) + err[a] <= ACCEL_CULL_RANGE)) return 0;
