@@ -285,6 +285,52 @@ static inline __attribute__((always_inline)) double mesh_t_error(const mesh_ray 
     return bound == INFINITY ? DBL_MAX : bound;
 }
 
+/* A lower bound on the exact t of a crossing from the sheared depths of
+ * the corners alone: t is a weighted mean of the exact depths (the weights
+ * are the barycentric ones, which sum to one), each computed depth lies
+ * within delta_z = gamma(3) max_z of its exact value (mesh_t_error), and
+ * twice that, with 2^-1073 for a depth that underflowed, covers the
+ * rounding of the difference. Where the ray runs nearly in the triangle's
+ * plane its t error is as long as the triangle, yet the crossing still
+ * lies in the triangle: a ray 3 units from an octahedron's face, in its
+ * plane, crossed it at t = 3.53 with a t error of 367, and the rule "within
+ * its t error of tmin = 0" alone refused that entering crossing while
+ * keeping its leaving pair (a fuzz input). The depths are finite wherever
+ * t is (each enters T, and 0 times an infinite one is NaN). */
+static inline __attribute__((always_inline)) double mesh_depth_least(const double A[3], const double B[3],
+                                                                     const double C[3])
+{
+    const double max_z = mesh_max(fabs(A[2]), mesh_max(fabs(B[2]), fabs(C[2])));
+    const double min_z = mesh_min(A[2], mesh_min(B[2], C[2]));
+    return min_z - (2.0 * (MESH_GAMMA(3) * max_z) + 0x1p-1073);
+}
+
+/* The same for triangle (a, b, c), from its corners as the test shears
+ * them (the same operations, so the same depths). */
+static inline double mesh_triangle_depth_least(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b,
+                                               const hr_vec3 *c)
+{
+    double A[3], B[3], C[3];
+    mesh_shear(r, a, A, r->kx, r->ky, r->kz);
+    mesh_shear(r, b, B, r->kx, r->ky, r->kz);
+    mesh_shear(r, c, C, r->kx, r->ky, r->kz);
+    mesh_shear_z(r, A);
+    mesh_shear_z(r, B);
+    mesh_shear_z(r, C);
+    return mesh_depth_least(A, B, C);
+}
+
+/* Whether a hit of triangle (a, b, c) at t with t error t_error lies past
+ * tmin: by more than its t error, or wherever in its triangle it lies. The
+ * one rule for tmin, in the test (mesh_triangle_finish, on the depths it
+ * has) and in the marks of mesh_trace.c; the depths are needed only
+ * within the t error, which is rare. */
+static inline int mesh_hit_past(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b, const hr_vec3 *c,
+                                double t, double t_error, double tmin)
+{
+    return !(t - tmin <= t_error) || mesh_triangle_depth_least(r, a, b, c) > tmin;
+}
+
 /* The test's last steps, once the edge functions U, V, W of the sheared
  * corners A, B, C (x, y and p[kz], see mesh_shear) agree in sign: depth, t
  * and its error, the weights. One piece of code for the scalar test and
@@ -313,7 +359,7 @@ mesh_triangle_finish(const mesh_ray *r, double A[3], double B[3], double C[3], d
     const double t = T / det;
     if (!(t > tmin && t < tmax)) return 0;
     const double t_error = mesh_t_error(r, A, B, C, U, V, W, det);
-    if (t - tmin <= t_error) return 0;
+    if (t - tmin <= t_error && !(mesh_depth_least(A, B, C) > tmin)) return 0; /* mesh_hit_past */
     out->t = t;
     out->t_error = t_error;
     out->b[0] = U / det;
