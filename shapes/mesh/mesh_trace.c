@@ -512,10 +512,15 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
         const int lane = (int)(i - group);
         if (fails >> lane & 1) continue;
         mesh_triangle_hit th;
-        if (fails >> (4 + lane) & 1 ? !mesh_filter_finish(&q->r, &lanes_at, lane, test_tmin, tmax, &th)
-                                    : !mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]],
-                                                               &vertices[c[2]], test_tmin, tmax, &th, kx, ky, kz))
+        if (fails >> (4 + lane) & 1) {
+            const int answer = mesh_filter_finish(&q->r, &lanes_at, lane, test_tmin, tmax, &th);
+            if (answer != 1 &&
+                (!answer || !mesh_resolve_place(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin)))
+                continue;
+        } else if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin,
+                                            tmax, &th, kx, ky, kz)) {
             continue;
+        }
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && !kept_in_phase(q, i, &th)) continue;
         if (q->mode == HR_TRACE_ALL) {

@@ -12,8 +12,11 @@
  * alone: over (0, inf) the closed solid, seen from outside, began with a
  * leaving hit, and a CSG union above it stayed inside for ever. The
  * crossing lies in its triangle, whose corners all lie at t >= 1.75 along
- * the ray, so it lies past 0. Checked over (0, inf): entered first, left
- * last, the whole line's hits past 0, first_hit and any_hit agreeing.
+ * the ray, so it lies past 0; and the line runs over the face from 3.5328
+ * only (mesh_prism_least), so it lies past any tmin before that. Checked
+ * over (0, inf): entered first, left last, the whole line's hits past 0,
+ * first_hit and any_hit agreeing; and from 1, 2.964 and 3.5 the same
+ * two hits.
  * And the rule still refuses the face a ray starts on: from a point of
  * the face, outward there is nothing, inward one leaving hit at t = 2/3. */
 #include <math.h>
@@ -44,6 +47,18 @@ static void check_from_outside(const harness_shape *shape, hr_ray ray)
                   (int)line[k].entering, all[k].t, (int)all[k].entering);
     CHECK_MSG(first[0].t == all[0].t && first[0].entering == all[0].entering, "first_hit t %.17g entering %d",
               first[0].t, (int)first[0].entering);
+    /* From later starts, clear of the face (the CSG fuzz input's second
+     * form started at 2.964, where the corners' depths, from 1.75, allowed
+     * a crossing before it; the line runs over the face from 3.5328 only):
+     * the same two hits. */
+    const double later[] = {1.0, 2.964126409122831, 3.5};
+    for (int k = 0; k < 3; k++) {
+        hr_hit part[HARNESS_MAX_HITS];
+        const int n_part = harness_trace(shape, ray, later[k], INFINITY, HARNESS_ALL, part);
+        CHECK_MSG(n_part == 2 && part[0].t == all[0].t && part[0].entering && part[1].t == all[1].t,
+                  "over (%.17g, inf): %d hits, the first at t %.17g entering %d", later[k], n_part,
+                  n_part ? part[0].t : 0.0, n_part ? (int)part[0].entering : -1);
+    }
 }
 
 int main(void)
