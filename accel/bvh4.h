@@ -91,6 +91,10 @@ typedef struct accel_bvh4 {
      * finite): a walk culls only where it and the ray's origin are within
      * ACCEL_CULL_RANGE (accel_bvh4_walk). */
     double extent;
+    /* The largest |origin coordinate| a walk takes as it comes: beyond
+     * it the origin is far (accel_origin_far). ACCEL_CULL_RANGE, or less
+     * for a tree built with move_far_origins. */
+    double origin_reach;
     void (*free_fn)(void *ptr);
 } accel_bvh4;
 
@@ -108,6 +112,17 @@ typedef struct accel_bvh4_options {
      * ACCEL_BVH4_PARALLEL_ITEMS items are then built side by side; the
      * tree is the same, byte for byte, for any number. */
     uint32_t threads;
+    /* 1: a walk from an origin beyond ACCEL_FAR_ORIGIN times the boxes'
+     * size moves it up to them (accel_origin_far). For a caller whose every
+     * query of the items walks the tree (a mesh's triangles), so that all
+     * see the same moved line; not for a scene, whose all-hits query
+     * traces each object without its box, on the object's own copy of the
+     * ray, which carries the transform's rounding of a far origin (1e-4
+     * to 2e3 for origins 1e12 to 2^64 away): the unmoved walk's float
+     * bracket of the origin covers that rounding, the moved one's does
+     * not, and the first hit would no longer be the first of all hits
+     * (test_first_hit_paths). */
+    int move_far_origins;
 } accel_bvh4_options;
 
 /* The fewest items in a subtree the build hands to a thread of its own:
@@ -288,8 +303,8 @@ static inline void accel_ray4_flip(accel_ray4 *r)
  * makes them, bit for bit: -1/d is -(1/d), and a product and a conversion
  * round a negated value to the negated result; NaN lanes get NaN with its
  * sign flipped. One division by -1 instead of six xors after the stores. */
-ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *ray, double tmin,
-                                                  int flipped)
+ACCEL_ALWAYS_INLINE int accel_ray4_init_common_within(accel_ray4 *r, const hr_ray *ray, double tmin,
+                                                      int flipped, double origin_reach)
 {
     /* Lanes x, y in one double vector, z in another (its upper lane 0). */
     const __m128d dxy = _mm_loadu_pd(&ray->dir.x), dz = _mm_load_sd(&ray->dir.z);
@@ -299,7 +314,7 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *r
     /* Every lane within its limits (NaN fails every compare; z's upper
      * lane, 0, passes), and some direction component large enough. */
     const __m128d d_most = _mm_set1_pd(0x1p39), d_least = _mm_set1_pd(0x1p-39);
-    const __m128d o_most = _mm_set1_pd(ACCEL_CULL_RANGE);
+    const __m128d o_most = _mm_set1_pd(origin_reach);
     const __m128d within =
         _mm_and_pd(_mm_and_pd(_mm_cmple_pd(adxy, d_most), _mm_cmple_pd(_mm_and_pd(oxy, abs_mask), o_most)),
                    _mm_and_pd(_mm_cmple_pd(adz, d_most), _mm_cmple_pd(_mm_and_pd(oz, abs_mask), o_most)));
@@ -363,6 +378,12 @@ ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *r
     r->t_offset = r->tmin_offset = 0.0;
     r->cull = 1;
     return 1;
+}
+/* With origins within ACCEL_CULL_RANGE; a walk takes those within its
+ * tree's origin_reach (accel_ray4_init_common_within). */
+ACCEL_ALWAYS_INLINE int accel_ray4_init_common_as(accel_ray4 *r, const hr_ray *ray, double tmin, int flipped)
+{
+    return accel_ray4_init_common_within(r, ray, tmin, flipped, ACCEL_CULL_RANGE);
 }
 ACCEL_ALWAYS_INLINE int accel_ray4_init_common(accel_ray4 *r, const hr_ray *ray, double tmin)
 {
@@ -535,7 +556,8 @@ static inline double accel_cube_entry(const double p[3], const double d[3], doub
 /* For a ray accel_ray4_init_any leaves with no interval to cull by whose
  * line is finite: an origin beyond ACCEL_CULL_RANGE (a shadow ray from 1e21
  * away toward a light beside a mesh walked every leaf of the mesh: a fuzz
- * input), or tmin = -inf. The boxes lie in the cube |x| <= extent, so the
+ * input), or tmin = -inf; and for an origin whose float bracket would blur
+ * the boxes (accel_origin_far). The boxes lie in the cube |x| <= extent, so the
  * origin can move along the line to just before the cube [-c, c]^3,
  * c = 2 extent + 2^-20, without passing a box: by t1 + t2, two steps
  * toward the cube's entry (accel_cube_entry), the second from where the
@@ -605,6 +627,24 @@ static __attribute__((noinline, unused)) int accel_ray4_init_far(accel_ray4 *r, 
     r->t_offset = sum - pad;
     r->tmin_offset = sum + pad;
     return 1;
+}
+
+/* Whether the ray's origin lies beyond bvh->origin_reach: past
+ * ACCEL_CULL_RANGE (the walk cannot cull from it), or, in a tree built
+ * with move_far_origins, past ACCEL_FAR_ORIGIN times the cube of
+ * accel_ray4_init_far, so far from the boxes that its float bracket, 2^-24
+ * of its size, would blur them. The walk then culls from the origin moved
+ * up to the cube. Shadow rays from 2^31 to 2^61 away (within
+ * ACCEL_CULL_RANGE, so culling by the float bracket), past 104 coincident
+ * teapots, walked every leaf of each (a fuzz input). Within 2^12 the blur
+ * is under 2^-12 of the cube, and the move would cost more than the
+ * leaves the blur lets in. */
+#define ACCEL_FAR_ORIGIN 0x1p12
+
+static inline int accel_origin_far(const accel_bvh4 *bvh, const hr_ray *ray)
+{
+    const double reach = bvh->origin_reach;
+    return !(fabs(ray->origin.x) <= reach && fabs(ray->origin.y) <= reach && fabs(ray->origin.z) <= reach);
 }
 
 /* What a walk's leaf callback returns. */
@@ -710,7 +750,8 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
      * does not take, so that this one knows t_offset 0, t_scale 1 and cull
      * 1 as constants (fewer values live, less to work out per ray). */
     if (uncommon) {
-        if (!accel_ray4_init_common_as(&r, ray, tmin, flipped)) return uncommon(bvh, ray, tmin, tmax, leaf, user);
+        if (!accel_ray4_init_common_within(&r, ray, tmin, flipped, bvh->origin_reach))
+            return uncommon(bvh, ray, tmin, tmax, leaf, user);
     } else {
         accel_ray4_init_as(&r, ray, tmin, flipped);
     }
@@ -719,17 +760,25 @@ ACCEL_ALWAYS_INLINE int accel_bvh4_walk_octant(const accel_bvh4 *bvh, const hr_r
     accel_ray4_init_as(&r, ray, tmin, flipped);
 #endif
     if (!(bvh->extent <= ACCEL_CULL_RANGE)) r.cull = 0; /* the origin: accel_ray4_init_as */
-    if (!r.cull) {
+    /* A far origin is moved by the unflipped (SSE2) walks alone: the AVX2
+     * walks hand them every such ray (uncommon), and stay free of the
+     * check (in them GCC moved a double between registers with a
+     * VEX-encoded movq that valgrind 3.19 cannot decode, and memcheck
+     * runs every walk). */
+    if (!r.cull || (!flipped && accel_origin_far(bvh, ray))) {
         /* Into a copy: r's address stays in this function (see
-         * accel_ray4_init_as). */
+         * accel_ray4_init_as). A far origin that cannot be moved keeps
+         * the float bracket's culling. */
         accel_ray4 moved;
         const int far = accel_ray4_init_far(&moved, ray, tmin, bvh->extent);
         if (far < 0) return ACCEL_WALK_GO_ON;
-        if (!far) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
+        if (!far && !r.cull) return accel_bvh4_walk_every(bvh, leaf, user, ordered);
+        if (far) {
 #if defined(__SSE2__)
-        if (flipped) accel_ray4_flip(&moved);
+            if (flipped) accel_ray4_flip(&moved);
 #endif
-        r = moved;
+            r = moved;
+        }
     }
     const accel_f4 tmin4 = accel_f4_set(accel_ray4_tmin(&r, tmin));
     float tmax_f = accel_ray4_tmax(&r, *tmax);
@@ -902,11 +951,13 @@ static inline int accel_bvh4_walk_avx2(const accel_bvh4 *bvh, const hr_ray *ray,
     default: return accel_bvh4_walk_avx2_7(bvh, ray, tmin, tmax, leaf, user);
     }
 }
+/* The any-order walk takes the common ray alone too, and hands any other
+ * to the SSE2 walk (which moves far origins up to the boxes). */
 __attribute__((target("avx2"))) static inline int
 accel_bvh4_walk_any_avx2(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
                          int (*leaf)(void *user, uint32_t first, uint32_t count), void *user)
 {
-    return accel_bvh4_walk_core(bvh, ray, tmin, tmax, leaf, user, 0, 1);
+    return accel_bvh4_walk_octant(bvh, ray, tmin, tmax, leaf, user, 0, 1, -1, accel_bvh4_walk_any_sse2);
 }
 /* A load and a test after the first call (shape_kit_cpu.h). */
 static inline int accel_walk_avx2_usable(void) { return shape_cpu_has_avx2(); }

@@ -474,6 +474,8 @@ int accel_bvh4_build(accel_bvh4 *bvh, const hr_bounds *boxes, uint32_t count,
         for (int k = 0; k < 6; k++)
             if (!(fabs(v[k]) <= bvh->extent)) bvh->extent = isnan(v[k]) ? INFINITY : fabs(v[k]);
     }
+    const double far = ACCEL_FAR_ORIGIN * (2.0 * bvh->extent + 0x1p-20);
+    bvh->origin_reach = options->move_far_origins && far < ACCEL_CULL_RANGE ? far : ACCEL_CULL_RANGE;
     return 0;
 
 out_of_memory:

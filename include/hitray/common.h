@@ -84,7 +84,11 @@ typedef struct hr_bounds {
  * `hit` everything is in that shape's object space. */
 typedef struct hr_hit {
     double t;          /* ray parameter of the hit */
-    hr_vec3 point;     /* origin + t * dir */
+    hr_vec3 point;     /* where the ray meets the surface: origin + t * dir
+                          as the shape computes it, which may be from the
+                          surface rather than the ray (a mesh's from the
+                          triangle's weights, a square's with z exactly 0),
+                          within `error` of the exact point either way */
     hr_vec3 normal;    /* outward normal; unit length in world space, any
                           non-zero length from a shape module */
     double error;      /* bound on the distance of `point` from the true surface

@@ -59,7 +59,7 @@ hr_status mesh_bvh_build(mesh *m)
     /* One thread: the host charges what a shape allocates to its scene
      * through the creating thread (hr_host.alloc), which a thread of the
      * build would bypass. */
-    const accel_bvh4_options options = {MESH_BVH_MAX_LEAF, TRAVERSAL_COST, host->alloc, host->free, 1};
+    const accel_bvh4_options options = {MESH_BVH_MAX_LEAF, TRAVERSAL_COST, host->alloc, host->free, 1, 1};
     /* The count was checked against ACCEL_BVH4_MAX_ITEMS by the caller:
      * only memory can fail. */
     if (accel_bvh4_build(&m->bvh, boxes, (uint32_t)n, &options) != 0) {

@@ -464,6 +464,14 @@ static int kept_in_phase(const query *q, uint32_t tri, const mesh_triangle_hit *
     return 1;
 }
 
+/* mesh_hit_past for hit th of the leaf's triangle i. */
+static int hit_past(const query *q, uint32_t i, const mesh_triangle_hit *th, double tmin)
+{
+    const uint32_t *c = q->m->corners + 3 * (size_t)i;
+    const hr_vec3 *v = q->m->vertices;
+    return mesh_hit_past(&q->r, &v[c[0]], &v[c[1]], &v[c[2]], th->t, th->t_error, tmin);
+}
+
 /* A filter of mesh_triangle.h: mesh_triangle_quad_fails, or none. */
 typedef unsigned (*filter_fn)(const mesh_ray *r, const hr_vec3 *v, const uint32_t *const c[], mesh_lanes *out,
                               int kx, int ky, int kz);
@@ -504,10 +512,15 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
         const int lane = (int)(i - group);
         if (fails >> lane & 1) continue;
         mesh_triangle_hit th;
-        if (fails >> (4 + lane) & 1 ? !mesh_filter_finish(&q->r, &lanes_at, lane, test_tmin, tmax, &th)
-                                    : !mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]],
-                                                               &vertices[c[2]], test_tmin, tmax, &th, kx, ky, kz))
+        if (fails >> (4 + lane) & 1) {
+            const int answer = mesh_filter_finish(&q->r, &lanes_at, lane, test_tmin, tmax, &th);
+            if (answer != 1 &&
+                (!answer || !mesh_resolve_place(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin)))
+                continue;
+        } else if (!mesh_triangle_test_axes(&q->r, &vertices[c[0]], &vertices[c[1]], &vertices[c[2]], test_tmin,
+                                            tmax, &th, kx, ky, kz)) {
             continue;
+        }
         /* A hit the walk of the other half of the line finds (walk). */
         if (q->phase && !kept_in_phase(q, i, &th)) continue;
         if (q->mode == HR_TRACE_ALL) {
@@ -531,7 +544,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
              * hit is kept by the same test in every mode). */
             if (q->whole_line)
                 hit->surface = !(th.t > args->tmin && th.t < args->tmax) ? MARK_OUTSIDE
-                               : th.t - args->tmin <= th.t_error         ? MARK_T_ERROR
+                               : !hit_past(q, i, &th, args->tmin)       ? MARK_T_ERROR
                                                                          : MARK_INSIDE;
             continue;
         }
@@ -545,7 +558,7 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             /* The caller's interval, as mesh_triangle_test applies it: the
              * search runs past tmax too (see trace_query), for crossings
              * that only the near-tie check may use. */
-            if (!(th.t > q->tmin && !(th.t - q->tmin <= th.t_error) && th.t < args->tmax)) continue;
+            if (!(th.t > q->tmin && hit_past(q, i, &th, q->tmin) && th.t < args->tmax)) continue;
         }
         if (q->closed_any) {
             if (closed_any_blocks(q, &th)) {

@@ -285,6 +285,138 @@ static inline __attribute__((always_inline)) double mesh_t_error(const mesh_ray 
     return bound == INFINITY ? DBL_MAX : bound;
 }
 
+/* A lower bound on the exact t of a crossing from the sheared depths of
+ * the corners alone: t is a weighted mean of the exact depths (the weights
+ * are the barycentric ones, which sum to one), each computed depth lies
+ * within delta_z = gamma(3) max_z of its exact value (mesh_t_error), and
+ * twice that, with 2^-1073 for a depth that underflowed, covers the
+ * rounding of the difference. Where the ray runs nearly in the triangle's
+ * plane its t error is as long as the triangle, yet the crossing still
+ * lies in the triangle: a ray 3 units from an octahedron's face, in its
+ * plane, crossed it at t = 3.53 with a t error of 367, and the rule "within
+ * its t error of tmin = 0" alone refused that entering crossing while
+ * keeping its leaving pair (a fuzz input). The depths are finite wherever
+ * t is (each enters T, and 0 times an infinite one is NaN). */
+static inline __attribute__((always_inline)) double mesh_depth_least(const double A[3], const double B[3],
+                                                                     const double C[3])
+{
+    const double max_z = mesh_max(fabs(A[2]), mesh_max(fabs(B[2]), fabs(C[2])));
+    const double min_z = mesh_min(A[2], mesh_min(B[2], C[2]));
+    return min_z - (2.0 * (MESH_GAMMA(3) * max_z) + 0x1p-1073);
+}
+
+/* A lower bound on the exact t of a crossing from where the line runs
+ * over the triangle: the crossing point lies in the triangle, so it lies on
+ * the inner side of each edge within the triangle's plane, and a line that
+ * runs nearly in that plane (where t's error bound is as long as the
+ * triangle) is over the triangle only for a well-conditioned stretch of t.
+ * For corners p relative to the origin (as the test translates them), edge
+ * k from q to q' and n = (p1 - p0) x (p2 - p0), m = n x (q' - q) points
+ * into the triangle in its plane, and a point t d of the line is on m's
+ * side where t (m.d) >= m.q: with m.d > 0, t >= m.q / m.d. Each such edge
+ * bounds t from below; where the line meets the plane at a steep angle, m.d
+ * is small against its error and the edge says nothing (the t error is
+ * small there). Error bounds, generously: with M the largest |corner
+ * coordinate| and D the largest |direction component|, the coordinates of
+ * n, m are at most 8 M^2, 32 M^3, so |m.q| <= 96 M^4 and |m.d| <= 96 M^3 D;
+ * the corners' translation (u M each, u = 2^-53) and some twenty
+ * roundings move them by less than 2^-41 M^4 and 2^-41 M^3 D. Outside
+ * 2^-200 <= M, D <= 2^200 the powers could leave the doubles' range: no
+ * bound (-inf). A ray in the plane of an octahedron's face, whose line
+ * runs over the face from t = 3.53 to 3.75 but whose corners lie at depths
+ * 1.75 to 3.75, crossed it at 3.53 with a t error of 367: from tmin =
+ * 2.96 the depths allowed a crossing before tmin, and the pair was split
+ * again (a fuzz input). */
+static inline double mesh_prism_least(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b, const hr_vec3 *c)
+{
+    const hr_vec3 *v[3] = {a, b, c};
+    double p[3][3];
+    double big = 0.0;
+    for (int i = 0; i < 3; i++) {
+        p[i][0] = v[i]->x - r->o[0], p[i][1] = v[i]->y - r->o[1], p[i][2] = v[i]->z - r->o[2];
+        for (int k = 0; k < 3; k++) big = mesh_max(big, fabs(p[i][k]));
+    }
+    const double speed = mesh_max(fabs(r->d[0]), mesh_max(fabs(r->d[1]), fabs(r->d[2])));
+    if (!(big >= 0x1p-200 && big <= 0x1p200 && speed >= 0x1p-200 && speed <= 0x1p200)) return -INFINITY;
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double w[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double big3 = big * big * big;
+    const double error_q = 0x1p-41 * big3 * big, error_d = 0x1p-41 * big3 * speed;
+    double least = -INFINITY;
+    for (int k = 0; k < 3; k++) {
+        const double *q = p[k], *q2 = p[k == 2 ? 0 : k + 1];
+        const double e[3] = {q2[0] - q[0], q2[1] - q[1], q2[2] - q[2]};
+        const double m[3] = {n[1] * e[2] - n[2] * e[1], n[2] * e[0] - n[0] * e[2], n[0] * e[1] - n[1] * e[0]};
+        const double md = m[0] * r->d[0] + m[1] * r->d[1] + m[2] * r->d[2];
+        if (!(md > error_d)) continue;
+        const double mq = m[0] * q[0] + m[1] * q[1] + m[2] * q[2];
+        /* The least of (m.q)/(m.d) over both within their errors, less
+         * two roundings of the division. */
+        const double top = mq - error_q;
+        const double bound = top / (top >= 0.0 ? md + error_d : md - error_d);
+        const double below = bound - fabs(bound) * 0x1p-50;
+        if (below > least) least = below;
+    }
+    return least;
+}
+
+/* The same for triangle (a, b, c), from its corners as the test shears
+ * them (the same operations, so the same depths). */
+/* What mesh_triangle_finish answers for a crossing within its t error of
+ * tmin whose place, the corners' depths, does not clear tmin, where the
+ * stretch of the line over the triangle (mesh_prism_least) may: the hit
+ * is filled in, and the caller, who has the corners, decides
+ * (mesh_resolve_place). The stretch costs some sixty operations, and a
+ * ray leaving the triangle it starts on (every shadow and reflected ray
+ * meets its own triangle so) would pay them for nothing: it is asked only
+ * where t lies more than 2^-40 of the triangle's depth past tmin, which a
+ * crossing a rounding from the ray's start does not. (The corners passed
+ * down into the finish instead cost the gears render 1.1% more
+ * instructions.) */
+#define MESH_HIT_ASK_PLACE 2
+
+/* The place part of mesh_hit_past on the sheared corners A, B, C: 1 where
+ * their depths clear tmin, MESH_HIT_ASK_PLACE where the stretch may, else
+ * 0. */
+static inline int mesh_place_clears(const double A[3], const double B[3], const double C[3], double t, double tmin)
+{
+    if (mesh_depth_least(A, B, C) > tmin) return 1;
+    const double spread = mesh_max(A[2], mesh_max(B[2], C[2])) - mesh_min(A[2], mesh_min(B[2], C[2]));
+    return t - tmin > 0x1p-40 * spread ? MESH_HIT_ASK_PLACE : 0;
+}
+
+/* A test's answer with MESH_HIT_ASK_PLACE decided on triangle (a, b, c):
+ * 0 or 1. Out of line and cold: it is rare. */
+static __attribute__((noinline, cold, unused)) int mesh_resolve_place(const mesh_ray *r, const hr_vec3 *a,
+                                                                       const hr_vec3 *b, const hr_vec3 *c,
+                                                                       double tmin)
+{
+    return mesh_prism_least(r, a, b, c) > tmin;
+}
+
+/* Whether a hit of triangle (a, b, c) at t with t error t_error lies past
+ * tmin: by more than its t error, or wherever in its triangle it lies
+ * (mesh_past_within_error). The one rule for tmin, in the test
+ * (mesh_triangle_finish, on the depths it has) and in the marks of
+ * mesh_trace.c, which shear the corners again as the test does (the same
+ * operations, so the same depths); needed only within the t error, which
+ * is rare. */
+static inline int mesh_hit_past(const mesh_ray *r, const hr_vec3 *a, const hr_vec3 *b, const hr_vec3 *c,
+                                double t, double t_error, double tmin)
+{
+    if (!(t - tmin <= t_error)) return 1;
+    double A[3], B[3], C[3];
+    mesh_shear(r, a, A, r->kx, r->ky, r->kz);
+    mesh_shear(r, b, B, r->kx, r->ky, r->kz);
+    mesh_shear(r, c, C, r->kx, r->ky, r->kz);
+    mesh_shear_z(r, A);
+    mesh_shear_z(r, B);
+    mesh_shear_z(r, C);
+    const int place = mesh_place_clears(A, B, C, t, tmin);
+    return place == MESH_HIT_ASK_PLACE ? mesh_resolve_place(r, a, b, c, tmin) : place;
+}
+
 /* The test's last steps, once the edge functions U, V, W of the sheared
  * corners A, B, C (x, y and p[kz], see mesh_shear) agree in sign: depth, t
  * and its error, the weights. One piece of code for the scalar test and
@@ -313,14 +445,16 @@ mesh_triangle_finish(const mesh_ray *r, double A[3], double B[3], double C[3], d
     const double t = T / det;
     if (!(t > tmin && t < tmax)) return 0;
     const double t_error = mesh_t_error(r, A, B, C, U, V, W, det);
-    if (t - tmin <= t_error) return 0;
+    /* mesh_hit_past, on the depths at hand. */
+    int answer = 1;
+    if (__builtin_expect(t - tmin <= t_error, 0) && !(answer = mesh_place_clears(A, B, C, t, tmin))) return 0;
     out->t = t;
     out->t_error = t_error;
     out->b[0] = U / det;
     out->b[1] = V / det;
     out->b[2] = W / det;
     out->entering = det > 0.0;
-    return 1;
+    return answer;
 }
 
 /* The watertight test of triangle (A, B, C) against the ray, for hits
@@ -344,7 +478,8 @@ MESH_AXES_INLINE int mesh_triangle_test_axes(const mesh_ray *r, const hr_vec3 *a
     if (mesh_sign_of(V, A, C) != su) return 0;
     const double W = mesh_edge_function(B[0], A[1], B[1], A[0]);
     if (mesh_sign_of(W, B, A) != su) return 0;
-    return mesh_triangle_finish(r, A, B, C, U, V, W, tmin, tmax, out);
+    const int answer = mesh_triangle_finish(r, A, B, C, U, V, W, tmin, tmax, out);
+    return __builtin_expect(answer == MESH_HIT_ASK_PLACE, 0) ? mesh_resolve_place(r, a, b, c, tmin) : answer;
 }
 
 /* A filter's agreeing lanes (bit 4 + k of its answer), lane k: the
@@ -354,7 +489,9 @@ typedef struct mesh_lanes {
 } mesh_lanes;
 
 /* mesh_triangle_test_axes's answer for agreeing lane k: the rest of the
- * test on the lane's values, which are the scalar test's. */
+ * test on the lane's values, which are the scalar test's; or
+ * MESH_HIT_ASK_PLACE, for the caller to decide on the lane's triangle
+ * (mesh_resolve_place). */
 static inline __attribute__((always_inline)) int mesh_filter_finish(const mesh_ray *r, const mesh_lanes *l, int k,
                                                                     double tmin, double tmax,
                                                                     mesh_triangle_hit *out)

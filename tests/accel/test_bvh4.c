@@ -203,13 +203,14 @@ static int log_leaf(void *user, uint32_t first, uint32_t count)
  * tie), stacked farthest first so the nearest is visited next; *tmax read
  * back after every leaf. The walk must visit the same leaves in the same
  * order (it ranks three or four children in lanes instead). Rays the walk
- * does not cull take its own every-leaf walk. */
+ * does not cull take its own every-leaf walk, and rays whose origin it
+ * moves (accel_origin_far) its own walk too. */
 static void reference_walk(const accel_bvh4 *bvh, const hr_ray *ray, double tmin, double *tmax,
                            leaf_log *log)
 {
     accel_ray4 r;
     accel_ray4_init_as(&r, ray, tmin, 0);
-    if (!bvh->nodes || !r.cull || !(bvh->extent <= ACCEL_CULL_RANGE)) {
+    if (!bvh->nodes || !r.cull || !(bvh->extent <= ACCEL_CULL_RANGE) || accel_origin_far(bvh, ray)) {
         accel_bvh4_walk_core(bvh, ray, tmin, tmax, log_leaf, log, 1, 0);
         return;
     }
@@ -379,60 +380,73 @@ static void test_walk(void)
         accel_bvh4_release(&bvh);
     }
 
-    /* Far origins: beyond float's range, and far enough that float
-     * rounding of the origin is many box sizes. */
-    for (int i = 0; i < N; i++) {
-        double cx = between(-1, 1), cy = between(-1, 1), cz = between(-1, 1);
-        boxes[i] = (hr_bounds){{cx - 1e-3, cy - 1e-3, cz - 1e-3}, {cx + 1e-3, cy + 1e-3, cz + 1e-3}};
-    }
-    CHECK(accel_bvh4_build(&bvh, boxes, N, &opt) == 0);
-    const double far[] = {1e7, 1e30, 1e200};
-    for (int f = 0; f < 3; f++) {
-        for (int k = 0; k < 1000; k++) {
-            const hr_bounds *b = &boxes[k % N];
-            hr_vec3 target = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
-            hr_vec3 from = random_dir();
-            hr_ray ray = {{target.x + from.x * far[f], target.y + from.y * far[f], target.z + from.z * far[f]},
-                          {-from.x, -from.y, -from.z}};
-            missed += missed_boxes(&bvh, boxes, N, &ray, 0, INFINITY, visited);
-            rays++;
+    /* The far-origin walks twice: on a tree built with move_far_origins
+     * (a mesh's), which must cull from far origins, and on one without (a
+     * scene's), which must stay conservative. */
+    for (int move = 0; move < 2; move++) {
+        accel_bvh4_options far_opt = opt;
+        far_opt.move_far_origins = move;
+        /* Far origins: beyond float's range, and far enough that float
+         * rounding of the origin is many box sizes. */
+        for (int i = 0; i < N; i++) {
+            double cx = between(-1, 1), cy = between(-1, 1), cz = between(-1, 1);
+            boxes[i] = (hr_bounds){{cx - 1e-3, cy - 1e-3, cz - 1e-3}, {cx + 1e-3, cy + 1e-3, cz + 1e-3}};
         }
-    }
-    /* Origins past ACCEL_CULL_RANGE, which the walk moves along the line
-     * to just before the boxes (accel_ray4_init_far): directions unit and
-     * as long as the distance (a shadow ray's, to its light), some along an
-     * axis, some from beside the boxes' slab, intervals from 0 and from
-     * -inf. Conservative, and culling: a walk that visits every leaf, as
-     * these did before, visits all 2,000 items; one that culls, those near
-     * the line. */
-    const double beyond[] = {0x1p65, 1e21, 1e25, 1e30};
-    long far_visited = 0, far_walks = 0;
-    for (int f = 0; f < 4; f++) {
-        for (int k = 0; k < 500; k++) {
-            const hr_bounds *b = &boxes[(k * 7919) % N];
-            hr_vec3 target = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
-            hr_vec3 from = random_dir();
-            if (k % 5 == 0) from = k % 3 == 0 ? (hr_vec3){-1, 0, 0} : k % 3 == 1 ? (hr_vec3){0, 1, 0} : (hr_vec3){0, 0, -1};
-            if (k % 10 == 5) target.y = 3.0; /* beside every box's slab */
-            const double scale = k % 2 ? 1.0 : beyond[f];
-            hr_ray ray = {{target.x + from.x * beyond[f], target.y + from.y * beyond[f],
-                           target.z + from.z * beyond[f]},
-                          {-from.x * scale, -from.y * scale, -from.z * scale}};
-            const double tmin = k % 4 == 3 ? -INFINITY : 0.0;
-            missed += missed_boxes(&bvh, boxes, N, &ray, tmin, INFINITY, visited);
-            rays++;
-            memset(visited, 0, N);
-            walk_record w = {visited, &bvh};
-            double t = INFINITY;
-            accel_bvh4_walk_any(&bvh, &ray, tmin, &t, record_leaf, &w);
-            for (uint32_t i = 0; i < N; i++) far_visited += visited[i];
-            far_walks++;
+        CHECK(accel_bvh4_build(&bvh, boxes, N, &far_opt) == 0);
+        const double far[] = {1e7, 1e30, 1e200};
+        for (int f = 0; f < 3; f++) {
+            for (int k = 0; k < 1000; k++) {
+                const hr_bounds *b = &boxes[k % N];
+                hr_vec3 target = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
+                hr_vec3 from = random_dir();
+                hr_ray ray = {{target.x + from.x * far[f], target.y + from.y * far[f], target.z + from.z * far[f]},
+                              {-from.x, -from.y, -from.z}};
+                missed += missed_boxes(&bvh, boxes, N, &ray, 0, INFINITY, visited);
+                rays++;
+            }
         }
+        /* Far origins, which the walk moves along the line to just before the
+         * boxes (accel_ray4_init_far): past ACCEL_CULL_RANGE, and within it but
+         * so far that the float bracket of the origin blurs the boxes
+         * (accel_origin_far: 2^31 to 2^61, where shadow rays from far planes
+         * met coincident teapots); directions unit and as long as the distance
+         * (a shadow ray's, to its light), some along an axis, some from beside
+         * the boxes' slab, intervals from 0 and from -inf. Conservative, and
+         * culling: a walk that visits every leaf, as these did before, visits
+         * all 2,000 items; one that culls, those near the line. */
+        const double beyond[] = {0x1p31, 0x1p45, 0x1p61, 0x1p65, 1e21, 1e25, 1e30};
+        long far_visited = 0, far_walks = 0;
+        for (int f = 0; f < 7; f++) {
+            for (int k = 0; k < 500; k++) {
+                const hr_bounds *b = &boxes[(k * 7919) % N];
+                hr_vec3 target = {0.5 * (b->lo.x + b->hi.x), 0.5 * (b->lo.y + b->hi.y), 0.5 * (b->lo.z + b->hi.z)};
+                hr_vec3 from = random_dir();
+                if (k % 5 == 0) from = k % 3 == 0 ? (hr_vec3){-1, 0, 0} : k % 3 == 1 ? (hr_vec3){0, 1, 0} : (hr_vec3){0, 0, -1};
+                if (k % 10 == 5) target.y = 3.0; /* beside every box's slab */
+                const double scale = k % 2 ? 1.0 : beyond[f];
+                hr_ray ray = {{target.x + from.x * beyond[f], target.y + from.y * beyond[f],
+                               target.z + from.z * beyond[f]},
+                              {-from.x * scale, -from.y * scale, -from.z * scale}};
+                const double tmin = k % 4 == 3 ? -INFINITY : 0.0;
+                missed += missed_boxes(&bvh, boxes, N, &ray, tmin, INFINITY, visited);
+                rays++;
+                memset(visited, 0, N);
+                walk_record w = {visited, &bvh};
+                double t = INFINITY;
+                accel_bvh4_walk_any(&bvh, &ray, tmin, &t, record_leaf, &w);
+                for (uint32_t i = 0; i < N; i++) far_visited += visited[i];
+                far_walks++;
+            }
+        }
+        if (!move) {
+            accel_bvh4_release(&bvh);
+            continue;
+        }
+        fprintf(stderr, "walk: far origins: %ld walks, %.1f items visited a walk of %d\n", far_walks,
+                (double)far_visited / (double)far_walks, N);
+        CHECK_MSG(far_visited < far_walks * (N / 20), "far origins visit %ld items in %ld walks", far_visited,
+                  far_walks);
     }
-    fprintf(stderr, "walk: origins past the cull range: %ld walks, %.1f items visited a walk of %d\n", far_walks,
-            (double)far_visited / (double)far_walks, N);
-    CHECK_MSG(far_visited < far_walks * (N / 20), "far origins visit %ld items in %ld walks", far_visited,
-              far_walks);
 
     /* No finite interval to cull by (tmin -inf, or so far back that the
      * moved origin overflows), and directions in the largest binade. */

@@ -12,7 +12,15 @@
  * trace contexts are in the path (the image must not depend on them: a
  * second render on one thread, in two windows split at a column the input
  * picks, must give the same bits). Relative mesh names
- * resolve in tests/data/meshes. Never a crash, a hang (-timeout) or a leak. */
+ * resolve in tests/data/meshes. Never a crash, a hang (-timeout) or a leak.
+ *
+ * The scene memory budget is SCENE_MEMORY (16 MB), not the default (half
+ * of what the process may use): the work of a render grows with what the
+ * scene holds, and libFuzzer's -timeout wants each input bounded in time,
+ * not only in memory. A thousand teapots from nested macros (1.1 MB each,
+ * within the default budget) took over 10 s to build under coverage. A
+ * scene past the budget is refused with its message, a path the harness
+ * checks like any other error. */
 #include <math.h>
 #include <string.h>
 
@@ -23,6 +31,7 @@
 #define WIDTH 4
 #define HEIGHT 3
 #define MAX_DEPTH 8
+#define SCENE_MEMORY (16u << 20)
 
 static hr_context *ctx;
 
@@ -31,6 +40,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argc;
     (void)argv;
     if (hr_context_create(&ctx) != HR_OK) fuzz_fail("scene: no context");
+    if (hr_context_set_scene_memory(ctx, SCENE_MEMORY) != HR_OK) fuzz_fail("scene: no scene memory budget");
     hr_context_module_count(ctx); /* every module loaded now: coverage from the start */
     return 0;
 }

@@ -1186,7 +1186,9 @@ static void test_pair_filter(void)
                     memset(&want_th, 0, sizeof want_th), memset(&got_th, 0, sizeof got_th);
                     const int want_hit = mesh_triangle_test(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0],
                                                             intervals[k][1], &want_th);
-                    const int got_hit = mesh_filter_finish(&r, &lanes_at, lane, intervals[k][0], intervals[k][1], &got_th);
+                    int got_hit = mesh_filter_finish(&r, &lanes_at, lane, intervals[k][0], intervals[k][1], &got_th);
+                    if (got_hit == MESH_HIT_ASK_PLACE)
+                        got_hit = mesh_resolve_place(&r, &v[t[0]], &v[t[1]], &v[t[2]], intervals[k][0]);
                     const int same = want_hit == got_hit &&
                                      (!want_hit || (same_bits(want_th.t, got_th.t) &&
                                                     same_bits(want_th.t_error, got_th.t_error) &&

@@ -5,7 +5,7 @@
 #include <string.h>
 
 int hr_test_failures = 0;
-int hr_test_checks = 0;
+unsigned long long hr_test_checks = 0;
 
 void hr_test_fail(const char *file, int line, const char *fmt, ...)
 {
@@ -20,7 +20,7 @@ void hr_test_fail(const char *file, int line, const char *fmt, ...)
 
 int hr_test_end(void)
 {
-    fprintf(stderr, "%d checks, %d failed\n", hr_test_checks, hr_test_failures);
+    fprintf(stderr, "%llu checks, %d failed\n", hr_test_checks, hr_test_failures);
     return hr_test_failures == 0 ? 0 : 1;
 }
 
