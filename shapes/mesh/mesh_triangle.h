@@ -361,8 +361,6 @@ static inline double mesh_prism_least(const mesh_ray *r, const hr_vec3 *a, const
     return least;
 }
 
-/* The same for triangle (a, b, c), from its corners as the test shears
- * them (the same operations, so the same depths). */
 /* What mesh_triangle_finish answers for a crossing within its t error of
  * tmin whose place, the corners' depths, does not clear tmin, where the
  * stretch of the line over the triangle (mesh_prism_least) may: the hit
@@ -397,7 +395,7 @@ static __attribute__((noinline, cold, unused)) int mesh_resolve_place(const mesh
 
 /* Whether a hit of triangle (a, b, c) at t with t error t_error lies past
  * tmin: by more than its t error, or wherever in its triangle it lies
- * (mesh_past_within_error). The one rule for tmin, in the test
+ * (mesh_place_clears, then mesh_resolve_place). The one rule for tmin, in the test
  * (mesh_triangle_finish, on the depths it has) and in the marks of
  * mesh_trace.c, which shear the corners again as the test does (the same
  * operations, so the same depths); needed only within the t error, which
