@@ -634,8 +634,8 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             tmax = fmin(q->tie_end, window_end);
             /* Where the best's window reaches past the least end the
              * search has run under, crossings between that end and the
-             * window's are unseen, and alternate_closed may move one up
-             * onto the best: then the answer is the all-hits list's
+             * window's are unseen, and alternate_closed may pair one
+             * with the best: then the answer is the all-hits list's
              * (finish_query). Two ways it happens:
              * - a window cut at tie_end, which allows for the points'
              *   slack past the caller's tmax, not for the best's t error
@@ -784,19 +784,20 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
 }
 
 /* Whether a crossing the first-hit search saw sorts before its best (in
- * the all-hits order, mesh_hit_before) as a place that alternate_closed
- * may fill from as far as the best or past it: its slack, which holds
- * twice its own t error, reaches the best's t. Such a crossing lies
+ * the all-hits order, mesh_hit_before) as one that alternate_closed may
+ * pair with a crossing as far as the best or past it: its slack, which
+ * holds twice its own t error, reaches the best's t. Such a crossing lies
  * outside the caller's interval, or within its t error of tmin (else it
- * would be the best), and a crossing of the interval moved onto it is kept
- * where the place was refused only for its t error: one the search passed
+ * would be the best), and a pair of it and a crossing of the interval is
+ * kept where it was refused only for its t error, or where the pair lies
+ * at the other's t: one the search passed
  * over once its end had narrowed to the best's window, or one it saw past
  * the best but weighed against the best alone (a leaving crossing at t = 1
  * with a t error of 500, refused for it from tmin = 0, before a leaving
  * best at t = 1 with a t error of 1.4e-13, and the list moved an entering
- * crossing up from 1 + 5e-4 onto the first: a fuzz input). A crossing
- * moved up from past the caller's tmax is marked outside it, and so is
- * its place then: with no best, no such move keeps a hit. The slack's part
+ * crossing up from 1 + 5e-4 onto the first: a fuzz input). Its pair
+ * with a crossing from past the caller's tmax is marked outside it: with
+ * no best, no such pair keeps a hit. The slack's part
  * in |t| is taken at the best's t: past it the distance grows faster than
  * the slack. */
 static int place_reaches_best(const query *q, const seen_crossing *s)
@@ -892,7 +893,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
      * exiting crossing lie within rounding of each other (a ray through a
      * vertex or an edge: the two triangles' t differ by a few ulps, and the
      * nearer may be the exiting one). The all-hits query tests triangles
-     * over the whole line, and a crossing it moved up may be one the
+     * over the whole line, and a crossing it pairs may be one the
      * caller's interval refuses on its own (within its t error of tmin:
      * a degenerate triangle at a vertex can have a t error of 10). So the
      * first-hit search of a closed mesh tests triangles over the whole
@@ -908,8 +909,8 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.whole_line = mode == HR_TRACE_ALL && m->closed;
     q.tmin = q.whole_line ? -INFINITY : args->tmin;
     q.tmax = q.whole_line ? INFINITY : args->tmax;
-    /* A near tie may lie past the caller's tmax: alternate_closed moves a
-     * crossing up from there to the place of one inside the interval (an
+    /* A near tie may lie past the caller's tmax: alternate_closed pairs a
+     * crossing from there with one inside the interval (an
      * entering crossing at t = tmax that rounding put just after an
      * exiting one at tmax - 1 ulp: found by fuzzing). So the first-hit
      * search sees crossings as far past tmax as the widest window of a

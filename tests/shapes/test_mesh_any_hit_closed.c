@@ -305,7 +305,9 @@ static int write_touching_cubes(const char *path)
  * face fanned from M = (0.5, 1e-6, 1 - 1e-6), just inside the edge, and a
  * sliver (0, 0, 1), (1, 0, 1), M (its angle at the edge's ends 2.8e-6
  * rad) closing the notch. Rays through the sliver, or grazing it, meet it
- * nearly edge on from every side: t errors far beyond the points'. */
+ * nearly edge on from every side: t errors far beyond the points'. (With
+ * closed_any_blocks' reach left without the hit's own t error, 10 of its
+ * 10^6 rays disagreed; without its check at tmax, 218.) */
 static int write_notched_cube(const char *path)
 {
     FILE *f = fopen(path, "w");
