@@ -473,20 +473,23 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
  * y + z = -1 from an origin at x = 1.3e-18 had the crossing given to the
  * face x <= 0 at a t of 0, which the reversed walk left to the walk of
  * t >= 0, and that walk never meets the face's box x <= 0. So either walk
- * keeps such a hit, the second only when the first has not (the test is
- * deterministic: the same triangle gives the same t, flag and point).
+ * keeps such a hit, the second only when the first has not: when no hit
+ * of the first walk has this triangle's index (the test is deterministic,
+ * so the first walk's hit of the triangle is this one). Not when no hit
+ * has the same t, flag and point: at a vertex every triangle round it can
+ * give that one hit (the vertex, at one t), and the second of two such
+ * was dropped: a ray along an edge of the buckyball, within 1e-17 of its
+ * vertices, met four triangles at its far vertex, three of them within
+ * their t error of 0, and the list kept three, one entering lost, so the
+ * closed solid's hits no longer alternated.
  * For the first or any hit a copy changes nothing. */
 static int kept_in_phase(const query *q, uint32_t tri, const mesh_triangle_hit *th)
 {
     if (!(fabs(th->t) <= th->t_error)) return (th->t < 0.0) == (q->phase < 0);
     if (q->phase < 0 || q->mode != HR_TRACE_ALL) return 1;
-    hr_hit mine;
-    fill_point(q->m, tri, th, &mine);
-    const hr_hit *hits = q->args->out->hits;
+    const uint32_t index = q->m->bvh.items[tri];
     for (int32_t k = q->start; k < q->back_end; k++)
-        if (hits[k].t == mine.t && hits[k].entering == mine.entering && hits[k].point.x == mine.point.x &&
-            hits[k].point.y == mine.point.y && hits[k].point.z == mine.point.z)
-            return 0;
+        if (q->keys[k - q->start].index == index) return 0;
     return 1;
 }
 
