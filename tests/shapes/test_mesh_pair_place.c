@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "hr_test.h"
+#include "mesh_support.h"
 #include "module_harness.h"
 #include "quad_reference.h"
 
@@ -27,17 +28,6 @@ static const double points[12] = {0x1p-575, -0x1.7c7c7c73e3838p-147, 0x1.1cp+2,
                                   0x1.8p+1, -0x1.2p+2, -0x1.5c7c7c7c7c7c7p+125,
                                   -0x1.7c7c7c7c7c7c7p+125, -0x1.7c7c7c7c7c7p+125, -0x1p+3};
 static const double triangles[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-
-static hr_param numbers(const char *name, const double *values, int64_t count)
-{
-    hr_param p;
-    memset(&p, 0, sizeof p);
-    p.name = name;
-    p.type = HR_PARAM_NUMBERS;
-    p.numbers = values;
-    p.count = count;
-    return p;
-}
 
 /* Where the ray's line meets the plane of triangle (a, b, c), in quad:
  * the normal as A x B + B x C + C x A, whose products of doubles are
@@ -87,7 +77,7 @@ int main(void)
     if (!harness_load("mesh", &shape.module)) return hr_test_end();
     shape.cls = harness_find_class(&shape.module, "triangleMesh");
     CHECK(shape.cls != NULL);
-    const hr_param given[2] = {numbers("points", points, 12), numbers("triangles", triangles, 12)};
+    const hr_param given[2] = {mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", triangles, 12)};
     char error[512] = "";
     const hr_status st =
         shape.cls ? harness_create_params(shape.cls, given, 2, &shape.shape, error, sizeof error) : HR_ERROR_PARAMETER;
