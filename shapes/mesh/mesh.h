@@ -58,10 +58,6 @@ typedef struct mesh {
     /* Every edge (vertices welded by position) is used once in each
      * direction: a closed, consistently wound surface. */
     int closed;
-    /* Closed, and no triangle a sliver (mesh_faces_round): the any-hit
-     * search may stop at its first clear hit (mesh_trace.c,
-     * closed_any_blocks). */
-    int round_faces;
     /* mesh_largest_error of a closed mesh, 0 for an open one. */
     double largest_error;
     /* Texture coordinates and 3 indices into them per triangle (in BVH
@@ -117,10 +113,6 @@ void mesh_destroy(mesh *m);
 /* Whether every edge is used once in each direction (vertices welded by
  * exact position). -1: out of memory. */
 int mesh_is_closed(const mesh *m);
-
-/* Whether every triangle has all its angles above about 2^-16 rad (see
- * mesh_build.c); 0 for any non-finite or extremely small or large one. */
-int mesh_faces_round(const mesh *m);
 
 /* --- Reading files ------------------------------------------------------- */
 

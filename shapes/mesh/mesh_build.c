@@ -243,7 +243,6 @@ hr_status mesh_builder_finish(mesh_builder *b, mesh **out, char *error, size_t e
         int closed = mesh_is_closed(m);
         if (closed < 0) st = HR_ERROR_OUT_OF_MEMORY;
         m->closed = closed > 0;
-        m->round_faces = m->closed && mesh_faces_round(m);
         m->largest_error = m->closed ? mesh_largest_error(m) : 0.0;
     }
     if (st) {
@@ -342,41 +341,6 @@ static int weld(const mesh *m, uint32_t *weld_out)
     host->free(keys);
     host->free(tmp_keys);
     return 0;
-}
-
-/* --- Round faces ------------------------------------------------------------ */
-
-/* Whether (B - A) x (C - A), with the edges scaled by the longest, is long
- * enough: twice the area at least ROUND_FACE times the longest edge
- * squared (every angle above about 2^-16 rad). Anything not finite, or an
- * edge too small to scale by, does not count as round. */
-#define ROUND_FACE 0x1p-16
-
-static int triangle_round(const hr_vec3 *a, const hr_vec3 *b, const hr_vec3 *c)
-{
-    double e[3][3] = {{b->x - a->x, b->y - a->y, b->z - a->z},
-                      {c->x - a->x, c->y - a->y, c->z - a->z},
-                      {c->x - b->x, c->y - b->y, c->z - b->z}};
-    double longest = 0.0;
-    for (int i = 0; i < 3; i++) {
-        const double length = sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
-        if (length > longest) longest = length;
-    }
-    if (!(longest > 0x1p-500 && longest < 0x1p500)) return 0;
-    for (int i = 0; i < 2; i++)
-        for (int k = 0; k < 3; k++) e[i][k] /= longest;
-    const double n[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
-                         e[0][0] * e[1][1] - e[0][1] * e[1][0]};
-    return sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) >= ROUND_FACE;
-}
-
-int mesh_faces_round(const mesh *m)
-{
-    for (uint32_t t = 0; t < m->triangle_count; t++) {
-        const uint32_t *c = m->corners + 3 * (size_t)t;
-        if (!triangle_round(&m->vertices[c[0]], &m->vertices[c[1]], &m->vertices[c[2]])) return 0;
-    }
-    return 1;
 }
 
 int mesh_is_closed(const mesh *m)

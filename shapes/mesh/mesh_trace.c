@@ -145,6 +145,7 @@ static void fill_hit(const mesh *m, const hr_ray *ray, uint32_t tri, const mesh_
 typedef struct hit_key {
     double t_error; /* the triangle test's bound on the rounding of t */
     uint32_t index; /* the triangle's index in the file */
+    uint32_t paired; /* one of a pair alternate_closed made (set there only) */
 } hit_key;
 
 static int mesh_hit_before(const hr_hit *a, hit_key a_key, const hr_hit *b, hit_key b_key)
@@ -231,54 +232,99 @@ static double closed_slack(const hr_ray *ray, const hr_hit *a, hit_key a_key, co
  * first (the line starts outside), and the entering flags are exact; only
  * the computed t can put two crossings a rounding apart in the wrong order.
  * So a closed mesh's all-hits query collects the whole line, and where the
- * sorted list breaks the alternation, the next crossing of the expected kind
- * within the two hits' error bounds (as distances along the ray) and their
- * t error bounds (slack_of) is moved
- * up and given the t of the place it takes, which keeps the list sorted.
- * Where none is that close, the list is left as computed (the surface
- * crosses itself there) and the expectation follows what was found.
+ * sorted list breaks the alternation at h[i], the next crossing h[j] of the
+ * expected kind within the two hits' error bounds (as distances along the
+ * ray) and their t error bounds (slack_of) is made one place with h[i]: a
+ * zero-length visit, h[j] first. Where none is that close, the list is
+ * left as computed (the surface crosses itself there) and the expectation
+ * follows what was found.
+ *
+ * The place is where the better known of the two lies: h[i]'s t, or h[j]'s
+ * where h[j]'s t error is the smaller. (Always h[i]'s lost a tetrahedron
+ * 1e37 across to a ray along its edge: a leaving crossing at t = -1 with a
+ * t error of 3.9e36, an entering one at 4.2e36 known to 1.7e32; the pair
+ * went to t = -1, before tmin = 0, while the any-hit search rightly met
+ * the entering one: a fuzz input.) At h[i]'s t the pair takes h[i]'s
+ * position and the hits between move down one; at h[j]'s t it takes h[j]'s
+ * and those hits move up one, to where their t puts them. Either way the
+ * list stays sorted, the pair is never split or moved again, and the scan
+ * goes on from h[i]'s position.
+ *
  * `surface` holds each hit's mark (MARK_*): inside the caller's interval,
  * outside it, or inside but within its t error of tmin (the triangle
- * test refuses it: it may lie at or before tmin). A moved hit and the hit
- * whose place it takes become one place, a zero-length visit, and share
- * one mark, so that the interval keeps both or neither:
- * - the place's mark where that place's t lies outside the interval: both
+ * test refuses it: it may lie at or before tmin). The pair shares one
+ * mark, so that the interval keeps both or neither:
+ * - the place's mark where the place's t lies outside the interval: both
  *   now have that t;
- * - the moved hit's own mark where the place is refused only for its t
- *   error. The repair says that the moved hit comes first along the exact
- *   line and the place's crossing at or after it; so when the moved hit
- *   lies past tmin by more than its own t error, so does the place's
- *   crossing. (Taking the place's mark there dropped a crossing clearly
- *   inside its triangle, t error 5e-14, with a leaving one at t = 1 that
- *   the ray, in that triangle's plane, saw with a t error of 9.5 from
- *   tmin = 0: the ray met the mesh, yet neither hit nor first_hit said
- *   so; a fuzz input.) */
+ * - the other hit's own mark where the place is refused only for its t
+ *   error. The repair says that h[j] comes first along the exact line and
+ *   h[i] at or after it, and the place is the better known one; so when
+ *   the other lies past tmin by more than its own t error, so does the
+ *   place's crossing. (Taking the place's mark there dropped a crossing
+ *   clearly inside its triangle, t error 5e-14, with a leaving one at
+ *   t = 1 that the ray, in that triangle's plane, saw with a t error of
+ *   9.5 from tmin = 0: the ray met the mesh, yet neither hit nor first_hit
+ *   said so; a fuzz input.) */
 #define MARK_INSIDE 0
 #define MARK_OUTSIDE 1
 #define MARK_T_ERROR 2
 
+/* The crossing of the expected kind that h[i] pairs with, or 0 (never a
+ * valid answer: it lies past i). */
+static size_t pair_partner(const hr_ray *ray, const hr_hit *h, const hit_key *key, size_t i, size_t n,
+                           int expected)
+{
+    for (size_t j = i + 1; j < n; j++) {
+        if (!(h[j].t - h[i].t <= closed_slack(ray, &h[i], key[i], &h[j]))) return 0;
+        if (h[j].entering == expected && !key[j].paired) return j;
+    }
+    return 0;
+}
+
+/* Makes h[i] and h[j] one place, as alternate_closed describes. */
+static void make_pair(hr_hit *h, hit_key *key, size_t i, size_t j)
+{
+    const int at_j = key[j].t_error < key[i].t_error;
+    hr_hit first = h[j], second = h[i];
+    const hit_key first_key = key[j], second_key = key[i];
+    const hr_hit *place = at_j ? &first : &second, *other = at_j ? &second : &first;
+    const int mark = place->surface != MARK_T_ERROR ? place->surface : other->surface;
+    first.t = second.t = place->t;
+    first.surface = second.surface = mark;
+    size_t at;
+    if (at_j) {
+        memmove(&h[i], &h[i + 1], (j - 1 - i) * sizeof *h);
+        memmove(&key[i], &key[i + 1], (j - 1 - i) * sizeof *key);
+        at = j - 1;
+    } else {
+        memmove(&h[i + 2], &h[i + 1], (j - 1 - i) * sizeof *h);
+        memmove(&key[i + 2], &key[i + 1], (j - 1 - i) * sizeof *key);
+        at = i;
+    }
+    h[at] = first, key[at] = first_key;
+    h[at + 1] = second, key[at + 1] = second_key;
+    key[at].paired = key[at + 1].paired = 1;
+}
+
 static void alternate_closed(const hr_ray *ray, hr_hit *h, hit_key *key, size_t n)
 {
+    for (size_t i = 0; i < n; i++) key[i].paired = 0;
     int expected = 1;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; i < n;) {
+        /* A pair is a zero-length visit: it leaves the expectation as is. */
+        if (key[i].paired) {
+            i++;
+            continue;
+        }
         if (h[i].entering != expected) {
-            for (size_t j = i + 1; j < n; j++) {
-                const double slack = closed_slack(ray, &h[i], key[i], &h[j]);
-                if (!(h[j].t - h[i].t <= slack)) break;
-                if (h[j].entering != expected) continue;
-                hr_hit moved = h[j];
-                const hit_key moved_key = key[j];
-                moved.t = h[i].t;
-                if (h[i].surface != MARK_T_ERROR) moved.surface = h[i].surface;
-                h[i].surface = moved.surface;
-                memmove(&h[i + 1], &h[i], (j - i) * sizeof *h);
-                memmove(&key[i + 1], &key[i], (j - i) * sizeof *key);
-                h[i] = moved;
-                key[i] = moved_key;
-                break;
+            const size_t j = pair_partner(ray, h, key, i, n, expected);
+            if (j) {
+                make_pair(h, key, i, j);
+                continue;
             }
         }
         expected = !h[i].entering;
+        i++;
     }
 }
 
@@ -367,16 +413,12 @@ static hr_status key_room(query *q, size_t at)
     return HR_OK;
 }
 
-/* How far inside its triangle a crossing must lie (each barycentric weight
- * at least this) for a closed mesh's any-hit search to stop at it. */
-#define CLOSED_ANY_INSIDE 0x1p-16
-
 /* Whether a hit X of a closed mesh's any-hit search (tmin >= 0, X inside
  * the caller's interval as the triangle test applies it) settles the
  * answer: the ray is blocked exactly when the first-hit search (the
  * answer a closed mesh's any-hit must give, see mesh_trace) reports a hit,
- * and it does when the mesh has round faces, and X lies clearly inside its
- * triangle and further than `reach` past tmin.
+ * and it does when X lies further than `reach` from both ends of the
+ * interval.
  * - The first-hit search finds a hit. It has the any-hit search's
  *   candidates (the same ray and interval, the same test: the triangle
  *   test over (-inf, tmax) and then the caller's tmin with the test's own
@@ -388,54 +430,38 @@ static hr_status key_room(query *q, size_t at)
  * - With a near tie it answers the first hit of the all-hits list. That
  *   list holds X (its walk of t >= 0 reaches X's leaf, accel's walk being
  *   conservative as every mode assumes, and the test does the same
- *   arithmetic on the same triangle), unmarked (see alternate_closed:
- *   inside the caller's interval). alternate_closed changes a hit's mark in
- *   one way only: a hit h[j] moved up into the place of a hit h[i] of the
- *   other kind, where h[i].t <= h[j].t and h[j].t - h[i].t <=
- *   closed_slack, shares one mark with it: h[i]'s, or h[j]'s own where
- *   h[i] is refused only for its t error; every other hit is shifted with
- *   its own mark, and a moved hit is never moved again. So X stays in the
- *   list unless it takes the place of an h[i] within the slack before it
- *   whose t lies outside the caller's interval.
- * - That h[i].t does not lie at or past tmax: h[i].t <= X.t < tmax. Nor at
- *   or before tmin, unless h[i]'s t error is large: every error bound is
- *   at most tie_error (mesh_largest_error), and the rounded slack is
- *   monotone in the errors, so for |h[i].t| <= |X.t| the slack's parts in
- *   the points' errors and in |t| are at most reach / 2, and X.t - reach >
- *   tmin (checked as computed, which implies it exactly) puts h[i].t after
- *   tmin, with reach's factor 2 covering the roundings of the differences;
- *   for |h[i].t| > |X.t|, h[i].t would be negative and those parts, the
- *   one in |t| being 8 DBL_EPSILON |h[i].t|, could not reach from below 0
- *   to X.t > reach.
- * - The slack also holds four times h[i]'s t error, which reach does not
- *   bound, and which reaches from tmin to X only for a triangle the ray
- *   sees nearly edge on. A sliver is seen so from every side, and a
- *   ray through a corner of one that lies on a face meets it with an error
- *   of 1 at the face's crossing (a fuzz input found it), so a mesh with any
- *   triangle less round than mesh_faces_round allows keeps the first-hit
- *   search. A round triangle is seen edge on only by a ray in its plane;
- *   its crossing is then where the ray meets its plane's edge with the
- *   next face, a rounding from X's crossing, which lies clearly inside X's
- *   triangle (no weight below CLOSED_ANY_INSIDE), where no other face of a
- *   surface that does not meet itself comes. (A ray along a face through
- *   the edge that face shares with X's triangle drags X's mark exactly so;
- *   the test meets it, and it is why X must lie inside.) What no bound
- *   excludes is a round triangle whose computed t, uncertain as the ray
- *   runs in its plane, rounds to tmin or before within the slack before
- *   X's, or a surface meeting itself at X's crossing:
- *   test_mesh_any_hit_closed aims rays at vertices, edges and along faces
- *   to look for them. (Such a t rounded past tmin, refused only for its t
- *   error, keeps X: a ray in a round face's plane through its corner, t =
- *   1 with a t error of 9.5 from tmin = 0, 0.125 before X, whose pair was
- *   dropped while the place's mark was taken: test_mesh_repair_mark.)
- * A hit near an edge of its triangle or within reach of tmin (a ray
- * starting on the mesh) is left to the first-hit search. */
+ *   arithmetic on the same triangle), unmarked (inside the caller's
+ *   interval). alternate_closed changes marks in one way only: it makes
+ *   a pair of h[i] and a later h[j] of the other kind, h[j].t - h[i].t <=
+ *   closed_slack, whose t error part is twice h[i]'s, at the t of the one
+ *   whose t error is the smaller (the place), with one mark: the place's,
+ *   or the other's own where the place is refused only for its t error.
+ *   Every other hit is shifted with its own mark, and a pair is never
+ *   moved again. So X stays in the list unless it is one of a pair whose
+ *   place is the other hit and lies outside the interval:
+ *   - X = h[j], the place h[i]: h[i]'s t error is at most X's, so h[i].t
+ *     lies within a slack with X's t error before X, and h[i].t <= X.t <
+ *     tmax;
+ *   - X = h[i], the place h[j]: h[j].t lies within a slack with X's t
+ *     error after X, and h[j].t >= X.t > tmin.
+ * - A slack with X's t error does not reach from X to tmin or to tmax:
+ *   every point error bound is at most tie_error (mesh_largest_error), and
+ *   the rounded slack is monotone in the errors, so for a partner t with
+ *   |t| <= |X.t| the slack's parts are at most reach / 2, and X.t - reach >
+ *   tmin and X.t + reach < tmax (checked as computed, which implies them
+ *   exactly) put the partner inside, reach's factor 2 covering the
+ *   roundings of the differences. A partner before X with |t| > |X.t|
+ *   would be negative, and the slack's part in |t|, 8 DBL_EPSILON |t|,
+ *   could not reach from below 0 to X.t > reach. One after X, at t, has
+ *   t - X.t <= P + 8 DBL_EPSILON t, P the parts other than |t|'s, so
+ *   t - X.t <= (P + 8 DBL_EPSILON X.t) / (1 - 8 DBL_EPSILON), within reach.
+ * A hit within reach of tmin (a ray starting on the mesh) or tmax (a
+ * shadow ray ending on it) is left to the first-hit search. */
 static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
 {
-    if (!(x->b[0] >= CLOSED_ANY_INSIDE && x->b[1] >= CLOSED_ANY_INSIDE && x->b[2] >= CLOSED_ANY_INSIDE))
-        return 0;
-    const double reach = 2.0 * slack_of(&q->args->ray, q->tie_error, x->t, q->tie_error, x->t, 0.0);
-    return x->t - reach > q->tmin;
+    const double reach =
+        2.0 * slack_of(&q->args->ray, q->tie_error, x->t, q->tie_error, x->t, 2.0 * x->t_error);
+    return x->t - reach > q->tmin && x->t + reach < q->args->tmax;
 }
 
 /* Whether a walk of one half of the line (walk) keeps hit th of triangle
@@ -447,20 +473,23 @@ static int closed_any_blocks(const query *q, const mesh_triangle_hit *x)
  * y + z = -1 from an origin at x = 1.3e-18 had the crossing given to the
  * face x <= 0 at a t of 0, which the reversed walk left to the walk of
  * t >= 0, and that walk never meets the face's box x <= 0. So either walk
- * keeps such a hit, the second only when the first has not (the test is
- * deterministic: the same triangle gives the same t, flag and point).
+ * keeps such a hit, the second only when the first has not: when no hit
+ * of the first walk has this triangle's index (the test is deterministic,
+ * so the first walk's hit of the triangle is this one). Not when no hit
+ * has the same t, flag and point: at a vertex every triangle round it can
+ * give that one hit (the vertex, at one t), and the second of two such
+ * was dropped: a ray along an edge of the buckyball, within 1e-17 of its
+ * vertices, met four triangles at its far vertex, three of them within
+ * their t error of 0, and the list kept three, one entering lost, so the
+ * closed solid's hits no longer alternated.
  * For the first or any hit a copy changes nothing. */
 static int kept_in_phase(const query *q, uint32_t tri, const mesh_triangle_hit *th)
 {
     if (!(fabs(th->t) <= th->t_error)) return (th->t < 0.0) == (q->phase < 0);
     if (q->phase < 0 || q->mode != HR_TRACE_ALL) return 1;
-    hr_hit mine;
-    fill_point(q->m, tri, th, &mine);
-    const hr_hit *hits = q->args->out->hits;
+    const uint32_t index = q->m->bvh.items[tri];
     for (int32_t k = q->start; k < q->back_end; k++)
-        if (hits[k].t == mine.t && hits[k].entering == mine.entering && hits[k].point.x == mine.point.x &&
-            hits[k].point.y == mine.point.y && hits[k].point.z == mine.point.z)
-            return 0;
+        if (q->keys[k - q->start].index == index) return 0;
     return 1;
 }
 
@@ -608,8 +637,8 @@ MESH_AXES_INLINE int leaf_loop(query *q, uint32_t first, uint32_t end, int kx, i
             tmax = fmin(q->tie_end, window_end);
             /* Where the best's window reaches past the least end the
              * search has run under, crossings between that end and the
-             * window's are unseen, and alternate_closed may move one up
-             * onto the best: then the answer is the all-hits list's
+             * window's are unseen, and alternate_closed may pair one
+             * with the best: then the answer is the all-hits list's
              * (finish_query). Two ways it happens:
              * - a window cut at tie_end, which allows for the points'
              *   slack past the caller's tmax, not for the best's t error
@@ -758,19 +787,20 @@ static int near_tie_with_best(const query *q, const seen_crossing *s)
 }
 
 /* Whether a crossing the first-hit search saw sorts before its best (in
- * the all-hits order, mesh_hit_before) as a place that alternate_closed
- * may fill from as far as the best or past it: its slack, which holds
- * twice its own t error, reaches the best's t. Such a crossing lies
+ * the all-hits order, mesh_hit_before) as one that alternate_closed may
+ * pair with a crossing as far as the best or past it: its slack, which
+ * holds twice its own t error, reaches the best's t. Such a crossing lies
  * outside the caller's interval, or within its t error of tmin (else it
- * would be the best), and a crossing of the interval moved onto it is kept
- * where the place was refused only for its t error: one the search passed
+ * would be the best), and a pair of it and a crossing of the interval is
+ * kept where it was refused only for its t error, or where the pair lies
+ * at the other's t: one the search passed
  * over once its end had narrowed to the best's window, or one it saw past
  * the best but weighed against the best alone (a leaving crossing at t = 1
  * with a t error of 500, refused for it from tmin = 0, before a leaving
  * best at t = 1 with a t error of 1.4e-13, and the list moved an entering
- * crossing up from 1 + 5e-4 onto the first: a fuzz input). A crossing
- * moved up from past the caller's tmax is marked outside it, and so is
- * its place then: with no best, no such move keeps a hit. The slack's part
+ * crossing up from 1 + 5e-4 onto the first: a fuzz input). Its pair
+ * with a crossing from past the caller's tmax is marked outside it: with
+ * no best, no such pair keeps a hit. The slack's part
  * in |t| is taken at the best's t: past it the distance grows faster than
  * the slack. */
 static int place_reaches_best(const query *q, const seen_crossing *s)
@@ -852,12 +882,10 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
      * must not be blocked by a touch a camera ray does not see. So any-hit
      * answers whether the first-hit search finds a hit: it stops at the
      * first hit it meets where that hit settles the answer
-     * (closed_any_blocks: on a mesh without slivers, all but hits at an
-     * edge or a rounding past tmin), and asks the first-hit search
-     * otherwise, and always for an interval from before 0.
-     * (The regular solids are closed and small; large meshes from files
-     * are mostly open surfaces and keep the plain any-hit search.) */
-    q.closed_any = mode == HR_TRACE_ANY && m->round_faces && args->tmin >= 0.0;
+     * (closed_any_blocks: all but hits within a rounding of tmin or tmax),
+     * and asks the first-hit search otherwise, and always for an interval
+     * from before 0. */
+    q.closed_any = mode == HR_TRACE_ANY && m->closed && args->tmin >= 0.0;
     if (mode == HR_TRACE_ANY && m->closed && !q.closed_any) mode = HR_TRACE_FIRST;
     q.mode = mode;
     /* An any-hit search still (an open mesh's, or closed_any) takes the
@@ -868,7 +896,7 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
      * exiting crossing lie within rounding of each other (a ray through a
      * vertex or an edge: the two triangles' t differ by a few ulps, and the
      * nearer may be the exiting one). The all-hits query tests triangles
-     * over the whole line, and a crossing it moved up may be one the
+     * over the whole line, and a crossing it pairs may be one the
      * caller's interval refuses on its own (within its t error of tmin:
      * a degenerate triangle at a vertex can have a t error of 10). So the
      * first-hit search of a closed mesh tests triangles over the whole
@@ -884,8 +912,8 @@ static __attribute__((noinline)) hr_status trace_query(const mesh *m, const hr_h
     q.whole_line = mode == HR_TRACE_ALL && m->closed;
     q.tmin = q.whole_line ? -INFINITY : args->tmin;
     q.tmax = q.whole_line ? INFINITY : args->tmax;
-    /* A near tie may lie past the caller's tmax: alternate_closed moves a
-     * crossing up from there to the place of one inside the interval (an
+    /* A near tie may lie past the caller's tmax: alternate_closed pairs a
+     * crossing from there with one inside the interval (an
      * entering crossing at t = tmax that rounding put just after an
      * exiting one at tmax - 1 ulp: found by fuzzing). So the first-hit
      * search sees crossings as far past tmax as the widest window of a

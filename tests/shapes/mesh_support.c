@@ -6,6 +6,17 @@
 
 #include "hr_test.h"
 
+hr_param mesh_numbers_param(const char *name, const double *values, int64_t count)
+{
+    hr_param p;
+    memset(&p, 0, sizeof p);
+    p.name = name;
+    p.type = HR_PARAM_NUMBERS;
+    p.numbers = values;
+    p.count = count;
+    return p;
+}
+
 const char *mesh_data_path(const char *name, char *buf, size_t size)
 {
     snprintf(buf, size, "%s/tests/data/meshes/%s", HR_TEST_SOURCE_DIR, name);

@@ -5,8 +5,13 @@
 #define HR_TEST_MESH_SUPPORT_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "module_harness.h"
+
+/* A parameter of type HR_PARAM_NUMBERS: `count` numbers at `values` (the
+ * triangleMesh class's points, triangles and normals). */
+hr_param mesh_numbers_param(const char *name, const double *values, int64_t count);
 
 /* HR_TEST_SOURCE_DIR "/tests/data/meshes/" name */
 const char *mesh_data_path(const char *name, char *buf, size_t size);

@@ -13,6 +13,7 @@
 #include <hitray/hitray.h>
 
 #include "hr_test.h"
+#include "mesh_support.h"
 #include "module_harness.h"
 
 static hr_context *ctx;
@@ -20,17 +21,6 @@ static hr_context *ctx;
 static const double points[12] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1};
 /* Counter-clockwise seen from outside. */
 static const double faces[12] = {0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2};
-
-static hr_param array(const char *name, const double *values, int64_t count)
-{
-    hr_param p;
-    memset(&p, 0, sizeof p);
-    p.name = name;
-    p.type = HR_PARAM_NUMBERS;
-    p.numbers = values;
-    p.count = count;
-    return p;
-}
 
 static hr_status add(hr_scene *s, const hr_param *params, int32_t count)
 {
@@ -48,7 +38,7 @@ static void test_tetrahedron(void)
 {
     hr_scene *s;
     CHECK_OK(hr_scene_create(ctx, &s));
-    const hr_param p[2] = {array("points", points, 12), array("triangles", faces, 12)};
+    const hr_param p[2] = {mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", faces, 12)};
     CHECK_OK(add(s, p, 2));
     CHECK_OK(hr_scene_commit(s));
     hr_intersection all;
@@ -72,8 +62,8 @@ static void test_normals(void)
 {
     hr_scene *s;
     CHECK_OK(hr_scene_create(ctx, &s));
-    const hr_param p[3] = {array("points", points, 12), array("triangles", faces, 12),
-                           array("normals", points, 12)};
+    const hr_param p[3] = {mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", faces, 12),
+                           mesh_numbers_param("normals", points, 12)};
     CHECK_OK(add(s, p, 3));
     CHECK_OK(hr_scene_commit(s));
     /* Face (0, 1, 2): centroid (1/3, 1/3, -1/3), mean normal the same. */
@@ -107,27 +97,27 @@ static void check_refusals(void)
     as_number.name = "points";
     as_number.type = HR_PARAM_NUMBER;
     as_number.number = 1;
-    const hr_param tris = array("triangles", faces, 12);
+    const hr_param tris = mesh_numbers_param("triangles", faces, 12);
     const bad_arrays cases[] = {
         {{as_number, tris}, 2, HR_ERROR_PARAMETER,
          "parameter 'points' must be an array of numbers, not a number"},
-        {{array("points", points, -3), tris}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, -3), tris}, 2, HR_ERROR_PARAMETER,
          "parameter 'points' has count -3"},
-        {{array("points", NULL, 12), tris}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", NULL, 12), tris}, 2, HR_ERROR_PARAMETER,
          "parameter 'points' has count 12 and a NULL pointer"},
-        {{array("points", nan_point, 12), tris}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", nan_point, 12), tris}, 2, HR_ERROR_PARAMETER,
          "element 11 of parameter 'points' must be a finite number"},
-        {{array("points", points, 12), array("triangles", negative, 3)}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", negative, 3)}, 2, HR_ERROR_PARAMETER,
          "element 1 of parameter 'triangles' = -1 is outside [0, "},
-        {{array("points", points, 10), tris}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, 10), tris}, 2, HR_ERROR_PARAMETER,
          "parameter 'points' must hold 3 numbers per vertex"},
-        {{array("points", points, 12), array("triangles", faces, 11)}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", faces, 11)}, 2, HR_ERROR_PARAMETER,
          "parameter 'triangles' must hold 3 vertex indices per triangle"},
-        {{array("points", points, 12), array("triangles", past, 12)}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", past, 12)}, 2, HR_ERROR_PARAMETER,
          "element 11 (corner 2 of triangle 3) is 4, not a vertex index in [0, 4)"},
-        {{array("points", points, 12), array("triangles", half, 12)}, 2, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", half, 12)}, 2, HR_ERROR_PARAMETER,
          "is 1.5, not a vertex index"},
-        {{array("points", points, 12), tris, array("normals", points, 9)}, 3, HR_ERROR_PARAMETER,
+        {{mesh_numbers_param("points", points, 12), tris, mesh_numbers_param("normals", points, 9)}, 3, HR_ERROR_PARAMETER,
          "parameter 'normals' must be empty or hold one normal per vertex (12 numbers), not 9"},
         {{tris}, 1, HR_ERROR_PARAMETER, "parameter 'points' is required"},
     };
@@ -152,8 +142,8 @@ static void check_module_alone(void)
     CHECK(cls != NULL);
     if (!cls) return;
     static const double nan_normal[12] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, INFINITY};
-    const hr_param bad[3] = {array("points", points, 12), array("triangles", faces, 12),
-                             array("normals", nan_normal, 12)};
+    const hr_param bad[3] = {mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", faces, 12),
+                             mesh_numbers_param("normals", nan_normal, 12)};
     void *shape = NULL;
     char error[256] = "";
     CHECK(harness_create_params(cls, bad, 3, &shape, error, sizeof error) == HR_ERROR_PARAMETER);
@@ -163,13 +153,13 @@ static void check_module_alone(void)
     /* Past the readers' coordinate limit (found by fuzz_shapes: a corner at
      * DBL_MAX gave a hit with every weight 0, outside the bounds). */
     static const double huge_point[12] = {1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, DBL_MAX};
-    const hr_param huge[2] = {array("points", huge_point, 12), array("triangles", faces, 12)};
+    const hr_param huge[2] = {mesh_numbers_param("points", huge_point, 12), mesh_numbers_param("triangles", faces, 12)};
     CHECK(harness_create_params(cls, huge, 2, &shape, error, sizeof error) == HR_ERROR_PARAMETER);
     CHECK_MSG(strstr(error, "element 11 of parameter 'points' is 1.79769e+308, beyond the "
                             "coordinates a mesh takes (at most 1e+100)"),
               "%s", error);
     CHECK(shape == NULL);
-    const hr_param good[2] = {array("points", points, 12), array("triangles", faces, 12)};
+    const hr_param good[2] = {mesh_numbers_param("points", points, 12), mesh_numbers_param("triangles", faces, 12)};
     CHECK_OK(harness_create_params(cls, good, 2, &shape, error, sizeof error));
     if (shape) cls->destroy(shape);
     harness_unload(&module);
