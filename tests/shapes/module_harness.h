@@ -92,6 +92,11 @@ void harness_close(harness_shape *shape);
 int harness_trace(const harness_shape *shape, hr_ray ray, double tmin, double tmax,
                   int32_t mode, hr_hit hits[HARNESS_MAX_HITS]);
 
+/* harness_trace in HARNESS_ALL mode with every check but a closed shape's
+ * alternation, for a test that counts the lists that do not alternate. */
+int harness_all_hits_as_listed(const harness_shape *shape, hr_ray ray, double tmin, double tmax,
+                               hr_hit hits[HARNESS_MAX_HITS]);
+
 /* harness_trace in HARNESS_ALL mode over (0, +infinity). */
 int harness_hits(const harness_shape *shape, hr_ray ray, hr_hit hits[HARNESS_MAX_HITS]);
 
